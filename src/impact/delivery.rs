@@ -1,0 +1,200 @@
+//! TrackMan-style delivery <-> impact state (DESIGN.md section 2, "Delivery").
+//!
+//! - Club speed, attack angle (up +) and club path (right +) are the speed and direction of the face centre's
+//!   velocity just before impact: `v_face = s (cos a cos p, sin a, cos a sin p)`.
+//! - Face angle (open/right +) and dynamic loft are the azimuth and elevation of the face-centre normal. With no
+//!   lie change, `world_from_club = Ry(-face_angle) Rz(dynamic_loft - static_loft)`, which turns
+//!   `n0 = (cos L, sin L, 0)` into `(cos dl cos f, sin dl, cos dl sin f)`.
+//! - The CG velocity is `v_cg = v_face - w x r(CG -> face centre)` (rigid body, seed eq. 3.7).
+//! - The ball rests at the world origin and touches the face at the contact point, so the contact point is at
+//!   `-R_ball n` and the CG at `-R_ball n - r(CG -> contact)`.
+
+use super::{Equipment, ImpactError, ImpactState};
+use crate::math::{rot_y, rot_z, Isometry3, Real, UnitQuaternion, Vector3};
+
+/// A delivery in SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Delivery {
+    pub club_speed_mps: Real,
+    pub attack_angle_rad: Real,
+    pub club_path_rad: Real,
+    pub face_angle_rad: Real,
+    pub dynamic_loft_rad: Real,
+    pub impact_h_m: Real,
+    pub impact_v_m: Real,
+    /// Angular velocity of the head (rad/s, world).
+    pub club_angular_velocity_radps: Vector3,
+}
+
+impl Delivery {
+    /// Unit direction of the face centre's velocity.
+    pub fn direction(&self) -> Vector3 {
+        let (a, p) = (self.attack_angle_rad, self.club_path_rad);
+        Vector3::new(a.cos() * p.cos(), a.sin(), a.cos() * p.sin())
+    }
+
+    /// Checks the fields a model relies on.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        let fields = [
+            ("club_speed_mph", self.club_speed_mps),
+            ("attack_angle_deg", self.attack_angle_rad),
+            ("club_path_deg", self.club_path_rad),
+            ("face_angle_deg", self.face_angle_rad),
+            ("dynamic_loft_deg", self.dynamic_loft_rad),
+            ("impact_h_mm", self.impact_h_m),
+            ("impact_v_mm", self.impact_v_m),
+            ("club_angular_velocity_radps", self.club_angular_velocity_radps.norm()),
+        ];
+        for (field, v) in fields {
+            if !v.is_finite() {
+                return Err(ImpactError::NotFinite { field });
+            }
+        }
+        if !(1.0..=100.0).contains(&self.club_speed_mps) {
+            return Err(ImpactError::SpeedOutOfRange { speed_mps: self.club_speed_mps });
+        }
+        Ok(())
+    }
+
+    /// The impact state of this delivery on the given equipment, the ball at rest at the world origin.
+    pub fn to_state(&self, equipment: &Equipment) -> Result<ImpactState, ImpactError> {
+        self.validate()?;
+        let club = &equipment.club;
+        if !club.on_face(self.impact_h_m, self.impact_v_m) {
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
+        }
+        let world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
+        let rot = world_from_club_rot.matrix();
+        let contact = club.face.contact(self.impact_h_m, self.impact_v_m)?;
+        let v_face = self.club_speed_mps * self.direction();
+        let w = self.club_angular_velocity_radps;
+        let r_face_world = rot * club.face.center_m;
+        let cg_velocity_mps = v_face - w.cross(&r_face_world);
+        let contact_world = -equipment.ball.radius_m * (rot * contact.normal);
+        let cg_position = contact_world - rot * contact.point_m;
+        Ok(ImpactState {
+            world_from_club: Isometry3::from_parts(
+                cg_position.into(),
+                UnitQuaternion::from_rotation_matrix(&world_from_club_rot),
+            ),
+            cg_velocity_mps,
+            angular_velocity_radps: w,
+            impact_h_m: self.impact_h_m,
+            impact_v_m: self.impact_v_m,
+        })
+    }
+}
+
+/// Delivery numbers read back from any impact state, plus spin loft and face-to-path.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct DeliveryMetrics {
+    pub club_speed_mps: Real,
+    pub club_speed_mph: Real,
+    pub attack_angle_deg: Real,
+    pub club_path_deg: Real,
+    pub face_angle_deg: Real,
+    pub dynamic_loft_deg: Real,
+    pub spin_loft_deg: Real,
+    pub face_to_path_deg: Real,
+    pub impact_h_mm: Real,
+    pub impact_v_mm: Real,
+    pub club_angular_velocity_radps: [Real; 3],
+}
+
+impl DeliveryMetrics {
+    /// The delivery numbers of `state` on `club`.
+    pub fn from_state(state: &ImpactState, club: &crate::equipment::ClubSpec) -> Self {
+        let rot = state.world_from_club.rotation;
+        let w = state.angular_velocity_radps;
+        let v_face = state.cg_velocity_mps + w.cross(&(rot * club.face.center_m));
+        let n = rot * club.face.n0();
+        let speed = v_face.norm();
+        let attack = v_face.y.atan2(v_face.x.hypot(v_face.z));
+        let path = v_face.z.atan2(v_face.x);
+        let face = n.z.atan2(n.x);
+        let loft = n.y.atan2(n.x.hypot(n.z));
+        let spin_loft = v_face.cross(&n).norm().atan2(v_face.dot(&n));
+        DeliveryMetrics {
+            club_speed_mps: speed,
+            club_speed_mph: crate::units::mps_to_mph(speed),
+            attack_angle_deg: attack.to_degrees(),
+            club_path_deg: path.to_degrees(),
+            face_angle_deg: face.to_degrees(),
+            dynamic_loft_deg: loft.to_degrees(),
+            spin_loft_deg: spin_loft.to_degrees(),
+            face_to_path_deg: (face - path).to_degrees(),
+            impact_h_mm: state.impact_h_m * 1e3,
+            impact_v_mm: state.impact_v_m * 1e3,
+            club_angular_velocity_radps: [w.x, w.y, w.z],
+        }
+    }
+
+    /// The delivery these numbers describe.
+    pub fn to_delivery(&self) -> Delivery {
+        Delivery {
+            club_speed_mps: self.club_speed_mps,
+            attack_angle_rad: self.attack_angle_deg.to_radians(),
+            club_path_rad: self.club_path_deg.to_radians(),
+            face_angle_rad: self.face_angle_deg.to_radians(),
+            dynamic_loft_rad: self.dynamic_loft_deg.to_radians(),
+            impact_h_m: self.impact_h_mm * 1e-3,
+            impact_v_m: self.impact_v_mm * 1e-3,
+            club_angular_velocity_radps: Vector3::from(self.club_angular_velocity_radps),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::ClubSpec;
+
+    #[test]
+    fn delivery_round_trips_through_the_state() {
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let eq = Equipment::new(club.clone());
+            let d = Delivery {
+                club_speed_mps: 45.0,
+                attack_angle_rad: (-3.0f64).to_radians(),
+                club_path_rad: 2.5f64.to_radians(),
+                face_angle_rad: (-1.2f64).to_radians(),
+                dynamic_loft_rad: 14.0f64.to_radians(),
+                impact_h_m: 0.012,
+                impact_v_m: -0.006,
+                club_angular_velocity_radps: Vector3::new(3.0, -40.0, 8.0),
+            };
+            let s = d.to_state(&eq).unwrap();
+            let m = DeliveryMetrics::from_state(&s, &club);
+            assert!((m.club_speed_mps - 45.0).abs() < 1e-12);
+            assert!((m.attack_angle_deg + 3.0).abs() < 1e-12);
+            assert!((m.club_path_deg - 2.5).abs() < 1e-12);
+            assert!((m.face_angle_deg + 1.2).abs() < 1e-12);
+            assert!((m.dynamic_loft_deg - 14.0).abs() < 1e-12);
+            assert!((m.face_to_path_deg + 3.7).abs() < 1e-12);
+            // The ball (radius R at the origin) touches the face at the contact point.
+            let g = s.contact(&club).unwrap();
+            let contact = s.world_from_club.translation.vector + g.r_club_m;
+            assert!((contact.norm() - eq.ball.radius_m).abs() < 1e-12);
+            assert!((contact + eq.ball.radius_m * g.frame.column(0)).norm() < 1e-12);
+        }
+    }
+
+    /// Spin loft of a square face on a level path is the dynamic loft minus the attack angle.
+    #[test]
+    fn spin_loft_in_the_plane() {
+        let club = ClubSpec::iron7();
+        let d = Delivery {
+            club_speed_mps: 40.0,
+            attack_angle_rad: (-4.0f64).to_radians(),
+            club_path_rad: 0.0,
+            face_angle_rad: 0.0,
+            dynamic_loft_rad: 25.0f64.to_radians(),
+            impact_h_m: 0.0,
+            impact_v_m: 0.0,
+            club_angular_velocity_radps: Vector3::zeros(),
+        };
+        let s = d.to_state(&Equipment::new(club.clone())).unwrap();
+        let m = DeliveryMetrics::from_state(&s, &club);
+        assert!((m.spin_loft_deg - 29.0).abs() < 1e-12);
+    }
+}

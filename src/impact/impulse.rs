@@ -1,0 +1,219 @@
+//! The impulse-momentum family (seed section 3.1): standard, adjusted (Danaei et al., section 3.1.1, Table 3.3)
+//! and slip (Cross and Dewhurst, section 3.1.2, Table 3.4), one solver with three parameter sets.
+//!
+//! Assumptions (seed 3.1): the collision is instantaneous, neither body moves during it, contact is at one
+//! point, both bodies are free, the ball is at rest. Equations, with `P` the impulse on the ball:
+//!
+//! - eq. 3.1  `P = ∫ F dt`
+//! - eq. 3.2  `m_c v_c,i − P = m_c v_c,f`            eq. 3.3  `I_c ω_c,i − r_c × P = I_c ω_c,f`
+//! - eq. 3.4  `m_b v_b,i + P = m_b v_b,f`            eq. 3.5  `I_b ω_b,i + r_b × P = I_b ω_b,f`
+//! - eq. 3.6  `e = −(v_imp,c,f − v_imp,b,f)·i′ / (v_imp,c,i − v_imp,b,i)·i′`   (COR along the face normal)
+//! - eq. 3.7  `v_imp,c = v_c + ω_c × r_c`             eq. 3.8  `v_imp,b = v_b + ω_b × r_b`
+//! - eq. 3.9, 3.10 (rolling) `(v_imp,c,f − v_imp,b,f)·j′ = 0`, `·k′ = 0`
+//! - eq. 3.11, 3.12 (slip) `e_y = −(…)_f·j′ / (…)_i·j′`, `e_z = −(…)_f·k′ / (…)_i·k′`
+//!
+//! The 15 scalar equations reduce to one 3×3 solve. The relative contact velocity `u = v_imp,c − v_imp,b`
+//! changes by `−K P` with
+//! `K = (1/m_c + 1/m_b) I − [r_c]× I_c⁻¹ [r_c]× − [r_b]× I_b⁻¹ [r_b]×`,
+//! and eq. 3.6 and 3.9–3.12 fix the final `u′ = −F E Fᵀ u` (`F` = the impact frame, `E = diag(e, e_y, e_z)`), so
+//! `P = K⁻¹ (I + F E Fᵀ) u`. Rolling is `e_y = e_z = 0`.
+//!
+//! The adjusted variant adds `Δm` to `m_c` (not to the inertia) and moves the ball's CG by `Δ` (impact frame),
+//! so `r_b = −R n − F Δ`. The COR is a constant (default 0.83, the rules limit, seed-tables `[cor]`).
+
+use super::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::math::{skew, Matrix3, Real, Vector3};
+
+/// The default coefficient of restitution.
+pub const DEFAULT_COR: Real = 0.83;
+
+/// Which parameter set of the family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImpulseVariant {
+    /// Seed section 3.1, Table 3.2: rolling, no adjustments.
+    Standard,
+    /// Danaei et al. (seed 3.1.1, Table 3.3): added head mass, shifted ball CG, rolling.
+    Adjusted,
+    /// Cross and Dewhurst (seed 3.1.2, Table 3.4): tangential restitution e_y, e_z.
+    Slip,
+}
+
+impl ImpulseVariant {
+    pub const ALL: [ImpulseVariant; 3] = [ImpulseVariant::Standard, ImpulseVariant::Adjusted, ImpulseVariant::Slip];
+
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ImpulseVariant::Standard => "standard",
+            ImpulseVariant::Adjusted => "adjusted",
+            ImpulseVariant::Slip => "slip",
+        }
+    }
+
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|v| v.as_str() == name)
+    }
+}
+
+/// The numbers the solver needs, resolved from a variant and a club.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpulseParams {
+    pub cor: Real,
+    pub delta_mass_kg: Real,
+    pub ball_cg_shift_m: Vector3,
+    pub e_y: Real,
+    pub e_z: Real,
+}
+
+/// An impulse-momentum model: a variant and a COR.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpulseModel {
+    pub variant: ImpulseVariant,
+    pub cor: Real,
+}
+
+impl ImpulseModel {
+    pub fn new(variant: ImpulseVariant) -> Self {
+        ImpulseModel { variant, cor: DEFAULT_COR }
+    }
+
+    pub fn with_cor(mut self, cor: Real) -> Self {
+        self.cor = cor;
+        self
+    }
+
+    /// The parameters of this variant for `equipment`'s club.
+    pub fn params(&self, equipment: &Equipment) -> ImpulseParams {
+        let t = &equipment.club.impulse;
+        let mut p =
+            ImpulseParams { cor: self.cor, delta_mass_kg: 0.0, ball_cg_shift_m: Vector3::zeros(), e_y: 0.0, e_z: 0.0 };
+        match self.variant {
+            ImpulseVariant::Standard => {}
+            ImpulseVariant::Adjusted => {
+                p.delta_mass_kg = t.adjusted_delta_mass_kg;
+                p.ball_cg_shift_m = t.adjusted_ball_cg_shift_m;
+            }
+            ImpulseVariant::Slip => {
+                p.e_y = t.slip_e_y;
+                p.e_z = t.slip_e_z;
+            }
+        }
+        p
+    }
+}
+
+/// One two-body point collision in the world frame: everything [`solve`] needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactProblem {
+    pub club_mass_kg: Real,
+    /// Inverse inertia of the head about its CG, world frame.
+    pub club_inertia_inv: Matrix3,
+    pub ball_mass_kg: Real,
+    /// Inverse inertia of the ball about its CG, world frame.
+    pub ball_inertia_inv: Matrix3,
+    /// Club CG -> contact (m).
+    pub r_club_m: Vector3,
+    /// Ball CG -> contact (m).
+    pub r_ball_m: Vector3,
+    /// Impact frame columns x′, y′, z′.
+    pub frame: Matrix3,
+    pub club_velocity_mps: Vector3,
+    pub club_angular_velocity_radps: Vector3,
+    pub ball_velocity_mps: Vector3,
+    pub ball_angular_velocity_radps: Vector3,
+    /// `(e, e_y, e_z)`.
+    pub restitution: Vector3,
+}
+
+/// Velocities after the collision and the impulse on the ball.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSolution {
+    pub impulse_ns: Vector3,
+    pub club_velocity_mps: Vector3,
+    pub club_angular_velocity_radps: Vector3,
+    pub ball_velocity_mps: Vector3,
+    pub ball_angular_velocity_radps: Vector3,
+}
+
+impl ContactProblem {
+    /// Velocity of the club's material point at the contact, eq. 3.7.
+    pub fn club_contact_velocity(&self, v: &Vector3, w: &Vector3) -> Vector3 {
+        v + w.cross(&self.r_club_m)
+    }
+    /// Velocity of the ball's material point at the contact, eq. 3.8.
+    pub fn ball_contact_velocity(&self, v: &Vector3, w: &Vector3) -> Vector3 {
+        v + w.cross(&self.r_ball_m)
+    }
+}
+
+/// Solves eq. 3.2-3.12 for one collision.
+#[inline]
+pub fn solve(p: &ContactProblem) -> Result<ContactSolution, ImpactError> {
+    let rc = skew(&p.r_club_m);
+    let rb = skew(&p.r_ball_m);
+    let k = Matrix3::from_diagonal_element(1.0 / p.club_mass_kg + 1.0 / p.ball_mass_kg)
+        - rc * p.club_inertia_inv * rc
+        - rb * p.ball_inertia_inv * rb;
+    let u = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps)
+        - p.ball_contact_velocity(&p.ball_velocity_mps, &p.ball_angular_velocity_radps);
+    let u_frame = p.frame.transpose() * u;
+    // u - u' = F (I + E) F^T u
+    let du = p.frame * u_frame.component_mul(&(Vector3::repeat(1.0) + p.restitution));
+    let impulse = k.cholesky().map(|c| c.solve(&du)).or_else(|| k.lu().solve(&du)).ok_or(ImpactError::Singular)?;
+    Ok(ContactSolution {
+        impulse_ns: impulse,
+        club_velocity_mps: p.club_velocity_mps - impulse / p.club_mass_kg,
+        club_angular_velocity_radps: p.club_angular_velocity_radps - p.club_inertia_inv * p.r_club_m.cross(&impulse),
+        ball_velocity_mps: p.ball_velocity_mps + impulse / p.ball_mass_kg,
+        ball_angular_velocity_radps: p.ball_angular_velocity_radps + p.ball_inertia_inv * p.r_ball_m.cross(&impulse),
+    })
+}
+
+impl ImpulseModel {
+    /// The contact problem for a state on the given equipment, with this model's parameters.
+    pub fn problem(&self, state: &ImpactState, equipment: &Equipment) -> Result<ContactProblem, ImpactError> {
+        let params = self.params(equipment);
+        let g = state.contact(&equipment.club)?;
+        if g.contact_velocity_mps.dot(&g.frame.column(0)) <= 0.0 {
+            return Err(ImpactError::NotApproaching);
+        }
+        let rot = g.world_from_club;
+        let ball = &equipment.ball;
+        let r_ball_m = -ball.radius_m * g.frame.column(0) - g.frame * params.ball_cg_shift_m;
+        Ok(ContactProblem {
+            club_mass_kg: equipment.club.mass_kg + params.delta_mass_kg,
+            club_inertia_inv: rot * equipment.club.inertia_inv_kg_m2 * rot.transpose(),
+            ball_mass_kg: ball.mass_kg,
+            ball_inertia_inv: Matrix3::from_diagonal_element(1.0 / ball.inertia_kg_m2),
+            r_club_m: g.r_club_m,
+            r_ball_m,
+            frame: g.frame,
+            club_velocity_mps: state.cg_velocity_mps,
+            club_angular_velocity_radps: state.angular_velocity_radps,
+            ball_velocity_mps: Vector3::zeros(),
+            ball_angular_velocity_radps: Vector3::zeros(),
+            restitution: Vector3::new(params.cor, params.e_y, params.e_z),
+        })
+    }
+}
+
+impl ImpactModel for ImpulseModel {
+    fn name(&self) -> &'static str {
+        match self.variant {
+            ImpulseVariant::Standard => "impulse/standard",
+            ImpulseVariant::Adjusted => "impulse/adjusted",
+            ImpulseVariant::Slip => "impulse/slip",
+        }
+    }
+
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        let s = solve(&self.problem(state, equipment)?)?;
+        Ok(Launch {
+            ball_velocity_mps: s.ball_velocity_mps,
+            ball_spin_radps: s.ball_angular_velocity_radps,
+            club_velocity_mps: s.club_velocity_mps,
+            club_angular_velocity_radps: s.club_angular_velocity_radps,
+            impulse_ns: s.impulse_ns,
+        })
+    }
+}

@@ -1,0 +1,139 @@
+//! Impact models: from the clubhead's state at first contact to the ball's launch.
+//!
+//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, DESIGN.md
+//! section 2). An [`ImpactModel`] turns it into a [`Launch`]: the ball's velocity and spin and the club's motion
+//! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
+//! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
+
+mod delivery;
+pub mod impulse;
+mod launch;
+
+pub use delivery::{Delivery, DeliveryMetrics};
+pub use impulse::{ImpulseModel, ImpulseVariant};
+pub use launch::LaunchMetrics;
+
+use crate::equipment::{BallSpec, ClubSpec};
+use crate::face::{impact_frame, FaceContact, FaceError};
+use crate::math::{Isometry3, Matrix3, Real, Vector3};
+
+/// Errors of the impact layer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImpactError {
+    #[error("impact location ({h_mm:.1} mm, {v_mm:.1} mm) is off the face")]
+    OffFace { h_mm: Real, v_mm: Real },
+    #[error(transparent)]
+    Face(#[from] FaceError),
+    #[error("field `{field}` must be finite")]
+    NotFinite { field: &'static str },
+    #[error("club speed {speed_mps:.2} m/s is outside 1-100 m/s")]
+    SpeedOutOfRange { speed_mps: Real },
+    #[error("the club is not moving toward the ball at the contact point")]
+    NotApproaching,
+    #[error("the contact solve is singular")]
+    Singular,
+    #[error("{model} did not converge: {reason}")]
+    NotConverged { model: &'static str, reason: String },
+}
+
+/// The club and the ball a model needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equipment {
+    pub club: ClubSpec,
+    pub ball: BallSpec,
+}
+
+impl Equipment {
+    /// A club with the seed's ball.
+    pub fn new(club: ClubSpec) -> Self {
+        Equipment { club, ball: BallSpec::SEED }
+    }
+}
+
+/// The clubhead at first contact with a ball at rest, in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactState {
+    /// Pose of the club frame (origin at the CG) in the world.
+    pub world_from_club: Isometry3,
+    /// Velocity of the club's CG (m/s, world).
+    pub cg_velocity_mps: Vector3,
+    /// Angular velocity of the head (rad/s, world).
+    pub angular_velocity_radps: Vector3,
+    /// Impact location on the face: toward the toe (m).
+    pub impact_h_m: Real,
+    /// Impact location on the face: up the face (m).
+    pub impact_v_m: Real,
+}
+
+/// The contact geometry and velocities shared by every model, computed once from a state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// Rotation world_from_club.
+    pub world_from_club: Matrix3,
+    /// Club CG -> contact point (m, world).
+    pub r_club_m: Vector3,
+    /// Impact frame columns x' (normal toward the ball), y' (up the face), z' (toe), world.
+    pub frame: Matrix3,
+    /// Velocity of the club's material point at the contact (m/s, world), seed eq. 3.7.
+    pub contact_velocity_mps: Vector3,
+    /// Contact point and normal in the club frame.
+    pub contact_club: FaceContact,
+}
+
+impl ImpactState {
+    /// The contact geometry of this state on `club`.
+    pub fn contact(&self, club: &ClubSpec) -> Result<ContactGeometry, ImpactError> {
+        if !club.on_face(self.impact_h_m, self.impact_v_m) {
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
+        }
+        let contact_club = club.face.contact(self.impact_h_m, self.impact_v_m)?;
+        let rot = *self.world_from_club.rotation.to_rotation_matrix().matrix();
+        let r_club_m = rot * contact_club.point_m;
+        let normal = rot * contact_club.normal;
+        let toe = rot.column(2).into_owned();
+        let frame = impact_frame(&normal, &toe);
+        let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
+        Ok(ContactGeometry { world_from_club: rot, r_club_m, frame, contact_velocity_mps, contact_club })
+    }
+
+    /// The state mirrored for a left-handed golfer (z -> -z), on the mirrored club.
+    ///
+    /// The club frame of a left-handed club is the mirror image too, so `world_from_club`'s rotation `R` becomes
+    /// `M R M` (a proper rotation), the CG position and velocity are mirrored as polar vectors and the angular
+    /// velocity as an axial one.
+    pub fn mirrored(&self) -> ImpactState {
+        use crate::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Rotation3, UnitQuaternion};
+        let r = self.world_from_club.rotation.to_rotation_matrix().into_inner();
+        let r_m = mirror_z_tensor(&r);
+        let t = mirror_z(&self.world_from_club.translation.vector);
+        ImpactState {
+            world_from_club: Isometry3::from_parts(
+                t.into(),
+                UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r_m)),
+            ),
+            cg_velocity_mps: mirror_z(&self.cg_velocity_mps),
+            angular_velocity_radps: mirror_z_axial(&self.angular_velocity_radps),
+            impact_h_m: self.impact_h_m,
+            impact_v_m: self.impact_v_m,
+        }
+    }
+}
+
+/// What a model predicts: the ball's launch and the club just after impact (world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Launch {
+    pub ball_velocity_mps: Vector3,
+    pub ball_spin_radps: Vector3,
+    pub club_velocity_mps: Vector3,
+    pub club_angular_velocity_radps: Vector3,
+    /// Impulse on the ball (N s, world).
+    pub impulse_ns: Vector3,
+}
+
+/// A model of the club-ball collision. Choosing a model is configuration: every model implements this.
+pub trait ImpactModel: Send + Sync {
+    /// A short name for logs and messages (`impulse/adjusted`).
+    fn name(&self) -> &'static str;
+    /// Predicts the launch from the state at first contact.
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError>;
+}
