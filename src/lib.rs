@@ -4,3 +4,4 @@ pub mod impact;
 pub mod math;
 pub mod units;
 pub mod wire;
+pub mod rng;
