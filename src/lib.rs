@@ -5,3 +5,6 @@ pub mod math;
 pub mod units;
 pub mod wire;
 pub mod rng;
+pub mod stages;
+pub mod jsonl;
+pub mod cli;

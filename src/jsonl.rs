@@ -1,0 +1,81 @@
+//! Line-oriented JSON processing shared by the `predict`, `flight` and `replay` commands: one object in, one
+//! object out, and a bad line answered with `{"line": N, "error": "..."}` without stopping the others.
+
+use std::io::{BufRead, Write};
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+
+/// The answer to a bad line.
+#[derive(Serialize)]
+struct LineError<'a> {
+    line: usize,
+    error: &'a str,
+}
+
+/// What happened over a whole input.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct Tally {
+    pub answered: usize,
+    pub rejected: usize,
+}
+
+/// Errors of a whole run (a bad line is not one of them).
+#[derive(Debug, thiserror::Error)]
+pub enum JsonlError {
+    #[error("reading input: {0}")]
+    Read(#[source] std::io::Error),
+    #[error("writing output: {0}")]
+    Write(#[source] std::io::Error),
+}
+
+/// The error message for a line that is not a valid `T`, naming the field where serde can.
+pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, String> {
+    serde_json::from_str(line).map_err(|e| {
+        let msg = e.to_string();
+        match e.classify() {
+            serde_json::error::Category::Syntax | serde_json::error::Category::Eof => format!("not valid JSON: {msg}"),
+            _ => msg,
+        }
+    })
+}
+
+/// Runs `answer` over every non-blank line of `input`, writing one JSON line per input line to `out` and one
+/// message per bad line to `err` (`<tool>: line N: <reason>`).
+pub fn process<I, O, F>(
+    tool: &str,
+    input: impl BufRead,
+    mut out: impl Write,
+    mut err: impl Write,
+    mut answer: F,
+) -> Result<Tally, JsonlError>
+where
+    I: DeserializeOwned,
+    O: Serialize,
+    F: FnMut(I) -> Result<O, String>,
+{
+    let mut tally = Tally::default();
+    for (i, line) in input.lines().enumerate() {
+        let line = line.map_err(JsonlError::Read)?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let n = i + 1;
+        let result = parse_line::<I>(&line).and_then(&mut answer);
+        let text = match result {
+            Ok(o) => {
+                tally.answered += 1;
+                serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+            }
+            Err(reason) => {
+                tally.rejected += 1;
+                writeln!(err, "{tool}: line {n}: {reason}").map_err(JsonlError::Write)?;
+                serde_json::to_string(&LineError { line: n, error: &reason })
+                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+            }
+        };
+        writeln!(out, "{text}").map_err(JsonlError::Write)?;
+    }
+    out.flush().map_err(JsonlError::Write)?;
+    Ok(tally)
+}

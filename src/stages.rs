@@ -1,0 +1,94 @@
+//! The timed stages of `impactd bench` and the criterion benches: fixed workloads, one per model and club, so
+//! both report the same thing.
+
+use std::time::Instant;
+
+use crate::equipment::ClubSpec;
+use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
+use crate::math::Vector3;
+use crate::rng::Rng;
+
+/// One named workload: `run(i)` does one operation on the `i`-th input (cycled) and returns a value to keep the
+/// optimiser honest.
+pub struct Stage {
+    pub name: String,
+    pub run: Box<dyn FnMut(usize) -> f64>,
+}
+
+/// A fixed spread of 64 deliveries for `club` (seeded, the same on every machine).
+pub fn delivery_spread(club: &ClubSpec) -> Vec<Delivery> {
+    let mut rng = Rng::new(0x1F2E_3D4C);
+    (0..64)
+        .map(|_| Delivery {
+            club_speed_mps: rng.uniform(35.0, 52.0),
+            attack_angle_rad: rng.uniform(-5.0, 4.0).to_radians(),
+            club_path_rad: rng.uniform(-4.0, 4.0).to_radians(),
+            face_angle_rad: rng.uniform(-4.0, 4.0).to_radians(),
+            dynamic_loft_rad: (club.loft_deg() + rng.uniform(-3.0, 4.0)).to_radians(),
+            impact_h_m: rng.uniform(-0.015, 0.015),
+            impact_v_m: rng.uniform(-0.008, 0.008),
+            club_angular_velocity_radps: Vector3::new(0.0, rng.uniform(-40.0, 0.0), 0.0),
+        })
+        .collect()
+}
+
+/// Impact states for the spread.
+pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
+    delivery_spread(&equipment.club).iter().filter_map(|d| d.to_state(equipment).ok()).collect()
+}
+
+/// The impulse-momentum stages: `impulse/<variant>/<club>`, one prediction per operation.
+pub fn impulse_stages() -> Vec<Stage> {
+    let mut out = Vec::new();
+    for variant in ImpulseVariant::ALL {
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let name = format!("impulse/{}/{}", variant.as_str(), club.name);
+            let eq = Equipment::new(club);
+            let states = state_spread(&eq);
+            let model = ImpulseModel::new(variant);
+            out.push(Stage {
+                name,
+                run: Box::new(move |i| {
+                    let s = &states[i % states.len()];
+                    model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
+                }),
+            });
+        }
+    }
+    out
+}
+
+/// Every stage `impactd bench` times.
+pub fn all_stages() -> Vec<Stage> {
+    impulse_stages()
+}
+
+/// Median nanoseconds per operation over `batches` batches lasting about `batch_ms` each.
+pub fn time_stage(stage: &mut Stage, batches: usize, batch_ms: u64) -> f64 {
+    // Calibrate the batch size.
+    let mut n = 1usize;
+    let mut sink = 0.0;
+    loop {
+        let t = Instant::now();
+        for i in 0..n {
+            sink += (stage.run)(i);
+        }
+        if t.elapsed().as_millis() as u64 >= batch_ms / 4 || n > 1 << 30 {
+            break;
+        }
+        n *= 2;
+    }
+    let n = n * 4;
+    let mut per_op: Vec<f64> = (0..batches)
+        .map(|_| {
+            let t = Instant::now();
+            for i in 0..n {
+                sink += (stage.run)(i);
+            }
+            t.elapsed().as_nanos() as f64 / n as f64
+        })
+        .collect();
+    std::hint::black_box(sink);
+    per_op.sort_by(f64::total_cmp);
+    per_op[per_op.len() / 2]
+}
