@@ -127,6 +127,51 @@ impl Face {
     }
 }
 
+/// Where a point (a ball's centre) stands relative to the face surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceGap {
+    /// Distance from the point to the face surface along the surface normal, positive in front of the face (m).
+    pub distance_m: Real,
+    /// Impact location of the surface point nearest the point (m): toward the toe, up the face.
+    pub h_m: Real,
+    pub v_m: Real,
+}
+
+impl Face {
+    /// The gap between `point_m` (club frame) and the face surface, and the location of the nearest surface
+    /// point. A sphere of radius `r` centred there touches the face when `distance_m == r`, at `(h_m, v_m)`.
+    ///
+    /// Plane: `distance = n0 . (p - c)`, `h = t0 . (p - c)`, `v = u0 . (p - c)`. Torus: the nearest point of the
+    /// tube circle in the point's meridian plane (the revolution axis passes through `c - R_bulge n0` along
+    /// `u0`); `distance = |p - tube centre| - R_roll`.
+    pub fn gap(&self, point_m: &Vector3) -> FaceGap {
+        let (n0, u0, t0) = (self.n0(), self.u0(), self.t0());
+        let d = point_m - self.center_m;
+        match self.shape {
+            FaceShape::Torus { bulge_radius_m, roll_radius_m } if bulge_radius_m.is_finite() && roll_radius_m.is_finite() => {
+                // Coordinates about the revolution axis.
+                let a = d + bulge_radius_m * n0; // from the axis point
+                let y = a.dot(&u0);
+                let radial = a - y * u0; // in the n0-t0 plane
+                let (rn, rt) = (radial.dot(&n0), radial.dot(&t0));
+                let phi = rt.atan2(rn);
+                let e = phi.cos() * n0 + phi.sin() * t0;
+                let tube_centre = (bulge_radius_m - roll_radius_m) * e;
+                let w = a - tube_centre; // from the tube centre, in the (e, u0) plane
+                let (we, wy) = (w.dot(&e), w.dot(&u0));
+                let psi = wy.atan2(we);
+                let rho = bulge_radius_m - roll_radius_m + roll_radius_m * psi.cos();
+                FaceGap {
+                    distance_m: we.hypot(wy) - roll_radius_m,
+                    h_m: rho * phi.sin(),
+                    v_m: roll_radius_m * psi.sin(),
+                }
+            }
+            _ => FaceGap { distance_m: d.dot(&n0), h_m: d.dot(&t0), v_m: d.dot(&u0) },
+        }
+    }
+}
+
 /// The impact frame: columns `x'` (normal, toward the ball), `y'` (up the face), `z'` (toward the toe).
 ///
 /// `normal` and `toe` are in the same frame (world or club); the result is in that frame.
@@ -190,6 +235,19 @@ mod tests {
         let f = impact_frame(&Vector3::new(0.9, 0.3, 0.1).normalize(), &Vector3::z());
         assert!((f.determinant() - 1.0).abs() < 1e-12);
         assert!((f.transpose() * f - Matrix3::identity()).norm() < 1e-12);
+    }
+
+    /// A point placed at distance r along the normal of a contact point reports that distance and location.
+    #[test]
+    fn gap_inverts_contact() {
+        for face in [driver_face(), Face { center_m: Vector3::new(0.004, 0.005, 0.001), loft_rad: 0.53, shape: FaceShape::Plane }] {
+            for &(h, v) in &[(0.0, 0.0), (0.02, -0.01), (-0.035, 0.012)] {
+                let c = face.contact(h, v).unwrap();
+                let g = face.gap(&(c.point_m + 0.0213 * c.normal));
+                assert!((g.distance_m - 0.0213).abs() < 1e-12, "{g:?}");
+                assert!((g.h_m - h).abs() < 1e-12 && (g.v_m - v).abs() < 1e-12, "{g:?}");
+            }
+        }
     }
 
     #[test]

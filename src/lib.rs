@@ -8,3 +8,6 @@ pub mod rng;
 pub mod stages;
 pub mod jsonl;
 pub mod cli;
+pub mod kinematics;
+pub mod swing;
+pub mod eval;

@@ -18,6 +18,21 @@ pub type Rotation3 = nalgebra::Rotation3<Real>;
 /// A rigid transform (rotation then translation).
 pub type Isometry3 = nalgebra::Isometry3<Real>;
 
+/// A translation part of an isometry.
+pub type Translation3 = nalgebra::Translation3<Real>;
+
+/// `v.into_translation()` for building isometries from vectors.
+pub trait Translation3Ext {
+    fn into_translation(self) -> Translation3;
+}
+
+impl Translation3Ext for Vector3 {
+    #[inline]
+    fn into_translation(self) -> Translation3 {
+        Translation3::from(self)
+    }
+}
+
 /// The cross-product matrix `[a]x` with `[a]x b = a x b`.
 #[inline]
 pub fn skew(a: &Vector3) -> Matrix3 {

@@ -1,0 +1,229 @@
+//! The extrapolation evaluation: synthetic swings with exact truth through every estimator, and the errors of
+//! the delivery and of the launch the adjusted model predicts from the estimate versus from the truth.
+
+use serde::{Deserialize, Serialize};
+
+use crate::equipment::ClubSpec;
+use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant, LaunchMetrics};
+use crate::kinematics::{Calibration, DetectorConfig, EstimatorSpec, ImpactDetector, Track, TrackLimits};
+use crate::math::Real;
+use crate::rng::Rng;
+use crate::swing::{sample, Sampling, Swing, SwingSpec};
+
+/// What to evaluate.
+#[derive(Debug, Clone)]
+pub struct EvalConfig {
+    pub club: ClubSpec,
+    pub rate_hz: Real,
+    pub shots: usize,
+    pub noise_mm: Real,
+    pub noise_deg: Real,
+    pub jitter_us: Real,
+    pub drop_probability: Real,
+    pub seed: u64,
+    pub estimators: Vec<EstimatorSpec>,
+}
+
+/// RMS and largest absolute error.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct ErrorStats {
+    pub rms: Real,
+    pub max: Real,
+}
+
+/// The error of each delivery and launch number (estimate minus truth).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Errors {
+    pub club_speed_pct: ErrorStats,
+    pub attack_angle_deg: ErrorStats,
+    pub club_path_deg: ErrorStats,
+    pub face_angle_deg: ErrorStats,
+    pub dynamic_loft_deg: ErrorStats,
+    pub impact_h_mm: ErrorStats,
+    pub impact_v_mm: ErrorStats,
+    pub t_impact_us: ErrorStats,
+    pub ball_speed_mph: ErrorStats,
+    pub launch_angle_deg: ErrorStats,
+    pub launch_direction_deg: ErrorStats,
+    pub backspin_rpm: ErrorStats,
+    pub sidespin_rpm: ErrorStats,
+}
+
+impl Errors {
+    /// Keys in order, with their stats.
+    pub fn entries(&self) -> [(&'static str, ErrorStats); 13] {
+        [
+            ("club_speed_pct", self.club_speed_pct),
+            ("attack_angle_deg", self.attack_angle_deg),
+            ("club_path_deg", self.club_path_deg),
+            ("face_angle_deg", self.face_angle_deg),
+            ("dynamic_loft_deg", self.dynamic_loft_deg),
+            ("impact_h_mm", self.impact_h_mm),
+            ("impact_v_mm", self.impact_v_mm),
+            ("t_impact_us", self.t_impact_us),
+            ("ball_speed_mph", self.ball_speed_mph),
+            ("launch_angle_deg", self.launch_angle_deg),
+            ("launch_direction_deg", self.launch_direction_deg),
+            ("backspin_rpm", self.backspin_rpm),
+            ("sidespin_rpm", self.sidespin_rpm),
+        ]
+    }
+}
+
+/// One estimator's result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EstimatorReport {
+    pub name: String,
+    /// Shots with an estimate.
+    pub shots: usize,
+    /// Shots the estimator refused or missed, by reason.
+    pub refused: std::collections::BTreeMap<String, usize>,
+    pub errors: Errors,
+}
+
+/// The whole evaluation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EvalReport {
+    pub club: String,
+    pub rate_hz: Real,
+    pub shots: usize,
+    pub noise_mm: Real,
+    pub noise_deg: Real,
+    pub seed: u64,
+    pub estimators: Vec<EstimatorReport>,
+}
+
+#[derive(Default, Clone)]
+struct Acc {
+    n: usize,
+    sums: [Real; 13],
+    maxes: [Real; 13],
+}
+
+impl Acc {
+    fn add(&mut self, e: &[Real; 13]) {
+        self.n += 1;
+        for i in 0..13 {
+            self.sums[i] += e[i] * e[i];
+            self.maxes[i] = self.maxes[i].max(e[i].abs());
+        }
+    }
+    fn errors(&self) -> Errors {
+        let s = |i: usize| ErrorStats {
+            rms: if self.n > 0 { (self.sums[i] / self.n as Real).sqrt() } else { Real::NAN },
+            max: self.maxes[i],
+        };
+        Errors {
+            club_speed_pct: s(0),
+            attack_angle_deg: s(1),
+            club_path_deg: s(2),
+            face_angle_deg: s(3),
+            dynamic_loft_deg: s(4),
+            impact_h_mm: s(5),
+            impact_v_mm: s(6),
+            t_impact_us: s(7),
+            ball_speed_mph: s(8),
+            launch_angle_deg: s(9),
+            launch_direction_deg: s(10),
+            backspin_rpm: s(11),
+            sidespin_rpm: s(12),
+        }
+    }
+}
+
+fn launch(state: &ImpactState, eq: &Equipment) -> Option<LaunchMetrics> {
+    let l = ImpulseModel::new(ImpulseVariant::Adjusted).predict(state, eq).ok()?;
+    Some(LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps))
+}
+
+/// Runs the evaluation; `progress(done)` is called after each shot.
+pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
+    let eq = Equipment::new(config.club.clone());
+    let mut rng = Rng::new(config.seed);
+    let sampling = Sampling {
+        rate_hz: config.rate_hz,
+        position_noise_m: config.noise_mm * 1e-3,
+        orientation_noise_rad: config.noise_deg.to_radians(),
+        jitter_s: config.jitter_us * 1e-6,
+        drop_probability: config.drop_probability,
+        ..Sampling::default()
+    };
+    let mut accs = vec![Acc::default(); config.estimators.len()];
+    let mut refused = vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
+    let calibration = Calibration::default();
+    for shot in 0..config.shots {
+        let spec = SwingSpec::random(&config.club, &mut rng);
+        let Ok(swing) = Swing::new(&spec, &eq) else {
+            progress(shot + 1);
+            continue;
+        };
+        let t_impact_ns = 1_000_000_000 + shot as u64 * 10_000_000_000;
+        let sampled = sample(&swing, &sampling, &calibration, t_impact_ns, 1, &mut rng);
+        let mut track = Track::new(calibration, TrackLimits::default());
+        let mut detector = ImpactDetector::new(DetectorConfig::default());
+        let mut detections = None;
+        for s in &sampled.samples {
+            if let Ok(crate::kinematics::track::Accepted::Pose { .. }) = track.push(s) {
+                if let Some(d) = detector.on_pose(&track, &config.club, &config.estimators) {
+                    detections = Some(d);
+                    break;
+                }
+            }
+        }
+        let truth = DeliveryMetrics::from_state(&swing.truth, &config.club);
+        let truth_launch = launch(&swing.truth, &eq);
+        for (i, _) in config.estimators.iter().enumerate() {
+            let reason = match detections.as_ref().map(|d| &d[i].result) {
+                None => Some("not_detected".to_string()),
+                Some(Err(e)) => Some(e.key().to_string()),
+                Some(Ok(est)) => {
+                    let m = DeliveryMetrics::from_state(&est.state, &config.club);
+                    match (launch(&est.state, &eq), truth_launch) {
+                        (Some(l), Some(t)) => {
+                            accs[i].add(&[
+                                100.0 * (m.club_speed_mps - truth.club_speed_mps) / truth.club_speed_mps,
+                                m.attack_angle_deg - truth.attack_angle_deg,
+                                m.club_path_deg - truth.club_path_deg,
+                                m.face_angle_deg - truth.face_angle_deg,
+                                m.dynamic_loft_deg - truth.dynamic_loft_deg,
+                                m.impact_h_mm - truth.impact_h_mm,
+                                m.impact_v_mm - truth.impact_v_mm,
+                                (est.t_impact_ns as Real - t_impact_ns as Real) * 1e-3,
+                                l.ball_speed_mph - t.ball_speed_mph,
+                                l.launch_angle_deg - t.launch_angle_deg,
+                                l.launch_direction_deg - t.launch_direction_deg,
+                                l.backspin_rpm - t.backspin_rpm,
+                                l.sidespin_rpm - t.sidespin_rpm,
+                            ]);
+                            None
+                        }
+                        _ => Some("model_refused".to_string()),
+                    }
+                }
+            };
+            if let Some(r) = reason {
+                *refused[i].entry(r).or_default() += 1;
+            }
+        }
+        progress(shot + 1);
+    }
+    EvalReport {
+        club: config.club.name.clone(),
+        rate_hz: config.rate_hz,
+        shots: config.shots,
+        noise_mm: config.noise_mm,
+        noise_deg: config.noise_deg,
+        seed: config.seed,
+        estimators: config
+            .estimators
+            .iter()
+            .zip(accs.iter().zip(refused))
+            .map(|(spec, (acc, refused))| EstimatorReport {
+                name: spec.name.clone(),
+                shots: acc.n,
+                refused,
+                errors: acc.errors(),
+            })
+            .collect(),
+    }
+}

@@ -1,0 +1,117 @@
+//! Impact detection: the first frame in which the face has reached the ball (the revealing frame) triggers an
+//! estimate from the frames before it.
+//!
+//! The detector watches the gap between the ball's surface and the face surface (see [`Scene::gap`]). It fires
+//! when, while armed, the gap turns from positive to non-positive between two accepted frames, the face
+//! approached faster than `min_approach_speed_mps` (an address or a waggle does not fire), and the crossing is
+//! on the face (within its extents plus a margin). It re-arms once the face centre is `rearm_distance_m` away
+//! from the ball.
+
+use super::estimate::{estimate, EstimateError, EstimatorSpec, ImpactEstimate, Scene};
+use super::sample::ClubPose;
+use super::track::Track;
+use crate::equipment::ClubSpec;
+use crate::math::{Real, Vector3};
+
+/// Detector settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DetectorConfig {
+    /// The ball's centre (m, world).
+    pub ball_position_m: Vector3,
+    pub ball_radius_m: Real,
+    pub min_approach_speed_mps: Real,
+    pub rearm_distance_m: Real,
+    /// Tolerance around the face extents for accepting a crossing (m).
+    pub face_margin_m: Real,
+    pub max_extrapolation_s: Real,
+}
+
+impl Default for DetectorConfig {
+    fn default() -> Self {
+        DetectorConfig {
+            ball_position_m: Vector3::zeros(),
+            ball_radius_m: crate::equipment::BallSpec::SEED.radius_m,
+            min_approach_speed_mps: 3.0,
+            rearm_distance_m: 0.25,
+            face_margin_m: 0.02,
+            max_extrapolation_s: 0.010,
+        }
+    }
+}
+
+/// A detected impact: the estimate (or why there is none) and the frame that revealed it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Detection {
+    pub reveal_frame: u64,
+    pub reveal_t_ns: u64,
+    pub result: Result<ImpactEstimate, EstimateError>,
+}
+
+/// Watches one track for impacts.
+#[derive(Debug, Clone)]
+pub struct ImpactDetector {
+    pub config: DetectorConfig,
+    armed: bool,
+    previous: Option<(u64, crate::face::FaceGap)>,
+    scratch: Vec<ClubPose>,
+}
+
+impl ImpactDetector {
+    pub fn new(config: DetectorConfig) -> Self {
+        ImpactDetector { config, armed: false, previous: None, scratch: Vec::with_capacity(64) }
+    }
+
+    /// Whether the next crossing would fire.
+    pub fn armed(&self) -> bool {
+        self.armed
+    }
+
+    /// Call after each pose the track accepted; returns a detection when this pose revealed an impact.
+    pub fn on_pose(&mut self, track: &Track, club: &ClubSpec, estimators: &[EstimatorSpec]) -> Option<Vec<Detection>> {
+        let newest = *track.latest()?;
+        let scene = Scene {
+            face: &club.face,
+            ball_position_m: self.config.ball_position_m,
+            ball_radius_m: self.config.ball_radius_m,
+            max_extrapolation_s: self.config.max_extrapolation_s,
+        };
+        let g = scene.gap(&newest.world_from_club);
+        let face_centre = newest.world_from_club * nalgebra::Point3::from(club.face.center_m);
+        let distance = (face_centre.coords - self.config.ball_position_m).norm();
+        let previous = self.previous.replace((newest.t_ns, g));
+        if !self.armed {
+            if distance > self.config.rearm_distance_m {
+                self.armed = true;
+            }
+            return None;
+        }
+        let (t_prev, prev) = previous?;
+        if !(prev.distance_m > 0.0 && g.distance_m <= 0.0) {
+            return None;
+        }
+        let dt = (newest.t_ns.saturating_sub(t_prev)) as Real * 1e-9;
+        if dt <= 0.0 || (prev.distance_m - g.distance_m) / dt < self.config.min_approach_speed_mps {
+            return None;
+        }
+        // Where on the face the crossing happened, interpolated between the two frames.
+        let f = prev.distance_m / (prev.distance_m - g.distance_m);
+        let (h, v) = (prev.h_m + f * (g.h_m - prev.h_m), prev.v_m + f * (g.v_m - prev.v_m));
+        let m = self.config.face_margin_m;
+        if h.abs() > club.face_half_width_m + m || v.abs() > club.face_half_height_m + m {
+            return None;
+        }
+        self.armed = false;
+        self.scratch.clear();
+        self.scratch.extend(track.poses().iter().filter(|p| p.t_ns < newest.t_ns).copied());
+        Some(
+            estimators
+                .iter()
+                .map(|spec| Detection {
+                    reveal_frame: newest.frame,
+                    reveal_t_ns: newest.t_ns,
+                    result: estimate(spec, &self.scratch, newest.t_ns, &scene),
+                })
+                .collect(),
+        )
+    }
+}

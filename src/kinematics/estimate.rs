@@ -1,0 +1,309 @@
+//! Impact-state estimators: fit the pre-impact frames, solve for the first contact between the face surface
+//! and the ball sphere on the fitted motion, and extrapolate the full state to that instant.
+//!
+//! - `linear2`: the seed's method (section 3.1.4): the two frames before impact, extrapolated linearly (position
+//!   in R³, orientation along the geodesic of SO(3)).
+//! - `poly`: a least-squares polynomial in time over the last frames for position (cubic) and for the rotation
+//!   vector relative to the newest frame (cubic), so curvature of the arc (100-200 g of centripetal
+//!   acceleration) and the face's angular acceleration are modelled and noise is averaged.
+
+use super::fit::{PoseFit, TimedPose};
+use super::sample::ClubPose;
+use crate::face::Face;
+use crate::impact::ImpactState;
+use crate::math::{Isometry3, Real, Translation3Ext, Vector3};
+
+/// How an estimator fits: how many pre-impact frames and which polynomial degrees.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EstimatorSpec {
+    pub name: String,
+    /// Frames of the position fit (the newest pre-impact ones).
+    pub frames: usize,
+    pub position_degree: usize,
+    /// Frames of the orientation fit (at most `frames`).
+    pub rotation_frames: usize,
+    pub rotation_degree: usize,
+    /// When set, the fits use the pre-impact frames within this time span instead of a fixed count (at most
+    /// `frames` / `rotation_frames`), and each degree is capped at half the frames minus one, so one spec
+    /// serves every capture rate (ms).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window_ms: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation_window_ms: Option<Real>,
+}
+
+impl EstimatorSpec {
+    /// The seed's two-point linear extrapolation.
+    pub fn linear2() -> Self {
+        EstimatorSpec {
+            name: "linear2".into(),
+            frames: 2,
+            position_degree: 1,
+            rotation_frames: 2,
+            rotation_degree: 1,
+            window_ms: None,
+            rotation_window_ms: None,
+        }
+    }
+
+    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5) and
+    /// the last 39 ms of the orientation (degree up to 3). The spans were chosen with
+    /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
+    pub fn poly() -> Self {
+        EstimatorSpec {
+            name: "poly".into(),
+            frames: 64,
+            position_degree: 5,
+            rotation_frames: 64,
+            rotation_degree: 3,
+            window_ms: Some(44.0),
+            rotation_window_ms: Some(39.0),
+        }
+    }
+
+    /// The fewest frames a windowed fit accepts (a quadratic with two frames per coefficient).
+    pub const MIN_WINDOW_FRAMES: usize = 6;
+
+    /// The estimators by name: `linear2`, `poly`, or
+    /// `poly:POSITION_FRAMES:POSITION_DEGREE:ROTATION_FRAMES:ROTATION_DEGREE`.
+    pub fn by_name(name: &str) -> Option<Self> {
+        match name {
+            "linear2" => Some(Self::linear2()),
+            "poly" => Some(Self::poly()),
+            custom => {
+                let mut parts = custom.strip_prefix("poly:")?.split(':').map(|p| p.parse::<usize>().ok());
+                let spec = EstimatorSpec {
+                    name: custom.to_string(),
+                    frames: parts.next()??,
+                    position_degree: parts.next()??,
+                    rotation_frames: parts.next()??,
+                    rotation_degree: parts.next()??,
+                    window_ms: None,
+                    rotation_window_ms: None,
+                };
+                (parts.next().is_none() && spec.validate().is_ok()).then_some(spec)
+            }
+        }
+    }
+
+    pub const NAMES: [&'static str; 2] = ["linear2", "poly"];
+
+    /// Checks the numbers are usable.
+    pub fn validate(&self) -> Result<(), String> {
+        for (what, frames, degree) in [
+            ("position", self.frames, self.position_degree),
+            ("rotation", self.rotation_frames, self.rotation_degree),
+        ] {
+            if degree > super::fit::MAX_DEGREE {
+                return Err(format!("{what} degree {degree} is above the maximum {}", super::fit::MAX_DEGREE));
+            }
+            if frames <= degree || frames > 64 {
+                return Err(format!("{what} frames must be within {} and 64 for degree {degree}, got {frames}", degree + 1));
+            }
+        }
+        if self.rotation_frames > self.frames {
+            return Err("rotation frames must not exceed position frames".into());
+        }
+        Ok(())
+    }
+}
+
+/// Why an estimator refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EstimateError {
+    #[error("too few good pre-impact frames: {have}, need {need}")]
+    TooFewFrames { have: usize, need: usize },
+    #[error("the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)")]
+    StaleFrames { gap_ms: Real, limit_ms: Real },
+    #[error("the fit of the pre-impact frames is singular")]
+    SingularFit,
+    #[error("the fitted motion does not reach the ball")]
+    NoContact,
+}
+
+impl EstimateError {
+    pub fn key(&self) -> &'static str {
+        match self {
+            EstimateError::TooFewFrames { .. } => "too_few_frames",
+            EstimateError::StaleFrames { .. } => "stale_frames",
+            EstimateError::SingularFit => "singular_fit",
+            EstimateError::NoContact => "no_contact",
+        }
+    }
+}
+
+/// How much to trust an estimate.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Quality {
+    pub frames_used: usize,
+    /// RMS residual of the position fit (mm); 0 for an exact fit (linear2).
+    pub residual_rms_mm: Real,
+    /// RMS residual of the orientation fit (deg).
+    pub residual_rms_deg: Real,
+    /// Time from the newest pre-impact frame to the contact (ms).
+    pub extrapolation_ms: Real,
+    /// A summary in (0, 1]: 1 for a perfect fit with no extrapolation, falling with residuals and extrapolation.
+    pub score: Real,
+}
+
+/// The estimated impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactEstimate {
+    /// Contact time on the rig's clock (ns).
+    pub t_impact_ns: u64,
+    /// The same, as a fraction of a nanosecond-exact offset from the revealing frame (s, negative).
+    pub t_from_reveal_s: Real,
+    pub state: ImpactState,
+    pub quality: Quality,
+}
+
+/// What an estimate needs to know of the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene<'a> {
+    pub face: &'a Face,
+    pub ball_position_m: Vector3,
+    pub ball_radius_m: Real,
+    /// Extrapolating further than this from the newest pre-impact frame is refused (s).
+    pub max_extrapolation_s: Real,
+}
+
+impl Scene<'_> {
+    /// Gap between the ball surface and the face for a club pose (m), and the nearest face location.
+    #[inline]
+    pub fn gap(&self, world_from_club: &Isometry3) -> crate::face::FaceGap {
+        let ball_club = world_from_club.inverse_transform_point(&self.ball_position_m.into());
+        let mut g = self.face.gap(&ball_club.coords);
+        g.distance_m -= self.ball_radius_m;
+        g
+    }
+}
+
+/// Estimates the impact from the pre-impact poses (oldest first, all before `reveal_t_ns`).
+pub fn estimate(
+    spec: &EstimatorSpec,
+    pre_impact: &[ClubPose],
+    reveal_t_ns: u64,
+    scene: &Scene,
+) -> Result<ImpactEstimate, EstimateError> {
+    let (need, pos_frames, pos_degree, rot_frames, rot_degree) = match spec.window_ms {
+        None => {
+            if pre_impact.len() < spec.frames {
+                return Err(EstimateError::TooFewFrames { have: pre_impact.len(), need: spec.frames });
+            }
+            (spec.frames, spec.frames, spec.position_degree, spec.rotation_frames, spec.rotation_degree)
+        }
+        Some(window_ms) => {
+            let newest = pre_impact.last().map(|p| p.t_ns).unwrap_or(0);
+            let within = |ms: Real, cap: usize| {
+                let span_ns = (ms * 1e6) as u64;
+                pre_impact.iter().rev().take_while(|p| newest - p.t_ns <= span_ns).count().min(cap).min(64)
+            };
+            let n_p = within(window_ms, spec.frames);
+            let n_r = within(spec.rotation_window_ms.unwrap_or(window_ms), spec.rotation_frames).min(n_p);
+            if n_r < EstimatorSpec::MIN_WINDOW_FRAMES {
+                return Err(EstimateError::TooFewFrames { have: n_r, need: EstimatorSpec::MIN_WINDOW_FRAMES });
+            }
+            let cap = |n: usize, d: usize| d.min(n / 2 - 1);
+            (n_p, n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
+        }
+    };
+    let used = &pre_impact[pre_impact.len() - need..];
+    // Times relative to the revealing frame keep full precision in f64.
+    let rel = |t_ns: u64| -((reveal_t_ns - t_ns) as Real) * 1e-9;
+    let mut poses = [TimedPose { t_s: 0.0, position_m: Vector3::zeros(), orientation: Default::default() }; 64];
+    // The position fit follows the face centre, not the CG: the contact velocity then comes straight from the
+    // fitted path instead of through the (noisier) differentiated orientation, v_cg + w x r.
+    let r_fit = scene.face.center_m;
+    for (dst, p) in poses.iter_mut().zip(used) {
+        *dst = TimedPose {
+            t_s: rel(p.t_ns),
+            position_m: (p.world_from_club * nalgebra::Point3::from(r_fit)).coords,
+            orientation: p.world_from_club.rotation,
+        };
+    }
+    let fit = PoseFit::fit_windows(&poses[..need], pos_frames, pos_degree, rot_frames, rot_degree)
+        .ok_or(EstimateError::SingularFit)?;
+    let club_pose = |face_centre: Vector3, orientation: crate::math::UnitQuaternion| {
+        Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
+    };
+    let gap_at = |t: Real| scene.gap(&club_pose(fit.position(t), fit.orientation(t))).distance_m;
+    // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
+    // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
+    // falls short).
+    let t_last = fit.t_ref_s();
+    let dt = if need >= 2 { (t_last - poses[need - 2].t_s).max(1e-5) } else { 1.0 / 720.0 };
+    let mut lo = t_last;
+    let mut g_lo = gap_at(lo);
+    let mut steps = 0;
+    while g_lo <= 0.0 && steps < 4 {
+        lo -= dt;
+        g_lo = gap_at(lo);
+        steps += 1;
+    }
+    let mut hi = 0.0;
+    let mut g_hi = gap_at(hi);
+    steps = 0;
+    while g_hi > 0.0 && steps < 4 {
+        hi += dt;
+        g_hi = gap_at(hi);
+        steps += 1;
+    }
+    if !(g_lo > 0.0 && g_hi <= 0.0) {
+        return Err(EstimateError::NoContact);
+    }
+    // Illinois false position: superlinear and safe.
+    let (mut a, mut fa, mut b, mut fb) = (lo, g_lo, hi, g_hi);
+    let mut side = 0i8;
+    let mut t = a;
+    for _ in 0..60 {
+        t = (a * fb - b * fa) / (fb - fa);
+        let ft = gap_at(t);
+        if ft.abs() < 1e-12 || (b - a).abs() < 1e-12 {
+            break;
+        }
+        if ft > 0.0 {
+            a = t;
+            fa = ft;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        } else {
+            b = t;
+            fb = ft;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    let extrapolation_s = t - t_last;
+    if extrapolation_s > scene.max_extrapolation_s {
+        return Err(EstimateError::StaleFrames {
+            gap_ms: extrapolation_s * 1e3,
+            limit_ms: scene.max_extrapolation_s * 1e3,
+        });
+    }
+    let at = fit.at(t);
+    let world_from_club = club_pose(at.position_m, at.orientation);
+    let cg_velocity_mps = at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
+    let g = scene.gap(&world_from_club);
+    let residual_rms_mm = fit.residual_rms_m * 1e3;
+    let residual_rms_deg = fit.residual_rms_rad.to_degrees();
+    let extrapolation_ms = extrapolation_s.max(0.0) * 1e3;
+    let score = 1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);
+    let t_impact_ns = (reveal_t_ns as i128 + (t * 1e9).round() as i128).max(0) as u64;
+    Ok(ImpactEstimate {
+        t_impact_ns,
+        t_from_reveal_s: t,
+        state: ImpactState {
+            world_from_club,
+            cg_velocity_mps,
+            angular_velocity_radps: at.angular_velocity_radps,
+            impact_h_m: g.h_m,
+            impact_v_m: g.v_m,
+        },
+        quality: Quality { frames_used: need, residual_rms_mm, residual_rms_deg, extrapolation_ms, score },
+    })
+}

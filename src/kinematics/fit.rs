@@ -1,0 +1,268 @@
+//! Least-squares polynomial fits in time of a rigid body's pose, evaluated (extrapolated) at any instant.
+//!
+//! Position: each axis a polynomial of degree `d_p` in `τ = (t − t_ref) / T`. Orientation: the rotation vector
+//! `θ_k = Log(R_refᵀ R_k)` relative to the newest frame, a polynomial of degree `d_r`; `R(t) = R_ref Exp(θ(t))`
+//! and the world angular velocity `ω = R(t) J_r(θ) θ'(t)`. With two frames and degree one this is exactly the
+//! seed's two-point linear extrapolation (section 3.1.4).
+
+use super::so3;
+use crate::math::{Real, UnitQuaternion, Vector3};
+
+/// The highest polynomial degree supported.
+pub const MAX_DEGREE: usize = 5;
+
+/// One pose at a time relative to the fit's reference (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimedPose {
+    pub t_s: Real,
+    pub position_m: Vector3,
+    pub orientation: UnitQuaternion,
+}
+
+/// A fitted motion: position and orientation polynomials.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PoseFit {
+    t_ref_s: Real,
+    scale_s: Real,
+    pos: [Vector3; MAX_DEGREE + 1],
+    pos_degree: usize,
+    rot: [Vector3; MAX_DEGREE + 1],
+    rot_degree: usize,
+    r_ref: UnitQuaternion,
+    /// RMS residuals of the fit.
+    pub residual_rms_m: Real,
+    pub residual_rms_rad: Real,
+}
+
+/// The state of the fitted motion at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PoseAt {
+    pub position_m: Vector3,
+    pub velocity_mps: Vector3,
+    pub orientation: UnitQuaternion,
+    pub angular_velocity_radps: Vector3,
+}
+
+/// Fits `values` (one per frame) at normalised times `tau` with a polynomial of `degree` by least squares
+/// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5).
+fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3; MAX_DEGREE + 1]) -> Option<Real> {
+    let m = degree + 1;
+    let mut ata = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
+    for (&t, y) in tau.iter().zip(values) {
+        let mut p = [1.0; MAX_DEGREE + 1];
+        for k in 1..m {
+            p[k] = p[k - 1] * t;
+        }
+        for i in 0..m {
+            for j in 0..m {
+                ata[i][j] += p[i] * p[j];
+            }
+            aty[i] += p[i] * y;
+        }
+    }
+    // Cholesky of the (m x m) normal matrix.
+    let mut l = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    for i in 0..m {
+        for j in 0..=i {
+            let mut s = ata[i][j];
+            for k in 0..j {
+                s -= l[i][k] * l[j][k];
+            }
+            if i == j {
+                if !(s > 1e-300) {
+                    return None;
+                }
+                l[i][i] = s.sqrt();
+            } else {
+                l[i][j] = s / l[j][j];
+            }
+        }
+    }
+    let mut z = [Vector3::zeros(); MAX_DEGREE + 1];
+    for i in 0..m {
+        let mut s = aty[i];
+        for k in 0..i {
+            s -= l[i][k] * z[k];
+        }
+        z[i] = s / l[i][i];
+    }
+    for i in (0..m).rev() {
+        let mut s = z[i];
+        for k in i + 1..m {
+            s -= l[k][i] * out[k];
+        }
+        out[i] = s / l[i][i];
+    }
+    for c in out.iter_mut().skip(m) {
+        *c = Vector3::zeros();
+    }
+    let mut ss = 0.0;
+    for (&t, y) in tau.iter().zip(values) {
+        ss += (eval(out, degree, t) - y).norm_squared();
+    }
+    Some((ss / tau.len() as Real).sqrt())
+}
+
+#[inline]
+fn eval(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> Vector3 {
+    let mut v = c[degree];
+    for k in (0..degree).rev() {
+        v = v * tau + c[k];
+    }
+    v
+}
+
+#[inline]
+fn eval_derivative(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> Vector3 {
+    if degree == 0 {
+        return Vector3::zeros();
+    }
+    let mut v = c[degree] * degree as Real;
+    for k in (1..degree).rev() {
+        v = v * tau + c[k] * k as Real;
+    }
+    v
+}
+
+impl PoseFit {
+    /// Fits the poses (oldest first; at least `max(d_p, d_r) + 1` of them). Returns `None` for a singular fit.
+    pub fn fit(poses: &[TimedPose], pos_degree: usize, rot_degree: usize) -> Option<PoseFit> {
+        Self::fit_windows(poses, poses.len(), pos_degree, poses.len(), rot_degree)
+    }
+
+    /// Fits position over the newest `pos_frames` poses and orientation over the newest `rot_frames`.
+    pub fn fit_windows(
+        poses: &[TimedPose],
+        pos_frames: usize,
+        pos_degree: usize,
+        rot_frames: usize,
+        rot_degree: usize,
+    ) -> Option<PoseFit> {
+        let n = poses.len();
+        if n == 0
+            || pos_frames > n
+            || rot_frames > n
+            || pos_frames <= pos_degree
+            || rot_frames <= rot_degree
+            || pos_degree > MAX_DEGREE
+            || rot_degree > MAX_DEGREE
+        {
+            return None;
+        }
+        let newest = poses[n - 1];
+        let t_ref_s = newest.t_s;
+        let scale_s = (t_ref_s - poses[0].t_s).max(1e-6);
+        let mut tau = [0.0; 64];
+        let mut p = [Vector3::zeros(); 64];
+        let mut th = [Vector3::zeros(); 64];
+        if n > 64 {
+            return None;
+        }
+        let r_ref_inv = newest.orientation.inverse();
+        for (i, pose) in poses.iter().enumerate() {
+            tau[i] = (pose.t_s - t_ref_s) / scale_s;
+            p[i] = pose.position_m - newest.position_m;
+        }
+        // Rotation vectors relative to the newest frame, unwrapped from newest to oldest so that a window turning
+        // through more than π stays continuous (θ and θ (1 − 2π/|θ|) are the same rotation).
+        let mut previous = Vector3::zeros();
+        for i in (0..n).rev() {
+            let mut theta = so3::log(&(r_ref_inv * poses[i].orientation));
+            let angle = theta.norm();
+            if angle > 1e-9 {
+                for k in [-1.0, 1.0] {
+                    let alt = theta * (1.0 + k * 2.0 * std::f64::consts::PI / angle);
+                    if (alt - previous).norm() < (theta - previous).norm() {
+                        theta = alt;
+                    }
+                }
+            }
+            th[i] = theta;
+            previous = theta;
+        }
+        let mut pos = [Vector3::zeros(); MAX_DEGREE + 1];
+        let mut rot = [Vector3::zeros(); MAX_DEGREE + 1];
+        let rp = poly_fit(&tau[n - pos_frames..n], &p[n - pos_frames..n], pos_degree, &mut pos)?;
+        let rr = poly_fit(&tau[n - rot_frames..n], &th[n - rot_frames..n], rot_degree, &mut rot)?;
+        pos[0] += newest.position_m;
+        Some(PoseFit {
+            t_ref_s,
+            scale_s,
+            pos,
+            pos_degree,
+            rot,
+            rot_degree,
+            r_ref: newest.orientation,
+            residual_rms_m: rp,
+            residual_rms_rad: rr,
+        })
+    }
+
+    /// Position (m) at time `t_s`.
+    #[inline]
+    pub fn position(&self, t_s: Real) -> Vector3 {
+        eval(&self.pos, self.pos_degree, (t_s - self.t_ref_s) / self.scale_s)
+    }
+
+    /// Orientation at time `t_s`.
+    #[inline]
+    pub fn orientation(&self, t_s: Real) -> UnitQuaternion {
+        self.r_ref * so3::exp(&eval(&self.rot, self.rot_degree, (t_s - self.t_ref_s) / self.scale_s))
+    }
+
+    /// Full state at time `t_s`.
+    pub fn at(&self, t_s: Real) -> PoseAt {
+        let tau = (t_s - self.t_ref_s) / self.scale_s;
+        let theta = eval(&self.rot, self.rot_degree, tau);
+        let dtheta = eval_derivative(&self.rot, self.rot_degree, tau) / self.scale_s;
+        let orientation = self.r_ref * so3::exp(&theta);
+        let w_body: Vector3 = so3::right_jacobian(&theta) * dtheta;
+        PoseAt {
+            position_m: eval(&self.pos, self.pos_degree, tau),
+            velocity_mps: eval_derivative(&self.pos, self.pos_degree, tau) / self.scale_s,
+            orientation,
+            angular_velocity_radps: orientation * w_body,
+        }
+    }
+
+    /// The newest frame's time (s).
+    pub fn t_ref_s(&self) -> Real {
+        self.t_ref_s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A quadratic position and a constant-acceleration rotation about a fixed axis are reproduced exactly by a
+    /// degree-2 fit, including extrapolation.
+    #[test]
+    fn exact_for_polynomial_motion() {
+        let axis = Vector3::new(0.2, 0.9, -0.3).normalize();
+        let r0 = UnitQuaternion::from_euler_angles(0.1, 0.2, -0.3);
+        let truth = |t: Real| {
+            (
+                Vector3::new(1.0 + 40.0 * t + 300.0 * t * t, 0.5 - 2.0 * t, 0.1 * t * t),
+                r0 * so3::exp(&(axis * (30.0 * t + 500.0 * t * t))),
+            )
+        };
+        let poses: Vec<TimedPose> = (0..10)
+            .map(|k| {
+                let t = -0.02 + k as Real / 720.0;
+                let (p, q) = truth(t);
+                TimedPose { t_s: t, position_m: p, orientation: q }
+            })
+            .collect();
+        let fit = PoseFit::fit(&poses, 2, 2).unwrap();
+        let t = 0.0;
+        let s = fit.at(t);
+        let (p, q) = truth(t);
+        assert!((s.position_m - p).norm() < 1e-9);
+        assert!((s.velocity_mps - Vector3::new(40.0, -2.0, 0.0)).norm() < 1e-7);
+        assert!(q.angle_to(&s.orientation) < 1e-9);
+        let w = r0 * axis * (30.0 + 1000.0 * t);
+        assert!((s.angular_velocity_radps - w).norm() < 1e-6, "{} vs {w}", s.angular_velocity_radps);
+    }
+}

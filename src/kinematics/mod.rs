@@ -1,0 +1,15 @@
+//! From motion-capture frames to the impact state: samples and calibration, a per-rig track that rejects bad
+//! frames with a reason, impact detection, and estimators that extrapolate the pre-impact frames to the first
+//! contact between the face and the ball.
+
+pub mod detect;
+pub mod estimate;
+pub mod fit;
+pub mod sample;
+pub mod so3;
+pub mod track;
+
+pub use detect::{Detection, DetectorConfig, ImpactDetector};
+pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};
+pub use sample::{Calibration, ClubPose, ClubheadSample};
+pub use track::{Reject, Track, TrackLimits};
