@@ -8,7 +8,9 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::equipment::ClubSpec;
-use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::impact::{
+    DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpulseModel, ImpulseVariant,
+};
 use crate::wire::{DeliveryInput, PredictOutput};
 
 /// Predicts golf ball launch conditions from motion-capture samples of the clubhead.
@@ -118,7 +120,8 @@ pub struct BenchArgs {
 pub fn load_club(spec: &str) -> Result<ClubSpec> {
     let path = Path::new(spec);
     if spec.ends_with(".toml") || path.exists() {
-        let text = std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
+        let text =
+            std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
         ClubSpec::from_toml_str(&text).with_context(|| format!("club file {spec}"))
     } else {
         Ok(ClubSpec::preset(spec)?)
@@ -141,7 +144,9 @@ fn describe(err: &ImpactError, input: &DeliveryInput) -> String {
             "field `club_speed_mph`: {:.1} mph ({speed_mps:.1} m/s) is outside 1-100 m/s",
             input.club_speed_mph
         ),
-        ImpactError::OffFace { .. } | ImpactError::Face(_) => format!("fields `impact_h_mm`/`impact_v_mm`: {err}"),
+        ImpactError::OffFace { .. } | ImpactError::Face(_) => {
+            format!("fields `impact_h_mm`/`impact_v_mm`: {err}")
+        }
         ImpactError::NotFinite { field } => format!("field `{field}`: must be a finite number"),
         ImpactError::NotApproaching => {
             format!("fields `club_path_deg`/`face_angle_deg`/`dynamic_loft_deg`: {err}")
@@ -160,14 +165,32 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
     let input = open_input(args.input.as_deref())?;
     let stdout = std::io::stdout().lock();
     let stderr = std::io::stderr().lock();
-    let tally = crate::jsonl::process("impactd predict", input, stdout, stderr, |d: DeliveryInput| {
-        d.check_finite().map_err(|e| describe(&e, &d))?;
-        let delivery = d.to_delivery(club.loft_deg());
-        let state = delivery.to_state(&equipment).map_err(|e| describe(&e, &d))?;
-        let launch = model.predict(&state, &equipment).map_err(|e| describe(&e, &d))?;
-        Ok(PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, &club), d.handedness.unwrap_or_default()))
-    })?;
-    Ok(if tally.rejected > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    let tally = crate::jsonl::process(
+        "impactd predict",
+        input,
+        stdout,
+        stderr,
+        |d: DeliveryInput| {
+            d.check_finite().map_err(|e| describe(&e, &d))?;
+            let delivery = d.to_delivery(club.loft_deg());
+            let state = delivery
+                .to_state(&equipment)
+                .map_err(|e| describe(&e, &d))?;
+            let launch = model
+                .predict(&state, &equipment)
+                .map_err(|e| describe(&e, &d))?;
+            Ok(PredictOutput::new(
+                &launch,
+                &DeliveryMetrics::from_state(&state, &club),
+                d.handedness.unwrap_or_default(),
+            ))
+        },
+    )?;
+    Ok(if tally.rejected > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
 }
 
 fn bench(args: &BenchArgs) -> Result<ExitCode> {
@@ -198,7 +221,12 @@ fn bench(args: &BenchArgs) -> Result<ExitCode> {
             } else {
                 format!("{:.2} ms", ns / 1e6)
             };
-            writeln!(out, "{:<36} {:>14}", r["name"].as_str().unwrap_or(""), shown)?;
+            writeln!(
+                out,
+                "{:<36} {:>14}",
+                r["name"].as_str().unwrap_or(""),
+                shown
+            )?;
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -208,7 +236,11 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
     if !(args.rate >= 60.0 && args.rate <= 10_000.0) {
         bail!("--rate must be within 60 and 10000 Hz, got {}", args.rate);
     }
-    if args.noise_mm < 0.0 || args.noise_deg < 0.0 || args.jitter_us < 0.0 || !(0.0..1.0).contains(&args.drop) {
+    if args.noise_mm < 0.0
+        || args.noise_deg < 0.0
+        || args.jitter_us < 0.0
+        || !(0.0..1.0).contains(&args.drop)
+    {
         bail!("noise, jitter and drop probability must not be negative (drop below 1)");
     }
     let estimators = args
@@ -216,7 +248,10 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         .iter()
         .map(|n| {
             crate::kinematics::EstimatorSpec::by_name(n).with_context(|| {
-                format!("unknown estimator '{n}' (known: {})", crate::kinematics::EstimatorSpec::NAMES.join(", "))
+                format!(
+                    "unknown estimator '{n}' (known: {})",
+                    crate::kinematics::EstimatorSpec::NAMES.join(", ")
+                )
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -256,17 +291,32 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         write!(out, " {:>21}", format!("{} rms / max", e.name))?;
     }
     writeln!(out)?;
-    for (k, key) in report.estimators[0].errors.entries().iter().map(|(k, _)| *k).enumerate() {
+    for (k, key) in report.estimators[0]
+        .errors
+        .entries()
+        .iter()
+        .map(|(k, _)| *k)
+        .enumerate()
+    {
         write!(out, "{key:<22}")?;
         for e in &report.estimators {
             let s = e.errors.entries()[k].1;
-            write!(out, " {:>10} / {:>8}", format!("{:.4}", s.rms), format!("{:.3}", s.max))?;
+            write!(
+                out,
+                " {:>10} / {:>8}",
+                format!("{:.4}", s.rms),
+                format!("{:.3}", s.max)
+            )?;
         }
         writeln!(out)?;
     }
     for e in &report.estimators {
         if !e.refused.is_empty() {
-            writeln!(out, "{}: {} estimated, refused {:?}", e.name, e.shots, e.refused)?;
+            writeln!(
+                out,
+                "{}: {} estimated, refused {:?}",
+                e.name, e.shots, e.refused
+            )?;
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -34,7 +34,9 @@ pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, String> {
     serde_json::from_str(line).map_err(|e| {
         let msg = e.to_string();
         match e.classify() {
-            serde_json::error::Category::Syntax | serde_json::error::Category::Eof => format!("not valid JSON: {msg}"),
+            serde_json::error::Category::Syntax | serde_json::error::Category::Eof => {
+                format!("not valid JSON: {msg}")
+            }
             _ => msg,
         }
     })
@@ -65,13 +67,17 @@ where
         let text = match result {
             Ok(o) => {
                 tally.answered += 1;
-                serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                serde_json::to_string(&o)
+                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
             }
             Err(reason) => {
                 tally.rejected += 1;
                 writeln!(err, "{tool}: line {n}: {reason}").map_err(JsonlError::Write)?;
-                serde_json::to_string(&LineError { line: n, error: &reason })
-                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                serde_json::to_string(&LineError {
+                    line: n,
+                    error: &reason,
+                })
+                .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
             }
         };
         writeln!(out, "{text}").map_err(JsonlError::Write)?;

@@ -48,7 +48,10 @@ impl DeliveryInput {
     /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
     /// left-handed golfer.
     pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {
-        let w = self.club_angular_velocity_radps.map(Vector3::from).unwrap_or_else(Vector3::zeros);
+        let w = self
+            .club_angular_velocity_radps
+            .map(Vector3::from)
+            .unwrap_or_else(Vector3::zeros);
         let left = self.handedness == Some(Handedness::Left);
         let s = if left { -1.0 } else { 1.0 };
         Delivery {
@@ -109,7 +112,11 @@ impl PredictOutput {
             ),
         };
         let metrics = LaunchMetrics::from_ball(&v, &w);
-        let sign = if handedness == Handedness::Left { -1.0 } else { 1.0 };
+        let sign = if handedness == Handedness::Left {
+            -1.0
+        } else {
+            1.0
+        };
         PredictOutput {
             smash_factor: metrics.ball_speed_mps / delivery.club_speed_mps,
             launch: metrics,

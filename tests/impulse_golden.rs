@@ -20,7 +20,11 @@ fn predict(case: &Case) -> PredictOutput {
     let state = delivery.to_state(&eq).unwrap();
     let model = ImpulseModel::new(ImpulseVariant::parse(&case.model).unwrap());
     let launch = model.predict(&state, &eq).unwrap();
-    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, &club), Handedness::Right)
+    PredictOutput::new(
+        &launch,
+        &DeliveryMetrics::from_state(&state, &club),
+        Handedness::Right,
+    )
 }
 
 #[test]
@@ -28,7 +32,11 @@ fn golden_cases_match() {
     let text = include_str!("data/im-golden.jsonl");
     let mut failures = Vec::new();
     let mut n = 0;
-    for (i, line) in text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+    for (i, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+    {
         let case: Case = serde_json::from_str(line).unwrap();
         let got = serde_json::to_value(predict(&case)).unwrap();
         for (key, want) in &case.expected {
@@ -42,10 +50,20 @@ fn golden_cases_match() {
             };
             n += 1;
             if (have - want).abs() > tol {
-                failures.push(format!("line {} {}/{} {key}: got {have:.6}, want {want:.6}", i + 1, case.club, case.model));
+                failures.push(format!(
+                    "line {} {}/{} {key}: got {have:.6}, want {want:.6}",
+                    i + 1,
+                    case.club,
+                    case.model
+                ));
             }
         }
     }
     assert!(n >= 70, "only {n} numbers checked");
-    assert!(failures.is_empty(), "{} mismatches:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} mismatches:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -66,10 +66,21 @@ fn momentum_is_conserved() {
         let ic = p.club_inertia_inv.try_inverse().unwrap();
         let ib = p.ball_inertia_inv.try_inverse().unwrap();
         let ang = |vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3| {
-            ic * wc - p.club_mass_kg * p.r_club_m.cross(&vc) + ib * wb - p.ball_mass_kg * p.r_ball_m.cross(&vb)
+            ic * wc - p.club_mass_kg * p.r_club_m.cross(&vc) + ib * wb
+                - p.ball_mass_kg * p.r_ball_m.cross(&vb)
         };
-        let a0 = ang(p.club_velocity_mps, p.club_angular_velocity_radps, p.ball_velocity_mps, p.ball_angular_velocity_radps);
-        let a1 = ang(s.club_velocity_mps, s.club_angular_velocity_radps, s.ball_velocity_mps, s.ball_angular_velocity_radps);
+        let a0 = ang(
+            p.club_velocity_mps,
+            p.club_angular_velocity_radps,
+            p.ball_velocity_mps,
+            p.ball_angular_velocity_radps,
+        );
+        let a1 = ang(
+            s.club_velocity_mps,
+            s.club_angular_velocity_radps,
+            s.ball_velocity_mps,
+            s.ball_angular_velocity_radps,
+        );
         assert!(rel(a0, a1) < 1e-12, "angular {}", rel(a0, a1));
     }
 }
@@ -86,7 +97,10 @@ fn restitution_constraints_hold() {
         for axis in 0..3 {
             let dir = p.frame.column(axis);
             let want = -p.restitution[axis] * u0.dot(&dir);
-            assert!((u1.dot(&dir) - want).abs() < 1e-10 * u0.norm(), "axis {axis}");
+            assert!(
+                (u1.dot(&dir) - want).abs() < 1e-10 * u0.norm(),
+                "axis {axis}"
+            );
         }
     }
 }
@@ -94,7 +108,10 @@ fn restitution_constraints_hold() {
 fn kinetic_energy(p: &ContactProblem, vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3) -> f64 {
     let ic = p.club_inertia_inv.try_inverse().unwrap();
     let ib = p.ball_inertia_inv.try_inverse().unwrap();
-    0.5 * (p.club_mass_kg * vc.norm_squared() + wc.dot(&(ic * wc)) + p.ball_mass_kg * vb.norm_squared() + wb.dot(&(ib * wb)))
+    0.5 * (p.club_mass_kg * vc.norm_squared()
+        + wc.dot(&(ic * wc))
+        + p.ball_mass_kg * vb.norm_squared()
+        + wb.dot(&(ib * wb)))
 }
 
 /// Kinetic energy never increases for 0 <= e <= 0.99 with rolling (e_y = e_z = 0) or the seed's slip values.
@@ -109,8 +126,20 @@ fn energy_never_increases() {
             let mut p = p0;
             p.restitution.x = e;
             let s = solve(&p).unwrap();
-            let before = kinetic_energy(&p, p.club_velocity_mps, p.club_angular_velocity_radps, p.ball_velocity_mps, p.ball_angular_velocity_radps);
-            let after = kinetic_energy(&p, s.club_velocity_mps, s.club_angular_velocity_radps, s.ball_velocity_mps, s.ball_angular_velocity_radps);
+            let before = kinetic_energy(
+                &p,
+                p.club_velocity_mps,
+                p.club_angular_velocity_radps,
+                p.ball_velocity_mps,
+                p.ball_angular_velocity_radps,
+            );
+            let after = kinetic_energy(
+                &p,
+                s.club_velocity_mps,
+                s.club_angular_velocity_radps,
+                s.ball_velocity_mps,
+                s.ball_angular_velocity_radps,
+            );
             assert!(after < before, "e = {e}: {before} -> {after}");
         }
     }
@@ -125,8 +154,20 @@ fn energy_change_matches_the_closed_form() {
             let mut p = p0;
             p.restitution.x = e;
             let s = solve(&p).unwrap();
-            let before = kinetic_energy(&p, p.club_velocity_mps, p.club_angular_velocity_radps, p.ball_velocity_mps, p.ball_angular_velocity_radps);
-            let after = kinetic_energy(&p, s.club_velocity_mps, s.club_angular_velocity_radps, s.ball_velocity_mps, s.ball_angular_velocity_radps);
+            let before = kinetic_energy(
+                &p,
+                p.club_velocity_mps,
+                p.club_angular_velocity_radps,
+                p.ball_velocity_mps,
+                p.ball_angular_velocity_radps,
+            );
+            let after = kinetic_energy(
+                &p,
+                s.club_velocity_mps,
+                s.club_angular_velocity_radps,
+                s.ball_velocity_mps,
+                s.ball_angular_velocity_radps,
+            );
             let u0 = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps);
             let u1 = p.club_contact_velocity(&s.club_velocity_mps, &s.club_angular_velocity_radps)
                 - p.ball_contact_velocity(&s.ball_velocity_mps, &s.ball_angular_velocity_radps);
@@ -162,10 +203,16 @@ fn penner_point_mass_limit() {
             club_angular_velocity_radps: Vector3::zeros(),
         };
         let state = d.to_state(&eq).unwrap();
-        let launch = ImpulseModel::new(ImpulseVariant::Standard).with_cor(e).predict(&state, &eq).unwrap();
+        let launch = ImpulseModel::new(ImpulseVariant::Standard)
+            .with_cor(e)
+            .predict(&state, &eq)
+            .unwrap();
         let l = club.face.loft_rad;
         let vn = (1.0 + e) * m_head * v * l.cos() / (m_head + ball.mass_kg);
-        let vt = v * l.sin() / (1.0 + ball.mass_kg / m_head + ball.mass_kg * ball.radius_m.powi(2) / ball.inertia_kg_m2);
+        let vt = v * l.sin()
+            / (1.0
+                + ball.mass_kg / m_head
+                + ball.mass_kg * ball.radius_m.powi(2) / ball.inertia_kg_m2);
         let speed = vn.hypot(vt);
         let launch_angle = l - vt.atan2(vn); // the normal is at +L, the tangential part points down the face
         let spin = ball.mass_kg * ball.radius_m * vt / ball.inertia_kg_m2; // = 5 v_t / 2R for a uniform sphere
@@ -173,7 +220,11 @@ fn penner_point_mass_limit() {
         assert!((got.ball_velocity_mps.norm() - speed).abs() < 1e-9 * speed);
         let got_angle = got.ball_velocity_mps.y.atan2(got.ball_velocity_mps.x);
         assert!((got_angle - launch_angle).abs() < 1e-9);
-        assert!((got.ball_spin_radps.z - spin).abs() < 1e-9 * spin, "{} vs {spin}", got.ball_spin_radps.z);
+        assert!(
+            (got.ball_spin_radps.z - spin).abs() < 1e-9 * spin,
+            "{} vs {spin}",
+            got.ball_spin_radps.z
+        );
         assert!(got.ball_spin_radps.xy().norm() < 1e-9 * spin);
     }
 }
@@ -183,11 +234,20 @@ fn launch_of(club: &ClubSpec, variant: ImpulseVariant, input: &DeliveryInput) ->
     let d = input.to_delivery(club.loft_deg());
     let state = d.to_state(&eq).unwrap();
     let launch = ImpulseModel::new(variant).predict(&state, &eq).unwrap();
-    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, club), input.handedness.unwrap_or_default())
+    PredictOutput::new(
+        &launch,
+        &DeliveryMetrics::from_state(&state, club),
+        input.handedness.unwrap_or_default(),
+    )
 }
 
 fn driver_at(h_mm: f64) -> DeliveryInput {
-    DeliveryInput { club_speed_mph: 110.0, dynamic_loft_deg: Some(13.0), impact_h_mm: h_mm, ..Default::default() }
+    DeliveryInput {
+        club_speed_mph: 110.0,
+        dynamic_loft_deg: Some(13.0),
+        impact_h_mm: h_mm,
+        ..Default::default()
+    }
 }
 
 /// Gear effect on the driver: a toe hit spins the ball toward a hook (lower sidespin) and a heel hit toward a
@@ -199,10 +259,24 @@ fn driver_gear_effect_and_bulge() {
         let centre = launch_of(&club, variant, &driver_at(0.0));
         let toe = launch_of(&club, variant, &driver_at(20.0));
         let heel = launch_of(&club, variant, &driver_at(-20.0));
-        assert!(toe.launch.sidespin_rpm < centre.launch.sidespin_rpm - 100.0, "{variant:?} toe {} centre {}", toe.launch.sidespin_rpm, centre.launch.sidespin_rpm);
-        assert!(heel.launch.sidespin_rpm > centre.launch.sidespin_rpm + 100.0, "{variant:?} heel");
-        assert!(toe.launch.launch_direction_deg > centre.launch.launch_direction_deg + 1.0, "{variant:?} bulge toe");
-        assert!(heel.launch.launch_direction_deg < centre.launch.launch_direction_deg - 1.0, "{variant:?} bulge heel");
+        assert!(
+            toe.launch.sidespin_rpm < centre.launch.sidespin_rpm - 100.0,
+            "{variant:?} toe {} centre {}",
+            toe.launch.sidespin_rpm,
+            centre.launch.sidespin_rpm
+        );
+        assert!(
+            heel.launch.sidespin_rpm > centre.launch.sidespin_rpm + 100.0,
+            "{variant:?} heel"
+        );
+        assert!(
+            toe.launch.launch_direction_deg > centre.launch.launch_direction_deg + 1.0,
+            "{variant:?} bulge toe"
+        );
+        assert!(
+            heel.launch.launch_direction_deg < centre.launch.launch_direction_deg - 1.0,
+            "{variant:?} bulge heel"
+        );
     }
 }
 
@@ -211,10 +285,23 @@ fn driver_gear_effect_and_bulge() {
 fn open_face_starts_right_with_fade() {
     for club in clubs() {
         for variant in ImpulseVariant::ALL {
-            let input = DeliveryInput { club_speed_mph: 95.0, face_angle_deg: 4.0, ..Default::default() };
+            let input = DeliveryInput {
+                club_speed_mph: 95.0,
+                face_angle_deg: 4.0,
+                ..Default::default()
+            };
             let out = launch_of(&club, variant, &input);
-            assert!(out.launch.launch_direction_deg > 2.0, "{} {variant:?}", club.name);
-            assert!(out.launch.sidespin_rpm > 300.0, "{} {variant:?} {}", club.name, out.launch.sidespin_rpm);
+            assert!(
+                out.launch.launch_direction_deg > 2.0,
+                "{} {variant:?}",
+                club.name
+            );
+            assert!(
+                out.launch.sidespin_rpm > 300.0,
+                "{} {variant:?} {}",
+                club.name,
+                out.launch.sidespin_rpm
+            );
             assert!(out.launch.spin_axis_deg > 0.0);
         }
     }
@@ -236,7 +323,11 @@ fn left_handed_delivery_mirrors_the_launch() {
                     dynamic_loft_deg: Some(club.loft_deg() + rng.uniform(-3.0, 4.0)),
                     impact_h_mm: rng.uniform(-15.0, 15.0),
                     impact_v_mm: rng.uniform(-8.0, 8.0),
-                    club_angular_velocity_radps: Some([rng.uniform(-5.0, 5.0), rng.uniform(-30.0, 5.0), rng.uniform(-5.0, 5.0)]),
+                    club_angular_velocity_radps: Some([
+                        rng.uniform(-5.0, 5.0),
+                        rng.uniform(-30.0, 5.0),
+                        rng.uniform(-5.0, 5.0),
+                    ]),
                     handedness: None,
                 };
                 // The left-hander's world is the mirror: z -> -z; path and face angles change sign, the angular
@@ -249,7 +340,10 @@ fn left_handed_delivery_mirrors_the_launch() {
                     handedness: Some(Handedness::Left),
                     ..right.clone()
                 };
-                let (r, l) = (launch_of(&club, variant, &right).launch, launch_of(&club, variant, &left).launch);
+                let (r, l) = (
+                    launch_of(&club, variant, &right).launch,
+                    launch_of(&club, variant, &left).launch,
+                );
                 let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * (1.0 + a.abs());
                 assert!(close(r.ball_speed_mps, l.ball_speed_mps));
                 assert!(close(r.launch_angle_deg, l.launch_angle_deg));
@@ -283,8 +377,18 @@ fn solver_is_mirror_symmetric() {
         };
         let (a, b) = (solve(&p).unwrap(), solve(&q).unwrap());
         assert!(rel(mirror_z(&a.ball_velocity_mps), b.ball_velocity_mps) < 1e-12);
-        assert!(rel(mirror_z_axial(&a.ball_angular_velocity_radps), b.ball_angular_velocity_radps) < 1e-12);
-        assert!(rel(mirror_z_axial(&a.club_angular_velocity_radps), b.club_angular_velocity_radps) < 1e-12);
+        assert!(
+            rel(
+                mirror_z_axial(&a.ball_angular_velocity_radps),
+                b.ball_angular_velocity_radps
+            ) < 1e-12
+        );
+        assert!(
+            rel(
+                mirror_z_axial(&a.club_angular_velocity_radps),
+                b.club_angular_velocity_radps
+            ) < 1e-12
+        );
         let (la, lb) = (
             LaunchMetrics::from_ball(&a.ball_velocity_mps, &a.ball_angular_velocity_radps),
             LaunchMetrics::from_ball(&b.ball_velocity_mps, &b.ball_angular_velocity_radps),
@@ -327,4 +431,3 @@ fn symmetric_club_mirrored_delivery() {
         }
     }
 }
-

@@ -43,7 +43,10 @@ impl Delivery {
             ("dynamic_loft_deg", self.dynamic_loft_rad),
             ("impact_h_mm", self.impact_h_m),
             ("impact_v_mm", self.impact_v_m),
-            ("club_angular_velocity_radps", self.club_angular_velocity_radps.norm()),
+            (
+                "club_angular_velocity_radps",
+                self.club_angular_velocity_radps.norm(),
+            ),
         ];
         for (field, v) in fields {
             if !v.is_finite() {
@@ -51,7 +54,9 @@ impl Delivery {
             }
         }
         if !(1.0..=100.0).contains(&self.club_speed_mps) {
-            return Err(ImpactError::SpeedOutOfRange { speed_mps: self.club_speed_mps });
+            return Err(ImpactError::SpeedOutOfRange {
+                speed_mps: self.club_speed_mps,
+            });
         }
         Ok(())
     }
@@ -61,9 +66,13 @@ impl Delivery {
         self.validate()?;
         let club = &equipment.club;
         if !club.on_face(self.impact_h_m, self.impact_v_m) {
-            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
+            return Err(ImpactError::OffFace {
+                h_mm: self.impact_h_m * 1e3,
+                v_mm: self.impact_v_m * 1e3,
+            });
         }
-        let world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
+        let world_from_club_rot =
+            rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
         let rot = world_from_club_rot.matrix();
         let contact = club.face.contact(self.impact_h_m, self.impact_v_m)?;
         let v_face = self.club_speed_mps * self.direction();

@@ -2,10 +2,12 @@
 //! estimate from the frames before it.
 //!
 //! The detector watches the gap between the ball's surface and the face surface (see [`Scene::gap`]). It fires
-//! when, while armed, the gap turns from positive to non-positive between two accepted frames, the face
-//! approached faster than `min_approach_speed_mps` (an address or a waggle does not fire), and the crossing is
-//! on the face (within its extents plus a margin). It re-arms once the face centre is `rearm_distance_m` away
-//! from the ball.
+//! when, while armed, the gap turns from positive to non-positive between two accepted frames, or when the
+//! previous two frames, extrapolated linearly, put the contact before the new frame (the head may have rebounded
+//! or spun after the impact, so the new frame alone can show a positive gap again); the face must have
+//! approached faster than `min_approach_speed_mps` (an address or a waggle does not fire), and the crossing must
+//! be on the face (within its extents plus a margin). It re-arms once the face centre is `rearm_distance_m`
+//! away from the ball.
 
 use super::estimate::{estimate, EstimateError, EstimatorSpec, ImpactEstimate, Scene};
 use super::sample::ClubPose;
@@ -33,7 +35,7 @@ impl Default for DetectorConfig {
             ball_radius_m: crate::equipment::BallSpec::SEED.radius_m,
             min_approach_speed_mps: 3.0,
             rearm_distance_m: 0.25,
-            face_margin_m: 0.02,
+            face_margin_m: 0.04,
             max_extrapolation_s: 0.010,
         }
     }
@@ -52,13 +54,20 @@ pub struct Detection {
 pub struct ImpactDetector {
     pub config: DetectorConfig,
     armed: bool,
-    previous: Option<(u64, crate::face::FaceGap)>,
+    previous: Option<(u64, crate::face::FaceGap, Vector3)>,
+    before_previous: Option<(u64, crate::face::FaceGap, Vector3)>,
     scratch: Vec<ClubPose>,
 }
 
 impl ImpactDetector {
     pub fn new(config: DetectorConfig) -> Self {
-        ImpactDetector { config, armed: false, previous: None, scratch: Vec::with_capacity(64) }
+        ImpactDetector {
+            config,
+            armed: false,
+            previous: None,
+            before_previous: None,
+            scratch: Vec::with_capacity(64),
+        }
     }
 
     /// Whether the next crossing would fire.
@@ -67,7 +76,12 @@ impl ImpactDetector {
     }
 
     /// Call after each pose the track accepted; returns a detection when this pose revealed an impact.
-    pub fn on_pose(&mut self, track: &Track, club: &ClubSpec, estimators: &[EstimatorSpec]) -> Option<Vec<Detection>> {
+    pub fn on_pose(
+        &mut self,
+        track: &Track,
+        club: &ClubSpec,
+        estimators: &[EstimatorSpec],
+    ) -> Option<Vec<Detection>> {
         let newest = *track.latest()?;
         let scene = Scene {
             face: &club.face,
@@ -78,31 +92,69 @@ impl ImpactDetector {
         let g = scene.gap(&newest.world_from_club);
         let face_centre = newest.world_from_club * nalgebra::Point3::from(club.face.center_m);
         let distance = (face_centre.coords - self.config.ball_position_m).norm();
-        let previous = self.previous.replace((newest.t_ns, g));
+        let previous = self.previous.replace((newest.t_ns, g, face_centre.coords));
+        let before_previous = std::mem::replace(&mut self.before_previous, previous);
         if !self.armed {
             if distance > self.config.rearm_distance_m {
                 self.armed = true;
             }
             return None;
         }
-        let (t_prev, prev) = previous?;
-        if !(prev.distance_m > 0.0 && g.distance_m <= 0.0) {
+        let (t_prev, prev, centre_prev) = previous?;
+        if prev.distance_m <= 0.0 {
             return None;
         }
-        let dt = (newest.t_ns.saturating_sub(t_prev)) as Real * 1e-9;
-        if dt <= 0.0 || (prev.distance_m - g.distance_m) / dt < self.config.min_approach_speed_mps {
+        let secs = |a: u64, b: u64| b.saturating_sub(a) as Real * 1e-9;
+        let dt = secs(t_prev, newest.t_ns);
+        // The crossing as the new frame shows it, or as the two frames before it predict it.
+        let crossing = if g.distance_m <= 0.0 && dt > 0.0 {
+            Some((prev, g, (prev.distance_m - g.distance_m) / dt))
+        } else if let Some((t_old, old, _)) = before_previous {
+            let dt_old = secs(t_old, t_prev);
+            // The face must really have travelled at least the remaining gap since the previous frame.
+            if dt_old <= 0.0 || (face_centre.coords - centre_prev).norm() < prev.distance_m {
+                None
+            } else {
+                let k = dt / dt_old;
+                let predicted = crate::face::FaceGap {
+                    distance_m: prev.distance_m + k * (prev.distance_m - old.distance_m),
+                    h_m: prev.h_m + k * (prev.h_m - old.h_m),
+                    v_m: prev.v_m + k * (prev.v_m - old.v_m),
+                };
+                (predicted.distance_m <= 0.0).then_some((
+                    prev,
+                    predicted,
+                    (old.distance_m - prev.distance_m) / dt_old,
+                ))
+            }
+        } else {
+            None
+        };
+        let (prev, g, approach_mps) = crossing?;
+        if approach_mps < self.config.min_approach_speed_mps {
             return None;
         }
-        // Where on the face the crossing happened, interpolated between the two frames.
+        // Roughly where on the face the crossing happened, interpolated between the two frames: a coarse filter
+        // against swings that pass beside the ball. The estimator finds the exact location, and a model refuses
+        // a contact off the face.
         let f = prev.distance_m / (prev.distance_m - g.distance_m);
-        let (h, v) = (prev.h_m + f * (g.h_m - prev.h_m), prev.v_m + f * (g.v_m - prev.v_m));
+        let (h, v) = (
+            prev.h_m + f * (g.h_m - prev.h_m),
+            prev.v_m + f * (g.v_m - prev.v_m),
+        );
         let m = self.config.face_margin_m;
         if h.abs() > club.face_half_width_m + m || v.abs() > club.face_half_height_m + m {
             return None;
         }
         self.armed = false;
         self.scratch.clear();
-        self.scratch.extend(track.poses().iter().filter(|p| p.t_ns < newest.t_ns).copied());
+        self.scratch.extend(
+            track
+                .poses()
+                .iter()
+                .filter(|p| p.t_ns < newest.t_ns)
+                .copied(),
+        );
         Some(
             estimators
                 .iter()

@@ -65,14 +65,40 @@ impl EstimatorSpec {
     /// The fewest frames a windowed fit accepts (a quadratic with two frames per coefficient).
     pub const MIN_WINDOW_FRAMES: usize = 6;
 
-    /// The estimators by name: `linear2`, `poly`, or
-    /// `poly:POSITION_FRAMES:POSITION_DEGREE:ROTATION_FRAMES:ROTATION_DEGREE`.
+    /// The estimators by name: `linear2`, `poly`,
+    /// `poly:POSITION_FRAMES:POSITION_DEGREE:ROTATION_FRAMES:ROTATION_DEGREE` (fixed frame counts) or
+    /// `poly@POSITION_MS:POSITION_DEGREE:ROTATION_MS:ROTATION_DEGREE` (time spans).
     pub fn by_name(name: &str) -> Option<Self> {
         match name {
             "linear2" => Some(Self::linear2()),
             "poly" => Some(Self::poly()),
+            custom if custom.starts_with("poly@") => {
+                let parts: Vec<Real> = custom["poly@".len()..]
+                    .split(':')
+                    .map(|p| p.parse().ok())
+                    .collect::<Option<_>>()?;
+                let [pos_ms, pos_deg, rot_ms, rot_deg] = parts[..] else {
+                    return None;
+                };
+                let spec = EstimatorSpec {
+                    name: custom.to_string(),
+                    window_ms: Some(pos_ms),
+                    rotation_window_ms: Some(rot_ms),
+                    position_degree: pos_deg as usize,
+                    rotation_degree: rot_deg as usize,
+                    ..Self::poly()
+                };
+                (pos_ms > 0.0
+                    && rot_ms > 0.0
+                    && spec.position_degree <= super::fit::MAX_DEGREE
+                    && spec.rotation_degree <= super::fit::MAX_DEGREE)
+                    .then_some(spec)
+            }
             custom => {
-                let mut parts = custom.strip_prefix("poly:")?.split(':').map(|p| p.parse::<usize>().ok());
+                let mut parts = custom
+                    .strip_prefix("poly:")?
+                    .split(':')
+                    .map(|p| p.parse::<usize>().ok());
                 let spec = EstimatorSpec {
                     name: custom.to_string(),
                     frames: parts.next()??,
@@ -96,10 +122,16 @@ impl EstimatorSpec {
             ("rotation", self.rotation_frames, self.rotation_degree),
         ] {
             if degree > super::fit::MAX_DEGREE {
-                return Err(format!("{what} degree {degree} is above the maximum {}", super::fit::MAX_DEGREE));
+                return Err(format!(
+                    "{what} degree {degree} is above the maximum {}",
+                    super::fit::MAX_DEGREE
+                ));
             }
             if frames <= degree || frames > 64 {
-                return Err(format!("{what} frames must be within {} and 64 for degree {degree}, got {frames}", degree + 1));
+                return Err(format!(
+                    "{what} frames must be within {} and 64 for degree {degree}, got {frames}",
+                    degree + 1
+                ));
             }
         }
         if self.rotation_frames > self.frames {
@@ -109,12 +141,18 @@ impl EstimatorSpec {
     }
 }
 
+/// A long window's residual this many times the half window's means the long model lacks fit. With white noise
+/// alone the ratio is about sqrt((N - p) / N) / sqrt((N/2 - p) / (N/2)), 1.1-1.2 for the default spans.
+const LACK_OF_FIT_RATIO: Real = 1.5;
+
 /// Why an estimator refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EstimateError {
     #[error("too few good pre-impact frames: {have}, need {need}")]
     TooFewFrames { have: usize, need: usize },
-    #[error("the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)")]
+    #[error(
+        "the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)"
+    )]
     StaleFrames { gap_ms: Real, limit_ms: Real },
     #[error("the fit of the pre-impact frames is singular")]
     SingularFit,
@@ -189,29 +227,61 @@ pub fn estimate(
     let (need, pos_frames, pos_degree, rot_frames, rot_degree) = match spec.window_ms {
         None => {
             if pre_impact.len() < spec.frames {
-                return Err(EstimateError::TooFewFrames { have: pre_impact.len(), need: spec.frames });
+                return Err(EstimateError::TooFewFrames {
+                    have: pre_impact.len(),
+                    need: spec.frames,
+                });
             }
-            (spec.frames, spec.frames, spec.position_degree, spec.rotation_frames, spec.rotation_degree)
+            (
+                spec.frames,
+                spec.frames,
+                spec.position_degree,
+                spec.rotation_frames,
+                spec.rotation_degree,
+            )
         }
         Some(window_ms) => {
             let newest = pre_impact.last().map(|p| p.t_ns).unwrap_or(0);
             let within = |ms: Real, cap: usize| {
                 let span_ns = (ms * 1e6) as u64;
-                pre_impact.iter().rev().take_while(|p| newest - p.t_ns <= span_ns).count().min(cap).min(64)
+                pre_impact
+                    .iter()
+                    .rev()
+                    .take_while(|p| newest - p.t_ns <= span_ns)
+                    .count()
+                    .min(cap)
+                    .min(64)
             };
             let n_p = within(window_ms, spec.frames);
-            let n_r = within(spec.rotation_window_ms.unwrap_or(window_ms), spec.rotation_frames).min(n_p);
+            let n_r = within(
+                spec.rotation_window_ms.unwrap_or(window_ms),
+                spec.rotation_frames,
+            )
+            .min(n_p);
             if n_r < EstimatorSpec::MIN_WINDOW_FRAMES {
-                return Err(EstimateError::TooFewFrames { have: n_r, need: EstimatorSpec::MIN_WINDOW_FRAMES });
+                return Err(EstimateError::TooFewFrames {
+                    have: n_r,
+                    need: EstimatorSpec::MIN_WINDOW_FRAMES,
+                });
             }
             let cap = |n: usize, d: usize| d.min(n / 2 - 1);
-            (n_p, n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
+            (
+                n_p,
+                n_p,
+                cap(n_p, spec.position_degree),
+                n_r,
+                cap(n_r, spec.rotation_degree),
+            )
         }
     };
     let used = &pre_impact[pre_impact.len() - need..];
     // Times relative to the revealing frame keep full precision in f64.
     let rel = |t_ns: u64| -((reveal_t_ns - t_ns) as Real) * 1e-9;
-    let mut poses = [TimedPose { t_s: 0.0, position_m: Vector3::zeros(), orientation: Default::default() }; 64];
+    let mut poses = [TimedPose {
+        t_s: 0.0,
+        position_m: Vector3::zeros(),
+        orientation: Default::default(),
+    }; 64];
     // The position fit follows the face centre, not the CG: the contact velocity then comes straight from the
     // fitted path instead of through the (noisier) differentiated orientation, v_cg + w x r.
     let r_fit = scene.face.center_m;
@@ -222,17 +292,59 @@ pub fn estimate(
             orientation: p.world_from_club.rotation,
         };
     }
-    let fit = PoseFit::fit_windows(&poses[..need], pos_frames, pos_degree, rot_frames, rot_degree)
-        .ok_or(EstimateError::SingularFit)?;
+    let mut fit = PoseFit::fit_windows(
+        &poses[..need],
+        pos_frames,
+        pos_degree,
+        rot_frames,
+        rot_degree,
+    )
+    .ok_or(EstimateError::SingularFit)?;
+    // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
+    // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
+    // equal), the long model lacks fit and the short one is used, for position and orientation separately.
+    if spec.window_ms.is_some() {
+        let (p2, r2) = (pos_frames / 2, rot_frames / 2);
+        let cap = |n: usize, d: usize| d.min(n / 2 - 1);
+        if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
+            if let Some(short) = PoseFit::fit_windows(
+                &poses[..need],
+                p2,
+                cap(p2, spec.position_degree),
+                r2,
+                cap(r2, spec.rotation_degree),
+            ) {
+                let pos_short = fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
+                let rot_short = fit.residual_rms_rad > LACK_OF_FIT_RATIO * short.residual_rms_rad;
+                fit = match (pos_short, rot_short) {
+                    (false, false) => fit,
+                    (true, true) => short,
+                    (true, false) => short.with_rotation_of(&fit),
+                    (false, true) => fit.with_rotation_of(&short),
+                };
+            }
+        }
+    }
     let club_pose = |face_centre: Vector3, orientation: crate::math::UnitQuaternion| {
-        Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
+        Isometry3::from_parts(
+            (face_centre - orientation * r_fit).into_translation(),
+            orientation,
+        )
     };
-    let gap_at = |t: Real| scene.gap(&club_pose(fit.position(t), fit.orientation(t))).distance_m;
+    let gap_at = |t: Real| {
+        scene
+            .gap(&club_pose(fit.position(t), fit.orientation(t)))
+            .distance_m
+    };
     // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
     // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
     // falls short).
     let t_last = fit.t_ref_s();
-    let dt = if need >= 2 { (t_last - poses[need - 2].t_s).max(1e-5) } else { 1.0 / 720.0 };
+    let dt = if need >= 2 {
+        (t_last - poses[need - 2].t_s).max(1e-5)
+    } else {
+        1.0 / 720.0
+    };
     let mut lo = t_last;
     let mut g_lo = gap_at(lo);
     let mut steps = 0;
@@ -287,12 +399,14 @@ pub fn estimate(
     }
     let at = fit.at(t);
     let world_from_club = club_pose(at.position_m, at.orientation);
-    let cg_velocity_mps = at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
+    let cg_velocity_mps =
+        at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
     let g = scene.gap(&world_from_club);
     let residual_rms_mm = fit.residual_rms_m * 1e3;
     let residual_rms_deg = fit.residual_rms_rad.to_degrees();
     let extrapolation_ms = extrapolation_s.max(0.0) * 1e3;
-    let score = 1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);
+    let score =
+        1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);
     let t_impact_ns = (reveal_t_ns as i128 + (t * 1e9).round() as i128).max(0) as u64;
     Ok(ImpactEstimate {
         t_impact_ns,
@@ -304,6 +418,12 @@ pub fn estimate(
             impact_h_m: g.h_m,
             impact_v_m: g.v_m,
         },
-        quality: Quality { frames_used: need, residual_rms_mm, residual_rms_deg, extrapolation_ms, score },
+        quality: Quality {
+            frames_used: need,
+            residual_rms_mm,
+            residual_rms_deg,
+            extrapolation_ms,
+            score,
+        },
     })
 }

@@ -1,0 +1,364 @@
+//! Impact-state estimation from motion-capture frames: the accuracy targets on synthetic swings with exact truth,
+//! and the track's and detector's handling of bad, missing and misleading frames.
+
+use impactd::equipment::ClubSpec;
+use impactd::eval::{run, EvalConfig, EvalReport};
+use impactd::impact::Equipment;
+use impactd::kinematics::estimate::estimate;
+use impactd::kinematics::track::Accepted;
+use impactd::kinematics::*;
+use impactd::math::{Isometry3, Translation3Ext, UnitQuaternion, Vector3};
+use impactd::rng::Rng;
+use impactd::swing::{sample, Sampling, Swing, SwingSpec};
+
+fn eval(club: ClubSpec, shots: usize, noise_mm: f64, noise_deg: f64) -> EvalReport {
+    run(
+        &EvalConfig {
+            club,
+            rate_hz: 720.0,
+            shots,
+            noise_mm,
+            noise_deg,
+            jitter_us: 0.0,
+            drop_probability: 0.0,
+            seed: 11,
+            estimators: vec![EstimatorSpec::linear2(), EstimatorSpec::poly()],
+        },
+        |_| {},
+    )
+}
+
+/// The extrapolation issue's targets at 720 Hz with 0.2 mm and 0.1 deg of noise: face angle and dynamic loft
+/// RMS <= 0.1 deg, impact location RMS <= 1 mm; club speed RMS <= 0.3 % on the driver. Every shot estimated.
+#[test]
+fn poly_meets_the_accuracy_targets_at_720_hz() {
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let name = club.name.clone();
+        let r = eval(club, 300, 0.2, 0.1);
+        let poly = &r.estimators[1];
+        assert_eq!(poly.shots, 300, "{name}: {:?}", poly.refused);
+        let e = &poly.errors;
+        assert!(
+            e.face_angle_deg.rms <= 0.1,
+            "{name} face {}",
+            e.face_angle_deg.rms
+        );
+        assert!(
+            e.dynamic_loft_deg.rms <= 0.1,
+            "{name} loft {}",
+            e.dynamic_loft_deg.rms
+        );
+        assert!(
+            e.impact_h_mm.rms <= 1.0 && e.impact_v_mm.rms <= 1.0,
+            "{name} location"
+        );
+        if name == "driver" {
+            assert!(
+                e.club_speed_pct.rms <= 0.3,
+                "{name} speed {}",
+                e.club_speed_pct.rms
+            );
+        }
+        // Against the seed's two-point method on the same swings: at least twice lower face-angle error and
+        // three times lower impact-location error (measured ratios are in the README).
+        let lin = &r.estimators[0].errors;
+        assert!(
+            lin.face_angle_deg.rms > 2.0 * e.face_angle_deg.rms,
+            "{name} face ratio"
+        );
+        assert!(
+            lin.impact_h_mm.rms > 3.0 * e.impact_h_mm.rms,
+            "{name} h ratio"
+        );
+        assert!(
+            lin.impact_v_mm.rms > 4.0 * e.impact_v_mm.rms,
+            "{name} v ratio"
+        );
+    }
+}
+
+/// With the noise off, the best estimator's errors are below 0.01 deg and 0.05 mm.
+#[test]
+fn noise_free_errors_are_tiny() {
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let name = club.name.clone();
+        let r = eval(club, 100, 0.0, 0.0);
+        let e = &r.estimators[1].errors;
+        for (key, s) in e.entries() {
+            if key.ends_with("_deg") && !key.starts_with("launch") {
+                assert!(s.rms < 0.01, "{name} {key} {}", s.rms);
+            }
+            if key.ends_with("_mm") {
+                assert!(s.rms < 0.05, "{name} {key} {}", s.rms);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_evaluation_is_deterministic() {
+    let a = eval(ClubSpec::driver(), 20, 0.2, 0.1);
+    let b = eval(ClubSpec::driver(), 20, 0.2, 0.1);
+    assert_eq!(
+        serde_json::to_string(&a).unwrap(),
+        serde_json::to_string(&b).unwrap()
+    );
+}
+
+fn good_sample(frame: u64, t_ns: u64, x: f64) -> ClubheadSample {
+    ClubheadSample {
+        frame,
+        t_ns,
+        position_m: Vector3::new(x, 0.1, 0.0),
+        orientation_xyzw: [0.0, 0.0, 0.0, 1.0],
+        occluded: false,
+    }
+}
+
+#[test]
+fn the_track_rejects_bad_frames_with_a_reason() {
+    let mut track = Track::new(Calibration::default(), TrackLimits::default());
+    let dt = 1_388_889;
+    assert!(track.push(&good_sample(1, 1_000_000_000, 0.0)).is_ok());
+    let t = |k: u64| 1_000_000_000 + k * dt;
+    let mut nan = good_sample(2, t(1), 0.0);
+    nan.position_m.y = f64::NAN;
+    assert_eq!(
+        track.push(&nan),
+        Err(Reject::NonFinite {
+            field: "position_m"
+        })
+    );
+    assert!(matches!(
+        track.push(&good_sample(1, t(0), 0.0)),
+        Err(Reject::Duplicate { .. })
+    ));
+    assert!(matches!(
+        track.push(&good_sample(0, t(0) - 5, 0.0)),
+        Err(Reject::Backwards { .. })
+    ));
+    // 1 m in one frame is 720 m/s.
+    assert!(matches!(
+        track.push(&good_sample(2, t(1), 1.0)),
+        Err(Reject::Jump { .. })
+    ));
+    // Millimetres where metres are expected.
+    let mut mm = good_sample(2, t(1), 0.0);
+    mm.position_m = Vector3::new(1200.0, 100.0, -300.0);
+    assert!(matches!(track.push(&mm), Err(Reject::OutOfRange { .. })));
+    let mut q = good_sample(2, t(1), 0.0);
+    q.orientation_xyzw = [0.0, 0.0, 0.0, 2.0];
+    assert!(matches!(
+        track.push(&q),
+        Err(Reject::NotUnitQuaternion { .. })
+    ));
+    assert_eq!(track.counts.rejected, 6);
+    // Good frames still go in, and a gap in frame numbers is counted as dropped.
+    assert_eq!(
+        track.push(&good_sample(2, t(1), 0.01)),
+        Ok(Accepted::Pose { dropped_before: 0 })
+    );
+    let mut occluded = good_sample(3, t(2), 0.0);
+    occluded.occluded = true;
+    assert_eq!(track.push(&occluded), Ok(Accepted::Occluded));
+    assert_eq!(
+        track.push(&good_sample(6, t(5), 0.03)),
+        Ok(Accepted::Pose { dropped_before: 2 })
+    );
+    assert_eq!(track.counts.accepted, 3);
+    assert_eq!(track.counts.dropped, 2);
+    assert_eq!(track.poses().len(), 3);
+}
+
+fn detect_all(
+    samples: &[ClubheadSample],
+    club: &ClubSpec,
+    calibration: Calibration,
+) -> Vec<Detection> {
+    let mut track = Track::new(calibration, TrackLimits::default());
+    let mut det = ImpactDetector::new(DetectorConfig::default());
+    let mut out = Vec::new();
+    for s in samples {
+        if let Ok(Accepted::Pose { .. }) = track.push(s) {
+            if let Some(d) = det.on_pose(
+                &track,
+                club,
+                &[EstimatorSpec::linear2(), EstimatorSpec::poly()],
+            ) {
+                out.extend(d);
+            }
+        }
+    }
+    out
+}
+
+/// A rig in its own lab frame with markers away from the CG: the calibration recovers the same impact.
+#[test]
+fn calibration_recovers_the_club_frame() {
+    let club = ClubSpec::driver();
+    let eq = Equipment::new(club.clone());
+    let mut rng = Rng::new(8);
+    let swing = Swing::new(&SwingSpec::random(&club, &mut rng), &eq).unwrap();
+    let calibration = Calibration {
+        world_from_lab: Isometry3::from_parts(
+            Vector3::new(2.0, -0.1, 3.5).into_translation(),
+            UnitQuaternion::from_euler_angles(0.02, 1.3, -0.01),
+        ),
+        club_from_body: Isometry3::from_parts(
+            Vector3::new(-0.02, 0.03, -0.05).into_translation(),
+            UnitQuaternion::from_euler_angles(0.3, -0.2, 0.1),
+        ),
+    };
+    let a = sample(
+        &swing,
+        &Sampling::default(),
+        &Calibration::default(),
+        5_000_000_000,
+        1,
+        &mut Rng::new(1),
+    );
+    let b = sample(
+        &swing,
+        &Sampling::default(),
+        &calibration,
+        5_000_000_000,
+        1,
+        &mut Rng::new(1),
+    );
+    assert!(
+        (a.samples[10].position_m - b.samples[10].position_m).norm() > 0.5,
+        "the lab frame differs"
+    );
+    let da = detect_all(&a.samples, &club, Calibration::default());
+    let db = detect_all(&b.samples, &club, calibration);
+    let (ea, eb) = (
+        da[1].result.as_ref().unwrap(),
+        db[1].result.as_ref().unwrap(),
+    );
+    assert!((ea.state.cg_velocity_mps - eb.state.cg_velocity_mps).norm() < 1e-6);
+    assert!((ea.state.impact_h_m - eb.state.impact_h_m).abs() < 1e-9);
+    assert!((ea.t_impact_ns as i64 - eb.t_impact_ns as i64).abs() <= 1);
+}
+
+/// Dropped and occluded frames around impact, and timestamp jitter: every shot is still found.
+#[test]
+fn dropped_occluded_and_jittered_frames() {
+    let club = ClubSpec::iron7();
+    let eq = Equipment::new(club.clone());
+    let mut rng = Rng::new(21);
+    let sampling = Sampling {
+        position_noise_m: 0.2e-3,
+        orientation_noise_rad: 0.1f64.to_radians(),
+        jitter_s: 20e-6,
+        drop_probability: 0.05,
+        occlusion_probability: 0.05,
+        ..Sampling::default()
+    };
+    let mut found = 0;
+    for _ in 0..50 {
+        let swing = Swing::new(&SwingSpec::random(&club, &mut rng), &eq).unwrap();
+        let s = sample(
+            &swing,
+            &sampling,
+            &Calibration::default(),
+            2_000_000_000,
+            1,
+            &mut rng,
+        );
+        let d = detect_all(&s.samples, &club, Calibration::default());
+        if let Some(Ok(e)) = d.get(1).map(|d| &d.result) {
+            found += 1;
+            assert!((e.t_impact_ns as f64 - s.t_impact_ns as f64).abs() < 100_000.0);
+        }
+    }
+    assert_eq!(found, 50);
+}
+
+/// The estimators refuse, with a reason, when there are too few pre-impact frames.
+#[test]
+fn too_few_frames_are_refused() {
+    let club = ClubSpec::driver();
+    let eq = Equipment::new(club.clone());
+    let swing = Swing::new(&SwingSpec::random(&club, &mut Rng::new(4)), &eq).unwrap();
+    let s = sample(
+        &swing,
+        &Sampling::default(),
+        &Calibration::default(),
+        1_000_000_000,
+        1,
+        &mut Rng::new(2),
+    );
+    let mut track = Track::new(Calibration::default(), TrackLimits::default());
+    let reveal = s
+        .samples
+        .iter()
+        .find(|x| x.t_ns > s.t_impact_ns)
+        .unwrap()
+        .t_ns;
+    let pre: Vec<&ClubheadSample> = s.samples.iter().filter(|x| x.t_ns < reveal).collect();
+    for x in &pre[pre.len() - 3..] {
+        track.push(x).unwrap();
+    }
+    let poses: Vec<ClubPose> = track.poses().iter().copied().collect();
+    let scene = Scene {
+        face: &club.face,
+        ball_position_m: Vector3::zeros(),
+        ball_radius_m: 0.0213,
+        max_extrapolation_s: 0.01,
+    };
+    assert!(matches!(
+        estimate(&EstimatorSpec::poly(), &poses, reveal, &scene),
+        Err(EstimateError::TooFewFrames { have: 3, need: 6 })
+    ));
+    assert!(estimate(&EstimatorSpec::linear2(), &poses, reveal, &scene).is_ok());
+    assert!(matches!(
+        estimate(&EstimatorSpec::linear2(), &poses[..1], reveal, &scene),
+        Err(EstimateError::TooFewFrames { have: 1, need: 2 })
+    ));
+}
+
+/// Addressing the ball and a slow waggle through it do not fire; only the swing does.
+#[test]
+fn address_and_waggle_do_not_fire() {
+    let club = ClubSpec::driver();
+    let eq = Equipment::new(club.clone());
+    let swing = Swing::new(&SwingSpec::random(&club, &mut Rng::new(6)), &eq).unwrap();
+    let at_ball = swing.truth.world_from_club;
+    let period = 1_388_889u64;
+    let mut samples = Vec::new();
+    let mut frame = 1;
+    let mut t = 1_000_000_000u64;
+    let mut push = |pose: Isometry3, samples: &mut Vec<ClubheadSample>| {
+        samples.push(
+            ClubPose {
+                frame,
+                t_ns: t,
+                world_from_club: pose,
+            }
+            .to_sample(&Calibration::default()),
+        );
+        frame += 1;
+        t += period;
+    };
+    // Far away first (arms the detector), then resting 1 mm behind the ball, then creeping through it at 0.5 m/s.
+    let back = |d: f64| {
+        let mut p = at_ball;
+        p.translation.vector.x -= d;
+        p
+    };
+    push(back(0.5), &mut samples);
+    for _ in 0..200 {
+        push(back(0.001), &mut samples);
+    }
+    for k in 0..100 {
+        push(back(0.001 - k as f64 * 0.5 / 720.0), &mut samples);
+    }
+    let d = detect_all(&samples, &club, Calibration::default());
+    assert!(
+        d.is_empty(),
+        "{:?}",
+        d.iter()
+            .map(|d| (d.reveal_frame, d.result.as_ref().map(|e| e.t_impact_ns)))
+            .collect::<Vec<_>>()
+    );
+}
