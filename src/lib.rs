@@ -11,3 +11,4 @@ pub mod stages;
 pub mod swing;
 pub mod units;
 pub mod wire;
+pub mod pipeline;

@@ -1,8 +1,15 @@
-//! Messages on the wire: serde types with units in their field names (DESIGN.md section 4).
+//! Messages on the wire: serde types with units in their field names, their key expressions and encodings
+//! (DESIGN.md section 4). Every key expression is built in [`keys`], with its payload documented beside it. Every
+//! message type has a JSON Schema in `schemas/` generated from these types ([`schemas`]).
 //!
 //! This module holds the JSON forms only; it depends on no transport.
 
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+
+use crate::kinematics::{ClubheadSample, Quality};
 
 use crate::impact::{Delivery, DeliveryMetrics, ImpactError, Launch, LaunchMetrics};
 use crate::math::{mirror_z_axial, Real, Vector3};
@@ -10,7 +17,7 @@ use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
 /// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
 /// any model runs, and the launch is mirrored back.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Handedness {
     #[default]
@@ -20,7 +27,7 @@ pub enum Handedness {
 
 /// A TrackMan-style delivery as read by `impactd predict`: flat fields with units in their names. Missing numbers
 /// default to 0, except `dynamic_loft_deg`, which defaults to the club's static loft.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DeliveryInput {
     #[serde(default)]
@@ -90,7 +97,7 @@ impl DeliveryInput {
 }
 
 /// One answer of `impactd predict`: the launch (TrackMan names) and the delivery numbers that explain it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PredictOutput {
     #[serde(flatten)]
     pub launch: LaunchMetrics,
@@ -126,4 +133,273 @@ impl PredictOutput {
             ball_spin_radps: [w.x, w.y, w.z],
         }
     }
+}
+
+/// Version of every message type below; part of the encoding `application/json;impactd.<Type>/<version>`.
+pub const WIRE_VERSION: u32 = 1;
+
+/// Largest accepted payload (bytes): a clubhead sample is about 200.
+pub const MAX_PAYLOAD_BYTES: usize = 64 * 1024;
+
+/// The encoding string of a message type: `application/json;impactd.LaunchPrediction/1`.
+pub fn encoding(type_name: &str) -> String {
+    format!("application/json;impactd.{type_name}/{WIRE_VERSION}")
+}
+
+/// Key expressions (no leading `/`), each with its payload.
+pub mod keys {
+    /// In: [`ClubheadSampleMsg`](super::ClubheadSampleMsg) from the rig, `mocap/<rig>/clubhead`.
+    pub fn clubhead(rig: &str) -> String {
+        format!("mocap/{rig}/clubhead")
+    }
+    /// Every rig's clubhead samples.
+    pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
+    /// Out: [`ImpactMessage`](super::ImpactMessage), the estimated state at impact.
+    pub fn impact(rig: &str) -> String {
+        format!("golf/{rig}/impact")
+    }
+    /// Out: [`LaunchPrediction`](super::LaunchPrediction).
+    pub fn launch(rig: &str) -> String {
+        format!("golf/{rig}/launch")
+    }
+    /// Out, once a second: [`StatusMessage`](super::StatusMessage).
+    pub fn status(rig: &str) -> String {
+        format!("golf/{rig}/status")
+    }
+    /// Liveliness token of the daemon serving a rig.
+    pub fn alive(rig: &str) -> String {
+        format!("golf/{rig}/impactd/alive")
+    }
+    /// Queryable: the daemon's configuration for the rig (JSON, read-only).
+    pub fn config(rig: &str) -> String {
+        format!("golf/{rig}/impactd/config")
+    }
+    /// Out of `impactd sim`: [`TruthMessage`](super::TruthMessage), what the synthetic rig really swung.
+    pub fn truth(rig: &str) -> String {
+        format!("sim/{rig}/truth")
+    }
+    /// The rig name of a `mocap/<rig>/clubhead` key.
+    pub fn rig_of_clubhead(key: &str) -> Option<&str> {
+        let rest = key.strip_prefix("mocap/")?;
+        let rig = rest.strip_suffix("/clubhead")?;
+        (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+    }
+    /// Whether a rig name can stand in a key expression.
+    pub fn valid_rig_name(rig: &str) -> bool {
+        !rig.is_empty() && rig.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    }
+}
+
+/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct QuaternionMsg {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub w: f64,
+}
+
+impl From<crate::math::UnitQuaternion> for QuaternionMsg {
+    fn from(q: crate::math::UnitQuaternion) -> Self {
+        QuaternionMsg { x: q.i, y: q.j, z: q.k, w: q.w }
+    }
+}
+
+/// One motion-capture frame of the tracked body, lab frame, on `mocap/<rig>/clubhead`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ClubheadSampleMsg {
+    pub rig: String,
+    pub frame: u64,
+    /// Capture time on the rig's clock (ns).
+    pub t_ns: u64,
+    pub position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    #[serde(default)]
+    pub occluded: bool,
+}
+
+impl ClubheadSampleMsg {
+    pub fn to_sample(&self) -> ClubheadSample {
+        let q = &self.orientation;
+        ClubheadSample {
+            frame: self.frame,
+            t_ns: self.t_ns,
+            position_m: crate::math::Vector3::from(self.position_m),
+            orientation_xyzw: [q.x, q.y, q.z, q.w],
+            occluded: self.occluded,
+        }
+    }
+
+    pub fn from_sample(rig: &str, s: &ClubheadSample) -> Self {
+        let [x, y, z, w] = s.orientation_xyzw;
+        ClubheadSampleMsg {
+            rig: rig.to_string(),
+            frame: s.frame,
+            t_ns: s.t_ns,
+            position_m: [s.position_m.x, s.position_m.y, s.position_m.z],
+            orientation: QuaternionMsg { x, y, z, w },
+            occluded: s.occluded,
+        }
+    }
+}
+
+/// Why an incoming payload was not a usable sample.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InputError {
+    #[error("payload of {bytes} bytes is over the {MAX_PAYLOAD_BYTES}-byte limit")]
+    Oversized { bytes: usize },
+    #[error("encoding `{encoding}` is not {expected}")]
+    WrongVersion { encoding: String, expected: String },
+    #[error("malformed sample: {0}")]
+    Malformed(String),
+    #[error("sample names rig `{payload}` but arrived on the key of rig `{key}`")]
+    RigMismatch { payload: String, key: String },
+}
+
+impl InputError {
+    pub fn key(&self) -> &'static str {
+        match self {
+            InputError::Oversized { .. } => "oversized",
+            InputError::WrongVersion { .. } => "wrong_version",
+            InputError::Malformed(_) => "malformed",
+            InputError::RigMismatch { .. } => "rig_mismatch",
+        }
+    }
+}
+
+/// Parses a sample arriving on the key of `key_rig` with the given encoding (empty or plain
+/// `application/json` is accepted; an `impactd.ClubheadSample/<v>` schema must name this version).
+pub fn parse_sample(key_rig: &str, payload: &[u8], encoding: &str) -> Result<ClubheadSampleMsg, InputError> {
+    if payload.len() > MAX_PAYLOAD_BYTES {
+        return Err(InputError::Oversized { bytes: payload.len() });
+    }
+    if let Some(schema) = encoding.split_once(';').map(|(_, s)| s) {
+        if schema.starts_with("impactd.ClubheadSample/") && schema != format!("impactd.ClubheadSample/{WIRE_VERSION}") {
+            return Err(InputError::WrongVersion { encoding: encoding.to_string(), expected: self::encoding("ClubheadSample") });
+        }
+    }
+    let msg: ClubheadSampleMsg = serde_json::from_slice(payload).map_err(|e| InputError::Malformed(e.to_string()))?;
+    if msg.rig != key_rig {
+        return Err(InputError::RigMismatch { payload: msg.rig, key: key_rig.to_string() });
+    }
+    Ok(msg)
+}
+
+/// The estimated club state at impact (world frame), in an [`ImpactMessage`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactStateMsg {
+    pub cg_position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    pub cg_velocity_mps: [f64; 3],
+    pub angular_velocity_radps: [f64; 3],
+    pub impact_h_mm: f64,
+    pub impact_v_mm: f64,
+}
+
+impl From<&crate::impact::ImpactState> for ImpactStateMsg {
+    fn from(s: &crate::impact::ImpactState) -> Self {
+        let p = s.world_from_club.translation.vector;
+        let (v, w) = (s.cg_velocity_mps, s.angular_velocity_radps);
+        ImpactStateMsg {
+            cg_position_m: [p.x, p.y, p.z],
+            orientation: s.world_from_club.rotation.into(),
+            cg_velocity_mps: [v.x, v.y, v.z],
+            angular_velocity_radps: [w.x, w.y, w.z],
+            impact_h_mm: s.impact_h_m * 1e3,
+            impact_v_mm: s.impact_v_m * 1e3,
+        }
+    }
+}
+
+/// The impact as estimated from the frames, on `golf/<rig>/impact`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactMessage {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub estimator: String,
+    pub state: ImpactStateMsg,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub quality: Quality,
+}
+
+/// A predicted launch, on `golf/<rig>/launch`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct LaunchPrediction {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub model: String,
+    pub estimator: String,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub launch: PredictOutput,
+    pub frames_used: usize,
+    /// The estimate's quality score in (0, 1] (see `Quality`).
+    pub quality: f64,
+    /// Time from receiving the revealing frame to publishing this prediction (us), measured live; a replay
+    /// carries the recorded value.
+    pub latency_us: f64,
+}
+
+/// Health of one rig, once a second on `golf/<rig>/status`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct StatusMessage {
+    pub rig: String,
+    /// Wall-clock time of this status (ns since the Unix epoch).
+    pub t_ns: u64,
+    pub uptime_s: f64,
+    /// Samples received for this rig (good or bad).
+    pub samples: u64,
+    pub accepted: u64,
+    pub occluded: u64,
+    /// Frames missing from the rig's frame numbering.
+    pub dropped: u64,
+    /// Samples rejected, by reason.
+    pub rejected: BTreeMap<String, u64>,
+    pub shots: u64,
+    pub predictions: u64,
+    /// Impacts without a prediction, by reason.
+    pub failed: BTreeMap<String, u64>,
+    pub latency_p50_us: f64,
+    pub latency_p99_us: f64,
+    /// Messages the recorder could not keep up with (never silently lost: counted here).
+    pub recorder_dropped: u64,
+}
+
+/// What a synthetic rig really swung, on `sim/<rig>/truth`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct TruthMessage {
+    pub rig: String,
+    pub shot: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub delivery: crate::impact::DeliveryMetrics,
+    /// The adjusted impulse-momentum launch of the true state.
+    pub launch: PredictOutput,
+}
+
+/// Every message type with its JSON Schema, as written to `schemas/<Type>.json`.
+pub fn schemas() -> Vec<(&'static str, String)> {
+    fn one<T: JsonSchema>() -> String {
+        let mut s = serde_json::to_string_pretty(&schemars::schema_for!(T)).unwrap_or_default();
+        s.push('\n');
+        s
+    }
+    vec![
+        ("ClubheadSample", one::<ClubheadSampleMsg>()),
+        ("ImpactMessage", one::<ImpactMessage>()),
+        ("LaunchPrediction", one::<LaunchPrediction>()),
+        ("StatusMessage", one::<StatusMessage>()),
+        ("TruthMessage", one::<TruthMessage>()),
+        ("DeliveryInput", one::<DeliveryInput>()),
+        ("PredictOutput", one::<PredictOutput>()),
+    ]
 }

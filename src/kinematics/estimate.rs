@@ -14,7 +14,7 @@ use crate::impact::ImpactState;
 use crate::math::{Isometry3, Real, Translation3Ext, Vector3};
 
 /// How an estimator fits: how many pre-impact frames and which polynomial degrees.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EstimatorSpec {
     pub name: String,
@@ -172,7 +172,7 @@ impl EstimateError {
 }
 
 /// How much to trust an estimate.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Quality {
     pub frames_used: usize,
     /// RMS residual of the position fit (mm); 0 for an exact fit (linear2).
