@@ -21,6 +21,17 @@ pub struct Cli {
     pub command: Command,
 }
 
+impl Cli {
+    /// Whether this is `impactd demo` (which prints its own lines instead of logging).
+    pub fn is_demo(&self) -> bool {
+        #[cfg(feature = "daemon")]
+        if matches!(self.command, Command::Demo(_)) {
+            return true;
+        }
+        false
+    }
+}
+
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// JSONL deliveries in (stdin or --input), JSONL launch conditions out.
@@ -30,6 +41,30 @@ pub enum Command {
     /// Evaluations against synthetic truth.
     #[command(subcommand)]
     Eval(EvalCommand),
+    /// Write the JSON Schemas of every message type.
+    Schemas {
+        /// Directory to write `<Type>.json` into.
+        #[arg(short = 'o', long = "output", default_value = "schemas")]
+        output: PathBuf,
+    },
+    /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
+    #[cfg(feature = "daemon")]
+    Run(crate::cli_daemon::RunArgs),
+    /// The daemon and a simulated rig in one process: zero setup.
+    #[cfg(feature = "daemon")]
+    Demo(crate::cli_daemon::DemoArgs),
+    /// A synthetic rig publishing clubhead samples at real rate, with the truth of each shot.
+    #[cfg(feature = "daemon")]
+    Sim(crate::cli_daemon::SimArgs),
+    /// The pipeline over a recording (MCAP) or a JSONL file of samples.
+    #[cfg(feature = "daemon")]
+    Replay(crate::cli_daemon::ReplayArgs),
+    /// Channels, counts, duration and shots of a recording.
+    #[cfg(feature = "daemon")]
+    Info { file: PathBuf },
+    /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
+    #[cfg(feature = "daemon")]
+    Recover(crate::cli_daemon::RecoverArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -328,5 +363,27 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Predict(args) => predict(&args),
         Command::Bench(args) => bench(&args),
         Command::Eval(EvalCommand::Extrapolation(args)) => eval_extrapolation(&args),
+        Command::Schemas { output } => {
+            std::fs::create_dir_all(&output)
+                .with_context(|| format!("creating {}", output.display()))?;
+            for (name, schema) in crate::wire::schemas() {
+                let path = output.join(format!("{name}.json"));
+                std::fs::write(&path, schema)
+                    .with_context(|| format!("writing {}", path.display()))?;
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "daemon")]
+        Command::Run(args) => crate::cli_daemon::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Demo(args) => crate::cli_daemon::demo_cmd(&args),
+        #[cfg(feature = "daemon")]
+        Command::Sim(args) => crate::cli_daemon::sim(&args),
+        #[cfg(feature = "daemon")]
+        Command::Replay(args) => crate::cli_daemon::replay_cmd(&args),
+        #[cfg(feature = "daemon")]
+        Command::Info { file } => crate::cli_daemon::info(&file),
+        #[cfg(feature = "daemon")]
+        Command::Recover(args) => crate::cli_daemon::recover(&args),
     }
 }

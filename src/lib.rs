@@ -1,4 +1,8 @@
 pub mod cli;
+#[cfg(feature = "daemon")]
+pub mod cli_daemon;
+#[cfg(feature = "daemon")]
+pub mod daemon;
 pub mod equipment;
 pub mod eval;
 pub mod face;
@@ -6,9 +10,9 @@ pub mod impact;
 pub mod jsonl;
 pub mod kinematics;
 pub mod math;
+pub mod pipeline;
 pub mod rng;
 pub mod stages;
 pub mod swing;
 pub mod units;
 pub mod wire;
-pub mod pipeline;

@@ -7,7 +7,8 @@ use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
-    Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
+    Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track,
+    TrackLimits,
 };
 use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput};
 
@@ -49,7 +50,12 @@ pub enum Event {
     /// ... and its launch predicted (`latency_us` is 0 here; the caller fills it in).
     Launch(LaunchPrediction),
     /// An impact was found but no prediction could be made.
-    Failed { shot: u64, frame: u64, reason: String, key: &'static str },
+    Failed {
+        shot: u64,
+        frame: u64,
+        reason: String,
+        key: &'static str,
+    },
 }
 
 /// Counters of one rig's pipeline.
@@ -93,8 +99,15 @@ impl Pipeline {
         self.counts.samples += 1;
         match self.track.push(sample) {
             Err(reason) => {
-                *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
-                out.push(Event::Rejected { frame: sample.frame, reason });
+                *self
+                    .counts
+                    .rejected
+                    .entry(reason.key().to_string())
+                    .or_default() += 1;
+                out.push(Event::Rejected {
+                    frame: sample.frame,
+                    reason,
+                });
             }
             Ok(Accepted::Occluded) => {
                 self.counts.occluded += 1;
@@ -103,7 +116,10 @@ impl Pipeline {
             Ok(Accepted::Pose { .. }) => {
                 self.counts.accepted += 1;
                 self.counts.dropped = self.track.counts.dropped;
-                if let Some(detections) = self.detector.on_pose(&self.track, &self.setup.club, &self.estimators) {
+                if let Some(detections) =
+                    self.detector
+                        .on_pose(&self.track, &self.setup.club, &self.estimators)
+                {
                     for d in detections {
                         self.counts.shots += 1;
                         let shot = self.counts.shots;
@@ -114,9 +130,21 @@ impl Pipeline {
         }
     }
 
-    fn fail(&mut self, shot: u64, frame: u64, reason: String, key: &'static str, out: &mut Vec<Event>) {
+    fn fail(
+        &mut self,
+        shot: u64,
+        frame: u64,
+        reason: String,
+        key: &'static str,
+        out: &mut Vec<Event>,
+    ) {
         *self.counts.failed.entry(key.to_string()).or_default() += 1;
-        out.push(Event::Failed { shot, frame, reason, key });
+        out.push(Event::Failed {
+            shot,
+            frame,
+            reason,
+            key,
+        });
     }
 
     fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut Vec<Event>) {
@@ -172,16 +200,38 @@ mod tests {
         let mut p = Pipeline::new(RigSetup::new("bay1", club.clone()));
         let eq = Equipment::new(club.clone());
         let swing = Swing::new(&SwingSpec::random(&club, &mut Rng::new(1)), &eq).unwrap();
-        let s = sample(&swing, &Sampling::default(), &Calibration::default(), 1_000_000_000, 1, &mut Rng::new(2));
+        let s = sample(
+            &swing,
+            &Sampling::default(),
+            &Calibration::default(),
+            1_000_000_000,
+            1,
+            &mut Rng::new(2),
+        );
         let mut out = Vec::new();
         for x in &s.samples {
             p.on_sample(x, &mut out);
         }
-        assert_eq!(out.iter().filter(|e| matches!(e, Event::Impact(_))).count(), 1);
-        let launch = out.iter().find_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).unwrap();
+        assert_eq!(
+            out.iter().filter(|e| matches!(e, Event::Impact(_))).count(),
+            1
+        );
+        let launch = out
+            .iter()
+            .find_map(|e| {
+                if let Event::Launch(l) = e {
+                    Some(l)
+                } else {
+                    None
+                }
+            })
+            .unwrap();
         assert_eq!(launch.shot, 1);
         assert_eq!(launch.model, "impulse/adjusted");
-        assert!((launch.delivery.club_speed_mps - swing.delivery.club_speed_mps).abs() < 1e-3 * swing.delivery.club_speed_mps);
+        assert!(
+            (launch.delivery.club_speed_mps - swing.delivery.club_speed_mps).abs()
+                < 1e-3 * swing.delivery.club_speed_mps
+        );
         assert_eq!(p.counts.predictions, 1);
     }
 }

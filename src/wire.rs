@@ -186,7 +186,10 @@ pub mod keys {
     }
     /// Whether a rig name can stand in a key expression.
     pub fn valid_rig_name(rig: &str) -> bool {
-        !rig.is_empty() && rig.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        !rig.is_empty()
+            && rig
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
     }
 }
 
@@ -202,7 +205,12 @@ pub struct QuaternionMsg {
 
 impl From<crate::math::UnitQuaternion> for QuaternionMsg {
     fn from(q: crate::math::UnitQuaternion) -> Self {
-        QuaternionMsg { x: q.i, y: q.j, z: q.k, w: q.w }
+        QuaternionMsg {
+            x: q.i,
+            y: q.j,
+            z: q.k,
+            w: q.w,
+        }
     }
 }
 
@@ -271,18 +279,33 @@ impl InputError {
 
 /// Parses a sample arriving on the key of `key_rig` with the given encoding (empty or plain
 /// `application/json` is accepted; an `impactd.ClubheadSample/<v>` schema must name this version).
-pub fn parse_sample(key_rig: &str, payload: &[u8], encoding: &str) -> Result<ClubheadSampleMsg, InputError> {
+pub fn parse_sample(
+    key_rig: &str,
+    payload: &[u8],
+    encoding: &str,
+) -> Result<ClubheadSampleMsg, InputError> {
     if payload.len() > MAX_PAYLOAD_BYTES {
-        return Err(InputError::Oversized { bytes: payload.len() });
+        return Err(InputError::Oversized {
+            bytes: payload.len(),
+        });
     }
     if let Some(schema) = encoding.split_once(';').map(|(_, s)| s) {
-        if schema.starts_with("impactd.ClubheadSample/") && schema != format!("impactd.ClubheadSample/{WIRE_VERSION}") {
-            return Err(InputError::WrongVersion { encoding: encoding.to_string(), expected: self::encoding("ClubheadSample") });
+        if schema.starts_with("impactd.ClubheadSample/")
+            && schema != format!("impactd.ClubheadSample/{WIRE_VERSION}")
+        {
+            return Err(InputError::WrongVersion {
+                encoding: encoding.to_string(),
+                expected: self::encoding("ClubheadSample"),
+            });
         }
     }
-    let msg: ClubheadSampleMsg = serde_json::from_slice(payload).map_err(|e| InputError::Malformed(e.to_string()))?;
+    let msg: ClubheadSampleMsg =
+        serde_json::from_slice(payload).map_err(|e| InputError::Malformed(e.to_string()))?;
     if msg.rig != key_rig {
-        return Err(InputError::RigMismatch { payload: msg.rig, key: key_rig.to_string() });
+        return Err(InputError::RigMismatch {
+            payload: msg.rig,
+            key: key_rig.to_string(),
+        });
     }
     Ok(msg)
 }
@@ -374,6 +397,15 @@ pub struct StatusMessage {
     pub recorder_dropped: u64,
 }
 
+/// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RejectedInput {
+    pub reason: String,
+    pub bytes: usize,
+    /// The payload as text (invalid UTF-8 replaced), at most `MAX_PAYLOAD_BYTES`.
+    pub payload: String,
+}
+
 /// What a synthetic rig really swung, on `sim/<rig>/truth`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct TruthMessage {
@@ -399,6 +431,7 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("LaunchPrediction", one::<LaunchPrediction>()),
         ("StatusMessage", one::<StatusMessage>()),
         ("TruthMessage", one::<TruthMessage>()),
+        ("RejectedInput", one::<RejectedInput>()),
         ("DeliveryInput", one::<DeliveryInput>()),
         ("PredictOutput", one::<PredictOutput>()),
     ]

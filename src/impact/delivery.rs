@@ -95,7 +95,9 @@ impl Delivery {
 }
 
 /// Delivery numbers read back from any impact state, plus spin loft and face-to-path.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub struct DeliveryMetrics {
     pub club_speed_mps: Real,
     pub club_speed_mph: Real,

@@ -9,7 +9,9 @@ use crate::math::{Real, Vector3};
 use crate::units::{mps_to_mph, radps_to_rpm};
 
 /// TrackMan-style launch numbers.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub struct LaunchMetrics {
     pub ball_speed_mps: Real,
     pub ball_speed_mph: Real,

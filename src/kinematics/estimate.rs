@@ -172,7 +172,9 @@ impl EstimateError {
 }
 
 /// How much to trust an estimate.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 pub struct Quality {
     pub frames_used: usize,
     /// RMS residual of the position fit (mm); 0 for an exact fit (linear2).

@@ -1,0 +1,276 @@
+//! `impactd.toml`: the rigs a daemon serves. Unknown or invalid fields stop start-up with an error naming the
+//! field.
+//!
+//! ```toml
+//! status_period_s = 1.0
+//!
+//! [[rig]]
+//! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
+//! club = "driver"               # preset (driver, iron7) or a path to a club .toml
+//! model = "adjusted"            # standard | adjusted | slip
+//! cor = 0.83
+//! estimator = "poly"            # linear2 | poly | poly@44:5:39:3 | poly:24:4:24:3
+//! ball_position_m = [0.0, 0.0, 0.0]   # world frame
+//! [rig.world_from_lab]          # default identity
+//! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
+//! translation_m = [0.0, 0.0, 0.0]
+//! [rig.club_from_body]          # the tracked body's pose in the club frame; default identity
+//! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
+//! translation_m = [0.0, 0.0, 0.0]
+//! ```
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::DaemonError;
+use crate::equipment::ClubSpec;
+use crate::impact::{ImpulseModel, ImpulseVariant};
+use crate::kinematics::{Calibration, EstimatorSpec};
+use crate::math::{Isometry3, Translation3Ext, Vector3};
+use crate::pipeline::RigSetup;
+
+/// The whole file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DaemonConfig {
+    #[serde(default = "default_status_period")]
+    pub status_period_s: f64,
+    #[serde(rename = "rig")]
+    pub rigs: Vec<RigConfig>,
+}
+
+fn default_status_period() -> f64 {
+    1.0
+}
+
+/// One `[[rig]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigConfig {
+    pub name: String,
+    #[serde(default = "default_club")]
+    pub club: String,
+    #[serde(default = "default_model")]
+    pub model: String,
+    #[serde(default = "default_cor")]
+    pub cor: f64,
+    #[serde(default = "default_estimator")]
+    pub estimator: String,
+    #[serde(default)]
+    pub ball_position_m: [f64; 3],
+    #[serde(default)]
+    pub world_from_lab: Option<PoseConfig>,
+    #[serde(default)]
+    pub club_from_body: Option<PoseConfig>,
+}
+
+fn default_club() -> String {
+    "driver".into()
+}
+fn default_model() -> String {
+    "adjusted".into()
+}
+fn default_cor() -> f64 {
+    crate::impact::impulse::DEFAULT_COR
+}
+fn default_estimator() -> String {
+    "poly".into()
+}
+
+/// A rigid transform: rotation quaternion `[x, y, z, w]` and translation (m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoseConfig {
+    #[serde(default = "identity_xyzw")]
+    pub rotation_xyzw: [f64; 4],
+    #[serde(default)]
+    pub translation_m: [f64; 3],
+}
+
+fn identity_xyzw() -> [f64; 4] {
+    [0.0, 0.0, 0.0, 1.0]
+}
+
+fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
+    DaemonError::Config {
+        field,
+        reason: reason.into(),
+    }
+}
+
+impl PoseConfig {
+    fn to_isometry(self, field: String) -> Result<Isometry3, DaemonError> {
+        if self
+            .rotation_xyzw
+            .iter()
+            .chain(self.translation_m.iter())
+            .any(|v| !v.is_finite())
+        {
+            return Err(invalid(field, "must be finite numbers"));
+        }
+        let q = crate::kinematics::sample::unit_quaternion(&self.rotation_xyzw, 1e-3).ok_or_else(
+            || {
+                invalid(
+                    format!("{field}.rotation_xyzw"),
+                    "must be a unit quaternion [x, y, z, w]",
+                )
+            },
+        )?;
+        Ok(Isometry3::from_parts(
+            Vector3::from(self.translation_m).into_translation(),
+            q,
+        ))
+    }
+}
+
+impl Default for DaemonConfig {
+    /// One rig, `rig1`, with a driver and the defaults.
+    fn default() -> Self {
+        DaemonConfig {
+            status_period_s: 1.0,
+            rigs: vec![RigConfig {
+                name: "rig1".into(),
+                club: default_club(),
+                model: default_model(),
+                cor: default_cor(),
+                estimator: default_estimator(),
+                ball_position_m: [0.0; 3],
+                world_from_lab: None,
+                club_from_body: None,
+            }],
+        }
+    }
+}
+
+impl DaemonConfig {
+    /// Reads and validates a file.
+    pub fn load(path: &Path) -> Result<(Self, Vec<RigSetup>), DaemonError> {
+        let text = std::fs::read_to_string(path).map_err(|e| DaemonError::Io {
+            what: format!("reading {}", path.display()),
+            source: e,
+        })?;
+        Self::parse(&text)
+    }
+
+    /// Parses and validates TOML text.
+    pub fn parse(text: &str) -> Result<(Self, Vec<RigSetup>), DaemonError> {
+        let config: DaemonConfig =
+            toml::from_str(text).map_err(|e| DaemonError::ConfigSyntax(e.message().to_string()))?;
+        let rigs = config.setups()?;
+        Ok((config, rigs))
+    }
+
+    /// The pipelines' setups, validating every field.
+    pub fn setups(&self) -> Result<Vec<RigSetup>, DaemonError> {
+        if !(self.status_period_s > 0.0 && self.status_period_s <= 60.0) {
+            return Err(invalid(
+                "status_period_s".into(),
+                "must be within 0 and 60 s",
+            ));
+        }
+        if self.rigs.is_empty() {
+            return Err(invalid("rig".into(), "at least one [[rig]] is needed"));
+        }
+        let mut names = std::collections::BTreeSet::new();
+        self.rigs
+            .iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let f = |name: &str| format!("rig[{i}].{name}");
+                if !crate::wire::keys::valid_rig_name(&r.name) {
+                    return Err(invalid(
+                        f("name"),
+                        format!("`{}` must be letters, digits, _ or -", r.name),
+                    ));
+                }
+                if !names.insert(r.name.clone()) {
+                    return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
+                }
+                let club = load_club(&r.club).map_err(|e| invalid(f("club"), e))?;
+                let variant = ImpulseVariant::parse(&r.model).ok_or_else(|| {
+                    invalid(
+                        f("model"),
+                        format!("`{}` is not standard, adjusted or slip", r.model),
+                    )
+                })?;
+                if !(0.0..=1.0).contains(&r.cor) {
+                    return Err(invalid(f("cor"), "must be within 0 and 1"));
+                }
+                let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
+                    invalid(
+                        f("estimator"),
+                        format!(
+                            "`{}` is not linear2, poly, poly@... or poly:...",
+                            r.estimator
+                        ),
+                    )
+                })?;
+                if r.ball_position_m
+                    .iter()
+                    .any(|v| !v.is_finite() || v.abs() > 50.0)
+                {
+                    return Err(invalid(
+                        f("ball_position_m"),
+                        "must be finite and within 50 m",
+                    ));
+                }
+                let calibration = Calibration {
+                    world_from_lab: r
+                        .world_from_lab
+                        .map(|p| p.to_isometry(f("world_from_lab")))
+                        .transpose()?
+                        .unwrap_or_default(),
+                    club_from_body: r
+                        .club_from_body
+                        .map(|p| p.to_isometry(f("club_from_body")))
+                        .transpose()?
+                        .unwrap_or_default(),
+                };
+                let mut setup = RigSetup::new(&r.name, club);
+                setup.model = ImpulseModel::new(variant).with_cor(r.cor);
+                setup.estimator = estimator;
+                setup.calibration = calibration;
+                setup.detector.ball_position_m = Vector3::from(r.ball_position_m);
+                Ok(setup)
+            })
+            .collect()
+    }
+}
+
+/// A club preset by name or a club file by path, with the error as text.
+pub fn load_club(spec: &str) -> Result<ClubSpec, String> {
+    let path = Path::new(spec);
+    if spec.ends_with(".toml") || path.exists() {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("reading {spec}: {e}"))?;
+        ClubSpec::from_toml_str(&text).map_err(|e| format!("{spec}: {e}"))
+    } else {
+        ClubSpec::preset(spec).map_err(|e| e.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_name_the_field() {
+        let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
+        assert!(err("[[rig]]\nname = \"a\"\ncolour = 1").contains("colour"));
+        assert!(err("[[rig]]\nname = \"a\"\nmodel = \"fast\"").contains("rig[0].model"));
+        assert!(err("[[rig]]\nname = \"a\"\nclub = \"putter\"").contains("rig[0].club"));
+        assert!(err("[[rig]]\nname = \"a b\"").contains("rig[0].name"));
+        assert!(err("[[rig]]\nname = \"a\"\n[[rig]]\nname = \"a\"").contains("rig[1].name"));
+        assert!(err(
+            "[[rig]]\nname = \"a\"\n[rig.world_from_lab]\nrotation_xyzw = [0.0, 0.0, 0.0, 3.0]"
+        )
+        .contains("rig[0].world_from_lab.rotation_xyzw"));
+        assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
+        assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
+        let (c, r) =
+            DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"")
+                .unwrap();
+        assert_eq!(c.rigs[0].estimator, "poly");
+        assert_eq!(r[0].club.name, "iron7");
+    }
+}

@@ -1,0 +1,150 @@
+//! `impactd demo`: the daemon and a simulated rig in one process on loopback zenoh (peer mode, no multicast),
+//! printing each prediction beside the rig's truth and recording everything to an MCAP file.
+
+use std::collections::HashMap;
+use std::future::Future;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+use super::bus::{free_loopback_port, ZenohArgs};
+use super::sim::{run_sim, SimOptions};
+use super::{DaemonConfig, DaemonError, RunOptions, RunSummary};
+use crate::wire::{LaunchPrediction, TruthMessage};
+
+/// What the demo does.
+#[derive(Debug, Clone)]
+pub struct DemoOptions {
+    pub config: DaemonConfig,
+    pub sim: SimOptions,
+    pub record: Option<PathBuf>,
+    pub json: bool,
+}
+
+/// One readable line for a prediction, with the truth when known.
+pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
+    let m = &l.launch.launch;
+    let mut s = format!(
+        "{} shot {:>2}  {:<6} {:>6.1} mph  launch {:>5.1}°  dir {:>5.1}°  back {:>5.0} rpm  side {:>5.0} rpm  club {:>5.1} mph  {:>4.0} us",
+        l.rig, l.shot, l.club, m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm,
+        l.delivery.club_speed_mph, l.latency_us
+    );
+    if let Some(t) = truth {
+        let tm = &t.launch.launch;
+        s.push_str(&format!(
+            "   truth {:>6.1} mph {:>5.1}° {:>5.1}° {:>5.0} {:>5.0}",
+            tm.ball_speed_mph,
+            tm.launch_angle_deg,
+            tm.launch_direction_deg,
+            tm.backspin_rpm,
+            tm.sidespin_rpm
+        ));
+    }
+    s
+}
+
+/// Runs the demo until the rig's shots are all predicted or `shutdown` completes.
+pub async fn demo(
+    options: DemoOptions,
+    shutdown: impl Future<Output = ()>,
+) -> Result<RunSummary, DaemonError> {
+    let setups = options.config.setups()?;
+    let port = free_loopback_port()?;
+    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![])
+        .open()
+        .await?;
+    let rig_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await?;
+
+    let truths: Arc<Mutex<HashMap<(String, u64), TruthMessage>>> = Default::default();
+    let predicted = Arc::new(tokio::sync::Notify::new());
+    let count = Arc::new(std::sync::atomic::AtomicU64::new(0));
+    let truths_cb = truths.clone();
+    let _truth_sub = rig_session
+        .declare_subscriber("sim/*/truth")
+        .callback(move |s| {
+            if let Ok(t) = serde_json::from_slice::<TruthMessage>(&s.payload().to_bytes()) {
+                if let Ok(mut m) = truths_cb.lock() {
+                    m.insert((t.rig.clone(), t.shot), t);
+                }
+            }
+        })
+        .await
+        .map_err(DaemonError::zenoh)?;
+    let (json, notify, count_cb, truths_cb) = (
+        options.json,
+        predicted.clone(),
+        count.clone(),
+        truths.clone(),
+    );
+    let _launch_sub = rig_session
+        .declare_subscriber("golf/*/launch")
+        .callback(move |s| {
+            let bytes = s.payload().to_bytes();
+            if json {
+                println!("{}", String::from_utf8_lossy(&bytes));
+            } else if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&bytes) {
+                // The truth is published just after the impact frame passes; give it a moment.
+                std::thread::sleep(std::time::Duration::from_millis(5));
+                let truth = truths_cb
+                    .lock()
+                    .ok()
+                    .and_then(|m| m.get(&(l.rig.clone(), l.shot)).cloned());
+                println!("{}", describe(&l, truth.as_ref()));
+            }
+            count_cb.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            notify.notify_one();
+        })
+        .await
+        .map_err(DaemonError::zenoh)?;
+
+    let (stop_daemon, daemon_stopped) = tokio::sync::oneshot::channel::<()>();
+    let config = options.config.clone();
+    let record = options.record.clone();
+    let daemon = tokio::spawn(async move {
+        let shutdown = async {
+            let _ = daemon_stopped.await;
+        };
+        let r = super::run(
+            config,
+            setups,
+            &daemon_session,
+            RunOptions { record },
+            shutdown,
+        )
+        .await;
+        let _ = daemon_session.close().await;
+        r
+    });
+
+    let expected = options.sim.shots * options.sim.rigs.len() as u64;
+    let sim_options = options.sim.clone();
+    let (stop_sim_tx, stop_sim_rx) = tokio::sync::oneshot::channel::<()>();
+    let rig_session_c = rig_session.clone();
+    let sim = tokio::spawn(async move {
+        run_sim(&rig_session_c, sim_options, async {
+            let _ = stop_sim_rx.await;
+        })
+        .await
+    });
+    let all_predicted = async {
+        while count.load(std::sync::atomic::Ordering::Relaxed) < expected {
+            predicted.notified().await;
+        }
+    };
+    tokio::select! {
+        _ = all_predicted => {}
+        _ = shutdown => { eprintln!("stopping"); }
+        _ = async {
+            // The rig finished but a shot went unpredicted: give the daemon a moment, then stop.
+            let _ = tokio::time::sleep(std::time::Duration::from_secs_f64(options.sim.interval_s * (options.sim.shots as f64 + 2.0) + 5.0)).await;
+        } => { eprintln!("not every shot was predicted; stopping"); }
+    }
+    let _ = stop_sim_tx.send(());
+    let _ = sim.await;
+    let _ = stop_daemon.send(());
+    let summary = daemon
+        .await
+        .map_err(|e| DaemonError::Input(e.to_string()))??;
+    let _ = rig_session.close().await;
+    Ok(summary)
+}

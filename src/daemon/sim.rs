@@ -1,0 +1,307 @@
+//! `impactd sim`: a synthetic rig publishing clubhead samples at real rate, with a seeded spread of swings, and
+//! the truth of each shot on `sim/<rig>/truth`.
+//!
+//! Each shot occupies `interval_s`: the club waits at the top of its arc, swings through the ball at the shot's
+//! impact instant, and holds its follow-through; frames keep coming at the rig's rate throughout, with a random
+//! phase of the frame clock against each impact.
+
+use std::future::Future;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use zenoh::Wait;
+
+use super::{wall_ns, DaemonError};
+use crate::equipment::ClubSpec;
+use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};
+use crate::math::Vector3;
+use crate::rng::Rng;
+use crate::swing::{Swing, SwingSpec};
+use crate::wire::{self, keys, ClubheadSampleMsg, PredictOutput, TruthMessage};
+
+/// How the synthetic rig behaves.
+#[derive(Debug, Clone)]
+pub struct SimOptions {
+    pub rigs: Vec<String>,
+    pub club: ClubSpec,
+    /// Shots per rig (0: until stopped).
+    pub shots: u64,
+    pub rate_hz: f64,
+    /// Time between shots (s).
+    pub interval_s: f64,
+    pub seed: u64,
+    pub noise_mm: f64,
+    pub noise_deg: f64,
+    /// Wait this long for a subscriber before publishing (s); 0 publishes at once.
+    pub wait_for_subscriber_s: f64,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            rigs: vec!["rig1".into()],
+            club: ClubSpec::driver(),
+            shots: 5,
+            rate_hz: 720.0,
+            interval_s: 1.5,
+            seed: 1,
+            noise_mm: 0.2,
+            noise_deg: 0.1,
+            wait_for_subscriber_s: 10.0,
+        }
+    }
+}
+
+/// What the rig sent.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SimSummary {
+    pub samples: u64,
+    pub shots: u64,
+}
+
+const BEFORE_S: f64 = 0.06;
+const AFTER_S: f64 = 0.03;
+
+/// One synthetic rig: samples at any frame, deterministic for a seed.
+pub struct SimRig {
+    pub name: String,
+    club: ClubSpec,
+    equipment: Equipment,
+    rng: Rng,
+    period_ns: f64,
+    interval_ns: u64,
+    start_ns: u64,
+    /// The next frame's number and index from the start.
+    pub frame: u64,
+    shots: u64,
+    noise_m: f64,
+    noise_rad: f64,
+    /// The shot being swung and the next one: index, swing, impact time (ns).
+    current: Option<(u64, Swing, u64)>,
+    next: Option<(u64, Swing, u64)>,
+    truth_sent: u64,
+}
+
+impl SimRig {
+    pub fn new(name: &str, options: &SimOptions, start_ns: u64, seed: u64) -> Self {
+        SimRig {
+            name: name.to_string(),
+            club: options.club.clone(),
+            equipment: Equipment::new(options.club.clone()),
+            rng: Rng::new(seed),
+            period_ns: 1e9 / options.rate_hz,
+            interval_ns: (options.interval_s * 1e9) as u64,
+            start_ns,
+            frame: 0,
+            shots: options.shots,
+            noise_m: options.noise_mm * 1e-3,
+            noise_rad: options.noise_deg.to_radians(),
+            current: None,
+            next: None,
+            truth_sent: 0,
+        }
+    }
+
+    fn make_shot(&mut self, k: u64) -> (u64, Swing, u64) {
+        let spec = SwingSpec::random(&self.club, &mut self.rng);
+        let swing = Swing::new(&spec, &self.equipment).ok().unwrap_or_else(|| {
+            let mut s = spec;
+            s.delivery = crate::impact::Delivery {
+                impact_h_m: 0.0,
+                impact_v_m: 0.0,
+                ..spec.delivery
+            };
+            Swing::new(&s, &self.equipment).expect("a centred swing is always valid")
+        });
+        // Impact in the middle of the shot's span, at a random phase against the frame clock.
+        let t_impact = self.start_ns
+            + k * self.interval_ns
+            + self.interval_ns / 2
+            + (self.rng.unit() * self.period_ns) as u64;
+        (k, swing, t_impact)
+    }
+
+    /// Capture time of the next frame (ns).
+    pub fn next_t_ns(&self) -> u64 {
+        self.start_ns + (self.frame as f64 * self.period_ns).round() as u64
+    }
+
+    /// Whether every shot has been swung and followed through.
+    pub fn done(&self) -> bool {
+        self.shots > 0 && self.next_t_ns() > self.start_ns + self.shots * self.interval_ns
+    }
+
+    /// The next frame, and the truth of a shot whose impact it has just passed.
+    pub fn next(&mut self) -> (ClubheadSample, Option<TruthMessage>) {
+        let t_ns = self.next_t_ns();
+        let k = (t_ns - self.start_ns) / self.interval_ns;
+        if self.current.as_ref().map(|c| c.0) != Some(k) {
+            let current = match self.next.take() {
+                Some(n) if n.0 == k => n,
+                _ => self.make_shot(k),
+            };
+            self.current = Some(current);
+            self.next = Some(self.make_shot(k + 1));
+        }
+        let (k, swing, t_impact) = self
+            .current
+            .as_ref()
+            .map(|(k, s, t)| (*k, s, *t))
+            .expect("set above");
+        let tau = (t_ns as i64 - t_impact as i64) as f64 * 1e-9;
+        let mut pose = if tau > AFTER_S {
+            // Walk the club back from the follow-through to the start of the next swing, smoothly.
+            // The glide ends where the next shot's span begins; there the club waits at the top of its arc.
+            let (_, next_swing, _) = self.next.as_ref().expect("set above");
+            let from = swing.pose(AFTER_S);
+            let to = next_swing.pose(-BEFORE_S);
+            let t0 = t_impact as f64 * 1e-9 + AFTER_S;
+            let t1 = (self.start_ns + (k + 1) * self.interval_ns) as f64 * 1e-9;
+            let x = ((t_ns as f64 * 1e-9 - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            let x = x * x * (3.0 - 2.0 * x);
+            crate::math::Isometry3::from_parts(
+                (from.translation.vector.lerp(&to.translation.vector, x)).into(),
+                from.rotation.slerp(&to.rotation, x),
+            )
+        } else {
+            swing.pose(tau.max(-BEFORE_S))
+        };
+        let n = |rng: &mut Rng| Vector3::new(rng.normal(), rng.normal(), rng.normal());
+        pose.translation.vector += n(&mut self.rng) * self.noise_m;
+        pose.rotation = so3::exp(&(n(&mut self.rng) * self.noise_rad)) * pose.rotation;
+        let sample = ClubPose {
+            frame: self.frame + 1,
+            t_ns,
+            world_from_club: pose,
+        }
+        .to_sample(&Calibration::default());
+        self.frame += 1;
+        let truth =
+            if t_ns > t_impact && self.truth_sent <= k && (self.shots == 0 || k < self.shots) {
+                self.truth_sent = k + 1;
+                let delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
+                ImpulseModel::new(ImpulseVariant::Adjusted)
+                    .predict(&swing.truth, &self.equipment)
+                    .ok()
+                    .map(|l| TruthMessage {
+                        rig: self.name.clone(),
+                        shot: k + 1,
+                        t_impact_ns: t_impact,
+                        club: self.club.name.clone(),
+                        delivery,
+                        launch: PredictOutput::new(&l, &delivery, Default::default()),
+                    })
+            } else {
+                None
+            };
+        (sample, truth)
+    }
+}
+
+/// Publishes synthetic rigs on `session` at real rate until every shot is done or `shutdown` completes.
+pub async fn run_sim(
+    session: &zenoh::Session,
+    options: SimOptions,
+    shutdown: impl Future<Output = ()>,
+) -> Result<SimSummary, DaemonError> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let start_ns = wall_ns() + 200_000_000;
+    let mut threads = Vec::new();
+    for (i, name) in options.rigs.iter().enumerate() {
+        if !keys::valid_rig_name(name) {
+            return Err(DaemonError::Input(format!(
+                "rig name `{name}` must be letters, digits, _ or -"
+            )));
+        }
+        let samples = session
+            .declare_publisher(keys::clubhead(name))
+            .encoding(wire::encoding("ClubheadSample"))
+            .await
+            .map_err(DaemonError::zenoh)?;
+        let truth_pub = session
+            .declare_publisher(keys::truth(name))
+            .encoding(wire::encoding("TruthMessage"))
+            .await
+            .map_err(DaemonError::zenoh)?;
+        if options.wait_for_subscriber_s > 0.0 {
+            let deadline =
+                std::time::Instant::now() + Duration::from_secs_f64(options.wait_for_subscriber_s);
+            while !samples
+                .matching_status()
+                .await
+                .map(|m| m.matching())
+                .unwrap_or(false)
+            {
+                if std::time::Instant::now() > deadline {
+                    tracing::warn!(
+                        "rig {name}: no subscriber after {} s; publishing anyway",
+                        options.wait_for_subscriber_s
+                    );
+                    break;
+                }
+                tokio::time::sleep(Duration::from_millis(20)).await;
+            }
+        }
+        let mut rig = SimRig::new(
+            name,
+            &options,
+            start_ns + i as u64 * 37_000_000,
+            options.seed.wrapping_add(i as u64 * 7919),
+        );
+        let stop = stop.clone();
+        threads.push(tokio::task::spawn_blocking(move || {
+            let mut summary = SimSummary::default();
+            while !stop.load(Ordering::Relaxed) && !rig.done() {
+                let due = rig.next_t_ns();
+                let now = wall_ns();
+                if due > now {
+                    std::thread::sleep(Duration::from_nanos(due - now));
+                }
+                let (sample, truth) = rig.next();
+                let msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
+                if let Err(e) = samples
+                    .put(serde_json::to_vec(&msg).unwrap_or_default())
+                    .wait()
+                {
+                    tracing::warn!("rig {}: publishing a sample: {e}", rig.name);
+                }
+                summary.samples += 1;
+                if let Some(t) = truth {
+                    summary.shots += 1;
+                    let _ = truth_put(&truth_pub, &t);
+                }
+            }
+            summary
+        }));
+    }
+    let joined = async {
+        let mut total = SimSummary::default();
+        for t in threads {
+            if let Ok(s) = t.await {
+                total.samples += s.samples;
+                total.shots += s.shots;
+            }
+        }
+        total
+    };
+    tokio::pin!(joined);
+    tokio::select! {
+        total = &mut joined => Ok(total),
+        _ = shutdown => {
+            stop.store(true, Ordering::Relaxed);
+            Ok(joined.await)
+        }
+    }
+}
+
+fn truth_put(
+    publisher: &zenoh::pubsub::Publisher<'static>,
+    t: &TruthMessage,
+) -> Result<(), DaemonError> {
+    publisher
+        .put(serde_json::to_vec(t).unwrap_or_default())
+        .wait()
+        .map_err(DaemonError::zenoh)
+}

@@ -1,0 +1,95 @@
+//! Latency percentiles over a window of recent shots, and a rate limiter for log lines.
+
+use std::time::{Duration, Instant};
+
+/// The last `capacity` latencies (us).
+#[derive(Debug, Clone)]
+pub struct LatencyWindow {
+    values: Vec<f64>,
+    next: usize,
+    capacity: usize,
+}
+
+impl LatencyWindow {
+    pub fn new(capacity: usize) -> Self {
+        LatencyWindow {
+            values: Vec::with_capacity(capacity),
+            next: 0,
+            capacity,
+        }
+    }
+
+    pub fn push(&mut self, us: f64) {
+        if self.values.len() < self.capacity {
+            self.values.push(us);
+        } else {
+            self.values[self.next] = us;
+        }
+        self.next = (self.next + 1) % self.capacity;
+    }
+
+    /// The `q` quantile (0..1) by nearest rank, 0 when empty.
+    pub fn quantile(&self, q: f64) -> f64 {
+        if self.values.is_empty() {
+            return 0.0;
+        }
+        let mut v = self.values.clone();
+        v.sort_by(f64::total_cmp);
+        let rank = ((q * v.len() as f64).ceil() as usize).clamp(1, v.len());
+        v[rank - 1]
+    }
+}
+
+/// Allows one event per `period` per key and counts what it suppressed.
+#[derive(Debug)]
+pub struct RateLimiter {
+    period: Duration,
+    last: std::collections::HashMap<String, (Instant, u64)>,
+}
+
+impl RateLimiter {
+    pub fn new(period: Duration) -> Self {
+        RateLimiter {
+            period,
+            last: Default::default(),
+        }
+    }
+
+    /// `Some(suppressed since the last allowed)` when this event may be logged.
+    pub fn allow(&mut self, key: &str) -> Option<u64> {
+        let now = Instant::now();
+        match self.last.get_mut(key) {
+            Some((t, n)) if now.duration_since(*t) < self.period => {
+                *n += 1;
+                None
+            }
+            Some((t, n)) => {
+                let suppressed = *n;
+                *t = now;
+                *n = 0;
+                Some(suppressed)
+            }
+            None => {
+                self.last.insert(key.to_string(), (now, 0));
+                Some(0)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantiles() {
+        let mut w = LatencyWindow::new(100);
+        for i in 1..=100 {
+            w.push(i as f64);
+        }
+        assert_eq!(w.quantile(0.5), 50.0);
+        assert_eq!(w.quantile(0.99), 99.0);
+        w.push(1000.0);
+        assert_eq!(w.quantile(1.0), 1000.0);
+    }
+}
