@@ -133,7 +133,6 @@ pub async fn run(
             status,
             recorder: handle.clone(),
             queue_dropped,
-            input_rejected: BTreeMap::new(),
             latency: LatencyWindow::new(1024),
             limiter: RateLimiter::new(Duration::from_secs(1)),
             started: Instant::now(),
@@ -209,7 +208,6 @@ struct Worker {
     status: zenoh::pubsub::Publisher<'static>,
     recorder: RecorderHandle,
     queue_dropped: Arc<AtomicU64>,
-    input_rejected: BTreeMap<String, u64>,
     latency: LatencyWindow,
     limiter: RateLimiter,
     started: Instant,
@@ -277,7 +275,7 @@ impl Worker {
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
             Err(e) => {
-                *self.input_rejected.entry(e.key().to_string()).or_default() += 1;
+                *self.pipeline.counts.rejected.entry(e.key().to_string()).or_default() += 1;
                 self.pipeline.counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
@@ -348,7 +346,7 @@ impl Worker {
                     }
                 }
                 Event::Launch(mut l) => {
-                    l.latency_us = incoming.received.elapsed().as_secs_f64() * 1e6;
+                    l.latency_us = incoming.received.elapsed().as_nanos() as f64 / 1e3;
                     let data = serde_json::to_vec(&l).unwrap_or_default();
                     if let Err(e) = self.launch.put(data.clone()).wait() {
                         tracing::error!("rig {rig}: publishing the launch: {e}");
@@ -382,9 +380,6 @@ impl Worker {
     fn publish_status(&mut self) {
         let c = &self.pipeline.counts;
         let mut rejected = c.rejected.clone();
-        for (k, v) in &self.input_rejected {
-            *rejected.entry(k.clone()).or_default() += v;
-        }
         let queue = self.queue_dropped.load(Ordering::Relaxed);
         if queue > 0 {
             rejected.insert("queue_full".into(), queue);
