@@ -131,10 +131,62 @@ pub fn extrapolation_stages() -> Vec<Stage> {
     out
 }
 
+/// The pipeline over recorded-like samples: `pipeline/sample/<club>`, one sample (track, detection, and at
+/// each impact the estimate and the prediction) per operation. Its inverse is the replay rate.
+pub fn pipeline_stages() -> Vec<Stage> {
+    let mut out = Vec::new();
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let eq = Equipment::new(club.clone());
+        let mut rng = Rng::new(0xFEED);
+        let sampling = Sampling {
+            position_noise_m: 0.2e-3,
+            orientation_noise_rad: 0.1f64.to_radians(),
+            ..Default::default()
+        };
+        let mut samples = Vec::new();
+        let mut frame = 1;
+        for k in 0..20u64 {
+            let spec = SwingSpec::random(&club, &mut rng);
+            let Ok(swing) = Swing::new(&spec, &eq) else {
+                continue;
+            };
+            let s = sample(
+                &swing,
+                &sampling,
+                &Calibration::default(),
+                1_000_000_000 * (k + 1),
+                frame,
+                &mut rng,
+            );
+            frame = s.next_frame;
+            samples.extend(s.samples);
+        }
+        let setup = crate::pipeline::RigSetup::new("bench", club.clone());
+        let mut pipeline = crate::pipeline::Pipeline::new(setup.clone());
+        let mut events = Vec::with_capacity(8);
+        let mut next = 0usize;
+        out.push(Stage {
+            name: format!("pipeline/sample/{}", club.name),
+            run: Box::new(move |_| {
+                if next == samples.len() {
+                    next = 0;
+                    pipeline = crate::pipeline::Pipeline::new(setup.clone());
+                }
+                events.clear();
+                pipeline.on_sample(&samples[next], &mut events);
+                next += 1;
+                events.len() as f64
+            }),
+        });
+    }
+    out
+}
+
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
     let mut stages = impulse_stages();
     stages.extend(extrapolation_stages());
+    stages.extend(pipeline_stages());
     stages
 }
 

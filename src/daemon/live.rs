@@ -275,7 +275,12 @@ impl Worker {
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
             Err(e) => {
-                *self.pipeline.counts.rejected.entry(e.key().to_string()).or_default() += 1;
+                *self
+                    .pipeline
+                    .counts
+                    .rejected
+                    .entry(e.key().to_string())
+                    .or_default() += 1;
                 self.pipeline.counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));

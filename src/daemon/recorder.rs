@@ -91,6 +91,9 @@ impl Recorder {
                 let mut w = mcap::WriteOptions::new()
                     .compression(Some(mcap::Compression::Zstd))
                     .chunk_size(Some(512 * 1024))
+                    // Chunks close after every shot; per-chunk message indexes would grow the writer's summary
+                    // in memory by ~2 KiB a chunk. Chunk indexes (time ranges) are kept, and readers scan chunks.
+                    .emit_message_indexes(false)
                     .profile("")
                     .library(format!("impactd {}", env!("CARGO_PKG_VERSION")))
                     .create(BufWriter::new(file))

@@ -35,6 +35,9 @@ pub struct ClubFile {
     pub face_half_height_m: Option<Real>,
     pub adjusted: Option<AdjustedFile>,
     pub slip: Option<SlipFile>,
+    /// `[continuous]`: the two-layer model's parameters (Table 3.5); default the driver's for a curved face, the
+    /// 7-iron's for a flat one.
+    pub continuous: Option<crate::impact::continuous::TwoLayerParams>,
 }
 
 /// `[adjusted]`: the Danaei parameters (Table 3.3).
@@ -193,6 +196,15 @@ impl ClubFile {
             impulse.slip_e_y = s.e_y;
             impulse.slip_e_z = s.e_z;
         }
+        let continuous = match self.continuous {
+            Some(c) => {
+                c.validate(&crate::equipment::BallSpec::SEED)
+                    .map_err(|reason| invalid("continuous", reason))?;
+                c
+            }
+            None if shape.is_curved() => crate::impact::continuous::TwoLayerParams::DRIVER,
+            None => crate::impact::continuous::TwoLayerParams::IRON7,
+        };
         let inertia_inv = inertia
             .try_inverse()
             .ok_or_else(|| invalid(field, "must be invertible"))?;
@@ -210,6 +222,7 @@ impl ClubFile {
             face_half_height_m,
             shaft_mass_kg,
             impulse,
+            continuous,
         })
     }
 }

@@ -98,6 +98,8 @@ pub struct ClubSpec {
     pub shaft_mass_kg: Real,
     /// Variant parameters of the impulse-momentum family.
     pub impulse: ImpulseTuning,
+    /// Parameters of the continuous two-layer model (Table 3.5).
+    pub continuous: crate::impact::continuous::TwoLayerParams,
 }
 
 impl ClubSpec {
@@ -169,6 +171,11 @@ impl ClubSpec {
             face_half_height_m,
             shaft_mass_kg,
             impulse,
+            continuous: if shape.is_curved() {
+                crate::impact::continuous::TwoLayerParams::DRIVER
+            } else {
+                crate::impact::continuous::TwoLayerParams::IRON7
+            },
         }
     }
 
@@ -245,6 +252,24 @@ mod tests {
                     s[i].as_float().unwrap()
                 );
             }
+            let c = &tables["continuous"]["two_layer"][name];
+            let p = club.continuous;
+            assert_eq!(p.k_v_n_per_m3, c["k_v_n_per_m3"].as_float().unwrap());
+            assert_eq!(p.d_s_per_m, c["d_s_per_m"].as_float().unwrap());
+            assert_eq!(p.mu, c["mu"].as_float().unwrap());
+            assert_eq!(
+                p.k_ball_nm_per_rad,
+                c["k_ball_nm_per_rad"].as_float().unwrap()
+            );
+            assert_eq!(
+                p.c_ball_nms_per_rad,
+                c["c_ball_nms_per_rad"].as_float().unwrap()
+            );
+            assert_eq!(
+                p.cover_thickness_m,
+                c["cover_thickness_m"].as_float().unwrap()
+            );
+            assert_eq!(p.v_tr_mps, c["v_tr_mps"].as_float().unwrap());
             let slip = &tables["im"]["slip"][name];
             assert_eq!(club.impulse.slip_e_y, slip["e_y"].as_float().unwrap());
             assert_eq!(club.impulse.slip_e_z, slip["e_z"].as_float().unwrap());

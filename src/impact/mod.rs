@@ -5,10 +5,12 @@
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
 
+pub mod continuous;
 mod delivery;
 pub mod impulse;
 mod launch;
 
+pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics};
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
