@@ -4,6 +4,7 @@ pub mod cli_daemon;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;
+pub mod flight;
 pub mod eval;
 pub mod face;
 pub mod impact;
@@ -16,3 +17,4 @@ pub mod stages;
 pub mod swing;
 pub mod units;
 pub mod wire;
+pub mod plot;

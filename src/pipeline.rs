@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::equipment::ClubSpec;
-use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::impact::{ContinuousModel, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track,
@@ -12,12 +12,47 @@ use crate::kinematics::{
 };
 use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput};
 
+/// Which model(s) predict a rig's shots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModelChoice {
+    Impulse(ImpulseModel),
+    Continuous(ContinuousModel),
+    /// The impulse-momentum prediction at once, the continuous one when it is ready, each labelled.
+    Both(ImpulseModel, ContinuousModel),
+}
+
+impl ModelChoice {
+    /// `standard`, `adjusted`, `slip`, `continuous` or `both` (adjusted then continuous), with the impulse
+    /// models' COR.
+    pub fn parse(name: &str, cor: f64) -> Option<Self> {
+        match name {
+            "continuous" => Some(ModelChoice::Continuous(ContinuousModel::default())),
+            "both" => Some(ModelChoice::Both(
+                ImpulseModel::new(ImpulseVariant::Adjusted).with_cor(cor),
+                ContinuousModel::default(),
+            )),
+            other => ImpulseVariant::parse(other).map(|v| ModelChoice::Impulse(ImpulseModel::new(v).with_cor(cor))),
+        }
+    }
+
+    pub const NAMES: &'static str = "standard, adjusted, slip, continuous or both";
+
+    /// The models in the order their predictions are published.
+    pub fn models(&self) -> Vec<&dyn ImpactModel> {
+        match self {
+            ModelChoice::Impulse(m) => vec![m],
+            ModelChoice::Continuous(m) => vec![m],
+            ModelChoice::Both(a, b) => vec![a, b],
+        }
+    }
+}
+
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
 pub struct RigSetup {
     pub name: String,
     pub club: ClubSpec,
-    pub model: ImpulseModel,
+    pub model: ModelChoice,
     pub estimator: EstimatorSpec,
     pub calibration: Calibration,
     pub detector: DetectorConfig,
@@ -31,7 +66,7 @@ impl RigSetup {
         RigSetup {
             name: name.to_string(),
             club,
-            model: ImpulseModel::new(ImpulseVariant::Adjusted),
+            model: ModelChoice::Impulse(ImpulseModel::new(ImpulseVariant::Adjusted)),
             estimator: EstimatorSpec::poly(),
             calibration: Calibration::default(),
             detector: DetectorConfig::default(),
@@ -47,7 +82,8 @@ pub enum Event {
     Rejected { frame: u64, reason: Reject },
     /// An impact was found and estimated.
     Impact(ImpactMessage),
-    /// ... and its launch predicted (`latency_us` is 0 here; the caller fills it in).
+    /// ... and its launch predicted by one model (`latency_us` is 0 here; the caller fills it in). With two
+    /// models there are two, in publication order.
     Launch(LaunchPrediction),
     /// An impact was found but no prediction could be made.
     Failed {
@@ -96,6 +132,12 @@ impl Pipeline {
 
     /// Feeds one sample; events are appended to `out`.
     pub fn on_sample(&mut self, sample: &ClubheadSample, out: &mut Vec<Event>) {
+        self.on_sample_with(sample, &mut |e| out.push(e));
+    }
+
+    /// Feeds one sample; each event goes to `emit` as soon as it exists (a fast model's launch before a slow
+    /// model has run).
+    pub fn on_sample_with(&mut self, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
         self.counts.samples += 1;
         match self.track.push(sample) {
             Err(reason) => {
@@ -104,7 +146,7 @@ impl Pipeline {
                     .rejected
                     .entry(reason.key().to_string())
                     .or_default() += 1;
-                out.push(Event::Rejected {
+                out(Event::Rejected {
                     frame: sample.frame,
                     reason,
                 });
@@ -130,16 +172,9 @@ impl Pipeline {
         }
     }
 
-    fn fail(
-        &mut self,
-        shot: u64,
-        frame: u64,
-        reason: String,
-        key: &'static str,
-        out: &mut Vec<Event>,
-    ) {
+    fn fail(&mut self, shot: u64, frame: u64, reason: String, key: &'static str, out: &mut dyn FnMut(Event)) {
         *self.counts.failed.entry(key.to_string()).or_default() += 1;
-        out.push(Event::Failed {
+        out(Event::Failed {
             shot,
             frame,
             reason,
@@ -147,14 +182,14 @@ impl Pipeline {
         });
     }
 
-    fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut Vec<Event>) {
+    fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut dyn FnMut(Event)) {
         let est = match d.result {
             Ok(e) => e,
             Err(e) => return self.fail(shot, d.reveal_frame, e.to_string(), e.key(), out),
         };
         let club = &self.setup.club;
         let delivery = DeliveryMetrics::from_state(&est.state, club);
-        out.push(Event::Impact(ImpactMessage {
+        out(Event::Impact(ImpactMessage {
             rig: self.setup.name.clone(),
             shot,
             frame: d.reveal_frame,
@@ -165,25 +200,28 @@ impl Pipeline {
             delivery,
             quality: est.quality,
         }));
-        match self.setup.model.predict(&est.state, &self.equipment) {
-            Ok(launch) => {
-                self.counts.predictions += 1;
-                out.push(Event::Launch(LaunchPrediction {
-                    rig: self.setup.name.clone(),
-                    shot,
-                    frame: d.reveal_frame,
-                    t_impact_ns: est.t_impact_ns,
-                    club: club.name.clone(),
-                    model: self.setup.model.name().to_string(),
-                    estimator: self.setup.estimator.name.clone(),
-                    delivery,
-                    launch: PredictOutput::new(&launch, &delivery, Default::default()),
-                    frames_used: est.quality.frames_used,
-                    quality: est.quality.score,
-                    latency_us: 0.0,
-                }))
+        let model = self.setup.model;
+        for m in model.models() {
+            match m.predict(&est.state, &self.equipment) {
+                Ok(launch) => {
+                    self.counts.predictions += 1;
+                    out(Event::Launch(LaunchPrediction {
+                        rig: self.setup.name.clone(),
+                        shot,
+                        frame: d.reveal_frame,
+                        t_impact_ns: est.t_impact_ns,
+                        club: self.setup.club.name.clone(),
+                        model: m.name().to_string(),
+                        estimator: self.setup.estimator.name.clone(),
+                        delivery,
+                        launch: PredictOutput::new(&launch, &delivery, Default::default()),
+                        frames_used: est.quality.frames_used,
+                        quality: est.quality.score,
+                        latency_us: 0.0,
+                    }))
+                }
+                Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),
             }
-            Err(e) => self.fail(shot, d.reveal_frame, e.to_string(), "model_refused", out),
         }
     }
 }

@@ -67,6 +67,25 @@ pub fn impulse_stages() -> Vec<Stage> {
     out
 }
 
+/// The continuous two-layer model: `continuous/two_layer/<club>`, one prediction per operation.
+pub fn continuous_stages() -> Vec<Stage> {
+    let mut out = Vec::new();
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let name = format!("continuous/two_layer/{}", club.name);
+        let eq = Equipment::new(club);
+        let states = state_spread(&eq);
+        let model = crate::impact::ContinuousModel::default();
+        out.push(Stage {
+            name,
+            run: Box::new(move |i| {
+                let s = &states[i % states.len()];
+                model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
+            }),
+        });
+    }
+    out
+}
+
 /// Pre-impact frames of 32 noisy synthetic swings at 720 Hz (0.2 mm, 0.1 deg), with their revealing times.
 pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
     let eq = Equipment::new(club.clone());
@@ -185,6 +204,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
     let mut stages = impulse_stages();
+    stages.extend(continuous_stages());
     stages.extend(extrapolation_stages());
     stages.extend(pipeline_stages());
     stages

@@ -7,7 +7,7 @@
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
 //! club = "driver"               # preset (driver, iron7) or a path to a club .toml
-//! model = "adjusted"            # standard | adjusted | slip
+//! model = "adjusted"            # standard | adjusted | slip | continuous | both
 //! cor = 0.83
 //! estimator = "poly"            # linear2 | poly | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
@@ -25,10 +25,9 @@ use serde::{Deserialize, Serialize};
 
 use super::DaemonError;
 use crate::equipment::ClubSpec;
-use crate::impact::{ImpulseModel, ImpulseVariant};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
-use crate::pipeline::RigSetup;
+use crate::pipeline::{ModelChoice, RigSetup};
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -188,15 +187,11 @@ impl DaemonConfig {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
                 let club = load_club(&r.club).map_err(|e| invalid(f("club"), e))?;
-                let variant = ImpulseVariant::parse(&r.model).ok_or_else(|| {
-                    invalid(
-                        f("model"),
-                        format!("`{}` is not standard, adjusted or slip", r.model),
-                    )
-                })?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
+                let model = ModelChoice::parse(&r.model, r.cor)
+                    .ok_or_else(|| invalid(f("model"), format!("`{}` is not {}", r.model, ModelChoice::NAMES)))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
@@ -228,7 +223,7 @@ impl DaemonConfig {
                         .unwrap_or_default(),
                 };
                 let mut setup = RigSetup::new(&r.name, club);
-                setup.model = ImpulseModel::new(variant).with_cor(r.cor);
+                setup.model = model;
                 setup.estimator = estimator;
                 setup.calibration = calibration;
                 setup.detector.ball_position_m = Vector3::from(r.ball_position_m);

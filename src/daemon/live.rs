@@ -123,11 +123,13 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
+        let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
         let worker = Worker {
-            pipeline: Pipeline::new(setup),
+            rig: setup.name.clone(),
+            pipeline: Some(Pipeline::new(setup)),
             impact,
             launch,
             status,
@@ -136,7 +138,8 @@ pub async fn run(
             latency: LatencyWindow::new(1024),
             limiter: RateLimiter::new(Duration::from_secs(1)),
             started: Instant::now(),
-            events: Vec::with_capacity(8),
+            ball_position_m: setup_ball.0,
+            ball_radius_m: setup_ball.1,
         };
         workers.push(
             std::thread::Builder::new()
@@ -202,7 +205,9 @@ pub async fn run(
 }
 
 struct Worker {
-    pipeline: Pipeline,
+    rig: String,
+    /// The rig's pipeline; taken out while it runs a sample, so its events can be published as they come.
+    pipeline: Option<Pipeline>,
     impact: zenoh::pubsub::Publisher<'static>,
     launch: zenoh::pubsub::Publisher<'static>,
     status: zenoh::pubsub::Publisher<'static>,
@@ -211,10 +216,19 @@ struct Worker {
     latency: LatencyWindow,
     limiter: RateLimiter,
     started: Instant,
-    events: Vec<Event>,
+    ball_position_m: [f64; 3],
+    ball_radius_m: f64,
 }
 
 impl Worker {
+    fn p(&self) -> &Pipeline {
+        self.pipeline.as_ref().expect("the pipeline is in place between samples")
+    }
+
+    fn p_mut(&mut self) -> &mut Pipeline {
+        self.pipeline.as_mut().expect("the pipeline is in place between samples")
+    }
+
     fn run(
         mut self,
         rx: std::sync::mpsc::Receiver<Incoming>,
@@ -235,14 +249,14 @@ impl Worker {
         }
         self.publish_status();
         (
-            self.pipeline.setup.name.clone(),
-            self.pipeline.counts.clone(),
+            self.rig.clone(),
+            self.p().counts.clone(),
         )
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
         if let Some(n) = self.limiter.allow(key) {
-            let rig = &self.pipeline.setup.name;
+            let rig = &self.rig;
             if n > 0 {
                 tracing::warn!("rig {rig}: {} ({n} more like it suppressed)", message());
             } else {
@@ -271,17 +285,12 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
-        let rig = self.pipeline.setup.name.clone();
+        let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
             Err(e) => {
-                *self
-                    .pipeline
-                    .counts
-                    .rejected
-                    .entry(e.key().to_string())
-                    .or_default() += 1;
-                self.pipeline.counts.samples += 1;
+                *self.p_mut().counts.rejected.entry(e.key().to_string()).or_default() += 1;
+                self.p_mut().counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
                 // Nothing is lost: the raw payload goes to the recording beside the reason.
@@ -310,87 +319,76 @@ impl Worker {
             msg.t_ns,
             incoming.payload,
         );
-        let mut events = std::mem::take(&mut self.events);
-        events.clear();
-        self.pipeline.on_sample(&sample, &mut events);
-        if self.recorder.enabled() && !sample.occluded && events.is_empty() {
-            if let Some(q) =
-                crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01)
-            {
+        let mut any_event = false;
+        let received = incoming.received;
+        let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
+        pipeline.on_sample_with(&sample, &mut |event| {
+            any_event = true;
+            self.on_event(&rig, event, received);
+        });
+        self.pipeline = Some(pipeline);
+        if self.recorder.enabled() && !sample.occluded && !any_event {
+            if let Some(q) = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01) {
                 let lab = crate::math::Isometry3::from_parts(sample.position_m.into(), q);
-                let world_from_club = self.pipeline.setup.calibration.world_from_club(&lab);
-                self.recorder.send(Record::ClubPose {
-                    rig: rig.clone(),
-                    t_ns: sample.t_ns,
-                    log_time_ns: incoming.log_time_ns,
-                    world_from_club,
-                });
+                let world_from_club = self.p().setup.calibration.world_from_club(&lab);
+                self.recorder.send(Record::ClubPose { rig: rig.clone(), t_ns: sample.t_ns, log_time_ns: incoming.log_time_ns, world_from_club });
             }
         }
-        for event in events.drain(..) {
-            match event {
-                Event::Rejected { frame, reason } => {
-                    self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
+    }
+
+    fn on_event(&mut self, rig: &str, event: Event, received: Instant) {
+        match event {
+            Event::Rejected { frame, reason } => self.warn(reason.key(), || format!("frame {frame} rejected: {reason}")),
+            Event::Impact(m) => {
+                let data = serde_json::to_vec(&m).unwrap_or_default();
+                if let Err(e) = self.impact.put(data.clone()).wait() {
+                    tracing::error!("rig {rig}: publishing the impact: {e}");
                 }
-                Event::Impact(m) => {
-                    let data = serde_json::to_vec(&m).unwrap_or_default();
-                    if let Err(e) = self.impact.put(data.clone()).wait() {
-                        tracing::error!("rig {rig}: publishing the impact: {e}");
-                    }
-                    let now = wall_ns();
-                    self.record(keys::impact(&rig), "ImpactMessage", now, now, data);
-                    if self.recorder.enabled() {
-                        self.recorder.send(Record::ImpactScene {
-                            rig: rig.clone(),
-                            t_ns: m.t_impact_ns,
-                            log_time_ns: now,
-                            ball_position_m: self.pipeline.setup.detector.ball_position_m.into(),
-                            ball_radius_m: self.pipeline.setup.detector.ball_radius_m,
-                            club: m.state,
-                        });
-                    }
-                }
-                Event::Launch(mut l) => {
-                    l.latency_us = incoming.received.elapsed().as_nanos() as f64 / 1e3;
-                    let data = serde_json::to_vec(&l).unwrap_or_default();
-                    if let Err(e) = self.launch.put(data.clone()).wait() {
-                        tracing::error!("rig {rig}: publishing the launch: {e}");
-                    }
-                    self.latency.push(l.latency_us);
-                    tracing::info!(
-                        "rig {rig} shot {}: {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
-                        l.shot, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
-                        l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
-                    );
-                    let now = wall_ns();
-                    self.record(keys::launch(&rig), "LaunchPrediction", now, now, data);
-                    self.recorder.send(Record::Flush);
-                }
-                Event::Failed {
-                    shot,
-                    frame,
-                    reason,
-                    ..
-                } => {
-                    tracing::warn!(
-                        "rig {rig} shot {shot} (frame {frame}): no prediction: {reason}"
-                    );
-                    self.recorder.send(Record::Flush);
+                let now = wall_ns();
+                self.record(keys::impact(rig), "ImpactMessage", now, now, data);
+                if self.recorder.enabled() {
+                    self.recorder.send(Record::ImpactScene {
+                        rig: rig.to_string(),
+                        t_ns: m.t_impact_ns,
+                        log_time_ns: now,
+                        ball_position_m: self.ball_position_m,
+                        ball_radius_m: self.ball_radius_m,
+                        club: m.state,
+                    });
                 }
             }
+            Event::Launch(mut l) => {
+                l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
+                let data = serde_json::to_vec(&l).unwrap_or_default();
+                if let Err(e) = self.launch.put(data.clone()).wait() {
+                    tracing::error!("rig {rig}: publishing the launch: {e}");
+                }
+                self.latency.push(l.latency_us);
+                tracing::info!(
+                    "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
+                    l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
+                    l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
+                );
+                let now = wall_ns();
+                self.record(keys::launch(rig), "LaunchPrediction", now, now, data);
+                self.recorder.send(Record::Flush);
+            }
+            Event::Failed { shot, frame, reason, .. } => {
+                tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
+                self.recorder.send(Record::Flush);
+            }
         }
-        self.events = events;
     }
 
     fn publish_status(&mut self) {
-        let c = &self.pipeline.counts;
+        let c = &self.p().counts;
         let mut rejected = c.rejected.clone();
         let queue = self.queue_dropped.load(Ordering::Relaxed);
         if queue > 0 {
             rejected.insert("queue_full".into(), queue);
         }
         let status = StatusMessage {
-            rig: self.pipeline.setup.name.clone(),
+            rig: self.rig.clone(),
             t_ns: wall_ns(),
             uptime_s: self.started.elapsed().as_secs_f64(),
             samples: c.samples + queue,

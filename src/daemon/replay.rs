@@ -20,7 +20,7 @@ pub struct ReplayInput {
     /// The recorded predictions' bytes, in order.
     pub recorded_launches: Vec<Vec<u8>>,
     /// Recorded latency per (rig, shot).
-    pub recorded_latency_us: HashMap<(String, u64), f64>,
+    pub recorded_latency_us: HashMap<(String, u64, String), f64>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
 }
@@ -97,7 +97,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
                 input
                     .recorded_latency_us
-                    .insert((l.rig.clone(), l.shot), l.latency_us);
+                    .insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
             input.recorded_launches.push(message.data.into_owned());
         }
@@ -141,7 +141,7 @@ pub fn replay(
                 Event::Launch(l) => {
                     l.latency_us = input
                         .recorded_latency_us
-                        .get(&(l.rig.clone(), l.shot))
+                        .get(&(l.rig.clone(), l.shot, l.model.clone()))
                         .copied()
                         .unwrap_or(0.0);
                     stats.predictions += 1;

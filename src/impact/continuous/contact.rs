@@ -142,7 +142,7 @@ mod tests {
         };
         let ball = Vector3::new(r - depth, 0.0, 0.0);
         let a = plane.overlap(&ball, r).unwrap();
-        let big = 1e4;
+        let big = 1e6; // the lens differs from the cap by O(r / R), 2e-8 here
         let sphere = FaceSurface::Sphere {
             centre: Vector3::new(-big, 0.0, 0.0),
             radius_m: big,

@@ -1,0 +1,136 @@
+//! Fitting the aerodynamic coefficients to the TrackMan PGA Tour averages: every club's carry, apex (max height)
+//! and land angle at once, by Nelder-Mead on the logarithms of the six coefficients (so they stay positive),
+//! minimising the sum of squared errors scaled by the accuracy each must reach (3 yd, 2 yd, 2 deg) plus a strong
+//! penalty on any error beyond it. Deterministic: the same table gives the same coefficients.
+
+use super::{Aero, Conditions, Flight};
+use crate::math::Real;
+use crate::units::mph_to_mps;
+
+/// One row of the TrackMan table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TourAverage {
+    pub club: String,
+    pub ball_speed_mph: Real,
+    pub launch_angle_deg: Real,
+    pub spin_rpm: Real,
+    pub max_height_yd: Real,
+    pub land_angle_deg: Real,
+    pub carry_yd: Real,
+}
+
+/// The table shipped with the tests (`tests/data/trackman-pga-tour-averages.csv`).
+pub const TRACKMAN_CSV: &str = include_str!("../../tests/data/trackman-pga-tour-averages.csv");
+
+/// Parses the CSV (comment lines start with `#`).
+pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, String> {
+    let mut lines = csv.lines().filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().ok_or("empty table")?.split(',').map(str::trim).collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).ok_or(format!("no column `{name}`"));
+    let (c_club, c_bs, c_la, c_spin, c_h, c_land, c_carry) = (
+        col("club")?,
+        col("ball_speed_mph")?,
+        col("launch_angle_deg")?,
+        col("spin_rpm")?,
+        col("max_height_yd")?,
+        col("land_angle_deg")?,
+        col("carry_yd")?,
+    );
+    lines
+        .enumerate()
+        .map(|(i, line)| {
+            let f: Vec<&str> = line.split(',').map(str::trim).collect();
+            let num = |c: usize| f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(format!("row {}: column {c}", i + 1));
+            Ok(TourAverage {
+                club: f.get(c_club).ok_or("no club")?.to_string(),
+                ball_speed_mph: num(c_bs)?,
+                launch_angle_deg: num(c_la)?,
+                spin_rpm: num(c_spin)?,
+                max_height_yd: num(c_h)?,
+                land_angle_deg: num(c_land)?,
+                carry_yd: num(c_carry)?,
+            })
+        })
+        .collect()
+}
+
+/// The model's carry, apex and land angle for one row, all spin taken as backspin.
+pub fn predict(aero: &Aero, row: &TourAverage) -> (Real, Real, Real) {
+    let f = Flight { aero: *aero, conditions: Conditions::default(), ..Flight::default() };
+    let t = f.fly_metrics(mph_to_mps(row.ball_speed_mph), row.launch_angle_deg, 0.0, row.spin_rpm, 0.0);
+    (t.carry_yd, t.apex_yd, t.land_angle_deg)
+}
+
+/// The fit's objective for a set of coefficients.
+pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
+    rows.iter()
+        .map(|r| {
+            let (carry, apex, land) = predict(aero, r);
+            let e = [(carry - r.carry_yd) / 3.0, (apex - r.max_height_yd) / 2.0, (land - r.land_angle_deg) / 2.0];
+            e.iter().map(|x| if x.is_finite() { x * x + 10.0 * (x.abs() - 0.8).max(0.0).powi(2) } else { 1e6 }).sum::<Real>()
+        })
+        .sum()
+}
+
+fn to_aero(x: &[Real; 6]) -> Aero {
+    Aero { c_d0: x[0].exp(), c_ds: x[1].exp(), c_dre: x[2].exp(), c_l1: x[3].exp(), c_l2: x[4].exp(), spin_tau_s: x[5].exp() }
+}
+
+fn from_aero(a: &Aero) -> [Real; 6] {
+    [a.c_d0.ln(), a.c_ds.ln(), a.c_dre.ln(), a.c_l1.ln(), a.c_l2.ln(), a.spin_tau_s.ln()]
+}
+
+/// Nelder-Mead from `start`, `iterations` steps; returns the best coefficients and their cost.
+pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {
+    let f = |x: &[Real; 6]| cost(&to_aero(x), rows);
+    let x0 = from_aero(start);
+    let mut simplex: Vec<([Real; 6], Real)> = vec![(x0, f(&x0))];
+    for i in 0..6 {
+        let mut x = x0;
+        x[i] += 0.25;
+        simplex.push((x, f(&x)));
+    }
+    for _ in 0..iterations {
+        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let n = simplex.len() - 1;
+        let mut centroid = [0.0; 6];
+        for (x, _) in &simplex[..n] {
+            for k in 0..6 {
+                centroid[k] += x[k] / n as Real;
+            }
+        }
+        let worst = simplex[n];
+        let along = |t: Real| {
+            let mut x = [0.0; 6];
+            for k in 0..6 {
+                x[k] = centroid[k] + t * (worst.0[k] - centroid[k]);
+            }
+            x
+        };
+        let xr = along(-1.0);
+        let fr = f(&xr);
+        if fr < simplex[0].1 {
+            let xe = along(-2.0);
+            let fe = f(&xe);
+            simplex[n] = if fe < fr { (xe, fe) } else { (xr, fr) };
+        } else if fr < simplex[n - 1].1 {
+            simplex[n] = (xr, fr);
+        } else {
+            let xc = if fr < worst.1 { along(-0.5) } else { along(0.5) };
+            let fc = f(&xc);
+            if fc < worst.1.min(fr) {
+                simplex[n] = (xc, fc);
+            } else {
+                let best = simplex[0].0;
+                for (x, fx) in simplex.iter_mut().skip(1) {
+                    for k in 0..6 {
+                        x[k] = best[k] + 0.5 * (x[k] - best[k]);
+                    }
+                    *fx = f(x);
+                }
+            }
+        }
+    }
+    simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+    (to_aero(&simplex[0].0), simplex[0].1)
+}

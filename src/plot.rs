@@ -1,0 +1,218 @@
+//! Small SVG charts (no dependencies): line charts with axes, ticks and a legend, and heatmaps. They return the
+//! SVG text; writing it is the caller's business.
+
+use std::fmt::Write;
+
+/// One line of a chart.
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+    pub color: &'static str,
+    /// Draw on the right-hand axis.
+    pub right_axis: bool,
+}
+
+/// A line chart.
+pub struct LineChart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub y2_label: Option<String>,
+    pub series: Vec<Series>,
+    /// Keep x and y to the same scale (trajectories).
+    pub equal_axes: bool,
+}
+
+/// Colours for successive series.
+pub const PALETTE: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
+
+fn nice_step(span: f64, ticks: f64) -> f64 {
+    let raw = (span / ticks).max(1e-12);
+    let mag = 10f64.powf(raw.log10().floor());
+    let r = raw / mag;
+    mag * if r < 1.5 { 1.0 } else if r < 3.5 { 2.0 } else if r < 7.5 { 5.0 } else { 10.0 }
+}
+
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    if hi - lo < 1e-12 {
+        return (lo - 1.0, hi + 1.0);
+    }
+    (lo, hi)
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+impl LineChart {
+    /// The chart as an SVG document of the given size (px).
+    pub fn svg(&self, width: f64, height: f64) -> String {
+        let (ml, mr, mt, mb) = (70.0, if self.y2_label.is_some() { 70.0 } else { 20.0 }, 40.0, 50.0);
+        let (pw, ph) = (width - ml - mr, height - mt - mb);
+        let (x0, x1) = range(self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+        let left = |right: bool| self.series.iter().filter(move |s| s.right_axis == right);
+        let (mut y0, mut y1) = range(left(false).flat_map(|s| s.points.iter().map(|p| p.1)));
+        let (y20, y21) = range(left(true).flat_map(|s| s.points.iter().map(|p| p.1)));
+        let (mut x0, mut x1) = (x0, x1);
+        if self.equal_axes {
+            let sx = (x1 - x0) / pw;
+            let sy = (y1 - y0) / ph;
+            if sx > sy {
+                let mid = 0.5 * (y0 + y1);
+                y0 = mid - 0.5 * sx * ph;
+                y1 = mid + 0.5 * sx * ph;
+            } else {
+                let mid = 0.5 * (x0 + x1);
+                x0 = mid - 0.5 * sy * pw;
+                x1 = mid + 0.5 * sy * pw;
+            }
+        }
+        let pad = |lo: f64, hi: f64| (lo - 0.04 * (hi - lo), hi + 0.04 * (hi - lo));
+        let ((y0, y1), (y20, y21)) = (pad(y0, y1), pad(y20, y21));
+        let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
+        let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
+        let sy2 = |y: f64| mt + ph - (y - y20) / (y21 - y20) * ph;
+        let mut out = String::new();
+        let _ = write!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">"#
+        );
+        let _ = write!(out, r#"<rect width="100%" height="100%" fill="white"/>"#);
+        let _ = write!(out, r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#, width / 2.0, escape(&self.title));
+        // Grid and ticks.
+        let xs = nice_step(x1 - x0, 8.0);
+        let mut x = (x0 / xs).ceil() * xs;
+        while x <= x1 + 1e-9 {
+            let px = sx(x);
+            let _ = write!(out, r##"<line x1="{px:.1}" y1="{mt}" x2="{px:.1}" y2="{:.1}" stroke="#e5e5e5"/>"##, mt + ph);
+            let _ = write!(out, r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, mt + ph + 16.0, fmt_tick(x, xs));
+            x += xs;
+        }
+        let ys = nice_step(y1 - y0, 6.0);
+        let mut y = (y0 / ys).ceil() * ys;
+        while y <= y1 + 1e-9 {
+            let py = sy(y);
+            let _ = write!(out, r##"<line x1="{ml}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#e5e5e5"/>"##, ml + pw);
+            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#, ml - 6.0, py + 4.0, fmt_tick(y, ys));
+            y += ys;
+        }
+        if self.y2_label.is_some() {
+            let ys2 = nice_step(y21 - y20, 6.0);
+            let mut y = (y20 / ys2).ceil() * ys2;
+            while y <= y21 + 1e-9 {
+                let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, ml + pw + 6.0, sy2(y) + 4.0, fmt_tick(y, ys2));
+                y += ys2;
+            }
+        }
+        if y0 < 0.0 && y1 > 0.0 {
+            let _ = write!(out, r##"<line x1="{ml}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#999"/>"##, sy(0.0), ml + pw, sy(0.0));
+        }
+        let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
+        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, ml + pw / 2.0, height - 12.0, escape(&self.x_label));
+        let _ = write!(out, r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#, mt + ph / 2.0, escape(&self.y_label));
+        if let Some(l) = &self.y2_label {
+            let _ = write!(out, r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#, width - 14.0, mt + ph / 2.0, escape(l));
+        }
+        for (i, s) in self.series.iter().enumerate() {
+            let pts: Vec<String> = s
+                .points
+                .iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), if s.right_axis { sy2(y) } else { sy(y) }))
+                .collect();
+            let dash = if s.right_axis { r#" stroke-dasharray="6,3""# } else { "" };
+            let _ = write!(out, r#"<polyline fill="none" stroke="{}" stroke-width="1.8"{dash} points="{}"/>"#, s.color, pts.join(" "));
+            let ly = mt + 14.0 + 16.0 * i as f64;
+            let _ = write!(out, r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="2"{dash}/>"#, ml + 10.0, ly - 4.0, ml + 30.0, ly - 4.0, s.color);
+            let _ = write!(out, r#"<text x="{:.1}" y="{ly:.1}">{}</text>"#, ml + 36.0, escape(&s.name));
+        }
+        out.push_str("</svg>\n");
+        out
+    }
+}
+
+fn fmt_tick(v: f64, step: f64) -> String {
+    let v = if v.abs() < 1e-9 * step.abs().max(1e-300) { 0.0 } else { v };
+    let decimals = if step >= 1.0 { 0 } else { (-step.log10().floor()) as usize };
+    format!("{v:.decimals$}")
+}
+
+/// A heatmap over a grid with a colour bar.
+pub struct Heatmap {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub value_label: String,
+    pub xs: Vec<f64>,
+    pub ys: Vec<f64>,
+    /// `values[j][i]` at `(xs[i], ys[j])`; NaN cells are left blank.
+    pub values: Vec<Vec<f64>>,
+}
+
+fn viridis(t: f64) -> (u8, u8, u8) {
+    const STOPS: [(f64, f64, f64); 5] =
+        [(68.0, 1.0, 84.0), (59.0, 82.0, 139.0), (33.0, 145.0, 140.0), (94.0, 201.0, 98.0), (253.0, 231.0, 37.0)];
+    let t = t.clamp(0.0, 1.0) * 4.0;
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let l = |x: f64, y: f64| (x + (y - x) * f).round() as u8;
+    (l(a.0, b.0), l(a.1, b.1), l(a.2, b.2))
+}
+
+impl Heatmap {
+    pub fn svg(&self, width: f64, height: f64) -> String {
+        let (ml, mr, mt, mb) = (70.0, 110.0, 40.0, 50.0);
+        let (pw, ph) = (width - ml - mr, height - mt - mb);
+        let (v0, v1) = range(self.values.iter().flatten().copied());
+        let (nx, ny) = (self.xs.len().max(1), self.ys.len().max(1));
+        let (cw, ch) = (pw / nx as f64, ph / ny as f64);
+        let mut out = String::new();
+        let _ = write!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12"><rect width="100%" height="100%" fill="white"/>"#
+        );
+        let _ = write!(out, r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#, width / 2.0, escape(&self.title));
+        for (j, row) in self.values.iter().enumerate() {
+            for (i, v) in row.iter().enumerate() {
+                if !v.is_finite() {
+                    continue;
+                }
+                let (r, g, b) = viridis((v - v0) / (v1 - v0));
+                let (x, y) = (ml + i as f64 * cw, mt + ph - (j + 1) as f64 * ch);
+                let _ = write!(out, r#"<rect x="{x:.1}" y="{y:.1}" width="{:.1}" height="{:.1}" fill="rgb({r},{g},{b})"><title>{:.3}</title></rect>"#, cw + 0.5, ch + 0.5, v);
+            }
+        }
+        let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
+        let label_every = |n: usize| (n / 6).max(1);
+        for (i, x) in self.xs.iter().enumerate().step_by(label_every(nx)) {
+            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{x:.0}</text>"#, ml + (i as f64 + 0.5) * cw, mt + ph + 16.0);
+        }
+        for (j, y) in self.ys.iter().enumerate().step_by(label_every(ny)) {
+            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{y:.0}</text>"#, ml - 6.0, mt + ph - (j as f64 + 0.5) * ch + 4.0);
+        }
+        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, ml + pw / 2.0, height - 12.0, escape(&self.x_label));
+        let _ = write!(out, r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#, mt + ph / 2.0, escape(&self.y_label));
+        // Colour bar.
+        let bx = ml + pw + 20.0;
+        for k in 0..50 {
+            let t = k as f64 / 49.0;
+            let (r, g, b) = viridis(t);
+            let y = mt + ph - (k + 1) as f64 * ph / 50.0;
+            let _ = write!(out, r#"<rect x="{bx:.1}" y="{y:.1}" width="16" height="{:.1}" fill="rgb({r},{g},{b})"/>"#, ph / 50.0 + 0.5);
+        }
+        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + ph, fmt_tick(v0, (v1 - v0) / 10.0));
+        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + 10.0, fmt_tick(v1, (v1 - v0) / 10.0));
+        let _ = write!(out, r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#, bx + 70.0, mt + ph / 2.0, escape(&self.value_label));
+        out.push_str("</svg>\n");
+        out
+    }
+}
