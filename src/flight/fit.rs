@@ -72,20 +72,53 @@ pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
         .sum()
 }
 
-fn to_aero(x: &[Real; 6]) -> Aero {
-    Aero { c_d0: x[0].exp(), c_ds: x[1].exp(), c_dre: x[2].exp(), c_l1: x[3].exp(), c_l2: x[4].exp(), spin_tau_s: x[5].exp() }
+const N: usize = 8;
+
+fn to_aero(x: &[Real; N]) -> Aero {
+    Aero {
+        c_d0: x[0].exp(),
+        c_ds: x[1].exp(),
+        c_ds2: x[2].exp(),
+        c_dv: x[3].exp(),
+        c_l1: x[4].exp(),
+        c_l2: x[5].exp(),
+        c_l3: x[6].exp(),
+        spin_tau_s: x[7].exp(),
+    }
 }
 
-fn from_aero(a: &Aero) -> [Real; 6] {
-    [a.c_d0.ln(), a.c_ds.ln(), a.c_dre.ln(), a.c_l1.ln(), a.c_l2.ln(), a.spin_tau_s.ln()]
+fn from_aero(a: &Aero) -> [Real; N] {
+    [
+        a.c_d0.ln(),
+        a.c_ds.ln(),
+        a.c_ds2.max(1e-6).ln(),
+        a.c_dv.max(1e-6).ln(),
+        a.c_l1.ln(),
+        a.c_l2.ln(),
+        a.c_l3.max(1e-6).ln(),
+        a.spin_tau_s.ln(),
+    ]
 }
 
-/// Nelder-Mead from `start`, `iterations` steps; returns the best coefficients and their cost.
+/// Nelder-Mead from `start`, restarted from its own best point `restarts` times (a fresh simplex escapes the
+/// collapses that stall a single run); returns the best coefficients and their cost.
 pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {
-    let f = |x: &[Real; 6]| cost(&to_aero(x), rows);
+    let mut best = (*start, cost(start, rows));
+    for _ in 0..4 {
+        let next = nelder_mead(rows, &best.0, iterations);
+        if next.1 >= best.1 - 1e-9 {
+            break;
+        }
+        best = next;
+    }
+    best
+}
+
+fn nelder_mead(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {
+    let f = |x: &[Real; N]| cost(&to_aero(x), rows);
     let x0 = from_aero(start);
-    let mut simplex: Vec<([Real; 6], Real)> = vec![(x0, f(&x0))];
-    for i in 0..6 {
+    let mut simplex: Vec<([Real; N], Real)> = vec![(x0, f(&x0))];
+    for i in 0..N {
         let mut x = x0;
         x[i] += 0.25;
         simplex.push((x, f(&x)));
@@ -93,16 +126,16 @@ pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real
     for _ in 0..iterations {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
         let n = simplex.len() - 1;
-        let mut centroid = [0.0; 6];
+        let mut centroid = [0.0; N];
         for (x, _) in &simplex[..n] {
-            for k in 0..6 {
+            for k in 0..N {
                 centroid[k] += x[k] / n as Real;
             }
         }
         let worst = simplex[n];
         let along = |t: Real| {
-            let mut x = [0.0; 6];
-            for k in 0..6 {
+            let mut x = [0.0; N];
+            for k in 0..N {
                 x[k] = centroid[k] + t * (worst.0[k] - centroid[k]);
             }
             x
@@ -123,7 +156,7 @@ pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real
             } else {
                 let best = simplex[0].0;
                 for (x, fx) in simplex.iter_mut().skip(1) {
-                    for k in 0..6 {
+                    for k in 0..N {
                         x[k] = best[k] + 0.5 * (x[k] - best[k]);
                     }
                     *fx = f(x);
