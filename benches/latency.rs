@@ -19,25 +19,13 @@ fn quantile(v: &mut [f64], q: f64) -> f64 {
 }
 
 fn main() {
-    let shots: u64 = std::env::args()
-        .skip(1)
-        .find_map(|a| a.parse().ok())
-        .unwrap_or(200);
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
-        .build()
-        .unwrap();
+    let shots: u64 = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(200);
+    let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
     rt.block_on(async {
         let (config, setups) = DaemonConfig::parse("[[rig]]\nname = \"rig1\"\n").unwrap();
         let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
-        let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![])
-            .open()
-            .await
-            .unwrap();
-        let rig = ZenohArgs::loopback(vec![], vec![endpoint])
-            .open()
-            .await
-            .unwrap();
+        let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+        let rig = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
         let frames: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
         let results: Arc<Mutex<Vec<(f64, f64)>>> = Default::default();
         let f = frames.clone();
@@ -45,8 +33,7 @@ fn main() {
             .declare_subscriber("mocap/rig1/clubhead")
             .callback(move |s| {
                 let now = Instant::now();
-                if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&s.payload().to_bytes())
-                {
+                if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&s.payload().to_bytes()) {
                     if let Some(frame) = v["frame"].as_u64() {
                         f.lock().unwrap().insert(frame, now);
                     }
@@ -61,9 +48,7 @@ fn main() {
                 let now = Instant::now();
                 if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&s.payload().to_bytes()) {
                     if let Some(t) = f.lock().unwrap().get(&l.frame) {
-                        r.lock()
-                            .unwrap()
-                            .push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
+                        r.lock().unwrap().push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
                     }
                 }
             })
@@ -71,27 +56,15 @@ fn main() {
             .unwrap();
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
         let daemon = tokio::spawn(async move {
-            impactd::daemon::run(
-                config,
-                setups,
-                &daemon_session,
-                RunOptions::default(),
-                async {
-                    let _ = stopped.await;
-                },
-            )
+            impactd::daemon::run(config, setups, &daemon_session, RunOptions::default(), async {
+                let _ = stopped.await;
+            })
             .await
             .unwrap();
             daemon_session.close().await.unwrap();
         });
-        let options = SimOptions {
-            shots,
-            interval_s: 0.25,
-            ..SimOptions::default()
-        };
-        run_sim(&rig, options, std::future::pending())
-            .await
-            .unwrap();
+        let options = SimOptions { shots, interval_s: 0.25, ..SimOptions::default() };
+        run_sim(&rig, options, std::future::pending()).await.unwrap();
         tokio::time::sleep(Duration::from_millis(300)).await;
         let _ = stop.send(());
         daemon.await.unwrap();
@@ -100,10 +73,7 @@ fn main() {
         let mut in_daemon: Vec<f64> = results.iter().map(|r| r.1).collect();
         println!("{} of {shots} shots predicted", results.len());
         for (name, v) in [
-            (
-                "revealing frame -> prediction received (loopback)",
-                &mut end_to_end,
-            ),
+            ("revealing frame -> prediction received (loopback)", &mut end_to_end),
             ("in the daemon: callback -> published", &mut in_daemon),
         ] {
             let (p50, p99) = (quantile(v, 0.5), quantile(v, 0.99));

@@ -8,9 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::equipment::ClubSpec;
-use crate::impact::{
-    DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpulseModel, ImpulseVariant,
-};
+use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::wire::{DeliveryInput, PredictOutput};
 
 /// Predicts golf ball launch conditions from motion-capture samples of the clubhead.
@@ -324,8 +322,7 @@ pub struct BenchArgs {
 pub fn load_club(spec: &str) -> Result<ClubSpec> {
     let path = Path::new(spec);
     if spec.ends_with(".toml") || path.exists() {
-        let text =
-            std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
+        let text = std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
         ClubSpec::from_toml_str(&text).with_context(|| format!("club file {spec}"))
     } else {
         Ok(ClubSpec::preset(spec)?)
@@ -334,9 +331,9 @@ pub fn load_club(spec: &str) -> Result<ClubSpec> {
 
 fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
     Ok(match path {
-        Some(p) => Box::new(BufReader::new(
-            std::fs::File::open(p).with_context(|| format!("opening input {}", p.display()))?,
-        )),
+        Some(p) => {
+            Box::new(BufReader::new(std::fs::File::open(p).with_context(|| format!("opening input {}", p.display()))?))
+        }
         None => Box::new(BufReader::new(std::io::stdin())),
     })
 }
@@ -344,10 +341,9 @@ fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
 /// The field a prediction error is about, so the message can name it.
 fn describe(err: &ImpactError, input: &DeliveryInput) -> String {
     match err {
-        ImpactError::SpeedOutOfRange { speed_mps } => format!(
-            "field `club_speed_mph`: {:.1} mph ({speed_mps:.1} m/s) is outside 1-100 m/s",
-            input.club_speed_mph
-        ),
+        ImpactError::SpeedOutOfRange { speed_mps } => {
+            format!("field `club_speed_mph`: {:.1} mph ({speed_mps:.1} m/s) is outside 1-100 m/s", input.club_speed_mph)
+        }
         ImpactError::OffFace { .. } | ImpactError::Face(_) => {
             format!("fields `impact_h_mm`/`impact_v_mm`: {err}")
         }
@@ -411,11 +407,7 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
             }
         }
     })?;
-    Ok(if tally.rejected > 0 {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(if tally.rejected > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS })
 }
 
 fn bench(args: &BenchArgs) -> Result<ExitCode> {
@@ -446,12 +438,7 @@ fn bench(args: &BenchArgs) -> Result<ExitCode> {
             } else {
                 format!("{:.2} ms", ns / 1e6)
             };
-            writeln!(
-                out,
-                "{:<36} {:>14}",
-                r["name"].as_str().unwrap_or(""),
-                shown
-            )?;
+            writeln!(out, "{:<36} {:>14}", r["name"].as_str().unwrap_or(""), shown)?;
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -461,11 +448,7 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
     if !(args.rate >= 60.0 && args.rate <= 10_000.0) {
         bail!("--rate must be within 60 and 10000 Hz, got {}", args.rate);
     }
-    if args.noise_mm < 0.0
-        || args.noise_deg < 0.0
-        || args.jitter_us < 0.0
-        || !(0.0..1.0).contains(&args.drop)
-    {
+    if args.noise_mm < 0.0 || args.noise_deg < 0.0 || args.jitter_us < 0.0 || !(0.0..1.0).contains(&args.drop) {
         bail!("noise, jitter and drop probability must not be negative (drop below 1)");
     }
     let estimators = args
@@ -473,10 +456,7 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         .iter()
         .map(|n| {
             crate::kinematics::EstimatorSpec::by_name(n).with_context(|| {
-                format!(
-                    "unknown estimator '{n}' (known: {})",
-                    crate::kinematics::EstimatorSpec::NAMES.join(", ")
-                )
+                format!("unknown estimator '{n}' (known: {})", crate::kinematics::EstimatorSpec::NAMES.join(", "))
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -516,32 +496,17 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         write!(out, " {:>21}", format!("{} rms / max", e.name))?;
     }
     writeln!(out)?;
-    for (k, key) in report.estimators[0]
-        .errors
-        .entries()
-        .iter()
-        .map(|(k, _)| *k)
-        .enumerate()
-    {
+    for (k, key) in report.estimators[0].errors.entries().iter().map(|(k, _)| *k).enumerate() {
         write!(out, "{key:<22}")?;
         for e in &report.estimators {
             let s = e.errors.entries()[k].1;
-            write!(
-                out,
-                " {:>10} / {:>8}",
-                format!("{:.4}", s.rms),
-                format!("{:.3}", s.max)
-            )?;
+            write!(out, " {:>10} / {:>8}", format!("{:.4}", s.rms), format!("{:.3}", s.max))?;
         }
         writeln!(out)?;
     }
     for e in &report.estimators {
         if !e.refused.is_empty() {
-            writeln!(
-                out,
-                "{}: {} estimated, refused {:?}",
-                e.name, e.shots, e.refused
-            )?;
+            writeln!(out, "{}: {} estimated, refused {:?}", e.name, e.shots, e.refused)?;
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -552,7 +517,8 @@ fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
     let equipment = Equipment::new(club.clone());
     let input = args.delivery.input();
     input.check_finite().map_err(|e| anyhow::anyhow!(describe(&e, &input)))?;
-    let state = input.to_delivery(club.loft_deg()).to_state(&equipment).map_err(|e| anyhow::anyhow!(describe(&e, &input)))?;
+    let state =
+        input.to_delivery(club.loft_deg()).to_state(&equipment).map_err(|e| anyhow::anyhow!(describe(&e, &input)))?;
     let r = crate::impact::ContinuousModel::default().simulate(&state, &equipment, 2)?;
     let m = crate::impact::LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     let chart = crate::plot::LineChart {
@@ -569,14 +535,35 @@ fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
         y_label: "force on the ball (N)".into(),
         y2_label: Some("ball spin (rpm)".into()),
         series: vec![
-            crate::plot::Series { name: "normal force".into(), points: r.trace.iter().map(|p| (p.t_us, p.normal_force_n)).collect(), color: crate::plot::PALETTE[0], right_axis: false },
-            crate::plot::Series { name: "tangential force (+ along the face's slip)".into(), points: r.trace.iter().map(|p| (p.t_us, p.tangential_force_n)).collect(), color: crate::plot::PALETTE[1], right_axis: false },
-            crate::plot::Series { name: "ball spin (right axis)".into(), points: r.trace.iter().map(|p| (p.t_us, p.ball_spin_rpm)).collect(), color: crate::plot::PALETTE[2], right_axis: true },
-            crate::plot::Series { name: "cover spin (right axis)".into(), points: r.trace.iter().map(|p| (p.t_us, p.cover_spin_rpm)).collect(), color: crate::plot::PALETTE[3], right_axis: true },
+            crate::plot::Series {
+                name: "normal force".into(),
+                points: r.trace.iter().map(|p| (p.t_us, p.normal_force_n)).collect(),
+                color: crate::plot::PALETTE[0],
+                right_axis: false,
+            },
+            crate::plot::Series {
+                name: "tangential force (+ along the face's slip)".into(),
+                points: r.trace.iter().map(|p| (p.t_us, p.tangential_force_n)).collect(),
+                color: crate::plot::PALETTE[1],
+                right_axis: false,
+            },
+            crate::plot::Series {
+                name: "ball spin (right axis)".into(),
+                points: r.trace.iter().map(|p| (p.t_us, p.ball_spin_rpm)).collect(),
+                color: crate::plot::PALETTE[2],
+                right_axis: true,
+            },
+            crate::plot::Series {
+                name: "cover spin (right axis)".into(),
+                points: r.trace.iter().map(|p| (p.t_us, p.cover_spin_rpm)).collect(),
+                color: crate::plot::PALETTE[3],
+                right_axis: true,
+            },
         ],
         equal_axes: false,
     };
-    std::fs::write(&args.output, chart.svg(900.0, 520.0)).with_context(|| format!("writing {}", args.output.display()))?;
+    std::fs::write(&args.output, chart.svg(900.0, 520.0))
+        .with_context(|| format!("writing {}", args.output.display()))?;
     eprintln!("wrote {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }
@@ -610,7 +597,13 @@ fn flight_fit(iterations: usize) -> Result<ExitCode> {
         let (c, a, l) = fit::predict(&aero, r);
         println!(
             "{:<8} {:>5.1} ({:+5.1}) {:>5.1} ({:+5.1}) {:>6.1} ({:+5.1})",
-            r.club, c, c - r.carry_yd, a, a - r.max_height_yd, l, l - r.land_angle_deg
+            r.club,
+            c,
+            c - r.carry_yd,
+            a,
+            a - r.max_height_yd,
+            l,
+            l - r.land_angle_deg
         );
     }
     Ok(ExitCode::SUCCESS)
@@ -626,19 +619,50 @@ fn plot_trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
         if line.trim().is_empty() {
             continue;
         }
-        let l: crate::wire::FlightInput = crate::jsonl::parse_line(&line).map_err(|e| anyhow::anyhow!("line {}: {e}", i + 1))?;
+        let l: crate::wire::FlightInput =
+            crate::jsonl::parse_line(&line).map_err(|e| anyhow::anyhow!("line {}: {e}", i + 1))?;
         let t = flight.fly(&l.to_launch().map_err(|e| anyhow::anyhow!("line {}: {e}", i + 1))?, 0.05);
         let color = crate::plot::PALETTE[side.len() % crate::plot::PALETTE.len()];
-        let name = format!("shot {}: carry {:.0} yd, apex {:.0} yd, {:+.0} yd", side.len() + 1, t.carry_yd, t.apex_yd, t.offline_yd);
+        let name = format!(
+            "shot {}: carry {:.0} yd, apex {:.0} yd, {:+.0} yd",
+            side.len() + 1,
+            t.carry_yd,
+            t.apex_yd,
+            t.offline_yd
+        );
         let yd = crate::units::m_to_yd;
-        side.push(crate::plot::Series { name: name.clone(), points: t.points.iter().map(|p| (yd(p[1]), yd(p[2]))).collect(), color, right_axis: false });
-        top.push(crate::plot::Series { name, points: t.points.iter().map(|p| (yd(p[1]), yd(p[3]))).collect(), color, right_axis: false });
+        side.push(crate::plot::Series {
+            name: name.clone(),
+            points: t.points.iter().map(|p| (yd(p[1]), yd(p[2]))).collect(),
+            color,
+            right_axis: false,
+        });
+        top.push(crate::plot::Series {
+            name,
+            points: t.points.iter().map(|p| (yd(p[1]), yd(p[3]))).collect(),
+            color,
+            right_axis: false,
+        });
     }
     if side.is_empty() {
         bail!("no launches read");
     }
-    let side = crate::plot::LineChart { title: "side view".into(), x_label: "downrange (yd)".into(), y_label: "height (yd)".into(), y2_label: None, series: side, equal_axes: false };
-    let top = crate::plot::LineChart { title: "top view (right +)".into(), x_label: "downrange (yd)".into(), y_label: "offline (yd)".into(), y2_label: None, series: top, equal_axes: false };
+    let side = crate::plot::LineChart {
+        title: "side view".into(),
+        x_label: "downrange (yd)".into(),
+        y_label: "height (yd)".into(),
+        y2_label: None,
+        series: side,
+        equal_axes: false,
+    };
+    let top = crate::plot::LineChart {
+        title: "top view (right +)".into(),
+        x_label: "downrange (yd)".into(),
+        y_label: "offline (yd)".into(),
+        y2_label: None,
+        series: top,
+        equal_axes: false,
+    };
     let (w, h) = (900.0, 380.0);
     let svg = format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><g>{}</g><g transform="translate(0,{h})">{}</g></svg>"#,
@@ -678,8 +702,18 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
                 MapMetric::Backspin => m.backspin_rpm,
                 MapMetric::Sidespin => m.sidespin_rpm,
                 MapMetric::Carry | MapMetric::Offline => {
-                    let t = flight.fly(&crate::flight::LaunchState { velocity_mps: launch.ball_velocity_mps, spin_radps: launch.ball_spin_radps }, 0.0);
-                    if args.metric == MapMetric::Carry { t.carry_yd } else { t.offline_yd }
+                    let t = flight.fly(
+                        &crate::flight::LaunchState {
+                            velocity_mps: launch.ball_velocity_mps,
+                            spin_radps: launch.ball_spin_radps,
+                        },
+                        0.0,
+                    );
+                    if args.metric == MapMetric::Carry {
+                        t.carry_yd
+                    } else {
+                        t.offline_yd
+                    }
                 }
             };
         }
@@ -701,7 +735,8 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
         ys,
         values,
     };
-    std::fs::write(&args.output, heat.svg(760.0, 520.0)).with_context(|| format!("writing {}", args.output.display()))?;
+    std::fs::write(&args.output, heat.svg(760.0, 520.0))
+        .with_context(|| format!("writing {}", args.output.display()))?;
     eprintln!("wrote {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }
@@ -718,12 +753,10 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::FlightFit { iterations } => flight_fit(iterations),
         Command::Map(args) => map(&args),
         Command::Schemas { output } => {
-            std::fs::create_dir_all(&output)
-                .with_context(|| format!("creating {}", output.display()))?;
+            std::fs::create_dir_all(&output).with_context(|| format!("creating {}", output.display()))?;
             for (name, schema) in crate::wire::schemas() {
                 let path = output.join(format!("{name}.json"));
-                std::fs::write(&path, schema)
-                    .with_context(|| format!("writing {}", path.display()))?;
+                std::fs::write(&path, schema).with_context(|| format!("writing {}", path.display()))?;
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -127,15 +127,10 @@ pub async fn shutdown_signal() {
 }
 
 fn runtime() -> Result<tokio::runtime::Runtime> {
-    tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
-        .build()
-        .context("starting the async runtime")
+    tokio::runtime::Builder::new_multi_thread().enable_all().build().context("starting the async runtime")
 }
 
-fn load_config(
-    path: Option<&std::path::Path>,
-) -> Result<(DaemonConfig, Vec<crate::pipeline::RigSetup>)> {
+fn load_config(path: Option<&std::path::Path>) -> Result<(DaemonConfig, Vec<crate::pipeline::RigSetup>)> {
     Ok(match path {
         Some(p) => DaemonConfig::load(p)?,
         None => {
@@ -161,31 +156,15 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
         if let Some(r) = &args.record {
             tracing::info!("recording to {}", r.display());
         }
-        let summary = crate::daemon::run(
-            config,
-            setups,
-            &session,
-            RunOptions {
-                record: args.record.clone(),
-            },
-            shutdown_signal(),
-        )
-        .await?;
+        let summary =
+            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone() }, shutdown_signal())
+                .await?;
         let _ = session.close().await;
         for (rig, c) in &summary.rigs {
-            tracing::info!(
-                "rig {rig}: {} samples, {} shots, {} predictions",
-                c.samples,
-                c.shots,
-                c.predictions
-            );
+            tracing::info!("rig {rig}: {} samples, {} shots, {} predictions", c.samples, c.shots, c.predictions);
         }
         if let Some(r) = &summary.recorder {
-            tracing::info!(
-                "recording closed: {} messages, {} dropped",
-                r.messages,
-                r.dropped
-            );
+            tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped);
         }
         Ok(ExitCode::SUCCESS)
     })
@@ -198,13 +177,7 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     let club = crate::cli::load_club(&args.club)?;
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
-    let sim = SimOptions {
-        club,
-        shots: args.shots,
-        seed: args.seed,
-        rate_hz: args.rate,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
     eprintln!(
         "impactd demo: daemon and a synthetic {} rig on loopback zenoh, {} shots at {} Hz; recording to {}",
         args.club,
@@ -214,29 +187,18 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     );
     let rt = runtime()?;
     let summary = rt.block_on(demo(
-        DemoOptions {
-            config,
-            sim,
-            record: Some(args.record.clone()),
-            json: args.json,
-        },
+        DemoOptions { config, sim, record: Some(args.record.clone()), json: args.json },
         shutdown_signal(),
     ))?;
-    let (shots, predictions): (u64, u64) = summary
-        .rigs
-        .values()
-        .fold((0, 0), |(s, p), c| (s + c.shots, p + c.predictions));
+    let (shots, predictions): (u64, u64) =
+        summary.rigs.values().fold((0, 0), |(s, p), c| (s + c.shots, p + c.predictions));
     eprintln!(
         "{predictions} of {} shots predicted ({shots} impacts detected). Recording: {} (try `impactd info {}` or open it in Foxglove)",
         args.shots,
         args.record.display(),
         args.record.display()
     );
-    Ok(if predictions >= args.shots {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(if predictions >= args.shots { ExitCode::SUCCESS } else { ExitCode::from(1) })
 }
 
 pub fn sim(args: &SimArgs) -> Result<ExitCode> {
@@ -275,9 +237,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
     let input = replay::load(&args.file)?;
     let (config, setups) = match (&args.config, &input.config_toml) {
         (Some(p), _) => DaemonConfig::load(p)?,
-        (None, Some(text)) => {
-            DaemonConfig::parse(text).context("the configuration stored in the recording")?
-        }
+        (None, Some(text)) => DaemonConfig::parse(text).context("the configuration stored in the recording")?,
         (None, None) => {
             let mut config = DaemonConfig::default();
             let mut names: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
@@ -287,10 +247,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
                 let template = config.rigs[0].clone();
                 config.rigs = names
                     .into_iter()
-                    .map(|name| crate::daemon::config::RigConfig {
-                        name,
-                        ..template.clone()
-                    })
+                    .map(|name| crate::daemon::config::RigConfig { name, ..template.clone() })
                     .collect();
             }
             let s = config.setups()?;
@@ -304,11 +261,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
     }
     let rt = runtime()?;
     rt.block_on(async {
-        let session = if args.publish {
-            Some(args.zenoh.open().await?)
-        } else {
-            None
-        };
+        let session = if args.publish { Some(args.zenoh.open().await?) } else { None };
         let mut publishers = std::collections::HashMap::new();
         if let Some(s) = &session {
             for r in &config.rigs {
@@ -323,12 +276,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
         let recorder = args
             .output
             .as_deref()
-            .map(|p| {
-                crate::daemon::recorder::Recorder::create(
-                    p,
-                    crate::daemon::live::session_metadata(&config),
-                )
-            })
+            .map(|p| crate::daemon::recorder::Recorder::create(p, crate::daemon::live::session_metadata(&config)))
             .transpose()?;
         let mut out = std::io::stdout().lock();
         let mut produced = Vec::new();
@@ -341,9 +289,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
             |t_ns| {
                 if let Some(r) = rate {
                     let t0 = *first_t.get_or_insert(t_ns);
-                    let due = std::time::Duration::from_secs_f64(
-                        (t_ns.saturating_sub(t0)) as f64 * 1e-9 / r,
-                    );
+                    let due = std::time::Duration::from_secs_f64((t_ns.saturating_sub(t0)) as f64 * 1e-9 / r);
                     if let Some(wait) = due.checked_sub(start.elapsed()) {
                         std::thread::sleep(wait);
                     }
@@ -369,12 +315,9 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
                     }
                     produced.push(bytes);
                 }
-                Event::Failed {
-                    shot,
-                    frame,
-                    reason,
-                    ..
-                } => eprintln!("shot {shot} (frame {frame}): no prediction: {reason}"),
+                Event::Failed { shot, frame, reason, .. } => {
+                    eprintln!("shot {shot} (frame {frame}): no prediction: {reason}")
+                }
                 _ => {}
             },
         );
@@ -396,11 +339,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
             }
         );
         if !input.recorded_launches.is_empty() {
-            let same = produced
-                .iter()
-                .zip(&input.recorded_launches)
-                .filter(|(a, b)| a == b)
-                .count();
+            let same = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
             eprintln!(
                 "{same} of {} recorded predictions reproduced byte for byte{}",
                 input.recorded_launches.len(),
@@ -410,9 +349,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
                     String::new()
                 }
             );
-            if same != input.recorded_launches.len()
-                || produced.len() != input.recorded_launches.len()
-            {
+            if same != input.recorded_launches.len() || produced.len() != input.recorded_launches.len() {
                 return Ok(ExitCode::from(1));
             }
         }
@@ -434,12 +371,7 @@ pub fn recover(args: &RecoverArgs) -> Result<ExitCode> {
     }
     let r = replay::recover(&args.file, &args.output)?;
     if r.complete {
-        eprintln!(
-            "{}: complete; {} messages copied to {}",
-            args.file.display(),
-            r.messages,
-            args.output.display()
-        );
+        eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
         Ok(ExitCode::SUCCESS)
     } else {
         eprintln!(

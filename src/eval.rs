@@ -5,12 +5,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::equipment::ClubSpec;
 use crate::impact::{
-    DeliveryMetrics, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant,
-    LaunchMetrics,
+    DeliveryMetrics, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant, LaunchMetrics,
 };
-use crate::kinematics::{
-    Calibration, DetectorConfig, EstimatorSpec, ImpactDetector, Track, TrackLimits,
-};
+use crate::kinematics::{Calibration, DetectorConfig, EstimatorSpec, ImpactDetector, Track, TrackLimits};
 use crate::math::Real;
 use crate::rng::Rng;
 use crate::swing::{sample, Sampling, Swing, SwingSpec};
@@ -115,11 +112,7 @@ impl Acc {
     }
     fn errors(&self) -> Errors {
         let s = |i: usize| ErrorStats {
-            rms: if self.n > 0 {
-                (self.sums[i] / self.n as Real).sqrt()
-            } else {
-                Real::NAN
-            },
+            rms: if self.n > 0 { (self.sums[i] / self.n as Real).sqrt() } else { Real::NAN },
             max: self.maxes[i],
         };
         Errors {
@@ -141,13 +134,8 @@ impl Acc {
 }
 
 fn launch(state: &ImpactState, eq: &Equipment) -> Option<LaunchMetrics> {
-    let l = ImpulseModel::new(ImpulseVariant::Adjusted)
-        .predict(state, eq)
-        .ok()?;
-    Some(LaunchMetrics::from_ball(
-        &l.ball_velocity_mps,
-        &l.ball_spin_radps,
-    ))
+    let l = ImpulseModel::new(ImpulseVariant::Adjusted).predict(state, eq).ok()?;
+    Some(LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps))
 }
 
 /// Runs the evaluation; `progress(done)` is called after each shot.
@@ -163,8 +151,7 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
         ..Sampling::default()
     };
     let mut accs = vec![Acc::default(); config.estimators.len()];
-    let mut refused =
-        vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
+    let mut refused = vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
     let calibration = Calibration::default();
     for shot in 0..config.shots {
         let spec = SwingSpec::random(&config.club, &mut rng);
@@ -196,8 +183,7 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
                     match (launch(&est.state, &eq), truth_launch) {
                         (Some(l), Some(t)) => {
                             accs[i].add(&[
-                                100.0 * (m.club_speed_mps - truth.club_speed_mps)
-                                    / truth.club_speed_mps,
+                                100.0 * (m.club_speed_mps - truth.club_speed_mps) / truth.club_speed_mps,
                                 m.attack_angle_deg - truth.attack_angle_deg,
                                 m.club_path_deg - truth.club_path_deg,
                                 m.face_angle_deg - truth.face_angle_deg,

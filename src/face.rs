@@ -23,10 +23,7 @@ pub enum FaceShape {
     /// A flat face (irons).
     Plane,
     /// A torus with horizontal (bulge) and vertical (roll) radii of curvature (drivers, woods).
-    Torus {
-        bulge_radius_m: Real,
-        roll_radius_m: Real,
-    },
+    Torus { bulge_radius_m: Real, roll_radius_m: Real },
 }
 
 impl FaceShape {
@@ -35,10 +32,7 @@ impl FaceShape {
         if bulge_radius_m.is_infinite() && roll_radius_m.is_infinite() {
             FaceShape::Plane
         } else {
-            FaceShape::Torus {
-                bulge_radius_m,
-                roll_radius_m,
-            }
+            FaceShape::Torus { bulge_radius_m, roll_radius_m }
         }
     }
 
@@ -98,18 +92,9 @@ impl Face {
     pub fn contact(&self, h_m: Real, v_m: Real) -> Result<FaceContact, FaceError> {
         let (n0, u0, t0) = (self.n0(), self.u0(), self.t0());
         match self.shape {
-            FaceShape::Plane => Ok(FaceContact {
-                point_m: self.center_m + h_m * t0 + v_m * u0,
-                normal: n0,
-            }),
-            FaceShape::Torus {
-                bulge_radius_m,
-                roll_radius_m,
-            } => {
-                let outside = || FaceError::OutsideCurvature {
-                    h_mm: h_m * 1e3,
-                    v_mm: v_m * 1e3,
-                };
+            FaceShape::Plane => Ok(FaceContact { point_m: self.center_m + h_m * t0 + v_m * u0, normal: n0 }),
+            FaceShape::Torus { bulge_radius_m, roll_radius_m } => {
+                let outside = || FaceError::OutsideCurvature { h_mm: h_m * 1e3, v_mm: v_m * 1e3 };
                 // Infinite roll (or bulge) reduces to a cylinder; handle the limit without inf*0.
                 let (sin_psi, cos_psi, v_arc) = if roll_radius_m.is_finite() {
                     let s = v_m / roll_radius_m;
@@ -163,10 +148,9 @@ impl Face {
         let (n0, u0, t0) = (self.n0(), self.u0(), self.t0());
         let d = point_m - self.center_m;
         match self.shape {
-            FaceShape::Torus {
-                bulge_radius_m,
-                roll_radius_m,
-            } if bulge_radius_m.is_finite() && roll_radius_m.is_finite() => {
+            FaceShape::Torus { bulge_radius_m, roll_radius_m }
+                if bulge_radius_m.is_finite() && roll_radius_m.is_finite() =>
+            {
                 // Coordinates about the revolution axis.
                 let a = d + bulge_radius_m * n0; // from the axis point
                 let y = a.dot(&u0);
@@ -185,11 +169,7 @@ impl Face {
                     v_m: roll_radius_m * psi.sin(),
                 }
             }
-            _ => FaceGap {
-                distance_m: d.dot(&n0),
-                h_m: d.dot(&t0),
-                v_m: d.dot(&u0),
-            },
+            _ => FaceGap { distance_m: d.dot(&n0), h_m: d.dot(&t0), v_m: d.dot(&u0) },
         }
     }
 }
@@ -213,10 +193,7 @@ mod tests {
         Face {
             center_m: Vector3::new(0.0408, 0.0114, 0.001),
             loft_rad: 9.8_f64.to_radians(),
-            shape: FaceShape::Torus {
-                bulge_radius_m: 0.305,
-                roll_radius_m: 0.305,
-            },
+            shape: FaceShape::Torus { bulge_radius_m: 0.305, roll_radius_m: 0.305 },
         }
     }
 
@@ -249,11 +226,7 @@ mod tests {
 
     #[test]
     fn plane_is_flat() {
-        let face = Face {
-            center_m: Vector3::zeros(),
-            loft_rad: 0.5,
-            shape: FaceShape::Plane,
-        };
+        let face = Face { center_m: Vector3::zeros(), loft_rad: 0.5, shape: FaceShape::Plane };
         let c = face.contact(0.01, -0.02).unwrap();
         assert!((c.normal - face.n0()).norm() < 1e-15);
         assert!(c.point_m.dot(&face.n0()).abs() < 1e-15);
@@ -271,20 +244,13 @@ mod tests {
     fn gap_inverts_contact() {
         for face in [
             driver_face(),
-            Face {
-                center_m: Vector3::new(0.004, 0.005, 0.001),
-                loft_rad: 0.53,
-                shape: FaceShape::Plane,
-            },
+            Face { center_m: Vector3::new(0.004, 0.005, 0.001), loft_rad: 0.53, shape: FaceShape::Plane },
         ] {
             for &(h, v) in &[(0.0, 0.0), (0.02, -0.01), (-0.035, 0.012)] {
                 let c = face.contact(h, v).unwrap();
                 let g = face.gap(&(c.point_m + 0.0213 * c.normal));
                 assert!((g.distance_m - 0.0213).abs() < 1e-12, "{g:?}");
-                assert!(
-                    (g.h_m - h).abs() < 1e-12 && (g.v_m - v).abs() < 1e-12,
-                    "{g:?}"
-                );
+                assert!((g.h_m - h).abs() < 1e-12 && (g.v_m - v).abs() < 1e-12, "{g:?}");
             }
         }
     }

@@ -67,17 +67,13 @@ where
         let text = match result {
             Ok(o) => {
                 tally.answered += 1;
-                serde_json::to_string(&o)
-                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
             }
             Err(reason) => {
                 tally.rejected += 1;
                 writeln!(err, "{tool}: line {n}: {reason}").map_err(JsonlError::Write)?;
-                serde_json::to_string(&LineError {
-                    line: n,
-                    error: &reason,
-                })
-                .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                serde_json::to_string(&LineError { line: n, error: &reason })
+                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
             }
         };
         writeln!(out, "{text}").map_err(JsonlError::Write)?;

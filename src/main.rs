@@ -5,15 +5,10 @@ use clap::Parser;
 fn main() -> ExitCode {
     let cli = impactd::cli::Cli::parse();
     // The demo prints its own lines; elsewhere impactd logs at info and zenoh at warn.
-    let default_filter = if cli.is_demo() {
-        "warn"
-    } else {
-        "info,zenoh=warn"
-    };
+    let default_filter = if cli.is_demo() { "warn" } else { "info,zenoh=warn" };
     tracing_subscriber::fmt()
         .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| default_filter.into()),
+            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| default_filter.into()),
         )
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .with_writer(std::io::stderr)

@@ -7,8 +7,7 @@ use crate::equipment::ClubSpec;
 use crate::impact::{ContinuousModel, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
-    Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track,
-    TrackLimits,
+    Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
 use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput};
 
@@ -57,6 +56,8 @@ pub struct RigSetup {
     pub calibration: Calibration,
     pub detector: DetectorConfig,
     pub track: TrackLimits,
+    /// The ball flight added to each prediction (`None`: no flight).
+    pub flight: Option<crate::flight::Flight>,
 }
 
 impl RigSetup {
@@ -71,6 +72,7 @@ impl RigSetup {
             calibration: Calibration::default(),
             detector: DetectorConfig::default(),
             track: TrackLimits::default(),
+            flight: Some(crate::flight::Flight::default()),
         }
     }
 }
@@ -86,12 +88,7 @@ pub enum Event {
     /// models there are two, in publication order.
     Launch(LaunchPrediction),
     /// An impact was found but no prediction could be made.
-    Failed {
-        shot: u64,
-        frame: u64,
-        reason: String,
-        key: &'static str,
-    },
+    Failed { shot: u64, frame: u64, reason: String, key: &'static str },
 }
 
 /// Counters of one rig's pipeline.
@@ -141,15 +138,8 @@ impl Pipeline {
         self.counts.samples += 1;
         match self.track.push(sample) {
             Err(reason) => {
-                *self
-                    .counts
-                    .rejected
-                    .entry(reason.key().to_string())
-                    .or_default() += 1;
-                out(Event::Rejected {
-                    frame: sample.frame,
-                    reason,
-                });
+                *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
+                out(Event::Rejected { frame: sample.frame, reason });
             }
             Ok(Accepted::Occluded) => {
                 self.counts.occluded += 1;
@@ -158,10 +148,7 @@ impl Pipeline {
             Ok(Accepted::Pose { .. }) => {
                 self.counts.accepted += 1;
                 self.counts.dropped = self.track.counts.dropped;
-                if let Some(detections) =
-                    self.detector
-                        .on_pose(&self.track, &self.setup.club, &self.estimators)
-                {
+                if let Some(detections) = self.detector.on_pose(&self.track, &self.setup.club, &self.estimators) {
                     for d in detections {
                         self.counts.shots += 1;
                         let shot = self.counts.shots;
@@ -174,12 +161,7 @@ impl Pipeline {
 
     fn fail(&mut self, shot: u64, frame: u64, reason: String, key: &'static str, out: &mut dyn FnMut(Event)) {
         *self.counts.failed.entry(key.to_string()).or_default() += 1;
-        out(Event::Failed {
-            shot,
-            frame,
-            reason,
-            key,
-        });
+        out(Event::Failed { shot, frame, reason, key });
     }
 
     fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut dyn FnMut(Event)) {
@@ -218,6 +200,15 @@ impl Pipeline {
                         frames_used: est.quality.frames_used,
                         quality: est.quality.score,
                         latency_us: 0.0,
+                        flight: self.setup.flight.as_ref().map(|f| {
+                            f.fly(
+                                &crate::flight::LaunchState {
+                                    velocity_mps: launch.ball_velocity_mps,
+                                    spin_radps: launch.ball_spin_radps,
+                                },
+                                0.0,
+                            )
+                        }),
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),
@@ -238,32 +229,13 @@ mod tests {
         let mut p = Pipeline::new(RigSetup::new("bay1", club.clone()));
         let eq = Equipment::new(club.clone());
         let swing = Swing::new(&SwingSpec::random(&club, &mut Rng::new(1)), &eq).unwrap();
-        let s = sample(
-            &swing,
-            &Sampling::default(),
-            &Calibration::default(),
-            1_000_000_000,
-            1,
-            &mut Rng::new(2),
-        );
+        let s = sample(&swing, &Sampling::default(), &Calibration::default(), 1_000_000_000, 1, &mut Rng::new(2));
         let mut out = Vec::new();
         for x in &s.samples {
             p.on_sample(x, &mut out);
         }
-        assert_eq!(
-            out.iter().filter(|e| matches!(e, Event::Impact(_))).count(),
-            1
-        );
-        let launch = out
-            .iter()
-            .find_map(|e| {
-                if let Event::Launch(l) = e {
-                    Some(l)
-                } else {
-                    None
-                }
-            })
-            .unwrap();
+        assert_eq!(out.iter().filter(|e| matches!(e, Event::Impact(_))).count(), 1);
+        let launch = out.iter().find_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).unwrap();
         assert_eq!(launch.shot, 1);
         assert_eq!(launch.model, "impulse/adjusted");
         assert!(

@@ -30,7 +30,15 @@ fn nice_step(span: f64, ticks: f64) -> f64 {
     let raw = (span / ticks).max(1e-12);
     let mag = 10f64.powf(raw.log10().floor());
     let r = raw / mag;
-    mag * if r < 1.5 { 1.0 } else if r < 3.5 { 2.0 } else if r < 7.5 { 5.0 } else { 10.0 }
+    mag * if r < 1.5 {
+        1.0
+    } else if r < 3.5 {
+        2.0
+    } else if r < 7.5 {
+        5.0
+    } else {
+        10.0
+    }
 }
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
@@ -86,40 +94,87 @@ impl LineChart {
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">"#
         );
         let _ = write!(out, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        let _ = write!(out, r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#, width / 2.0, escape(&self.title));
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#,
+            width / 2.0,
+            escape(&self.title)
+        );
         // Grid and ticks.
         let xs = nice_step(x1 - x0, 8.0);
         let mut x = (x0 / xs).ceil() * xs;
         while x <= x1 + 1e-9 {
             let px = sx(x);
-            let _ = write!(out, r##"<line x1="{px:.1}" y1="{mt}" x2="{px:.1}" y2="{:.1}" stroke="#e5e5e5"/>"##, mt + ph);
-            let _ = write!(out, r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, mt + ph + 16.0, fmt_tick(x, xs));
+            let _ =
+                write!(out, r##"<line x1="{px:.1}" y1="{mt}" x2="{px:.1}" y2="{:.1}" stroke="#e5e5e5"/>"##, mt + ph);
+            let _ = write!(
+                out,
+                r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+                mt + ph + 16.0,
+                fmt_tick(x, xs)
+            );
             x += xs;
         }
         let ys = nice_step(y1 - y0, 6.0);
         let mut y = (y0 / ys).ceil() * ys;
         while y <= y1 + 1e-9 {
             let py = sy(y);
-            let _ = write!(out, r##"<line x1="{ml}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#e5e5e5"/>"##, ml + pw);
-            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#, ml - 6.0, py + 4.0, fmt_tick(y, ys));
+            let _ =
+                write!(out, r##"<line x1="{ml}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#e5e5e5"/>"##, ml + pw);
+            let _ = write!(
+                out,
+                r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
+                ml - 6.0,
+                py + 4.0,
+                fmt_tick(y, ys)
+            );
             y += ys;
         }
         if self.y2_label.is_some() {
             let ys2 = nice_step(y21 - y20, 6.0);
             let mut y = (y20 / ys2).ceil() * ys2;
             while y <= y21 + 1e-9 {
-                let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, ml + pw + 6.0, sy2(y) + 4.0, fmt_tick(y, ys2));
+                let _ = write!(
+                    out,
+                    r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
+                    ml + pw + 6.0,
+                    sy2(y) + 4.0,
+                    fmt_tick(y, ys2)
+                );
                 y += ys2;
             }
         }
         if y0 < 0.0 && y1 > 0.0 {
-            let _ = write!(out, r##"<line x1="{ml}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#999"/>"##, sy(0.0), ml + pw, sy(0.0));
+            let _ = write!(
+                out,
+                r##"<line x1="{ml}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#999"/>"##,
+                sy(0.0),
+                ml + pw,
+                sy(0.0)
+            );
         }
         let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
-        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, ml + pw / 2.0, height - 12.0, escape(&self.x_label));
-        let _ = write!(out, r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#, mt + ph / 2.0, escape(&self.y_label));
+        let _ = write!(
+            out,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            ml + pw / 2.0,
+            height - 12.0,
+            escape(&self.x_label)
+        );
+        let _ = write!(
+            out,
+            r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
+            mt + ph / 2.0,
+            escape(&self.y_label)
+        );
         if let Some(l) = &self.y2_label {
-            let _ = write!(out, r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#, width - 14.0, mt + ph / 2.0, escape(l));
+            let _ = write!(
+                out,
+                r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#,
+                width - 14.0,
+                mt + ph / 2.0,
+                escape(l)
+            );
         }
         for (i, s) in self.series.iter().enumerate() {
             let pts: Vec<String> = s
@@ -129,9 +184,22 @@ impl LineChart {
                 .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), if s.right_axis { sy2(y) } else { sy(y) }))
                 .collect();
             let dash = if s.right_axis { r#" stroke-dasharray="6,3""# } else { "" };
-            let _ = write!(out, r#"<polyline fill="none" stroke="{}" stroke-width="1.8"{dash} points="{}"/>"#, s.color, pts.join(" "));
+            let _ = write!(
+                out,
+                r#"<polyline fill="none" stroke="{}" stroke-width="1.8"{dash} points="{}"/>"#,
+                s.color,
+                pts.join(" ")
+            );
             let ly = mt + 14.0 + 16.0 * i as f64;
-            let _ = write!(out, r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="2"{dash}/>"#, ml + 10.0, ly - 4.0, ml + 30.0, ly - 4.0, s.color);
+            let _ = write!(
+                out,
+                r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="2"{dash}/>"#,
+                ml + 10.0,
+                ly - 4.0,
+                ml + 30.0,
+                ly - 4.0,
+                s.color
+            );
             let _ = write!(out, r#"<text x="{:.1}" y="{ly:.1}">{}</text>"#, ml + 36.0, escape(&s.name));
         }
         out.push_str("</svg>\n");
@@ -180,7 +248,12 @@ impl Heatmap {
             out,
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12"><rect width="100%" height="100%" fill="white"/>"#
         );
-        let _ = write!(out, r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#, width / 2.0, escape(&self.title));
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#,
+            width / 2.0,
+            escape(&self.title)
+        );
         for (j, row) in self.values.iter().enumerate() {
             for (i, v) in row.iter().enumerate() {
                 if !v.is_finite() {
@@ -188,30 +261,69 @@ impl Heatmap {
                 }
                 let (r, g, b) = viridis((v - v0) / (v1 - v0));
                 let (x, y) = (ml + i as f64 * cw, mt + ph - (j + 1) as f64 * ch);
-                let _ = write!(out, r#"<rect x="{x:.1}" y="{y:.1}" width="{:.1}" height="{:.1}" fill="rgb({r},{g},{b})"><title>{:.3}</title></rect>"#, cw + 0.5, ch + 0.5, v);
+                let _ = write!(
+                    out,
+                    r#"<rect x="{x:.1}" y="{y:.1}" width="{:.1}" height="{:.1}" fill="rgb({r},{g},{b})"><title>{:.3}</title></rect>"#,
+                    cw + 0.5,
+                    ch + 0.5,
+                    v
+                );
             }
         }
         let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
         let label_every = |n: usize| (n / 6).max(1);
         for (i, x) in self.xs.iter().enumerate().step_by(label_every(nx)) {
-            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{x:.0}</text>"#, ml + (i as f64 + 0.5) * cw, mt + ph + 16.0);
+            let _ = write!(
+                out,
+                r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{x:.0}</text>"#,
+                ml + (i as f64 + 0.5) * cw,
+                mt + ph + 16.0
+            );
         }
         for (j, y) in self.ys.iter().enumerate().step_by(label_every(ny)) {
-            let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{y:.0}</text>"#, ml - 6.0, mt + ph - (j as f64 + 0.5) * ch + 4.0);
+            let _ = write!(
+                out,
+                r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{y:.0}</text>"#,
+                ml - 6.0,
+                mt + ph - (j as f64 + 0.5) * ch + 4.0
+            );
         }
-        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, ml + pw / 2.0, height - 12.0, escape(&self.x_label));
-        let _ = write!(out, r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#, mt + ph / 2.0, escape(&self.y_label));
+        let _ = write!(
+            out,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            ml + pw / 2.0,
+            height - 12.0,
+            escape(&self.x_label)
+        );
+        let _ = write!(
+            out,
+            r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
+            mt + ph / 2.0,
+            escape(&self.y_label)
+        );
         // Colour bar.
         let bx = ml + pw + 20.0;
         for k in 0..50 {
             let t = k as f64 / 49.0;
             let (r, g, b) = viridis(t);
             let y = mt + ph - (k + 1) as f64 * ph / 50.0;
-            let _ = write!(out, r#"<rect x="{bx:.1}" y="{y:.1}" width="16" height="{:.1}" fill="rgb({r},{g},{b})"/>"#, ph / 50.0 + 0.5);
+            let _ = write!(
+                out,
+                r#"<rect x="{bx:.1}" y="{y:.1}" width="16" height="{:.1}" fill="rgb({r},{g},{b})"/>"#,
+                ph / 50.0 + 0.5
+            );
         }
-        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + ph, fmt_tick(v0, (v1 - v0) / 10.0));
-        let _ = write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + 10.0, fmt_tick(v1, (v1 - v0) / 10.0));
-        let _ = write!(out, r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#, bx + 70.0, mt + ph / 2.0, escape(&self.value_label));
+        let _ =
+            write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + ph, fmt_tick(v0, (v1 - v0) / 10.0));
+        let _ =
+            write!(out, r#"<text x="{:.1}" y="{:.1}">{}</text>"#, bx + 20.0, mt + 10.0, fmt_tick(v1, (v1 - v0) / 10.0));
+        let _ = write!(
+            out,
+            r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#,
+            bx + 70.0,
+            mt + ph / 2.0,
+            escape(&self.value_label)
+        );
         out.push_str("</svg>\n");
         out
     }

@@ -37,10 +37,7 @@ pub fn delivery_spread(club: &ClubSpec) -> Vec<Delivery> {
 
 /// Impact states for the spread.
 pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
-    delivery_spread(&equipment.club)
-        .iter()
-        .filter_map(|d| d.to_state(equipment).ok())
-        .collect()
+    delivery_spread(&equipment.club).iter().filter_map(|d| d.to_state(equipment).ok()).collect()
 }
 
 /// The impulse-momentum stages: `impulse/<variant>/<club>`, one prediction per operation.
@@ -56,10 +53,7 @@ pub fn impulse_stages() -> Vec<Stage> {
                 name,
                 run: Box::new(move |i| {
                     let s = &states[i % states.len()];
-                    model
-                        .predict(s, &eq)
-                        .map(|l| l.ball_velocity_mps.x)
-                        .unwrap_or(0.0)
+                    model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
                 }),
             });
         }
@@ -90,11 +84,8 @@ pub fn continuous_stages() -> Vec<Stage> {
 pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
     let eq = Equipment::new(club.clone());
     let mut rng = Rng::new(0x5EED);
-    let sampling = Sampling {
-        position_noise_m: 0.2e-3,
-        orientation_noise_rad: 0.1f64.to_radians(),
-        ..Default::default()
-    };
+    let sampling =
+        Sampling { position_noise_m: 0.2e-3, orientation_noise_rad: 0.1f64.to_radians(), ..Default::default() };
     let calibration = Calibration::default();
     let mut out = Vec::new();
     while out.len() < 32 {
@@ -107,12 +98,7 @@ pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
         for s in &sampled.samples {
             let _ = track.push(s);
             if s.t_ns > sampled.t_impact_ns {
-                let poses: Vec<ClubPose> = track
-                    .poses()
-                    .iter()
-                    .filter(|p| p.t_ns < s.t_ns)
-                    .copied()
-                    .collect();
+                let poses: Vec<ClubPose> = track.poses().iter().filter(|p| p.t_ns < s.t_ns).copied().collect();
                 out.push((poses, s.t_ns));
                 break;
             }
@@ -140,9 +126,7 @@ pub fn extrapolation_stages() -> Vec<Stage> {
                         ball_radius_m: crate::equipment::BallSpec::SEED.radius_m,
                         max_extrapolation_s: 0.01,
                     };
-                    estimate(&spec, poses, *reveal, &scene)
-                        .map(|e| e.state.cg_velocity_mps.x)
-                        .unwrap_or(0.0)
+                    estimate(&spec, poses, *reveal, &scene).map(|e| e.state.cg_velocity_mps.x).unwrap_or(0.0)
                 }),
             });
         }
@@ -157,11 +141,8 @@ pub fn pipeline_stages() -> Vec<Stage> {
     for club in [ClubSpec::driver(), ClubSpec::iron7()] {
         let eq = Equipment::new(club.clone());
         let mut rng = Rng::new(0xFEED);
-        let sampling = Sampling {
-            position_noise_m: 0.2e-3,
-            orientation_noise_rad: 0.1f64.to_radians(),
-            ..Default::default()
-        };
+        let sampling =
+            Sampling { position_noise_m: 0.2e-3, orientation_noise_rad: 0.1f64.to_radians(), ..Default::default() };
         let mut samples = Vec::new();
         let mut frame = 1;
         for k in 0..20u64 {
@@ -169,14 +150,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
             let Ok(swing) = Swing::new(&spec, &eq) else {
                 continue;
             };
-            let s = sample(
-                &swing,
-                &sampling,
-                &Calibration::default(),
-                1_000_000_000 * (k + 1),
-                frame,
-                &mut rng,
-            );
+            let s = sample(&swing, &sampling, &Calibration::default(), 1_000_000_000 * (k + 1), frame, &mut rng);
             frame = s.next_frame;
             samples.extend(s.samples);
         }
@@ -201,11 +175,28 @@ pub fn pipeline_stages() -> Vec<Stage> {
     out
 }
 
+/// One ball flight per operation: `flight/trajectory`, over the TrackMan table's launches.
+pub fn flight_stages() -> Vec<Stage> {
+    let rows = crate::flight::fit::parse_table(crate::flight::fit::TRACKMAN_CSV).unwrap_or_default();
+    let launches: Vec<crate::flight::LaunchState> = rows
+        .iter()
+        .map(|r| {
+            crate::flight::LaunchState::from_metrics(crate::units::mph_to_mps(r.ball_speed_mph), r.launch_angle_deg, 1.0, r.spin_rpm, 300.0)
+        })
+        .collect();
+    let flight = crate::flight::Flight::default();
+    vec![Stage {
+        name: "flight/trajectory".into(),
+        run: Box::new(move |i| flight.fly(&launches[i % launches.len()], 0.0).carry_m),
+    }]
+}
+
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
     let mut stages = impulse_stages();
     stages.extend(continuous_stages());
     stages.extend(extrapolation_stages());
+    stages.extend(flight_stages());
     stages.extend(pipeline_stages());
     stages
 }

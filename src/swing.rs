@@ -18,9 +18,7 @@
 //! jitter, dropped and occluded frames; everything is drawn from a seeded [`Rng`].
 
 use crate::equipment::ClubSpec;
-use crate::impact::{
-    Delivery, Equipment, ImpactError, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant,
-};
+use crate::impact::{Delivery, Equipment, ImpactError, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
 use crate::kinematics::so3;
 use crate::kinematics::{Calibration, ClubPose, ClubheadSample};
 use crate::math::{Isometry3, Real, Translation3Ext, UnitQuaternion, Vector3};
@@ -55,22 +53,11 @@ impl SwingSpec {
     pub fn random(club: &ClubSpec, rng: &mut Rng) -> SwingSpec {
         let driver = club.face.shape.is_curved();
         let (speed_mph, attack, loft) = if driver {
-            (
-                (85.0, 120.0),
-                (-4.0, 5.0),
-                (club.loft_deg() - 1.0, club.loft_deg() + 5.0),
-            )
+            ((85.0, 120.0), (-4.0, 5.0), (club.loft_deg() - 1.0, club.loft_deg() + 5.0))
         } else {
-            (
-                (65.0, 95.0),
-                (-7.0, -1.0),
-                (club.loft_deg() - 10.0, club.loft_deg() - 2.0),
-            )
+            ((65.0, 95.0), (-7.0, -1.0), (club.loft_deg() - 10.0, club.loft_deg() - 2.0))
         };
-        let (hw, hh) = (
-            club.face_half_width_m * 0.45,
-            club.face_half_height_m * 0.45,
-        );
+        let (hw, hh) = (club.face_half_width_m * 0.45, club.face_half_height_m * 0.45);
         let delivery = Delivery {
             club_speed_mps: crate::units::mph_to_mps(rng.uniform(speed_mph.0, speed_mph.1)),
             attack_angle_rad: rng.uniform(attack.0, attack.1).to_radians(),
@@ -81,9 +68,7 @@ impl SwingSpec {
             impact_v_m: rng.uniform(-hh, hh),
             club_angular_velocity_radps: Vector3::zeros(),
         };
-        let rand_vec = |rng: &mut Rng, scale: Real| {
-            Vector3::new(rng.normal(), rng.normal(), rng.normal()) * scale
-        };
+        let rand_vec = |rng: &mut Rng, scale: Real| Vector3::new(rng.normal(), rng.normal(), rng.normal()) * scale;
         // A centripetal load of 100-200 g at impact, on an arc of 1-2 m.
         let g_load = rng.uniform(100.0, 200.0);
         let arc_radius_m = (delivery.club_speed_mps.powi(2) / (g_load * 9.81)).clamp(1.0, 2.0);
@@ -137,14 +122,12 @@ impl Swing {
         let r_i = delivery.to_state(equipment)?.world_from_club.rotation;
         let lie = LIE_DEG.to_radians();
         let shaft_world = r_i * Vector3::new(0.0, lie.sin(), -lie.cos());
-        delivery.club_angular_velocity_radps =
-            omega_arc + spec.face_closure_degps.to_radians() * shaft_world;
+        delivery.club_angular_velocity_radps = omega_arc + spec.face_closure_degps.to_radians() * shaft_world;
         let truth = delivery.to_state(equipment)?;
         let r_fc = club.face.center_m;
         let f_i = truth.world_from_club.translation.vector + r_i * r_fc;
         let after = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&truth, equipment)?;
-        let v_face_after =
-            after.club_velocity_mps + after.club_angular_velocity_radps.cross(&(r_i * r_fc));
+        let v_face_after = after.club_velocity_mps + after.club_angular_velocity_radps.cross(&(r_i * r_fc));
         Ok(Swing {
             spec: *spec,
             delivery,
@@ -275,24 +258,12 @@ pub fn sample(
         }
         let mut pose = swing.pose(tau);
         let dp = Vector3::new(rng.normal(), rng.normal(), rng.normal()) * sampling.position_noise_m;
-        let dr =
-            Vector3::new(rng.normal(), rng.normal(), rng.normal()) * sampling.orientation_noise_rad;
+        let dr = Vector3::new(rng.normal(), rng.normal(), rng.normal()) * sampling.orientation_noise_rad;
         pose.translation.vector += dp;
         pose.rotation = so3::exp(&dr) * pose.rotation;
-        samples.push(
-            ClubPose {
-                frame: this_frame,
-                t_ns,
-                world_from_club: pose,
-            }
-            .to_sample(calibration),
-        );
+        samples.push(ClubPose { frame: this_frame, t_ns, world_from_club: pose }.to_sample(calibration));
     }
-    SampledSwing {
-        samples,
-        t_impact_ns,
-        next_frame: frame,
-    }
+    SampledSwing { samples, t_impact_ns, next_frame: frame }
 }
 
 #[cfg(test)]
@@ -311,21 +282,12 @@ mod tests {
                 let spec = SwingSpec::random(&club, &mut rng);
                 let swing = Swing::new(&spec, &eq).unwrap();
                 let p0 = swing.pose(0.0);
-                assert!(
-                    (p0.translation.vector - swing.truth.world_from_club.translation.vector).norm()
-                        < 1e-12
-                );
+                assert!((p0.translation.vector - swing.truth.world_from_club.translation.vector).norm() < 1e-12);
                 let h = 1e-7;
                 let (a, b) = (swing.pose(-h), swing.pose(-2.0 * h));
                 // Backward difference, second order.
-                let v = (3.0 * p0.translation.vector - 4.0 * a.translation.vector
-                    + b.translation.vector)
-                    / (2.0 * h);
-                assert!(
-                    (v - swing.truth.cg_velocity_mps).norm() < 1e-4,
-                    "{v} vs {}",
-                    swing.truth.cg_velocity_mps
-                );
+                let v = (3.0 * p0.translation.vector - 4.0 * a.translation.vector + b.translation.vector) / (2.0 * h);
+                assert!((v - swing.truth.cg_velocity_mps).norm() < 1e-4, "{v} vs {}", swing.truth.cg_velocity_mps);
                 let w = so3::log(&(p0.rotation * a.rotation.inverse())) / h;
                 assert!((w - swing.truth.angular_velocity_radps).norm() < 1e-2);
                 let m = DeliveryMetrics::from_state(&swing.truth, &club);

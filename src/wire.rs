@@ -55,10 +55,7 @@ impl DeliveryInput {
     /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
     /// left-handed golfer.
     pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {
-        let w = self
-            .club_angular_velocity_radps
-            .map(Vector3::from)
-            .unwrap_or_else(Vector3::zeros);
+        let w = self.club_angular_velocity_radps.map(Vector3::from).unwrap_or_else(Vector3::zeros);
         let left = self.handedness == Some(Handedness::Left);
         let s = if left { -1.0 } else { 1.0 };
         Delivery {
@@ -121,7 +118,8 @@ pub struct FlightInput {
 impl FlightInput {
     /// The launch state, or the reason it cannot be made.
     pub fn to_launch(&self) -> Result<crate::flight::LaunchState, String> {
-        let finite = |name: &str, v: Real| if v.is_finite() { Ok(v) } else { Err(format!("field `{name}` must be finite")) };
+        let finite =
+            |name: &str, v: Real| if v.is_finite() { Ok(v) } else { Err(format!("field `{name}` must be finite")) };
         if let (Some(v), Some(w)) = (self.ball_velocity_mps, self.ball_spin_radps) {
             for x in v.iter() {
                 finite("ball_velocity_mps", *x)?;
@@ -181,17 +179,12 @@ impl PredictOutput {
     pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness) -> Self {
         let (v, w) = match handedness {
             Handedness::Right => (launch.ball_velocity_mps, launch.ball_spin_radps),
-            Handedness::Left => (
-                crate::math::mirror_z(&launch.ball_velocity_mps),
-                mirror_z_axial(&launch.ball_spin_radps),
-            ),
+            Handedness::Left => {
+                (crate::math::mirror_z(&launch.ball_velocity_mps), mirror_z_axial(&launch.ball_spin_radps))
+            }
         };
         let metrics = LaunchMetrics::from_ball(&v, &w);
-        let sign = if handedness == Handedness::Left {
-            -1.0
-        } else {
-            1.0
-        };
+        let sign = if handedness == Handedness::Left { -1.0 } else { 1.0 };
         PredictOutput {
             smash_factor: metrics.ball_speed_mps / delivery.club_speed_mps,
             launch: metrics,
@@ -254,10 +247,7 @@ pub mod keys {
     }
     /// Whether a rig name can stand in a key expression.
     pub fn valid_rig_name(rig: &str) -> bool {
-        !rig.is_empty()
-            && rig
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        !rig.is_empty() && rig.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
     }
 }
 
@@ -273,12 +263,7 @@ pub struct QuaternionMsg {
 
 impl From<crate::math::UnitQuaternion> for QuaternionMsg {
     fn from(q: crate::math::UnitQuaternion) -> Self {
-        QuaternionMsg {
-            x: q.i,
-            y: q.j,
-            z: q.k,
-            w: q.w,
-        }
+        QuaternionMsg { x: q.i, y: q.j, z: q.k, w: q.w }
     }
 }
 
@@ -347,33 +332,21 @@ impl InputError {
 
 /// Parses a sample arriving on the key of `key_rig` with the given encoding (empty or plain
 /// `application/json` is accepted; an `impactd.ClubheadSample/<v>` schema must name this version).
-pub fn parse_sample(
-    key_rig: &str,
-    payload: &[u8],
-    encoding: &str,
-) -> Result<ClubheadSampleMsg, InputError> {
+pub fn parse_sample(key_rig: &str, payload: &[u8], encoding: &str) -> Result<ClubheadSampleMsg, InputError> {
     if payload.len() > MAX_PAYLOAD_BYTES {
-        return Err(InputError::Oversized {
-            bytes: payload.len(),
-        });
+        return Err(InputError::Oversized { bytes: payload.len() });
     }
     if let Some(schema) = encoding.split_once(';').map(|(_, s)| s) {
-        if schema.starts_with("impactd.ClubheadSample/")
-            && schema != format!("impactd.ClubheadSample/{WIRE_VERSION}")
-        {
+        if schema.starts_with("impactd.ClubheadSample/") && schema != format!("impactd.ClubheadSample/{WIRE_VERSION}") {
             return Err(InputError::WrongVersion {
                 encoding: encoding.to_string(),
                 expected: self::encoding("ClubheadSample"),
             });
         }
     }
-    let msg: ClubheadSampleMsg =
-        serde_json::from_slice(payload).map_err(|e| InputError::Malformed(e.to_string()))?;
+    let msg: ClubheadSampleMsg = serde_json::from_slice(payload).map_err(|e| InputError::Malformed(e.to_string()))?;
     if msg.rig != key_rig {
-        return Err(InputError::RigMismatch {
-            payload: msg.rig,
-            key: key_rig.to_string(),
-        });
+        return Err(InputError::RigMismatch { payload: msg.rig, key: key_rig.to_string() });
     }
     Ok(msg)
 }
@@ -438,6 +411,9 @@ pub struct LaunchPrediction {
     /// Time from receiving the revealing frame to publishing this prediction (us), measured live; a replay
     /// carries the recorded value.
     pub latency_us: f64,
+    /// Carry, apex, landing and offline of this launch (absent when the rig's `flight = false`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flight: Option<crate::flight::Trajectory>,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.

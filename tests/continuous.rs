@@ -2,9 +2,7 @@
 //! peak force, convergence, and its agreement with the adjusted impulse-momentum model where it holds.
 
 use impactd::equipment::ClubSpec;
-use impactd::impact::{
-    ContinuousModel, Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics,
-};
+use impactd::impact::{ContinuousModel, Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
 use impactd::math::Vector3;
 use impactd::rng::Rng;
 
@@ -22,10 +20,7 @@ fn delivery(speed_mps: f64, attack_deg: f64, loft_deg: f64) -> Delivery {
 }
 
 fn clubs() -> [(ClubSpec, f64, f64); 2] {
-    [
-        (ClubSpec::driver(), 13.0, -1.3),
-        (ClubSpec::iron7(), 25.0, -4.3),
-    ]
+    [(ClubSpec::driver(), 13.0, -1.3), (ClubSpec::iron7(), 25.0, -4.3)]
 }
 
 /// Newton's third law at every Runge-Kutta stage: linear momentum and angular momentum about the world origin
@@ -55,12 +50,7 @@ fn momentum_conserved_and_energy_never_increases() {
             let r = ContinuousModel::default().simulate(&state, &eq, 1).unwrap();
             let (l0, a0) = r.momentum_before;
             let (l1, a1) = r.momentum_after;
-            assert!(
-                (l1 - l0).norm() <= 1e-9 * l0.norm(),
-                "{} linear {:e}",
-                club.name,
-                (l1 - l0).norm() / l0.norm()
-            );
+            assert!((l1 - l0).norm() <= 1e-9 * l0.norm(), "{} linear {:e}", club.name, (l1 - l0).norm() / l0.norm());
             assert!(
                 (a1 - a0).norm() <= 1e-9 * a0.norm().max(l0.norm() * 0.1),
                 "{} angular {:e}",
@@ -85,19 +75,10 @@ fn driver_contact_time_and_peak_force() {
     let club = ClubSpec::driver();
     let eq = Equipment::new(club.clone());
     for speed in [45.0, 47.5, 50.0] {
-        let r = ContinuousModel::default()
-            .simulate(&delivery(speed, -1.3, 13.0).to_state(&eq).unwrap(), &eq, 0)
-            .unwrap();
-        assert!(
-            (0.35e-3..=0.6e-3).contains(&r.contact_time_s),
-            "{speed} m/s: {} ms",
-            r.contact_time_s * 1e3
-        );
-        assert!(
-            r.peak_normal_force_n > 10e3,
-            "{speed} m/s: {} N",
-            r.peak_normal_force_n
-        );
+        let r =
+            ContinuousModel::default().simulate(&delivery(speed, -1.3, 13.0).to_state(&eq).unwrap(), &eq, 0).unwrap();
+        assert!((0.35e-3..=0.6e-3).contains(&r.contact_time_s), "{speed} m/s: {} ms", r.contact_time_s * 1e3);
+        assert!(r.peak_normal_force_n > 10e3, "{speed} m/s: {} N", r.peak_normal_force_n);
     }
 }
 
@@ -106,27 +87,11 @@ fn driver_contact_time_and_peak_force() {
 fn the_integration_converges() {
     for (club, loft, attack) in clubs() {
         let eq = Equipment::new(club.clone());
-        let state = Delivery {
-            impact_h_m: 0.01,
-            impact_v_m: 0.004,
-            ..delivery(45.0, attack, loft)
-        }
-        .to_state(&eq)
-        .unwrap();
-        let run = |step_s: f64| {
-            ContinuousModel {
-                step_s,
-                ..ContinuousModel::default()
-            }
-            .predict(&state, &eq)
-            .unwrap()
-        };
-        let (a, b) = (
-            run(ContinuousModel::default().step_s),
-            run(ContinuousModel::default().step_s / 2.0),
-        );
-        let dv = (a.ball_velocity_mps.norm() - b.ball_velocity_mps.norm()).abs()
-            / b.ball_velocity_mps.norm();
+        let state =
+            Delivery { impact_h_m: 0.01, impact_v_m: 0.004, ..delivery(45.0, attack, loft) }.to_state(&eq).unwrap();
+        let run = |step_s: f64| ContinuousModel { step_s, ..ContinuousModel::default() }.predict(&state, &eq).unwrap();
+        let (a, b) = (run(ContinuousModel::default().step_s), run(ContinuousModel::default().step_s / 2.0));
+        let dv = (a.ball_velocity_mps.norm() - b.ball_velocity_mps.norm()).abs() / b.ball_velocity_mps.norm();
         let dw = (a.ball_spin_radps - b.ball_spin_radps).norm() / b.ball_spin_radps.norm();
         assert!(dv < 1e-4, "{} speed {dv:e}", club.name);
         assert!(dw < 1e-3, "{} spin {dw:e}", club.name);
@@ -142,29 +107,17 @@ fn agrees_with_the_adjusted_model_where_it_holds() {
         for speed in [35.0, 40.0, 45.0, 50.0, 55.0] {
             let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
             let c = ContinuousModel::default().predict(&state, &eq).unwrap();
-            let i = ImpulseModel::new(ImpulseVariant::Adjusted)
-                .predict(&state, &eq)
-                .unwrap();
+            let i = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&state, &eq).unwrap();
             let (c, i) = (
                 LaunchMetrics::from_ball(&c.ball_velocity_mps, &c.ball_spin_radps),
                 LaunchMetrics::from_ball(&i.ball_velocity_mps, &i.ball_spin_radps),
             );
             let speed_err = (c.ball_speed_mps / i.ball_speed_mps - 1.0).abs();
             if club.name == "driver" {
-                assert!(
-                    speed_err < 0.03,
-                    "driver {speed}: ball speed {:.1} %",
-                    100.0 * speed_err
-                );
+                assert!(speed_err < 0.03, "driver {speed}: ball speed {:.1} %", 100.0 * speed_err);
             } else {
-                assert!(
-                    (c.launch_angle_deg - i.launch_angle_deg).abs() < 1.5,
-                    "iron {speed}: launch"
-                );
-                assert!(
-                    (c.backspin_rpm / i.backspin_rpm - 1.0).abs() < 0.2,
-                    "iron {speed}: backspin"
-                );
+                assert!((c.launch_angle_deg - i.launch_angle_deg).abs() < 1.5, "iron {speed}: launch");
+                assert!((c.backspin_rpm / i.backspin_rpm - 1.0).abs() < 0.2, "iron {speed}: backspin");
             }
         }
     }
@@ -176,18 +129,8 @@ fn agrees_with_the_adjusted_model_where_it_holds() {
 fn iron_tangential_force_reverses() {
     let club = ClubSpec::iron7();
     let eq = Equipment::new(club.clone());
-    let r = ContinuousModel::default()
-        .simulate(&delivery(45.0, -4.3, 25.0).to_state(&eq).unwrap(), &eq, 1)
-        .unwrap();
-    let max = r
-        .trace
-        .iter()
-        .map(|p| p.tangential_force_n)
-        .fold(f64::MIN, f64::max);
-    let min = r
-        .trace
-        .iter()
-        .map(|p| p.tangential_force_n)
-        .fold(f64::MAX, f64::min);
+    let r = ContinuousModel::default().simulate(&delivery(45.0, -4.3, 25.0).to_state(&eq).unwrap(), &eq, 1).unwrap();
+    let max = r.trace.iter().map(|p| p.tangential_force_n).fold(f64::MIN, f64::max);
+    let min = r.trace.iter().map(|p| p.tangential_force_n).fold(f64::MAX, f64::min);
     assert!(max > 1000.0 && min < 0.0, "max {max} N, min {min} N");
 }

@@ -37,14 +37,9 @@ struct Daemon {
 async fn start_daemon(config: &str, record: Option<&Path>) -> Daemon {
     let (config, setups) = DaemonConfig::parse(config).unwrap();
     let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
-    let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![])
-        .open()
-        .await
-        .unwrap();
+    let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let options = RunOptions {
-        record: record.map(Path::to_path_buf),
-    };
+    let options = RunOptions { record: record.map(Path::to_path_buf) };
     let task = tokio::spawn(async move {
         let summary = impactd::daemon::run(config, setups, &session, options, async {
             let _ = stopped.await;
@@ -54,11 +49,7 @@ async fn start_daemon(config: &str, record: Option<&Path>) -> Daemon {
         session.close().await.unwrap();
         summary
     });
-    Daemon {
-        endpoint,
-        stop,
-        task,
-    }
+    Daemon { endpoint, stop, task }
 }
 
 impl Daemon {
@@ -69,21 +60,11 @@ impl Daemon {
 }
 
 async fn client(endpoint: &str) -> zenoh::Session {
-    ZenohArgs::loopback(vec![], vec![endpoint.to_string()])
-        .open()
-        .await
-        .unwrap()
+    ZenohArgs::loopback(vec![], vec![endpoint.to_string()]).open().await.unwrap()
 }
 
 fn sim_options(rig: &str, club: ClubSpec, shots: u64, seed: u64) -> SimOptions {
-    SimOptions {
-        rigs: vec![rig.into()],
-        club,
-        shots,
-        interval_s: 0.6,
-        seed,
-        ..SimOptions::default()
-    }
+    SimOptions { rigs: vec![rig.into()], club, shots, interval_s: 0.6, seed, ..SimOptions::default() }
 }
 
 type Collected<T> = Arc<Mutex<Vec<T>>>;
@@ -120,16 +101,8 @@ async fn end_to_end_two_rigs_record_and_replay() {
     let (statuses, _s3) = collect::<StatusMessage>(&rig, "golf/*/status");
     let shots = 4;
     let (a, b) = tokio::join!(
-        run_sim(
-            &rig,
-            sim_options("bay1", ClubSpec::driver(), shots, 3),
-            std::future::pending()
-        ),
-        run_sim(
-            &rig,
-            sim_options("bay2", ClubSpec::iron7(), shots, 4),
-            std::future::pending()
-        ),
+        run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 3), std::future::pending()),
+        run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), shots, 4), std::future::pending()),
     );
     let sent = a.unwrap().samples + b.unwrap().samples;
     tokio::time::sleep(Duration::from_millis(700)).await;
@@ -139,63 +112,26 @@ async fn end_to_end_two_rigs_record_and_replay() {
     let launches = launches.lock().unwrap().clone();
     let truths = truths.lock().unwrap().clone();
     assert_eq!(launches.len(), 2 * shots as usize, "every shot predicted");
-    let truth: HashMap<(String, u64), &TruthMessage> = truths
-        .iter()
-        .map(|t| ((t.rig.clone(), t.shot), t))
-        .collect();
+    let truth: HashMap<(String, u64), &TruthMessage> = truths.iter().map(|t| ((t.rig.clone(), t.shot), t)).collect();
     for l in &launches {
         let t = truth[&(l.rig.clone(), l.shot)];
         let (p, q) = (&l.launch.launch, &t.launch.launch);
         // About five times the RMS errors of the extrapolation evaluation (README) at 720 Hz, 0.2 mm, 0.1 deg.
-        assert!(
-            (p.ball_speed_mph - q.ball_speed_mph).abs() < 2.5,
-            "{} shot {} speed",
-            l.rig,
-            l.shot
-        );
-        assert!(
-            (p.launch_angle_deg - q.launch_angle_deg).abs() < 0.4,
-            "{} shot {} launch",
-            l.rig,
-            l.shot
-        );
-        assert!(
-            (p.launch_direction_deg - q.launch_direction_deg).abs() < 0.4,
-            "{} shot {} direction",
-            l.rig,
-            l.shot
-        );
-        assert!(
-            (p.backspin_rpm - q.backspin_rpm).abs() < 200.0,
-            "{} shot {} backspin",
-            l.rig,
-            l.shot
-        );
-        assert!(
-            (p.sidespin_rpm - q.sidespin_rpm).abs() < 200.0,
-            "{} shot {} sidespin",
-            l.rig,
-            l.shot
-        );
+        assert!((p.ball_speed_mph - q.ball_speed_mph).abs() < 2.5, "{} shot {} speed", l.rig, l.shot);
+        assert!((p.launch_angle_deg - q.launch_angle_deg).abs() < 0.4, "{} shot {} launch", l.rig, l.shot);
+        assert!((p.launch_direction_deg - q.launch_direction_deg).abs() < 0.4, "{} shot {} direction", l.rig, l.shot);
+        assert!((p.backspin_rpm - q.backspin_rpm).abs() < 200.0, "{} shot {} backspin", l.rig, l.shot);
+        assert!((p.sidespin_rpm - q.sidespin_rpm).abs() < 200.0, "{} shot {} sidespin", l.rig, l.shot);
         assert!((t.t_impact_ns as f64 - l.t_impact_ns as f64).abs() < 50_000.0);
         assert!(l.latency_us > 0.0 && l.latency_us < 50_000.0);
     }
     let received: u64 = summary.rigs.values().map(|c| c.samples).sum();
-    assert_eq!(
-        received, sent,
-        "no sample lost between the rig and the daemon"
-    );
-    assert!(
-        summary.rigs.values().all(|c| c.rejected.is_empty()),
-        "{:?}",
-        summary.rigs
-    );
+    assert_eq!(received, sent, "no sample lost between the rig and the daemon");
+    assert!(summary.rigs.values().all(|c| c.rejected.is_empty()), "{:?}", summary.rigs);
     let rec = summary.recorder.unwrap();
     assert_eq!(rec.dropped, 0);
     let statuses = statuses.lock().unwrap();
-    assert!(statuses
-        .iter()
-        .any(|s| s.rig == "bay2" && s.predictions == shots && s.latency_p99_us > 0.0));
+    assert!(statuses.iter().any(|s| s.rig == "bay2" && s.predictions == shots && s.latency_p99_us > 0.0));
 
     // An independent reader sees every message.
     let script = r#"
@@ -211,17 +147,8 @@ for t, n in sorted(counts.items()):
     print(t, n)
 print("metadata", ",".join(names))
 "#;
-    let out = std::process::Command::new("python3")
-        .arg("-c")
-        .arg(script)
-        .arg(&recording)
-        .output()
-        .expect("python3");
-    assert!(
-        out.status.success(),
-        "python mcap reader: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = std::process::Command::new("python3").arg("-c").arg(script).arg(&recording).output().expect("python3");
+    assert!(out.status.success(), "python mcap reader: {}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout).to_string();
     let count = |topic: &str| {
         text.lines()
@@ -229,19 +156,9 @@ print("metadata", ",".join(names))
             .and_then(|n| n.trim().parse::<u64>().ok())
             .unwrap_or(0)
     };
-    assert_eq!(
-        count("/mocap/bay1/clubhead") + count("/mocap/bay2/clubhead"),
-        sent,
-        "{text}"
-    );
-    assert_eq!(
-        count("/golf/bay1/launch") + count("/golf/bay2/launch"),
-        2 * shots
-    );
-    assert_eq!(
-        count("/golf/bay1/impact") + count("/golf/bay2/impact"),
-        2 * shots
-    );
+    assert_eq!(count("/mocap/bay1/clubhead") + count("/mocap/bay2/clubhead"), sent, "{text}");
+    assert_eq!(count("/golf/bay1/launch") + count("/golf/bay2/launch"), 2 * shots);
+    assert_eq!(count("/golf/bay1/impact") + count("/golf/bay2/impact"), 2 * shots);
     assert!(count("/foxglove/bay1/club_pose") > 0 && count("/foxglove/bay2/impact_scene") == shots);
     assert!(text.contains("metadata session,session_end"), "{text}");
     let total: u64 = text
@@ -267,10 +184,7 @@ print("metadata", ",".join(names))
     );
     assert_eq!(produced.len(), input.recorded_launches.len());
     let text = |v: &Vec<Vec<u8>>| {
-        let mut t: Vec<String> = v
-            .iter()
-            .map(|b| String::from_utf8_lossy(b).into_owned())
-            .collect();
+        let mut t: Vec<String> = v.iter().map(|b| String::from_utf8_lossy(b).into_owned()).collect();
         t.sort();
         t
     };
@@ -289,10 +203,7 @@ async fn bad_input_is_rejected_counted_and_recorded() {
     let daemon = start_daemon(CONFIG, Some(&recording)).await;
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay2/launch");
-    let bad = rig
-        .declare_publisher(keys::clubhead("bay1"))
-        .wait()
-        .unwrap();
+    let bad = rig.declare_publisher(keys::clubhead("bay1")).wait().unwrap();
     while !bad.matching_status().await.unwrap().matching() {
         tokio::time::sleep(Duration::from_millis(20)).await;
     }
@@ -304,17 +215,14 @@ async fn bad_input_is_rejected_counted_and_recorded() {
     let v2 = "application/json;impactd.ClubheadSample/2";
     let sends: Vec<(String, Option<&str>)> = vec![
         (good(1, 1_000_000, -1.0), None),
-        ("{not json".into(), None),           // malformed
-        (good(2, 2_000_000, -1.0), Some(v2)), // wrong version
-        (good(2, 2_000_000, -1.0).replace("-1", "1e999"), None), // not a finite number
-        (good(1, 1_000_000, -1.0), None),     // duplicate
-        (good(0, 500_000, -1.0), None),       // backwards
-        (good(3, 3_000_000, -1000.0), None),  // millimetres as metres
-        (
-            good(3, 3_000_000, -1.0).replace("\"bay1\"", "\"bay9\""),
-            None,
-        ), // rig mismatch
-        (good(3, 3_000_000, -1.0) + &" ".repeat(70_000), None), // oversized
+        ("{not json".into(), None),                                       // malformed
+        (good(2, 2_000_000, -1.0), Some(v2)),                             // wrong version
+        (good(2, 2_000_000, -1.0).replace("-1", "1e999"), None),          // not a finite number
+        (good(1, 1_000_000, -1.0), None),                                 // duplicate
+        (good(0, 500_000, -1.0), None),                                   // backwards
+        (good(3, 3_000_000, -1000.0), None),                              // millimetres as metres
+        (good(3, 3_000_000, -1.0).replace("\"bay1\"", "\"bay9\""), None), // rig mismatch
+        (good(3, 3_000_000, -1.0) + &" ".repeat(70_000), None),           // oversized
         (good(4, 4_000_000, -1.0), None),
     ];
     for (payload, encoding) in &sends {
@@ -324,37 +232,20 @@ async fn bad_input_is_rejected_counted_and_recorded() {
         }
         put.await.unwrap();
     }
-    run_sim(
-        &rig,
-        sim_options("bay2", ClubSpec::iron7(), 2, 9),
-        std::future::pending(),
-    )
-    .await
-    .unwrap();
+    run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 9), std::future::pending()).await.unwrap();
     tokio::time::sleep(Duration::from_millis(600)).await;
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
     let c = &summary.rigs["bay1"];
     // Not JSON, and a number JSON cannot hold (1e999, how a NaN or infinity would arrive): both malformed.
     assert_eq!(c.rejected.get("malformed"), Some(&2), "{:?}", c.rejected);
-    for key in [
-        "wrong_version",
-        "duplicate",
-        "backwards",
-        "out_of_range",
-        "rig_mismatch",
-        "oversized",
-    ] {
+    for key in ["wrong_version", "duplicate", "backwards", "out_of_range", "rig_mismatch", "oversized"] {
         assert_eq!(c.rejected.get(key), Some(&1), "{key}: {:?}", c.rejected);
     }
     assert_eq!(c.rejected.values().sum::<u64>(), 8, "{:?}", c.rejected);
     assert_eq!(c.accepted, 2);
     assert_eq!(c.samples, sends.len() as u64);
-    assert_eq!(
-        launches.lock().unwrap().len(),
-        2,
-        "the other rig is unaffected"
-    );
+    assert_eq!(launches.lock().unwrap().len(), 2, "the other rig is unaffected");
     assert!(summary.rigs["bay2"].rejected.is_empty());
     let input = std::fs::read(&recording).unwrap();
     let mut rejected_recorded = 0;
@@ -382,10 +273,7 @@ async fn config_queryable_and_liveliness() {
     for _ in 0..50 {
         let replies = client.get(keys::config("bay2")).await.unwrap();
         if let Ok(reply) = replies.recv_async().await {
-            found = reply
-                .result()
-                .ok()
-                .map(|s| String::from_utf8_lossy(&s.payload().to_bytes()).to_string());
+            found = reply.result().ok().map(|s| String::from_utf8_lossy(&s.payload().to_bytes()).to_string());
             break;
         }
         tokio::time::sleep(Duration::from_millis(50)).await;
@@ -393,11 +281,7 @@ async fn config_queryable_and_liveliness() {
     let config: serde_json::Value = serde_json::from_str(&found.expect("a reply")).unwrap();
     assert_eq!(config["name"], "bay2");
     assert_eq!(config["club"], "iron7");
-    let tokens = client
-        .liveliness()
-        .get("golf/*/impactd/alive")
-        .await
-        .unwrap();
+    let tokens = client.liveliness().get("golf/*/impactd/alive").await.unwrap();
     let mut alive = Vec::new();
     while let Ok(reply) = tokens.recv_async().await {
         if let Ok(s) = reply.result() {
@@ -405,10 +289,7 @@ async fn config_queryable_and_liveliness() {
         }
     }
     alive.sort();
-    assert_eq!(
-        alive,
-        vec!["golf/bay1/impactd/alive", "golf/bay2/impactd/alive"]
-    );
+    assert_eq!(alive, vec!["golf/bay1/impactd/alive", "golf/bay2/impactd/alive"]);
     daemon.stop().await;
     client.close().await.unwrap();
 }
@@ -437,13 +318,9 @@ async fn kill_9_then_recover() {
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();
     let sim_session = rig.clone();
     let sim = tokio::spawn(async move {
-        run_sim(
-            &sim_session,
-            sim_options("rig1", ClubSpec::driver(), 0, 5),
-            async {
-                let _ = stop_rx.await;
-            },
-        )
+        run_sim(&sim_session, sim_options("rig1", ClubSpec::driver(), 0, 5), async {
+            let _ = stop_rx.await;
+        })
         .await
     });
     // Let three shots through, then kill the daemon mid-stream.
@@ -453,10 +330,7 @@ async fn kill_9_then_recover() {
         }
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
-    assert!(
-        launches.lock().unwrap().len() >= 3,
-        "the daemon predicted shots"
-    );
+    assert!(launches.lock().unwrap().len() >= 3, "the daemon predicted shots");
     tokio::time::sleep(Duration::from_millis(300)).await;
     child.kill().unwrap(); // SIGKILL
     let sent_before_kill = seen.lock().unwrap().len() as u64;
@@ -473,12 +347,7 @@ async fn kill_9_then_recover() {
         .arg(&recovered)
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(3),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_eq!(out.status.code(), Some(3), "{}", String::from_utf8_lossy(&out.stderr));
     let bytes = std::fs::read(&recovered).unwrap();
     let mut samples = 0u64;
     let mut launches_recorded = 0;
@@ -491,10 +360,7 @@ async fn kill_9_then_recover() {
         }
     }
     // At 720 Hz, a second is 720 samples; allow the second plus the kill's own latency.
-    assert!(
-        samples + 900 >= sent_before_kill,
-        "salvaged {samples} of {sent_before_kill}"
-    );
+    assert!(samples + 900 >= sent_before_kill, "salvaged {samples} of {sent_before_kill}");
     assert!(launches_recorded >= 3);
     // The salvaged file is complete: the replay reads it without complaint.
     let input = replay::load(&recovered).unwrap();

@@ -61,10 +61,16 @@ fn thinner_air_and_a_tailwind_carry_further() {
     let base = Flight::default().fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
     let high = Flight { conditions: Conditions { altitude_m: 1600.0, ..Default::default() }, ..Flight::default() }
         .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
-    let tail = Flight { conditions: Conditions { wind_mps: 5.0, wind_dir_deg: 0.0, ..Default::default() }, ..Flight::default() }
-        .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
-    let cross = Flight { conditions: Conditions { wind_mps: 5.0, wind_dir_deg: 90.0, ..Default::default() }, ..Flight::default() }
-        .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
+    let tail = Flight {
+        conditions: Conditions { wind_mps: 5.0, wind_dir_deg: 0.0, ..Default::default() },
+        ..Flight::default()
+    }
+    .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
+    let cross = Flight {
+        conditions: Conditions { wind_mps: 5.0, wind_dir_deg: 90.0, ..Default::default() },
+        ..Flight::default()
+    }
+    .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
     assert!(high.carry_m > base.carry_m + 5.0);
     assert!(tail.carry_m > base.carry_m + 3.0);
     assert!(cross.offline_m > 3.0, "a left-to-right wind moves the ball right");
@@ -81,8 +87,16 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
     let mut within = 0;
     for r in &rows {
         let (carry, apex, land) = fit::predict(&Aero::FITTED, r);
-        let (dc, da, dl) = ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
-        assert!(dc < 10.0 && da < 3.0 && dl < 6.0, "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})", r.club, r.carry_yd, r.max_height_yd, r.land_angle_deg);
+        let (dc, da, dl) =
+            ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
+        assert!(
+            dc < 10.0 && da < 3.0 && dl < 6.0,
+            "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})",
+            r.club,
+            r.carry_yd,
+            r.max_height_yd,
+            r.land_angle_deg
+        );
         if dc <= 3.0 && da <= 2.0 && dl <= 2.0 {
             within += 1;
         }

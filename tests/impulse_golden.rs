@@ -20,11 +20,7 @@ fn predict(case: &Case) -> PredictOutput {
     let state = delivery.to_state(&eq).unwrap();
     let model = ImpulseModel::new(ImpulseVariant::parse(&case.model).unwrap());
     let launch = model.predict(&state, &eq).unwrap();
-    PredictOutput::new(
-        &launch,
-        &DeliveryMetrics::from_state(&state, &club),
-        Handedness::Right,
-    )
+    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, &club), Handedness::Right)
 }
 
 #[test]
@@ -32,11 +28,7 @@ fn golden_cases_match() {
     let text = include_str!("data/im-golden.jsonl");
     let mut failures = Vec::new();
     let mut n = 0;
-    for (i, line) in text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-    {
+    for (i, line) in text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()) {
         let case: Case = serde_json::from_str(line).unwrap();
         let got = serde_json::to_value(predict(&case)).unwrap();
         for (key, want) in &case.expected {
@@ -60,10 +52,5 @@ fn golden_cases_match() {
         }
     }
     assert!(n >= 70, "only {n} numbers checked");
-    assert!(
-        failures.is_empty(),
-        "{} mismatches:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert!(failures.is_empty(), "{} mismatches:\n{}", failures.len(), failures.join("\n"));
 }

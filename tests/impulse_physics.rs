@@ -3,9 +3,7 @@
 
 use impactd::equipment::ClubSpec;
 use impactd::impact::impulse::{solve, ContactProblem};
-use impactd::impact::{
-    Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics,
-};
+use impactd::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
 use impactd::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Matrix3, Vector3};
 use impactd::rng::Rng;
 use impactd::wire::{DeliveryInput, Handedness, PredictOutput};
@@ -66,21 +64,12 @@ fn momentum_is_conserved() {
         let ic = p.club_inertia_inv.try_inverse().unwrap();
         let ib = p.ball_inertia_inv.try_inverse().unwrap();
         let ang = |vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3| {
-            ic * wc - p.club_mass_kg * p.r_club_m.cross(&vc) + ib * wb
-                - p.ball_mass_kg * p.r_ball_m.cross(&vb)
+            ic * wc - p.club_mass_kg * p.r_club_m.cross(&vc) + ib * wb - p.ball_mass_kg * p.r_ball_m.cross(&vb)
         };
-        let a0 = ang(
-            p.club_velocity_mps,
-            p.club_angular_velocity_radps,
-            p.ball_velocity_mps,
-            p.ball_angular_velocity_radps,
-        );
-        let a1 = ang(
-            s.club_velocity_mps,
-            s.club_angular_velocity_radps,
-            s.ball_velocity_mps,
-            s.ball_angular_velocity_radps,
-        );
+        let a0 =
+            ang(p.club_velocity_mps, p.club_angular_velocity_radps, p.ball_velocity_mps, p.ball_angular_velocity_radps);
+        let a1 =
+            ang(s.club_velocity_mps, s.club_angular_velocity_radps, s.ball_velocity_mps, s.ball_angular_velocity_radps);
         assert!(rel(a0, a1) < 1e-12, "angular {}", rel(a0, a1));
     }
 }
@@ -97,10 +86,7 @@ fn restitution_constraints_hold() {
         for axis in 0..3 {
             let dir = p.frame.column(axis);
             let want = -p.restitution[axis] * u0.dot(&dir);
-            assert!(
-                (u1.dot(&dir) - want).abs() < 1e-10 * u0.norm(),
-                "axis {axis}"
-            );
+            assert!((u1.dot(&dir) - want).abs() < 1e-10 * u0.norm(), "axis {axis}");
         }
     }
 }
@@ -203,16 +189,11 @@ fn penner_point_mass_limit() {
             club_angular_velocity_radps: Vector3::zeros(),
         };
         let state = d.to_state(&eq).unwrap();
-        let launch = ImpulseModel::new(ImpulseVariant::Standard)
-            .with_cor(e)
-            .predict(&state, &eq)
-            .unwrap();
+        let launch = ImpulseModel::new(ImpulseVariant::Standard).with_cor(e).predict(&state, &eq).unwrap();
         let l = club.face.loft_rad;
         let vn = (1.0 + e) * m_head * v * l.cos() / (m_head + ball.mass_kg);
-        let vt = v * l.sin()
-            / (1.0
-                + ball.mass_kg / m_head
-                + ball.mass_kg * ball.radius_m.powi(2) / ball.inertia_kg_m2);
+        let vt =
+            v * l.sin() / (1.0 + ball.mass_kg / m_head + ball.mass_kg * ball.radius_m.powi(2) / ball.inertia_kg_m2);
         let speed = vn.hypot(vt);
         let launch_angle = l - vt.atan2(vn); // the normal is at +L, the tangential part points down the face
         let spin = ball.mass_kg * ball.radius_m * vt / ball.inertia_kg_m2; // = 5 v_t / 2R for a uniform sphere
@@ -220,11 +201,7 @@ fn penner_point_mass_limit() {
         assert!((got.ball_velocity_mps.norm() - speed).abs() < 1e-9 * speed);
         let got_angle = got.ball_velocity_mps.y.atan2(got.ball_velocity_mps.x);
         assert!((got_angle - launch_angle).abs() < 1e-9);
-        assert!(
-            (got.ball_spin_radps.z - spin).abs() < 1e-9 * spin,
-            "{} vs {spin}",
-            got.ball_spin_radps.z
-        );
+        assert!((got.ball_spin_radps.z - spin).abs() < 1e-9 * spin, "{} vs {spin}", got.ball_spin_radps.z);
         assert!(got.ball_spin_radps.xy().norm() < 1e-9 * spin);
     }
 }
@@ -234,20 +211,11 @@ fn launch_of(club: &ClubSpec, variant: ImpulseVariant, input: &DeliveryInput) ->
     let d = input.to_delivery(club.loft_deg());
     let state = d.to_state(&eq).unwrap();
     let launch = ImpulseModel::new(variant).predict(&state, &eq).unwrap();
-    PredictOutput::new(
-        &launch,
-        &DeliveryMetrics::from_state(&state, club),
-        input.handedness.unwrap_or_default(),
-    )
+    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, club), input.handedness.unwrap_or_default())
 }
 
 fn driver_at(h_mm: f64) -> DeliveryInput {
-    DeliveryInput {
-        club_speed_mph: 110.0,
-        dynamic_loft_deg: Some(13.0),
-        impact_h_mm: h_mm,
-        ..Default::default()
-    }
+    DeliveryInput { club_speed_mph: 110.0, dynamic_loft_deg: Some(13.0), impact_h_mm: h_mm, ..Default::default() }
 }
 
 /// Gear effect on the driver: a toe hit spins the ball toward a hook (lower sidespin) and a heel hit toward a
@@ -265,18 +233,9 @@ fn driver_gear_effect_and_bulge() {
             toe.launch.sidespin_rpm,
             centre.launch.sidespin_rpm
         );
-        assert!(
-            heel.launch.sidespin_rpm > centre.launch.sidespin_rpm + 100.0,
-            "{variant:?} heel"
-        );
-        assert!(
-            toe.launch.launch_direction_deg > centre.launch.launch_direction_deg + 1.0,
-            "{variant:?} bulge toe"
-        );
-        assert!(
-            heel.launch.launch_direction_deg < centre.launch.launch_direction_deg - 1.0,
-            "{variant:?} bulge heel"
-        );
+        assert!(heel.launch.sidespin_rpm > centre.launch.sidespin_rpm + 100.0, "{variant:?} heel");
+        assert!(toe.launch.launch_direction_deg > centre.launch.launch_direction_deg + 1.0, "{variant:?} bulge toe");
+        assert!(heel.launch.launch_direction_deg < centre.launch.launch_direction_deg - 1.0, "{variant:?} bulge heel");
     }
 }
 
@@ -285,23 +244,10 @@ fn driver_gear_effect_and_bulge() {
 fn open_face_starts_right_with_fade() {
     for club in clubs() {
         for variant in ImpulseVariant::ALL {
-            let input = DeliveryInput {
-                club_speed_mph: 95.0,
-                face_angle_deg: 4.0,
-                ..Default::default()
-            };
+            let input = DeliveryInput { club_speed_mph: 95.0, face_angle_deg: 4.0, ..Default::default() };
             let out = launch_of(&club, variant, &input);
-            assert!(
-                out.launch.launch_direction_deg > 2.0,
-                "{} {variant:?}",
-                club.name
-            );
-            assert!(
-                out.launch.sidespin_rpm > 300.0,
-                "{} {variant:?} {}",
-                club.name,
-                out.launch.sidespin_rpm
-            );
+            assert!(out.launch.launch_direction_deg > 2.0, "{} {variant:?}", club.name);
+            assert!(out.launch.sidespin_rpm > 300.0, "{} {variant:?} {}", club.name, out.launch.sidespin_rpm);
             assert!(out.launch.spin_axis_deg > 0.0);
         }
     }
@@ -340,10 +286,7 @@ fn left_handed_delivery_mirrors_the_launch() {
                     handedness: Some(Handedness::Left),
                     ..right.clone()
                 };
-                let (r, l) = (
-                    launch_of(&club, variant, &right).launch,
-                    launch_of(&club, variant, &left).launch,
-                );
+                let (r, l) = (launch_of(&club, variant, &right).launch, launch_of(&club, variant, &left).launch);
                 let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * (1.0 + a.abs());
                 assert!(close(r.ball_speed_mps, l.ball_speed_mps));
                 assert!(close(r.launch_angle_deg, l.launch_angle_deg));
@@ -377,18 +320,8 @@ fn solver_is_mirror_symmetric() {
         };
         let (a, b) = (solve(&p).unwrap(), solve(&q).unwrap());
         assert!(rel(mirror_z(&a.ball_velocity_mps), b.ball_velocity_mps) < 1e-12);
-        assert!(
-            rel(
-                mirror_z_axial(&a.ball_angular_velocity_radps),
-                b.ball_angular_velocity_radps
-            ) < 1e-12
-        );
-        assert!(
-            rel(
-                mirror_z_axial(&a.club_angular_velocity_radps),
-                b.club_angular_velocity_radps
-            ) < 1e-12
-        );
+        assert!(rel(mirror_z_axial(&a.ball_angular_velocity_radps), b.ball_angular_velocity_radps) < 1e-12);
+        assert!(rel(mirror_z_axial(&a.club_angular_velocity_radps), b.club_angular_velocity_radps) < 1e-12);
         let (la, lb) = (
             LaunchMetrics::from_ball(&a.ball_velocity_mps, &a.ball_angular_velocity_radps),
             LaunchMetrics::from_ball(&b.ball_velocity_mps, &b.ball_angular_velocity_radps),

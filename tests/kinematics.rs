@@ -38,42 +38,18 @@ fn poly_meets_the_accuracy_targets_at_720_hz() {
         let poly = &r.estimators[1];
         assert_eq!(poly.shots, 300, "{name}: {:?}", poly.refused);
         let e = &poly.errors;
-        assert!(
-            e.face_angle_deg.rms <= 0.1,
-            "{name} face {}",
-            e.face_angle_deg.rms
-        );
-        assert!(
-            e.dynamic_loft_deg.rms <= 0.1,
-            "{name} loft {}",
-            e.dynamic_loft_deg.rms
-        );
-        assert!(
-            e.impact_h_mm.rms <= 1.0 && e.impact_v_mm.rms <= 1.0,
-            "{name} location"
-        );
+        assert!(e.face_angle_deg.rms <= 0.1, "{name} face {}", e.face_angle_deg.rms);
+        assert!(e.dynamic_loft_deg.rms <= 0.1, "{name} loft {}", e.dynamic_loft_deg.rms);
+        assert!(e.impact_h_mm.rms <= 1.0 && e.impact_v_mm.rms <= 1.0, "{name} location");
         if name == "driver" {
-            assert!(
-                e.club_speed_pct.rms <= 0.3,
-                "{name} speed {}",
-                e.club_speed_pct.rms
-            );
+            assert!(e.club_speed_pct.rms <= 0.3, "{name} speed {}", e.club_speed_pct.rms);
         }
         // Against the seed's two-point method on the same swings: at least twice lower face-angle error and
         // three times lower impact-location error (measured ratios are in the README).
         let lin = &r.estimators[0].errors;
-        assert!(
-            lin.face_angle_deg.rms > 2.0 * e.face_angle_deg.rms,
-            "{name} face ratio"
-        );
-        assert!(
-            lin.impact_h_mm.rms > 3.0 * e.impact_h_mm.rms,
-            "{name} h ratio"
-        );
-        assert!(
-            lin.impact_v_mm.rms > 4.0 * e.impact_v_mm.rms,
-            "{name} v ratio"
-        );
+        assert!(lin.face_angle_deg.rms > 2.0 * e.face_angle_deg.rms, "{name} face ratio");
+        assert!(lin.impact_h_mm.rms > 3.0 * e.impact_h_mm.rms, "{name} h ratio");
+        assert!(lin.impact_v_mm.rms > 4.0 * e.impact_v_mm.rms, "{name} v ratio");
     }
 }
 
@@ -99,10 +75,7 @@ fn noise_free_errors_are_tiny() {
 fn the_evaluation_is_deterministic() {
     let a = eval(ClubSpec::driver(), 20, 0.2, 0.1);
     let b = eval(ClubSpec::driver(), 20, 0.2, 0.1);
-    assert_eq!(
-        serde_json::to_string(&a).unwrap(),
-        serde_json::to_string(&b).unwrap()
-    );
+    assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&b).unwrap());
 }
 
 fn good_sample(frame: u64, t_ns: u64, x: f64) -> ClubheadSample {
@@ -123,68 +96,37 @@ fn the_track_rejects_bad_frames_with_a_reason() {
     let t = |k: u64| 1_000_000_000 + k * dt;
     let mut nan = good_sample(2, t(1), 0.0);
     nan.position_m.y = f64::NAN;
-    assert_eq!(
-        track.push(&nan),
-        Err(Reject::NonFinite {
-            field: "position_m"
-        })
-    );
-    assert!(matches!(
-        track.push(&good_sample(1, t(0), 0.0)),
-        Err(Reject::Duplicate { .. })
-    ));
-    assert!(matches!(
-        track.push(&good_sample(0, t(0) - 5, 0.0)),
-        Err(Reject::Backwards { .. })
-    ));
+    assert_eq!(track.push(&nan), Err(Reject::NonFinite { field: "position_m" }));
+    assert!(matches!(track.push(&good_sample(1, t(0), 0.0)), Err(Reject::Duplicate { .. })));
+    assert!(matches!(track.push(&good_sample(0, t(0) - 5, 0.0)), Err(Reject::Backwards { .. })));
     // 1 m in one frame is 720 m/s.
-    assert!(matches!(
-        track.push(&good_sample(2, t(1), 1.0)),
-        Err(Reject::Jump { .. })
-    ));
+    assert!(matches!(track.push(&good_sample(2, t(1), 1.0)), Err(Reject::Jump { .. })));
     // Millimetres where metres are expected.
     let mut mm = good_sample(2, t(1), 0.0);
     mm.position_m = Vector3::new(1200.0, 100.0, -300.0);
     assert!(matches!(track.push(&mm), Err(Reject::OutOfRange { .. })));
     let mut q = good_sample(2, t(1), 0.0);
     q.orientation_xyzw = [0.0, 0.0, 0.0, 2.0];
-    assert!(matches!(
-        track.push(&q),
-        Err(Reject::NotUnitQuaternion { .. })
-    ));
+    assert!(matches!(track.push(&q), Err(Reject::NotUnitQuaternion { .. })));
     assert_eq!(track.counts.rejected, 6);
     // Good frames still go in, and a gap in frame numbers is counted as dropped.
-    assert_eq!(
-        track.push(&good_sample(2, t(1), 0.01)),
-        Ok(Accepted::Pose { dropped_before: 0 })
-    );
+    assert_eq!(track.push(&good_sample(2, t(1), 0.01)), Ok(Accepted::Pose { dropped_before: 0 }));
     let mut occluded = good_sample(3, t(2), 0.0);
     occluded.occluded = true;
     assert_eq!(track.push(&occluded), Ok(Accepted::Occluded));
-    assert_eq!(
-        track.push(&good_sample(6, t(5), 0.03)),
-        Ok(Accepted::Pose { dropped_before: 2 })
-    );
+    assert_eq!(track.push(&good_sample(6, t(5), 0.03)), Ok(Accepted::Pose { dropped_before: 2 }));
     assert_eq!(track.counts.accepted, 3);
     assert_eq!(track.counts.dropped, 2);
     assert_eq!(track.poses().len(), 3);
 }
 
-fn detect_all(
-    samples: &[ClubheadSample],
-    club: &ClubSpec,
-    calibration: Calibration,
-) -> Vec<Detection> {
+fn detect_all(samples: &[ClubheadSample], club: &ClubSpec, calibration: Calibration) -> Vec<Detection> {
     let mut track = Track::new(calibration, TrackLimits::default());
     let mut det = ImpactDetector::new(DetectorConfig::default());
     let mut out = Vec::new();
     for s in samples {
         if let Ok(Accepted::Pose { .. }) = track.push(s) {
-            if let Some(d) = det.on_pose(
-                &track,
-                club,
-                &[EstimatorSpec::linear2(), EstimatorSpec::poly()],
-            ) {
+            if let Some(d) = det.on_pose(&track, club, &[EstimatorSpec::linear2(), EstimatorSpec::poly()]) {
                 out.extend(d);
             }
         }
@@ -209,32 +151,12 @@ fn calibration_recovers_the_club_frame() {
             UnitQuaternion::from_euler_angles(0.3, -0.2, 0.1),
         ),
     };
-    let a = sample(
-        &swing,
-        &Sampling::default(),
-        &Calibration::default(),
-        5_000_000_000,
-        1,
-        &mut Rng::new(1),
-    );
-    let b = sample(
-        &swing,
-        &Sampling::default(),
-        &calibration,
-        5_000_000_000,
-        1,
-        &mut Rng::new(1),
-    );
-    assert!(
-        (a.samples[10].position_m - b.samples[10].position_m).norm() > 0.5,
-        "the lab frame differs"
-    );
+    let a = sample(&swing, &Sampling::default(), &Calibration::default(), 5_000_000_000, 1, &mut Rng::new(1));
+    let b = sample(&swing, &Sampling::default(), &calibration, 5_000_000_000, 1, &mut Rng::new(1));
+    assert!((a.samples[10].position_m - b.samples[10].position_m).norm() > 0.5, "the lab frame differs");
     let da = detect_all(&a.samples, &club, Calibration::default());
     let db = detect_all(&b.samples, &club, calibration);
-    let (ea, eb) = (
-        da[1].result.as_ref().unwrap(),
-        db[1].result.as_ref().unwrap(),
-    );
+    let (ea, eb) = (da[1].result.as_ref().unwrap(), db[1].result.as_ref().unwrap());
     assert!((ea.state.cg_velocity_mps - eb.state.cg_velocity_mps).norm() < 1e-6);
     assert!((ea.state.impact_h_m - eb.state.impact_h_m).abs() < 1e-9);
     assert!((ea.t_impact_ns as i64 - eb.t_impact_ns as i64).abs() <= 1);
@@ -257,14 +179,7 @@ fn dropped_occluded_and_jittered_frames() {
     let mut found = 0;
     for _ in 0..50 {
         let swing = Swing::new(&SwingSpec::random(&club, &mut rng), &eq).unwrap();
-        let s = sample(
-            &swing,
-            &sampling,
-            &Calibration::default(),
-            2_000_000_000,
-            1,
-            &mut rng,
-        );
+        let s = sample(&swing, &sampling, &Calibration::default(), 2_000_000_000, 1, &mut rng);
         let d = detect_all(&s.samples, &club, Calibration::default());
         if let Some(Ok(e)) = d.get(1).map(|d| &d.result) {
             found += 1;
@@ -280,32 +195,16 @@ fn too_few_frames_are_refused() {
     let club = ClubSpec::driver();
     let eq = Equipment::new(club.clone());
     let swing = Swing::new(&SwingSpec::random(&club, &mut Rng::new(4)), &eq).unwrap();
-    let s = sample(
-        &swing,
-        &Sampling::default(),
-        &Calibration::default(),
-        1_000_000_000,
-        1,
-        &mut Rng::new(2),
-    );
+    let s = sample(&swing, &Sampling::default(), &Calibration::default(), 1_000_000_000, 1, &mut Rng::new(2));
     let mut track = Track::new(Calibration::default(), TrackLimits::default());
-    let reveal = s
-        .samples
-        .iter()
-        .find(|x| x.t_ns > s.t_impact_ns)
-        .unwrap()
-        .t_ns;
+    let reveal = s.samples.iter().find(|x| x.t_ns > s.t_impact_ns).unwrap().t_ns;
     let pre: Vec<&ClubheadSample> = s.samples.iter().filter(|x| x.t_ns < reveal).collect();
     for x in &pre[pre.len() - 3..] {
         track.push(x).unwrap();
     }
     let poses: Vec<ClubPose> = track.poses().iter().copied().collect();
-    let scene = Scene {
-        face: &club.face,
-        ball_position_m: Vector3::zeros(),
-        ball_radius_m: 0.0213,
-        max_extrapolation_s: 0.01,
-    };
+    let scene =
+        Scene { face: &club.face, ball_position_m: Vector3::zeros(), ball_radius_m: 0.0213, max_extrapolation_s: 0.01 };
     assert!(matches!(
         estimate(&EstimatorSpec::poly(), &poses, reveal, &scene),
         Err(EstimateError::TooFewFrames { have: 3, need: 6 })
@@ -329,14 +228,7 @@ fn address_and_waggle_do_not_fire() {
     let mut frame = 1;
     let mut t = 1_000_000_000u64;
     let mut push = |pose: Isometry3, samples: &mut Vec<ClubheadSample>| {
-        samples.push(
-            ClubPose {
-                frame,
-                t_ns: t,
-                world_from_club: pose,
-            }
-            .to_sample(&Calibration::default()),
-        );
+        samples.push(ClubPose { frame, t_ns: t, world_from_club: pose }.to_sample(&Calibration::default()));
         frame += 1;
         t += period;
     };
@@ -357,8 +249,6 @@ fn address_and_waggle_do_not_fire() {
     assert!(
         d.is_empty(),
         "{:?}",
-        d.iter()
-            .map(|d| (d.reveal_frame, d.result.as_ref().map(|e| e.t_impact_ns)))
-            .collect::<Vec<_>>()
+        d.iter().map(|d| (d.reveal_frame, d.result.as_ref().map(|e| e.t_impact_ns))).collect::<Vec<_>>()
     );
 }

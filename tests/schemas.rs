@@ -16,10 +16,7 @@ fn schemas_match_the_types() {
             _ => drifted.push(name),
         }
     }
-    assert!(
-        drifted.is_empty(),
-        "schemas/ is out of date for {drifted:?}: run `cargo run -- schemas -o schemas`"
-    );
+    assert!(drifted.is_empty(), "schemas/ is out of date for {drifted:?}: run `cargo run -- schemas -o schemas`");
     // A sample as the README documents it validates against the types.
     let sample = r#"{"rig":"bay1","frame":1,"t_ns":1000,"position_m":[0.1,0.2,0.3],"orientation":{"x":0.0,"y":0.0,"z":0.0,"w":1.0},"occluded":false}"#;
     assert!(impactd::wire::parse_sample("bay1", sample.as_bytes(), "application/json").is_ok());

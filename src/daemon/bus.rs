@@ -25,13 +25,7 @@ pub struct ZenohArgs {
 impl ZenohArgs {
     /// Loopback only: peer mode, no multicast, listening or connecting on the given endpoints.
     pub fn loopback(listen: Vec<String>, connect: Vec<String>) -> Self {
-        ZenohArgs {
-            zenoh_config: None,
-            mode: Some("peer".into()),
-            connect,
-            listen,
-            no_multicast_scouting: true,
-        }
+        ZenohArgs { zenoh_config: None, mode: Some("peer".into()), connect, listen, no_multicast_scouting: true }
     }
 
     /// The zenoh configuration these flags describe.
@@ -43,46 +37,31 @@ impl ZenohArgs {
         let json = |v: &[String]| serde_json::to_string(v).unwrap_or_else(|_| "[]".into());
         if let Some(mode) = &self.mode {
             if mode != "peer" && mode != "client" && mode != "router" {
-                return Err(DaemonError::Zenoh(format!(
-                    "--mode must be peer, client or router, got {mode}"
-                )));
+                return Err(DaemonError::Zenoh(format!("--mode must be peer, client or router, got {mode}")));
             }
-            c.insert_json5("mode", &format!("\"{mode}\""))
-                .map_err(DaemonError::zenoh)?;
+            c.insert_json5("mode", &format!("\"{mode}\"")).map_err(DaemonError::zenoh)?;
         }
         if !self.connect.is_empty() {
-            c.insert_json5("connect/endpoints", &json(&self.connect))
-                .map_err(DaemonError::zenoh)?;
+            c.insert_json5("connect/endpoints", &json(&self.connect)).map_err(DaemonError::zenoh)?;
         }
         if !self.listen.is_empty() {
-            c.insert_json5("listen/endpoints", &json(&self.listen))
-                .map_err(DaemonError::zenoh)?;
+            c.insert_json5("listen/endpoints", &json(&self.listen)).map_err(DaemonError::zenoh)?;
         }
         if self.no_multicast_scouting {
-            c.insert_json5("scouting/multicast/enabled", "false")
-                .map_err(DaemonError::zenoh)?;
+            c.insert_json5("scouting/multicast/enabled", "false").map_err(DaemonError::zenoh)?;
         }
         Ok(c)
     }
 
     /// Opens a session.
     pub async fn open(&self) -> Result<zenoh::Session, DaemonError> {
-        zenoh::open(self.config()?)
-            .await
-            .map_err(DaemonError::zenoh)
+        zenoh::open(self.config()?).await.map_err(DaemonError::zenoh)
     }
 }
 
 /// A free TCP port on 127.0.0.1 (for in-process loopback sessions).
 pub fn free_loopback_port() -> Result<u16, DaemonError> {
-    let l = std::net::TcpListener::bind("127.0.0.1:0").map_err(|e| DaemonError::Io {
-        what: "finding a free port".into(),
-        source: e,
-    })?;
-    l.local_addr()
-        .map(|a| a.port())
-        .map_err(|e| DaemonError::Io {
-            what: "finding a free port".into(),
-            source: e,
-        })
+    let l = std::net::TcpListener::bind("127.0.0.1:0")
+        .map_err(|e| DaemonError::Io { what: "finding a free port".into(), source: e })?;
+    l.local_addr().map(|a| a.port()).map_err(|e| DaemonError::Io { what: "finding a free port".into(), source: e })
 }

@@ -11,6 +11,7 @@
 //! cor = 0.83
 //! estimator = "poly"            # linear2 | poly | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
+//! flight = true                 # add carry, apex, landing and offline to each prediction
 //! [rig.world_from_lab]          # default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
@@ -62,6 +63,13 @@ pub struct RigConfig {
     pub world_from_lab: Option<PoseConfig>,
     #[serde(default)]
     pub club_from_body: Option<PoseConfig>,
+    /// Add the ball flight (carry, apex, landing, offline; calm air at sea level) to each prediction.
+    #[serde(default = "default_true")]
+    pub flight: bool,
+}
+
+fn default_true() -> bool {
+    true
 }
 
 fn default_club() -> String {
@@ -92,34 +100,17 @@ fn identity_xyzw() -> [f64; 4] {
 }
 
 fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
-    DaemonError::Config {
-        field,
-        reason: reason.into(),
-    }
+    DaemonError::Config { field, reason: reason.into() }
 }
 
 impl PoseConfig {
     fn to_isometry(self, field: String) -> Result<Isometry3, DaemonError> {
-        if self
-            .rotation_xyzw
-            .iter()
-            .chain(self.translation_m.iter())
-            .any(|v| !v.is_finite())
-        {
+        if self.rotation_xyzw.iter().chain(self.translation_m.iter()).any(|v| !v.is_finite()) {
             return Err(invalid(field, "must be finite numbers"));
         }
-        let q = crate::kinematics::sample::unit_quaternion(&self.rotation_xyzw, 1e-3).ok_or_else(
-            || {
-                invalid(
-                    format!("{field}.rotation_xyzw"),
-                    "must be a unit quaternion [x, y, z, w]",
-                )
-            },
-        )?;
-        Ok(Isometry3::from_parts(
-            Vector3::from(self.translation_m).into_translation(),
-            q,
-        ))
+        let q = crate::kinematics::sample::unit_quaternion(&self.rotation_xyzw, 1e-3)
+            .ok_or_else(|| invalid(format!("{field}.rotation_xyzw"), "must be a unit quaternion [x, y, z, w]"))?;
+        Ok(Isometry3::from_parts(Vector3::from(self.translation_m).into_translation(), q))
     }
 }
 
@@ -137,6 +128,7 @@ impl Default for DaemonConfig {
                 ball_position_m: [0.0; 3],
                 world_from_lab: None,
                 club_from_body: None,
+                flight: true,
             }],
         }
     }
@@ -145,10 +137,8 @@ impl Default for DaemonConfig {
 impl DaemonConfig {
     /// Reads and validates a file.
     pub fn load(path: &Path) -> Result<(Self, Vec<RigSetup>), DaemonError> {
-        let text = std::fs::read_to_string(path).map_err(|e| DaemonError::Io {
-            what: format!("reading {}", path.display()),
-            source: e,
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
         Self::parse(&text)
     }
 
@@ -163,10 +153,7 @@ impl DaemonConfig {
     /// The pipelines' setups, validating every field.
     pub fn setups(&self) -> Result<Vec<RigSetup>, DaemonError> {
         if !(self.status_period_s > 0.0 && self.status_period_s <= 60.0) {
-            return Err(invalid(
-                "status_period_s".into(),
-                "must be within 0 and 60 s",
-            ));
+            return Err(invalid("status_period_s".into(), "must be within 0 and 60 s"));
         }
         if self.rigs.is_empty() {
             return Err(invalid("rig".into(), "at least one [[rig]] is needed"));
@@ -178,10 +165,7 @@ impl DaemonConfig {
             .map(|(i, r)| {
                 let f = |name: &str| format!("rig[{i}].{name}");
                 if !crate::wire::keys::valid_rig_name(&r.name) {
-                    return Err(invalid(
-                        f("name"),
-                        format!("`{}` must be letters, digits, _ or -", r.name),
-                    ));
+                    return Err(invalid(f("name"), format!("`{}` must be letters, digits, _ or -", r.name)));
                 }
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
@@ -193,22 +177,10 @@ impl DaemonConfig {
                 let model = ModelChoice::parse(&r.model, r.cor)
                     .ok_or_else(|| invalid(f("model"), format!("`{}` is not {}", r.model, ModelChoice::NAMES)))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
-                    invalid(
-                        f("estimator"),
-                        format!(
-                            "`{}` is not linear2, poly, poly@... or poly:...",
-                            r.estimator
-                        ),
-                    )
+                    invalid(f("estimator"), format!("`{}` is not linear2, poly, poly@... or poly:...", r.estimator))
                 })?;
-                if r.ball_position_m
-                    .iter()
-                    .any(|v| !v.is_finite() || v.abs() > 50.0)
-                {
-                    return Err(invalid(
-                        f("ball_position_m"),
-                        "must be finite and within 50 m",
-                    ));
+                if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
+                    return Err(invalid(f("ball_position_m"), "must be finite and within 50 m"));
                 }
                 let calibration = Calibration {
                     world_from_lab: r
@@ -224,6 +196,9 @@ impl DaemonConfig {
                 };
                 let mut setup = RigSetup::new(&r.name, club);
                 setup.model = model;
+                if !r.flight {
+                    setup.flight = None;
+                }
                 setup.estimator = estimator;
                 setup.calibration = calibration;
                 setup.detector.ball_position_m = Vector3::from(r.ball_position_m);
@@ -256,15 +231,11 @@ mod tests {
         assert!(err("[[rig]]\nname = \"a\"\nclub = \"putter\"").contains("rig[0].club"));
         assert!(err("[[rig]]\nname = \"a b\"").contains("rig[0].name"));
         assert!(err("[[rig]]\nname = \"a\"\n[[rig]]\nname = \"a\"").contains("rig[1].name"));
-        assert!(err(
-            "[[rig]]\nname = \"a\"\n[rig.world_from_lab]\nrotation_xyzw = [0.0, 0.0, 0.0, 3.0]"
-        )
-        .contains("rig[0].world_from_lab.rotation_xyzw"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.world_from_lab]\nrotation_xyzw = [0.0, 0.0, 0.0, 3.0]")
+            .contains("rig[0].world_from_lab.rotation_xyzw"));
         assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
         assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
-        let (c, r) =
-            DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"")
-                .unwrap();
+        let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
         assert_eq!(c.rigs[0].estimator, "poly");
         assert_eq!(r[0].club.name, "iron7");
     }

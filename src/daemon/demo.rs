@@ -23,8 +23,10 @@ pub struct DemoOptions {
 /// One readable line for a prediction, with the truth when known.
 pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
     let m = &l.launch.launch;
+    let carry =
+        l.flight.as_ref().map(|f| format!("  carry {:>3.0} yd {:>+4.0}", f.carry_yd, f.offline_yd)).unwrap_or_default();
     let mut s = format!(
-        "{} shot {:>2}  {:<6} {:>6.1} mph  launch {:>5.1}°  dir {:>5.1}°  back {:>5.0} rpm  side {:>5.0} rpm  club {:>5.1} mph  {:>4.0} us",
+        "{} shot {:>2}  {:<6} {:>6.1} mph  launch {:>5.1}°  dir {:>5.1}°  back {:>5.0} rpm  side {:>5.0} rpm{carry}  club {:>5.1} mph  {:>4.0} us",
         l.rig, l.shot, l.club, m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm,
         l.delivery.club_speed_mph, l.latency_us
     );
@@ -32,27 +34,18 @@ pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
         let tm = &t.launch.launch;
         s.push_str(&format!(
             "   truth {:>6.1} mph {:>5.1}° {:>5.1}° {:>5.0} {:>5.0}",
-            tm.ball_speed_mph,
-            tm.launch_angle_deg,
-            tm.launch_direction_deg,
-            tm.backspin_rpm,
-            tm.sidespin_rpm
+            tm.ball_speed_mph, tm.launch_angle_deg, tm.launch_direction_deg, tm.backspin_rpm, tm.sidespin_rpm
         ));
     }
     s
 }
 
 /// Runs the demo until the rig's shots are all predicted or `shutdown` completes.
-pub async fn demo(
-    options: DemoOptions,
-    shutdown: impl Future<Output = ()>,
-) -> Result<RunSummary, DaemonError> {
+pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> Result<RunSummary, DaemonError> {
     let setups = options.config.setups()?;
     let port = free_loopback_port()?;
     let endpoint = format!("tcp/127.0.0.1:{port}");
-    let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![])
-        .open()
-        .await?;
+    let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await?;
     let rig_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await?;
 
     let truths: Arc<Mutex<HashMap<(String, u64), TruthMessage>>> = Default::default();
@@ -70,12 +63,7 @@ pub async fn demo(
         })
         .await
         .map_err(DaemonError::zenoh)?;
-    let (json, notify, count_cb, truths_cb) = (
-        options.json,
-        predicted.clone(),
-        count.clone(),
-        truths.clone(),
-    );
+    let (json, notify, count_cb, truths_cb) = (options.json, predicted.clone(), count.clone(), truths.clone());
     let _launch_sub = rig_session
         .declare_subscriber("golf/*/launch")
         .callback(move |s| {
@@ -85,10 +73,7 @@ pub async fn demo(
             } else if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&bytes) {
                 // The truth is published just after the impact frame passes; give it a moment.
                 std::thread::sleep(std::time::Duration::from_millis(5));
-                let truth = truths_cb
-                    .lock()
-                    .ok()
-                    .and_then(|m| m.get(&(l.rig.clone(), l.shot)).cloned());
+                let truth = truths_cb.lock().ok().and_then(|m| m.get(&(l.rig.clone(), l.shot)).cloned());
                 println!("{}", describe(&l, truth.as_ref()));
             }
             count_cb.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -104,14 +89,7 @@ pub async fn demo(
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let r = super::run(
-            config,
-            setups,
-            &daemon_session,
-            RunOptions { record },
-            shutdown,
-        )
-        .await;
+        let r = super::run(config, setups, &daemon_session, RunOptions { record }, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });
@@ -142,9 +120,7 @@ pub async fn demo(
     let _ = stop_sim_tx.send(());
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon
-        .await
-        .map_err(|e| DaemonError::Input(e.to_string()))??;
+    let summary = daemon.await.map_err(|e| DaemonError::Input(e.to_string()))??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

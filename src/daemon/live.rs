@@ -52,10 +52,7 @@ pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
     m.insert("wire_version".into(), wire::WIRE_VERSION.to_string());
-    m.insert(
-        "config_toml".into(),
-        toml::to_string(config).unwrap_or_default(),
-    );
+    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
     m.insert("start_ns".into(), wall_ns().to_string());
     m
 }
@@ -68,15 +65,8 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
-    let recorder = options
-        .record
-        .as_deref()
-        .map(|p| Recorder::create(p, session_metadata(&config)))
-        .transpose()?;
-    let handle = recorder
-        .as_ref()
-        .map(|r| r.handle())
-        .unwrap_or_else(RecorderHandle::none);
+    let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
+    let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
@@ -99,23 +89,15 @@ pub async fn run(
             .encoding(wire::encoding("StatusMessage"))
             .await
             .map_err(DaemonError::zenoh)?;
-        tokens.push(
-            session
-                .liveliness()
-                .declare_token(keys::alive(&name))
-                .await
-                .map_err(DaemonError::zenoh)?,
-        );
+        tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
         let config_json = serde_json::to_vec(rig_config).unwrap_or_default();
         let config_key = keys::config(&name);
         queryables.push(
             session
                 .declare_queryable(config_key.clone())
                 .callback(move |query| {
-                    if let Err(e) = query
-                        .reply(config_key.clone(), config_json.clone())
-                        .encoding("application/json")
-                        .wait()
+                    if let Err(e) =
+                        query.reply(config_key.clone(), config_json.clone()).encoding("application/json").wait()
                     {
                         tracing::warn!("config query: {e}");
                     }
@@ -145,10 +127,7 @@ pub async fn run(
             std::thread::Builder::new()
                 .name(format!("impactd-{name}"))
                 .spawn(move || worker.run(rx, status_period))
-                .map_err(|e| DaemonError::Io {
-                    what: "starting a rig worker".into(),
-                    source: e,
-                })?,
+                .map_err(|e| DaemonError::Io { what: "starting a rig worker".into(), source: e })?,
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
@@ -165,9 +144,7 @@ pub async fn run(
             let Some((tx, dropped)) = route else {
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow(key)) {
-                    tracing::warn!(
-                        "sample on {key} is for no configured rig ({n} more suppressed)"
-                    );
+                    tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
                 }
                 return;
             };
@@ -188,10 +165,7 @@ pub async fn run(
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
     drop(queryables);
     drop(tokens);
-    let mut summary = RunSummary {
-        unknown_rig_samples: unknown.load(Ordering::Relaxed),
-        ..Default::default()
-    };
+    let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
     for w in workers {
         if let Ok((name, counts)) = w.join() {
             summary.rigs.insert(name, counts);
@@ -229,11 +203,7 @@ impl Worker {
         self.pipeline.as_mut().expect("the pipeline is in place between samples")
     }
 
-    fn run(
-        mut self,
-        rx: std::sync::mpsc::Receiver<Incoming>,
-        period: Duration,
-    ) -> (String, Counts) {
+    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> (String, Counts) {
         let mut next_status = Instant::now() + period;
         loop {
             let wait = next_status.saturating_duration_since(Instant::now());
@@ -248,10 +218,7 @@ impl Worker {
             }
         }
         self.publish_status();
-        (
-            self.rig.clone(),
-            self.p().counts.clone(),
-        )
+        (self.rig.clone(), self.p().counts.clone())
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
@@ -265,22 +232,9 @@ impl Worker {
         }
     }
 
-    fn record(
-        &self,
-        key: String,
-        type_name: &'static str,
-        log_time_ns: u64,
-        publish_time_ns: u64,
-        data: Vec<u8>,
-    ) {
+    fn record(&self, key: String, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
         if self.recorder.enabled() {
-            self.recorder.send(Record::Message {
-                key,
-                type_name,
-                log_time_ns,
-                publish_time_ns,
-                data,
-            });
+            self.recorder.send(Record::Message { key, type_name, log_time_ns, publish_time_ns, data });
         }
     }
 
@@ -312,13 +266,7 @@ impl Worker {
             }
         };
         let sample = msg.to_sample();
-        self.record(
-            keys::clubhead(&rig),
-            "ClubheadSample",
-            incoming.log_time_ns,
-            msg.t_ns,
-            incoming.payload,
-        );
+        self.record(keys::clubhead(&rig), "ClubheadSample", incoming.log_time_ns, msg.t_ns, incoming.payload);
         let mut any_event = false;
         let received = incoming.received;
         let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
@@ -331,14 +279,21 @@ impl Worker {
             if let Some(q) = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01) {
                 let lab = crate::math::Isometry3::from_parts(sample.position_m.into(), q);
                 let world_from_club = self.p().setup.calibration.world_from_club(&lab);
-                self.recorder.send(Record::ClubPose { rig: rig.clone(), t_ns: sample.t_ns, log_time_ns: incoming.log_time_ns, world_from_club });
+                self.recorder.send(Record::ClubPose {
+                    rig: rig.clone(),
+                    t_ns: sample.t_ns,
+                    log_time_ns: incoming.log_time_ns,
+                    world_from_club,
+                });
             }
         }
     }
 
     fn on_event(&mut self, rig: &str, event: Event, received: Instant) {
         match event {
-            Event::Rejected { frame, reason } => self.warn(reason.key(), || format!("frame {frame} rejected: {reason}")),
+            Event::Rejected { frame, reason } => {
+                self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
+            }
             Event::Impact(m) => {
                 let data = serde_json::to_vec(&m).unwrap_or_default();
                 if let Err(e) = self.impact.put(data.clone()).wait() {
@@ -407,12 +362,6 @@ impl Worker {
         if let Err(e) = self.status.put(data.clone()).wait() {
             tracing::warn!("publishing status: {e}");
         }
-        self.record(
-            keys::status(&status.rig),
-            "StatusMessage",
-            status.t_ns,
-            status.t_ns,
-            data,
-        );
+        self.record(keys::status(&status.rig), "StatusMessage", status.t_ns, status.t_ns, data);
     }
 }

@@ -27,20 +27,9 @@ pub const QUEUE_CAPACITY: usize = 1 << 16;
 #[derive(Debug, Clone)]
 pub enum Record {
     /// A zenoh message: its key (without the leading `/`), its wire type name, and its JSON bytes.
-    Message {
-        key: String,
-        type_name: &'static str,
-        log_time_ns: u64,
-        publish_time_ns: u64,
-        data: Vec<u8>,
-    },
+    Message { key: String, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
     /// The club's pose in the world at a sample (Foxglove `PoseInFrame` on `/foxglove/<rig>/club_pose`).
-    ClubPose {
-        rig: String,
-        t_ns: u64,
-        log_time_ns: u64,
-        world_from_club: Isometry3,
-    },
+    ClubPose { rig: String, t_ns: u64, log_time_ns: u64, world_from_club: Isometry3 },
     /// Ball and club at an impact (Foxglove `SceneUpdate` on `/foxglove/<rig>/impact_scene`).
     ImpactScene {
         rig: String,
@@ -73,10 +62,8 @@ pub struct Recorder {
 impl Recorder {
     /// Creates the file and starts the writer; `session` becomes the `session` metadata record.
     pub fn create(path: &Path, session: BTreeMap<String, String>) -> Result<Recorder, DaemonError> {
-        let file = std::fs::File::create(path).map_err(|e| DaemonError::Io {
-            what: format!("creating {}", path.display()),
-            source: e,
-        })?;
+        let file = std::fs::File::create(path)
+            .map_err(|e| DaemonError::Io { what: format!("creating {}", path.display()), source: e })?;
         let (tx, rx) = sync_channel::<Record>(QUEUE_CAPACITY);
         let dropped = Arc::new(AtomicU64::new(0));
         let dropped_w = dropped.clone();
@@ -84,10 +71,7 @@ impl Recorder {
         let join = std::thread::Builder::new()
             .name("impactd-recorder".into())
             .spawn(move || {
-                let err = |e: mcap::McapError| DaemonError::Mcap {
-                    path: path_s.clone(),
-                    reason: e.to_string(),
-                };
+                let err = |e: mcap::McapError| DaemonError::Mcap { path: path_s.clone(), reason: e.to_string() };
                 let mut w = mcap::WriteOptions::new()
                     .compression(Some(mcap::Compression::Zstd))
                     .chunk_size(Some(512 * 1024))
@@ -98,11 +82,8 @@ impl Recorder {
                     .library(format!("impactd {}", env!("CARGO_PKG_VERSION")))
                     .create(BufWriter::new(file))
                     .map_err(err)?;
-                w.write_metadata(&mcap::records::Metadata {
-                    name: "session".into(),
-                    metadata: session,
-                })
-                .map_err(err)?;
+                w.write_metadata(&mcap::records::Metadata { name: "session".into(), metadata: session })
+                    .map_err(err)?;
                 let mut channels = Channels::default();
                 let mut summary = RecorderSummary::default();
                 let mut last_flush = Instant::now();
@@ -131,31 +112,19 @@ impl Recorder {
                 end.insert("messages".to_string(), summary.messages.to_string());
                 end.insert("dropped".to_string(), summary.dropped.to_string());
                 end.insert("end_ns".to_string(), super::wall_ns().to_string());
-                w.write_metadata(&mcap::records::Metadata {
-                    name: "session_end".into(),
-                    metadata: end,
-                })
-                .map_err(err)?;
+                w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })
+                    .map_err(err)?;
                 w.finish().map_err(err)?;
                 Ok(summary)
             })
-            .map_err(|e| DaemonError::Io {
-                what: "starting the recorder".into(),
-                source: e,
-            })?;
-        Ok(Recorder {
-            tx: Some(tx),
-            dropped,
-            join: Some(join),
-            path: path.to_path_buf(),
-        })
+            .map_err(|e| DaemonError::Io { what: "starting the recorder".into(), source: e })?;
+        Ok(Recorder { tx: Some(tx), dropped, join: Some(join), path: path.to_path_buf() })
     }
 
     /// Queues a record without blocking; a full queue drops it and counts the drop.
     pub fn send(&self, record: Record) {
         if let Some(tx) = &self.tx {
-            if let Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) = tx.try_send(record)
-            {
+            if let Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) = tx.try_send(record) {
                 self.dropped.fetch_add(1, Ordering::Relaxed);
             }
         }
@@ -168,10 +137,7 @@ impl Recorder {
 
     /// A handle that can send from other threads.
     pub fn handle(&self) -> RecorderHandle {
-        RecorderHandle {
-            tx: self.tx.clone(),
-            dropped: self.dropped.clone(),
-        }
+        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone() }
     }
 
     /// Writes the summary and closes the file.
@@ -179,10 +145,9 @@ impl Recorder {
         self.tx.take();
         match self.join.take().map(|j| j.join()) {
             Some(Ok(r)) => r,
-            Some(Err(_)) => Err(DaemonError::Mcap {
-                path: self.path.display().to_string(),
-                reason: "writer panicked".into(),
-            }),
+            Some(Err(_)) => {
+                Err(DaemonError::Mcap { path: self.path.display().to_string(), reason: "writer panicked".into() })
+            }
             None => Ok(RecorderSummary::default()),
         }
     }
@@ -198,10 +163,7 @@ pub struct RecorderHandle {
 impl RecorderHandle {
     /// A handle that records nothing.
     pub fn none() -> Self {
-        RecorderHandle {
-            tx: None,
-            dropped: Arc::new(AtomicU64::new(0)),
-        }
+        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)) }
     }
 
     pub fn send(&self, record: Record) {
@@ -253,11 +215,7 @@ impl Channels {
             "foxglove.SceneUpdate" => (name.to_string(), FOXGLOVE_SCENE_UPDATE.to_string()),
             other => (
                 format!("impactd.{other}"),
-                crate::wire::schemas()
-                    .into_iter()
-                    .find(|(n, _)| *n == other)
-                    .map(|(_, s)| s)
-                    .unwrap_or_default(),
+                crate::wire::schemas().into_iter().find(|(n, _)| *n == other).map(|(_, s)| s).unwrap_or_default(),
             ),
         };
         let id = w.add_schema(&schema_name, "jsonschema", data.as_bytes())?;
@@ -292,12 +250,7 @@ impl Channels {
         let channel_id = self.channel(w, topic, schema)?;
         self.sequence = self.sequence.wrapping_add(1);
         w.write_to_known_channel(
-            &mcap::records::MessageHeader {
-                channel_id,
-                sequence: self.sequence,
-                log_time,
-                publish_time,
-            },
+            &mcap::records::MessageHeader { channel_id, sequence: self.sequence, log_time, publish_time },
             data,
         )
     }
@@ -308,26 +261,10 @@ impl Channels {
         record: Record,
     ) -> Result<(), mcap::McapError> {
         match record {
-            Record::Message {
-                key,
-                type_name,
-                log_time_ns,
-                publish_time_ns,
-                data,
-            } => self.put(
-                w,
-                &format!("/{key}"),
-                type_name,
-                log_time_ns,
-                publish_time_ns,
-                &data,
-            ),
-            Record::ClubPose {
-                rig,
-                t_ns,
-                log_time_ns,
-                world_from_club,
-            } => {
+            Record::Message { key, type_name, log_time_ns, publish_time_ns, data } => {
+                self.put(w, &format!("/{key}"), type_name, log_time_ns, publish_time_ns, &data)
+            }
+            Record::ClubPose { rig, t_ns, log_time_ns, world_from_club } => {
                 let p = world_from_club.translation.vector;
                 let msg = serde_json::json!({
                     "timestamp": timestamp(t_ns),
@@ -335,30 +272,11 @@ impl Channels {
                     "pose": pose_json([p.x, p.y, p.z], world_from_club.rotation.into()),
                 });
                 let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(
-                    w,
-                    &format!("/foxglove/{rig}/club_pose"),
-                    "foxglove.PoseInFrame",
-                    log_time_ns,
-                    t_ns,
-                    &data,
-                )
+                self.put(w, &format!("/foxglove/{rig}/club_pose"), "foxglove.PoseInFrame", log_time_ns, t_ns, &data)
             }
-            Record::ImpactScene {
-                rig,
-                t_ns,
-                log_time_ns,
-                ball_position_m,
-                ball_radius_m,
-                club,
-            } => {
+            Record::ImpactScene { rig, t_ns, log_time_ns, ball_position_m, ball_radius_m, club } => {
                 let d = 2.0 * ball_radius_m;
-                let identity = crate::wire::QuaternionMsg {
-                    x: 0.0,
-                    y: 0.0,
-                    z: 0.0,
-                    w: 1.0,
-                };
+                let identity = crate::wire::QuaternionMsg { x: 0.0, y: 0.0, z: 0.0, w: 1.0 };
                 let entity = |id: &str, spheres: serde_json::Value, cubes: serde_json::Value| {
                     serde_json::json!({
                         "timestamp": timestamp(t_ns), "frame_id": "world", "id": id,
@@ -375,14 +293,7 @@ impl Channels {
                     ],
                 });
                 let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(
-                    w,
-                    &format!("/foxglove/{rig}/impact_scene"),
-                    "foxglove.SceneUpdate",
-                    log_time_ns,
-                    t_ns,
-                    &data,
-                )
+                self.put(w, &format!("/foxglove/{rig}/impact_scene"), "foxglove.SceneUpdate", log_time_ns, t_ns, &data)
             }
             Record::Flush => Ok(()),
         }

@@ -26,17 +26,11 @@ pub struct ReplayInput {
 }
 
 fn mcap_err(path: &Path, e: impl std::fmt::Display) -> DaemonError {
-    DaemonError::Mcap {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    }
+    DaemonError::Mcap { path: path.display().to_string(), reason: e.to_string() }
 }
 
 fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
-    std::fs::read(path).map_err(|e| DaemonError::Io {
-        what: format!("reading {}", path.display()),
-        source: e,
-    })
+    std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })
 }
 
 /// Whether the bytes start with the MCAP magic.
@@ -50,26 +44,19 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
     if !is_mcap(&bytes) {
         let mut input = ReplayInput::default();
         for (i, line) in bytes.lines().enumerate() {
-            let line = line.map_err(|e| DaemonError::Io {
-                what: format!("reading {}", path.display()),
-                source: e,
-            })?;
+            let line = line.map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
             if line.trim().is_empty() {
                 continue;
             }
-            let msg: ClubheadSampleMsg = serde_json::from_str(&line).map_err(|e| {
-                DaemonError::Input(format!("{} line {}: {e}", path.display(), i + 1))
-            })?;
+            let msg: ClubheadSampleMsg = serde_json::from_str(&line)
+                .map_err(|e| DaemonError::Input(format!("{} line {}: {e}", path.display(), i + 1)))?;
             input.samples.push(msg);
         }
         return Ok(input);
     }
     let mut input = ReplayInput::default();
-    for record in mcap::read::LinearReader::new_with_options(
-        &bytes,
-        mcap::read::Options::IgnoreEndMagic.into(),
-    )
-    .map_err(|e| mcap_err(path, e))?
+    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(path, e))?
     {
         if let Ok(mcap::records::Record::Metadata(m)) = record {
             if m.name == "session" {
@@ -77,9 +64,8 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
             }
         }
     }
-    let stream =
-        mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-            .map_err(|e| mcap_err(path, e))?;
+    let stream = mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(path, e))?;
     for message in stream {
         let message = match message {
             Ok(m) => m,
@@ -90,14 +76,11 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         };
         let topic = message.channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
-            let msg: ClubheadSampleMsg =
-                serde_json::from_slice(&message.data).map_err(|e| mcap_err(path, e))?;
+            let msg: ClubheadSampleMsg = serde_json::from_slice(&message.data).map_err(|e| mcap_err(path, e))?;
             input.samples.push(msg);
         } else if topic.starts_with("golf/") && topic.ends_with("/launch") {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
-                input
-                    .recorded_latency_us
-                    .insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
+                input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
             input.recorded_launches.push(message.data.into_owned());
         }
@@ -121,10 +104,8 @@ pub fn replay(
     mut pace: impl FnMut(u64),
     mut on_event: impl FnMut(&Event),
 ) -> ReplayStats {
-    let mut pipelines: HashMap<String, Pipeline> = setups
-        .into_iter()
-        .map(|s| (s.name.clone(), Pipeline::new(s)))
-        .collect();
+    let mut pipelines: HashMap<String, Pipeline> =
+        setups.into_iter().map(|s| (s.name.clone(), Pipeline::new(s))).collect();
     let mut stats = ReplayStats::default();
     let mut events = Vec::with_capacity(8);
     for msg in &input.samples {
@@ -159,18 +140,14 @@ pub fn replay(
 pub fn info(path: &Path) -> Result<String, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
-        return Err(DaemonError::Input(format!(
-            "{} is not an MCAP file",
-            path.display()
-        )));
+        return Err(DaemonError::Input(format!("{} is not an MCAP file", path.display())));
     }
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
     let mut damaged = None;
     let mut shots: BTreeMap<String, u64> = BTreeMap::new();
-    for message in
-        mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-            .map_err(|e| mcap_err(path, e))?
+    for message in mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(path, e))?
     {
         let m = match message {
             Ok(m) => m,
@@ -181,29 +158,18 @@ pub fn info(path: &Path) -> Result<String, DaemonError> {
         };
         first = first.min(m.log_time);
         last = last.max(m.log_time);
-        let schema = m
-            .channel
-            .schema
-            .as_ref()
-            .map(|s| s.name.clone())
-            .unwrap_or_default();
+        let schema = m.channel.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default();
         let entry = counts.entry(m.channel.topic.clone()).or_insert((schema, 0));
         entry.1 += 1;
         let topic = m.channel.topic.trim_start_matches('/');
-        if let Some(rig) = topic
-            .strip_prefix("golf/")
-            .and_then(|t| t.strip_suffix("/launch"))
-        {
+        if let Some(rig) = topic.strip_prefix("golf/").and_then(|t| t.strip_suffix("/launch")) {
             *shots.entry(rig.to_string()).or_default() += 1;
         }
     }
     let mut metadata = Vec::new();
-    for record in mcap::read::LinearReader::new_with_options(
-        &bytes,
-        mcap::read::Options::IgnoreEndMagic.into(),
-    )
-    .map_err(|e| mcap_err(path, e))?
-    .flatten()
+    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(path, e))?
+        .flatten()
     {
         if let mcap::records::Record::Metadata(m) = record {
             let keys: Vec<String> = m
@@ -220,11 +186,7 @@ pub fn info(path: &Path) -> Result<String, DaemonError> {
     let mut out = format!("file:      {} ({} bytes)\n", path.display(), bytes.len());
     out += &format!(
         "complete:  {}\n",
-        if complete {
-            "yes (summary and footer present)"
-        } else {
-            "no: cut off; run `impactd recover`"
-        }
+        if complete { "yes (summary and footer present)" } else { "no: cut off; run `impactd recover`" }
     );
     if let Some(d) = damaged {
         out += &format!("damaged:   {d}\n");
@@ -261,31 +223,21 @@ pub struct Recovered {
 pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
     let bytes = read_file(input)?;
     if !is_mcap(&bytes) {
-        return Err(DaemonError::Input(format!(
-            "{} is not an MCAP file",
-            input.display()
-        )));
+        return Err(DaemonError::Input(format!("{} is not an MCAP file", input.display())));
     }
-    let file = std::fs::File::create(output).map_err(|e| DaemonError::Io {
-        what: format!("creating {}", output.display()),
-        source: e,
-    })?;
+    let file = std::fs::File::create(output)
+        .map_err(|e| DaemonError::Io { what: format!("creating {}", output.display()), source: e })?;
     let mut w = mcap::WriteOptions::new()
         .compression(Some(mcap::Compression::Zstd))
         .profile("")
         .create(std::io::BufWriter::new(file))
         .map_err(|e| mcap_err(output, e))?;
     let mut complete = mcap::read::footer(&bytes).is_ok();
-    for record in mcap::read::LinearReader::new_with_options(
-        &bytes,
-        mcap::read::Options::IgnoreEndMagic.into(),
-    )
-    .map_err(|e| mcap_err(input, e))?
+    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(input, e))?
     {
         match record {
-            Ok(mcap::records::Record::Metadata(m)) => {
-                w.write_metadata(&m).map_err(|e| mcap_err(output, e))?
-            }
+            Ok(mcap::records::Record::Metadata(m)) => w.write_metadata(&m).map_err(|e| mcap_err(output, e))?,
             Ok(_) => {}
             Err(_) => {
                 complete = false;
@@ -296,9 +248,8 @@ pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
     let mut channels: HashMap<u16, u16> = HashMap::new();
     let mut schemas: HashMap<u16, u16> = HashMap::new();
     let mut messages = 0;
-    for message in
-        mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-            .map_err(|e| mcap_err(input, e))?
+    for message in mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
+        .map_err(|e| mcap_err(input, e))?
     {
         let m = match message {
             Ok(m) => m,
@@ -314,9 +265,7 @@ pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
                     Some(s) => match schemas.get(&s.id) {
                         Some(id) => *id,
                         None => {
-                            let id = w
-                                .add_schema(&s.name, &s.encoding, &s.data)
-                                .map_err(|e| mcap_err(output, e))?;
+                            let id = w.add_schema(&s.name, &s.encoding, &s.data).map_err(|e| mcap_err(output, e))?;
                             schemas.insert(s.id, id);
                             id
                         }
@@ -324,12 +273,7 @@ pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
                     None => 0,
                 };
                 let id = w
-                    .add_channel(
-                        schema_id,
-                        &m.channel.topic,
-                        &m.channel.message_encoding,
-                        &m.channel.metadata,
-                    )
+                    .add_channel(schema_id, &m.channel.topic, &m.channel.message_encoding, &m.channel.metadata)
                     .map_err(|e| mcap_err(output, e))?;
                 channels.insert(m.channel.id, id);
                 id

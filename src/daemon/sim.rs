@@ -108,18 +108,12 @@ impl SimRig {
         let spec = SwingSpec::random(&self.club, &mut self.rng);
         let swing = Swing::new(&spec, &self.equipment).ok().unwrap_or_else(|| {
             let mut s = spec;
-            s.delivery = crate::impact::Delivery {
-                impact_h_m: 0.0,
-                impact_v_m: 0.0,
-                ..spec.delivery
-            };
+            s.delivery = crate::impact::Delivery { impact_h_m: 0.0, impact_v_m: 0.0, ..spec.delivery };
             Swing::new(&s, &self.equipment).expect("a centred swing is always valid")
         });
         // Impact in the middle of the shot's span, at a random phase against the frame clock.
-        let t_impact = self.start_ns
-            + k * self.interval_ns
-            + self.interval_ns / 2
-            + (self.rng.unit() * self.period_ns) as u64;
+        let t_impact =
+            self.start_ns + k * self.interval_ns + self.interval_ns / 2 + (self.rng.unit() * self.period_ns) as u64;
         (k, swing, t_impact)
     }
 
@@ -145,11 +139,7 @@ impl SimRig {
             self.current = Some(current);
             self.next = Some(self.make_shot(k + 1));
         }
-        let (k, swing, t_impact) = self
-            .current
-            .as_ref()
-            .map(|(k, s, t)| (*k, s, *t))
-            .expect("set above");
+        let (k, swing, t_impact) = self.current.as_ref().map(|(k, s, t)| (*k, s, *t)).expect("set above");
         let tau = (t_ns as i64 - t_impact as i64) as f64 * 1e-9;
         let mut pose = if tau > AFTER_S {
             // Walk the club back from the follow-through to the start of the next swing, smoothly.
@@ -171,31 +161,24 @@ impl SimRig {
         let n = |rng: &mut Rng| Vector3::new(rng.normal(), rng.normal(), rng.normal());
         pose.translation.vector += n(&mut self.rng) * self.noise_m;
         pose.rotation = so3::exp(&(n(&mut self.rng) * self.noise_rad)) * pose.rotation;
-        let sample = ClubPose {
-            frame: self.frame + 1,
-            t_ns,
-            world_from_club: pose,
-        }
-        .to_sample(&Calibration::default());
+        let sample = ClubPose { frame: self.frame + 1, t_ns, world_from_club: pose }.to_sample(&Calibration::default());
         self.frame += 1;
-        let truth =
-            if t_ns > t_impact && self.truth_sent <= k && (self.shots == 0 || k < self.shots) {
-                self.truth_sent = k + 1;
-                let delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
-                ImpulseModel::new(ImpulseVariant::Adjusted)
-                    .predict(&swing.truth, &self.equipment)
-                    .ok()
-                    .map(|l| TruthMessage {
-                        rig: self.name.clone(),
-                        shot: k + 1,
-                        t_impact_ns: t_impact,
-                        club: self.club.name.clone(),
-                        delivery,
-                        launch: PredictOutput::new(&l, &delivery, Default::default()),
-                    })
-            } else {
-                None
-            };
+        let truth = if t_ns > t_impact && self.truth_sent <= k && (self.shots == 0 || k < self.shots) {
+            self.truth_sent = k + 1;
+            let delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
+            ImpulseModel::new(ImpulseVariant::Adjusted).predict(&swing.truth, &self.equipment).ok().map(|l| {
+                TruthMessage {
+                    rig: self.name.clone(),
+                    shot: k + 1,
+                    t_impact_ns: t_impact,
+                    club: self.club.name.clone(),
+                    delivery,
+                    launch: PredictOutput::new(&l, &delivery, Default::default()),
+                }
+            })
+        } else {
+            None
+        };
         (sample, truth)
     }
 }
@@ -211,9 +194,7 @@ pub async fn run_sim(
     let mut threads = Vec::new();
     for (i, name) in options.rigs.iter().enumerate() {
         if !keys::valid_rig_name(name) {
-            return Err(DaemonError::Input(format!(
-                "rig name `{name}` must be letters, digits, _ or -"
-            )));
+            return Err(DaemonError::Input(format!("rig name `{name}` must be letters, digits, _ or -")));
         }
         let samples = session
             .declare_publisher(keys::clubhead(name))
@@ -226,14 +207,8 @@ pub async fn run_sim(
             .await
             .map_err(DaemonError::zenoh)?;
         if options.wait_for_subscriber_s > 0.0 {
-            let deadline =
-                std::time::Instant::now() + Duration::from_secs_f64(options.wait_for_subscriber_s);
-            while !samples
-                .matching_status()
-                .await
-                .map(|m| m.matching())
-                .unwrap_or(false)
-            {
+            let deadline = std::time::Instant::now() + Duration::from_secs_f64(options.wait_for_subscriber_s);
+            while !samples.matching_status().await.map(|m| m.matching()).unwrap_or(false) {
                 if std::time::Instant::now() > deadline {
                     tracing::warn!(
                         "rig {name}: no subscriber after {} s; publishing anyway",
@@ -244,12 +219,8 @@ pub async fn run_sim(
                 tokio::time::sleep(Duration::from_millis(20)).await;
             }
         }
-        let mut rig = SimRig::new(
-            name,
-            &options,
-            start_ns + i as u64 * 37_000_000,
-            options.seed.wrapping_add(i as u64 * 7919),
-        );
+        let mut rig =
+            SimRig::new(name, &options, start_ns + i as u64 * 37_000_000, options.seed.wrapping_add(i as u64 * 7919));
         let stop = stop.clone();
         threads.push(tokio::task::spawn_blocking(move || {
             let mut summary = SimSummary::default();
@@ -261,10 +232,7 @@ pub async fn run_sim(
                 }
                 let (sample, truth) = rig.next();
                 let msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
-                if let Err(e) = samples
-                    .put(serde_json::to_vec(&msg).unwrap_or_default())
-                    .wait()
-                {
+                if let Err(e) = samples.put(serde_json::to_vec(&msg).unwrap_or_default()).wait() {
                     tracing::warn!("rig {}: publishing a sample: {e}", rig.name);
                 }
                 summary.samples += 1;
@@ -296,12 +264,6 @@ pub async fn run_sim(
     }
 }
 
-fn truth_put(
-    publisher: &zenoh::pubsub::Publisher<'static>,
-    t: &TruthMessage,
-) -> Result<(), DaemonError> {
-    publisher
-        .put(serde_json::to_vec(t).unwrap_or_default())
-        .wait()
-        .map_err(DaemonError::zenoh)
+fn truth_put(publisher: &zenoh::pubsub::Publisher<'static>, t: &TruthMessage) -> Result<(), DaemonError> {
+    publisher.put(serde_json::to_vec(t).unwrap_or_default()).wait().map_err(DaemonError::zenoh)
 }

@@ -12,11 +12,7 @@ pub struct LatencyWindow {
 
 impl LatencyWindow {
     pub fn new(capacity: usize) -> Self {
-        LatencyWindow {
-            values: Vec::with_capacity(capacity),
-            next: 0,
-            capacity,
-        }
+        LatencyWindow { values: Vec::with_capacity(capacity), next: 0, capacity }
     }
 
     pub fn push(&mut self, us: f64) {
@@ -49,10 +45,7 @@ pub struct RateLimiter {
 
 impl RateLimiter {
     pub fn new(period: Duration) -> Self {
-        RateLimiter {
-            period,
-            last: Default::default(),
-        }
+        RateLimiter { period, last: Default::default() }
     }
 
     /// `Some(suppressed since the last allowed)` when this event may be logged.

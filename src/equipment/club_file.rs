@@ -57,10 +57,7 @@ pub struct SlipFile {
 }
 
 fn invalid(field: &'static str, reason: impl Into<String>) -> EquipmentError {
-    EquipmentError::Invalid {
-        field,
-        reason: reason.into(),
-    }
+    EquipmentError::Invalid { field, reason: reason.into() }
 }
 
 fn finite(field: &'static str, v: Real) -> Result<Real, EquipmentError> {
@@ -77,55 +74,31 @@ impl ClubFile {
     pub fn into_spec(self) -> Result<ClubSpec, EquipmentError> {
         let mass_kg = finite("mass_kg", self.mass_kg)?;
         if mass_kg <= 0.0 {
-            return Err(invalid(
-                "mass_kg",
-                format!("must be positive, got {mass_kg}"),
-            ));
+            return Err(invalid("mass_kg", format!("must be positive, got {mass_kg}")));
         }
         if mass_kg > 2.0 {
-            return Err(invalid(
-                "mass_kg",
-                format!("is {mass_kg} kg; a clubhead is well under 2 kg (units are kg)"),
-            ));
+            return Err(invalid("mass_kg", format!("is {mass_kg} kg; a clubhead is well under 2 kg (units are kg)")));
         }
         let loft_deg = finite("loft_deg", self.loft_deg)?;
         if !(0.0..=70.0).contains(&loft_deg) {
-            return Err(invalid(
-                "loft_deg",
-                format!("must be within 0-70 deg, got {loft_deg}"),
-            ));
+            return Err(invalid("loft_deg", format!("must be within 0-70 deg, got {loft_deg}")));
         }
         let mut center = Vector3::zeros();
         for (i, v) in self.cg_to_face_center_m.iter().enumerate() {
             center[i] = finite("cg_to_face_center_m", *v)?;
         }
         if center.norm() > 0.2 {
-            return Err(invalid(
-                "cg_to_face_center_m",
-                "is more than 0.2 m long (units are metres)",
-            ));
+            return Err(invalid("cg_to_face_center_m", "is more than 0.2 m long (units are metres)"));
         }
         let inertia = match (self.inertia_g_cm2, self.inertia_kg_m2) {
             (Some(t), None) => g_cm2_to_kg_m2(&t),
             (None, Some(t)) => crate::math::Matrix3::from_fn(|i, j| t[i][j]),
             (Some(_), Some(_)) => {
-                return Err(invalid(
-                    "inertia_g_cm2",
-                    "and inertia_kg_m2 are both given; give one",
-                ));
+                return Err(invalid("inertia_g_cm2", "and inertia_kg_m2 are both given; give one"));
             }
-            (None, None) => {
-                return Err(invalid(
-                    "inertia_g_cm2",
-                    "is missing (or give inertia_kg_m2)",
-                ))
-            }
+            (None, None) => return Err(invalid("inertia_g_cm2", "is missing (or give inertia_kg_m2)")),
         };
-        let field = if self.inertia_kg_m2.is_some() {
-            "inertia_kg_m2"
-        } else {
-            "inertia_g_cm2"
-        };
+        let field = if self.inertia_kg_m2.is_some() { "inertia_kg_m2" } else { "inertia_g_cm2" };
         if inertia.iter().any(|v| !v.is_finite()) {
             return Err(invalid(field, "has a non-finite entry"));
         }
@@ -139,10 +112,7 @@ impl ClubFile {
         let roll = self.roll_radius_m.unwrap_or(Real::INFINITY);
         for (name, r) in [("bulge_radius_m", bulge), ("roll_radius_m", roll)] {
             if r.is_nan() || r <= 0.0 {
-                return Err(invalid(
-                    name,
-                    format!("must be positive (inf for flat), got {r}"),
-                ));
+                return Err(invalid(name, format!("must be positive (inf for flat), got {r}")));
             }
         }
         let shape = FaceShape::from_radii(bulge, roll);
@@ -150,14 +120,8 @@ impl ClubFile {
             FaceShape::Plane => (0.038, 0.025),
             FaceShape::Torus { .. } => (0.050, 0.030),
         };
-        let face_half_width_m = finite(
-            "face_half_width_m",
-            self.face_half_width_m.unwrap_or(half_w),
-        )?;
-        let face_half_height_m = finite(
-            "face_half_height_m",
-            self.face_half_height_m.unwrap_or(half_h),
-        )?;
+        let face_half_width_m = finite("face_half_width_m", self.face_half_width_m.unwrap_or(half_w))?;
+        let face_half_height_m = finite("face_half_height_m", self.face_half_height_m.unwrap_or(half_h))?;
         if face_half_width_m <= 0.0 {
             return Err(invalid("face_half_width_m", "must be positive"));
         }
@@ -168,23 +132,15 @@ impl ClubFile {
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
-        let mut impulse = if shape.is_curved() {
-            ImpulseTuning::DRIVER
-        } else {
-            ImpulseTuning::IRON7
-        };
+        let mut impulse = if shape.is_curved() { ImpulseTuning::DRIVER } else { ImpulseTuning::IRON7 };
         if let Some(a) = self.adjusted {
             let dm = finite("adjusted.delta_mass_kg", a.delta_mass_kg)?;
             if dm < 0.0 || dm > mass_kg {
-                return Err(invalid(
-                    "adjusted.delta_mass_kg",
-                    "must be within 0 and the head mass",
-                ));
+                return Err(invalid("adjusted.delta_mass_kg", "must be within 0 and the head mass"));
             }
             impulse.adjusted_delta_mass_kg = dm;
             for i in 0..3 {
-                impulse.adjusted_ball_cg_shift_m[i] =
-                    finite("adjusted.ball_cg_shift_m", a.ball_cg_shift_m[i])?;
+                impulse.adjusted_ball_cg_shift_m[i] = finite("adjusted.ball_cg_shift_m", a.ball_cg_shift_m[i])?;
             }
         }
         if let Some(s) = self.slip {
@@ -198,26 +154,19 @@ impl ClubFile {
         }
         let continuous = match self.continuous {
             Some(c) => {
-                c.validate(&crate::equipment::BallSpec::SEED)
-                    .map_err(|reason| invalid("continuous", reason))?;
+                c.validate(&crate::equipment::BallSpec::SEED).map_err(|reason| invalid("continuous", reason))?;
                 c
             }
             None if shape.is_curved() => crate::impact::continuous::TwoLayerParams::DRIVER,
             None => crate::impact::continuous::TwoLayerParams::IRON7,
         };
-        let inertia_inv = inertia
-            .try_inverse()
-            .ok_or_else(|| invalid(field, "must be invertible"))?;
+        let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {
             name: self.name.unwrap_or_else(|| "custom".to_string()),
             mass_kg,
             inertia_kg_m2: inertia,
             inertia_inv_kg_m2: inertia_inv,
-            face: Face {
-                center_m: center,
-                loft_rad: loft_deg.to_radians(),
-                shape,
-            },
+            face: Face { center_m: center, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,
             shaft_mass_kg,
@@ -262,32 +211,21 @@ mod tests {
     fn bad_fields_are_named() {
         assert!(err_of(&DRIVER.replace("mass_kg = 0.204", "mass_kg = -0.2")).contains("mass_kg"));
         assert!(err_of(&DRIVER.replace("loft_deg = 9.8", "loft_deg = 75")).contains("loft_deg"));
-        let not_pd = DRIVER.replace(
-            "[2843.0, -733.0, 530.2], [-733.0, 5679.0",
-            "[2843.0, -9733.0, 530.2], [-9733.0, 5679.0",
-        );
+        let not_pd =
+            DRIVER.replace("[2843.0, -733.0, 530.2], [-733.0, 5679.0", "[2843.0, -9733.0, 530.2], [-9733.0, 5679.0");
         let e = err_of(&not_pd);
-        assert!(
-            e.contains("inertia_g_cm2") && e.contains("positive definite"),
-            "{e}"
-        );
+        assert!(e.contains("inertia_g_cm2") && e.contains("positive definite"), "{e}");
         let missing = DRIVER.replace("mass_kg = 0.204", "");
         assert!(err_of(&missing).contains("mass_kg"));
         let unknown = format!("{DRIVER}\ncolour = \"red\"");
         assert!(err_of(&unknown).contains("colour"));
-        let no_inertia = DRIVER
-            .lines()
-            .filter(|l| !l.contains("inertia"))
-            .collect::<Vec<_>>()
-            .join("\n");
+        let no_inertia = DRIVER.lines().filter(|l| !l.contains("inertia")).collect::<Vec<_>>().join("\n");
         assert!(err_of(&no_inertia).contains("inertia_g_cm2"));
     }
 
     #[test]
     fn a_flat_face_by_default_uses_the_iron_tuning() {
-        let text = DRIVER
-            .replace("bulge_radius_m = 0.305", "")
-            .replace("roll_radius_m = 0.305", "");
+        let text = DRIVER.replace("bulge_radius_m = 0.305", "").replace("roll_radius_m = 0.305", "");
         let club = ClubSpec::from_toml_str(&text).unwrap();
         assert_eq!(club.face.shape, crate::face::FaceShape::Plane);
         assert_eq!(club.impulse, ImpulseTuning::IRON7);

@@ -34,11 +34,7 @@ pub struct BallSpec {
 
 impl BallSpec {
     /// The seed's ball, Table 3.1: 45.9 g, 21.3 mm, 83.36 g cm^2.
-    pub const SEED: BallSpec = BallSpec {
-        mass_kg: 0.0459,
-        radius_m: 0.0213,
-        inertia_kg_m2: 83.36e-7,
-    };
+    pub const SEED: BallSpec = BallSpec { mass_kg: 0.0459, radius_m: 0.0213, inertia_kg_m2: 83.36e-7 };
 }
 
 impl Default for BallSpec {
@@ -108,17 +104,10 @@ impl ClubSpec {
         Self::build(
             "driver",
             0.204,
-            [
-                [2843.0, -733.0, 530.2],
-                [-733.0, 5679.0, 0.5],
-                [530.2, 0.5, 4085.0],
-            ],
+            [[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]],
             Vector3::new(0.0408, 0.0114, 0.001),
             9.8,
-            FaceShape::Torus {
-                bulge_radius_m: 0.305,
-                roll_radius_m: 0.305,
-            },
+            FaceShape::Torus { bulge_radius_m: 0.305, roll_radius_m: 0.305 },
             (0.050, 0.030),
             0.060,
             ImpulseTuning::DRIVER,
@@ -130,11 +119,7 @@ impl ClubSpec {
         Self::build(
             "iron7",
             0.264,
-            [
-                [2752.0, -51.0, -53.0],
-                [-51.0, 2889.0, -429.0],
-                [-53.0, -429.0, 576.6],
-            ],
+            [[2752.0, -51.0, -53.0], [-51.0, 2889.0, -429.0], [-53.0, -429.0, 576.6]],
             Vector3::new(0.00361, 0.00485, 0.00112),
             30.5,
             FaceShape::Plane,
@@ -162,11 +147,7 @@ impl ClubSpec {
             mass_kg,
             inertia_inv_kg_m2: inertia_kg_m2.try_inverse().unwrap_or_else(Matrix3::zeros),
             inertia_kg_m2,
-            face: Face {
-                center_m: cg_to_face_center_m,
-                loft_rad: loft_deg.to_radians(),
-                shape,
-            },
+            face: Face { center_m: cg_to_face_center_m, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,
             shaft_mass_kg,
@@ -193,8 +174,7 @@ impl ClubSpec {
 
     /// A club from the text of a TOML club file (the fields of [`ClubFile`]).
     pub fn from_toml_str(text: &str) -> Result<Self, EquipmentError> {
-        let file: ClubFile =
-            toml::from_str(text).map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        let file: ClubFile = toml::from_str(text).map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
         file.into_spec()
     }
 
@@ -234,41 +214,23 @@ mod tests {
                 assert_eq!(club.face.center_m[i], c[i].as_float().unwrap());
                 let row = t["inertia_g_cm2"][i].as_array().unwrap();
                 for j in 0..3 {
-                    assert!(
-                        (club.inertia_kg_m2[(i, j)] - row[j].as_float().unwrap() * 1e-7).abs()
-                            < 1e-18
-                    );
+                    assert!((club.inertia_kg_m2[(i, j)] - row[j].as_float().unwrap() * 1e-7).abs() < 1e-18);
                 }
             }
             let adj = &tables["im"]["adjusted"][name];
-            assert_eq!(
-                club.impulse.adjusted_delta_mass_kg,
-                adj["delta_mass_kg"].as_float().unwrap()
-            );
+            assert_eq!(club.impulse.adjusted_delta_mass_kg, adj["delta_mass_kg"].as_float().unwrap());
             let s = adj["ball_cg_shift_m"].as_array().unwrap();
             for i in 0..3 {
-                assert_eq!(
-                    club.impulse.adjusted_ball_cg_shift_m[i],
-                    s[i].as_float().unwrap()
-                );
+                assert_eq!(club.impulse.adjusted_ball_cg_shift_m[i], s[i].as_float().unwrap());
             }
             let c = &tables["continuous"]["two_layer"][name];
             let p = club.continuous;
             assert_eq!(p.k_v_n_per_m3, c["k_v_n_per_m3"].as_float().unwrap());
             assert_eq!(p.d_s_per_m, c["d_s_per_m"].as_float().unwrap());
             assert_eq!(p.mu, c["mu"].as_float().unwrap());
-            assert_eq!(
-                p.k_ball_nm_per_rad,
-                c["k_ball_nm_per_rad"].as_float().unwrap()
-            );
-            assert_eq!(
-                p.c_ball_nms_per_rad,
-                c["c_ball_nms_per_rad"].as_float().unwrap()
-            );
-            assert_eq!(
-                p.cover_thickness_m,
-                c["cover_thickness_m"].as_float().unwrap()
-            );
+            assert_eq!(p.k_ball_nm_per_rad, c["k_ball_nm_per_rad"].as_float().unwrap());
+            assert_eq!(p.c_ball_nms_per_rad, c["c_ball_nms_per_rad"].as_float().unwrap());
+            assert_eq!(p.cover_thickness_m, c["cover_thickness_m"].as_float().unwrap());
             assert_eq!(p.v_tr_mps, c["v_tr_mps"].as_float().unwrap());
             let slip = &tables["im"]["slip"][name];
             assert_eq!(club.impulse.slip_e_y, slip["e_y"].as_float().unwrap());
@@ -277,19 +239,14 @@ mod tests {
         let b = &tables["ball"];
         assert_eq!(BallSpec::SEED.mass_kg, b["mass_kg"].as_float().unwrap());
         assert_eq!(BallSpec::SEED.radius_m, b["radius_m"].as_float().unwrap());
-        assert_eq!(
-            BallSpec::SEED.inertia_kg_m2,
-            b["inertia_kg_m2"].as_float().unwrap()
-        );
+        assert_eq!(BallSpec::SEED.inertia_kg_m2, b["inertia_kg_m2"].as_float().unwrap());
     }
 
     #[test]
     fn preset_inertias_are_positive_definite() {
         for club in [ClubSpec::driver(), ClubSpec::iron7()] {
             assert!(club.inertia_kg_m2.cholesky().is_some(), "{}", club.name);
-            assert!(
-                (club.inertia_kg_m2 * club.inertia_inv_kg_m2 - Matrix3::identity()).norm() < 1e-12
-            );
+            assert!((club.inertia_kg_m2 * club.inertia_inv_kg_m2 - Matrix3::identity()).norm() < 1e-12);
         }
     }
 }

@@ -20,7 +20,14 @@ pub struct Conditions {
 impl Default for Conditions {
     /// TrackMan's tour-average conditions: sea level, calm, 22.5 C, 50 % humidity.
     fn default() -> Self {
-        Conditions { temperature_c: 22.5, pressure_hpa: None, humidity: 0.5, altitude_m: 0.0, wind_mps: 0.0, wind_dir_deg: 0.0 }
+        Conditions {
+            temperature_c: 22.5,
+            pressure_hpa: None,
+            humidity: 0.5,
+            altitude_m: 0.0,
+            wind_mps: 0.0,
+            wind_dir_deg: 0.0,
+        }
     }
 }
 

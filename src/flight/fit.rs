@@ -40,7 +40,8 @@ pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, String> {
         .enumerate()
         .map(|(i, line)| {
             let f: Vec<&str> = line.split(',').map(str::trim).collect();
-            let num = |c: usize| f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(format!("row {}: column {c}", i + 1));
+            let num =
+                |c: usize| f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(format!("row {}: column {c}", i + 1));
             Ok(TourAverage {
                 club: f.get(c_club).ok_or("no club")?.to_string(),
                 ball_speed_mph: num(c_bs)?,
@@ -67,12 +68,14 @@ pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
         .map(|r| {
             let (carry, apex, land) = predict(aero, r);
             let e = [(carry - r.carry_yd) / 3.0, (apex - r.max_height_yd) / 2.0, (land - r.land_angle_deg) / 2.0];
-            e.iter().map(|x| if x.is_finite() { x * x + 10.0 * (x.abs() - 0.8).max(0.0).powi(2) } else { 1e6 }).sum::<Real>()
+            e.iter()
+                .map(|x| if x.is_finite() { x * x + 10.0 * (x.abs() - 0.8).max(0.0).powi(2) } else { 1e6 })
+                .sum::<Real>()
         })
         .sum()
 }
 
-const N: usize = 8;
+const N: usize = 7;
 
 fn to_aero(x: &[Real; N]) -> Aero {
     Aero {
@@ -82,8 +85,7 @@ fn to_aero(x: &[Real; N]) -> Aero {
         c_dv: x[3].exp(),
         c_l1: x[4].exp(),
         c_l2: x[5].exp(),
-        c_l3: x[6].exp(),
-        spin_tau_s: x[7].exp(),
+        spin_tau_s: x[6].exp(),
     }
 }
 
@@ -95,7 +97,6 @@ fn from_aero(a: &Aero) -> [Real; N] {
         a.c_dv.max(1e-6).ln(),
         a.c_l1.ln(),
         a.c_l2.ln(),
-        a.c_l3.max(1e-6).ln(),
         a.spin_tau_s.ln(),
     ]
 }

@@ -43,10 +43,7 @@ impl Delivery {
             ("dynamic_loft_deg", self.dynamic_loft_rad),
             ("impact_h_mm", self.impact_h_m),
             ("impact_v_mm", self.impact_v_m),
-            (
-                "club_angular_velocity_radps",
-                self.club_angular_velocity_radps.norm(),
-            ),
+            ("club_angular_velocity_radps", self.club_angular_velocity_radps.norm()),
         ];
         for (field, v) in fields {
             if !v.is_finite() {
@@ -54,9 +51,7 @@ impl Delivery {
             }
         }
         if !(1.0..=100.0).contains(&self.club_speed_mps) {
-            return Err(ImpactError::SpeedOutOfRange {
-                speed_mps: self.club_speed_mps,
-            });
+            return Err(ImpactError::SpeedOutOfRange { speed_mps: self.club_speed_mps });
         }
         Ok(())
     }
@@ -66,13 +61,9 @@ impl Delivery {
         self.validate()?;
         let club = &equipment.club;
         if !club.on_face(self.impact_h_m, self.impact_v_m) {
-            return Err(ImpactError::OffFace {
-                h_mm: self.impact_h_m * 1e3,
-                v_mm: self.impact_v_m * 1e3,
-            });
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
         }
-        let world_from_club_rot =
-            rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
+        let world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
         let rot = world_from_club_rot.matrix();
         let contact = club.face.contact(self.impact_h_m, self.impact_v_m)?;
         let v_face = self.club_speed_mps * self.direction();
@@ -95,9 +86,7 @@ impl Delivery {
 }
 
 /// Delivery numbers read back from any impact state, plus spin loft and face-to-path.
-#[derive(
-    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct DeliveryMetrics {
     pub club_speed_mps: Real,
     pub club_speed_mph: Real,

@@ -40,11 +40,7 @@ pub enum ImpulseVariant {
 }
 
 impl ImpulseVariant {
-    pub const ALL: [ImpulseVariant; 3] = [
-        ImpulseVariant::Standard,
-        ImpulseVariant::Adjusted,
-        ImpulseVariant::Slip,
-    ];
+    pub const ALL: [ImpulseVariant; 3] = [ImpulseVariant::Standard, ImpulseVariant::Adjusted, ImpulseVariant::Slip];
 
     pub fn as_str(&self) -> &'static str {
         match self {
@@ -78,10 +74,7 @@ pub struct ImpulseModel {
 
 impl ImpulseModel {
     pub fn new(variant: ImpulseVariant) -> Self {
-        ImpulseModel {
-            variant,
-            cor: DEFAULT_COR,
-        }
+        ImpulseModel { variant, cor: DEFAULT_COR }
     }
 
     pub fn with_cor(mut self, cor: Real) -> Self {
@@ -92,13 +85,8 @@ impl ImpulseModel {
     /// The parameters of this variant for `equipment`'s club.
     pub fn params(&self, equipment: &Equipment) -> ImpulseParams {
         let t = &equipment.club.impulse;
-        let mut p = ImpulseParams {
-            cor: self.cor,
-            delta_mass_kg: 0.0,
-            ball_cg_shift_m: Vector3::zeros(),
-            e_y: 0.0,
-            e_z: 0.0,
-        };
+        let mut p =
+            ImpulseParams { cor: self.cor, delta_mass_kg: 0.0, ball_cg_shift_m: Vector3::zeros(), e_y: 0.0, e_z: 0.0 };
         match self.variant {
             ImpulseVariant::Standard => {}
             ImpulseVariant::Adjusted => {
@@ -171,29 +159,19 @@ pub fn solve(p: &ContactProblem) -> Result<ContactSolution, ImpactError> {
     let u_frame = p.frame.transpose() * u;
     // u - u' = F (I + E) F^T u
     let du = p.frame * u_frame.component_mul(&(Vector3::repeat(1.0) + p.restitution));
-    let impulse = k
-        .cholesky()
-        .map(|c| c.solve(&du))
-        .or_else(|| k.lu().solve(&du))
-        .ok_or(ImpactError::Singular)?;
+    let impulse = k.cholesky().map(|c| c.solve(&du)).or_else(|| k.lu().solve(&du)).ok_or(ImpactError::Singular)?;
     Ok(ContactSolution {
         impulse_ns: impulse,
         club_velocity_mps: p.club_velocity_mps - impulse / p.club_mass_kg,
-        club_angular_velocity_radps: p.club_angular_velocity_radps
-            - p.club_inertia_inv * p.r_club_m.cross(&impulse),
+        club_angular_velocity_radps: p.club_angular_velocity_radps - p.club_inertia_inv * p.r_club_m.cross(&impulse),
         ball_velocity_mps: p.ball_velocity_mps + impulse / p.ball_mass_kg,
-        ball_angular_velocity_radps: p.ball_angular_velocity_radps
-            + p.ball_inertia_inv * p.r_ball_m.cross(&impulse),
+        ball_angular_velocity_radps: p.ball_angular_velocity_radps + p.ball_inertia_inv * p.r_ball_m.cross(&impulse),
     })
 }
 
 impl ImpulseModel {
     /// The contact problem for a state on the given equipment, with this model's parameters.
-    pub fn problem(
-        &self,
-        state: &ImpactState,
-        equipment: &Equipment,
-    ) -> Result<ContactProblem, ImpactError> {
+    pub fn problem(&self, state: &ImpactState, equipment: &Equipment) -> Result<ContactProblem, ImpactError> {
         let params = self.params(equipment);
         let g = state.contact(&equipment.club)?;
         if g.contact_velocity_mps.dot(&g.frame.column(0)) <= 0.0 {

@@ -9,9 +9,7 @@ use crate::math::{Real, Vector3};
 use crate::units::{mps_to_mph, radps_to_rpm};
 
 /// TrackMan-style launch numbers.
-#[derive(
-    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct LaunchMetrics {
     pub ball_speed_mps: Real,
     pub ball_speed_mph: Real,
@@ -28,17 +26,9 @@ impl LaunchMetrics {
     pub fn from_ball(velocity_mps: &Vector3, spin_radps: &Vector3) -> Self {
         let speed = velocity_mps.norm();
         let horizontal = velocity_mps.x.hypot(velocity_mps.z);
-        let u = if speed > 0.0 {
-            velocity_mps / speed
-        } else {
-            Vector3::x()
-        };
+        let u = if speed > 0.0 { velocity_mps / speed } else { Vector3::x() };
         let a = u.cross(&Vector3::y());
-        let a = if a.norm() > 1e-12 {
-            a.normalize()
-        } else {
-            Vector3::z()
-        };
+        let a = if a.norm() > 1e-12 { a.normalize() } else { Vector3::z() };
         let up = a.cross(&u);
         let backspin = spin_radps.dot(&a);
         let sidespin = -spin_radps.dot(&up);
@@ -59,8 +49,7 @@ impl LaunchMetrics {
     pub fn spin_vector_radps(&self) -> Vector3 {
         let (u, a, up) = self.axes();
         let _ = u;
-        crate::units::rpm_to_radps(self.backspin_rpm) * a
-            - crate::units::rpm_to_radps(self.sidespin_rpm) * up
+        crate::units::rpm_to_radps(self.backspin_rpm) * a - crate::units::rpm_to_radps(self.sidespin_rpm) * up
     }
 
     /// The ball velocity (m/s, world).
@@ -69,10 +58,7 @@ impl LaunchMetrics {
     }
 
     fn axes(&self) -> (Vector3, Vector3, Vector3) {
-        let (la, ld) = (
-            self.launch_angle_deg.to_radians(),
-            self.launch_direction_deg.to_radians(),
-        );
+        let (la, ld) = (self.launch_angle_deg.to_radians(), self.launch_direction_deg.to_radians());
         let u = Vector3::new(la.cos() * ld.cos(), la.sin(), la.cos() * ld.sin());
         let a = u.cross(&Vector3::y()).normalize();
         let up = a.cross(&u);
@@ -87,25 +73,14 @@ mod tests {
     /// Pure backspin on a ball going straight: w = +z (top moving back toward the golfer).
     #[test]
     fn backspin_and_fade_signs() {
-        let m = LaunchMetrics::from_ball(
-            &Vector3::new(60.0, 10.0, 0.0),
-            &Vector3::new(0.0, 0.0, 300.0),
-        );
+        let m = LaunchMetrics::from_ball(&Vector3::new(60.0, 10.0, 0.0), &Vector3::new(0.0, 0.0, 300.0));
         assert!(m.backspin_rpm > 0.0);
         assert!(m.sidespin_rpm.abs() < 1e-9);
         // Spin about -y (seen from above, clockwise) curves a ball going +x toward +z: fade, + sidespin.
-        let m = LaunchMetrics::from_ball(
-            &Vector3::new(60.0, 0.0, 0.0),
-            &Vector3::new(0.0, -50.0, 300.0),
-        );
+        let m = LaunchMetrics::from_ball(&Vector3::new(60.0, 0.0, 0.0), &Vector3::new(0.0, -50.0, 300.0));
         assert!(m.sidespin_rpm > 0.0 && m.spin_axis_deg > 0.0);
         // Magnus force w x v points right (+z) for that spin.
-        assert!(
-            Vector3::new(0.0, -50.0, 0.0)
-                .cross(&Vector3::new(60.0, 0.0, 0.0))
-                .z
-                > 0.0
-        );
+        assert!(Vector3::new(0.0, -50.0, 0.0).cross(&Vector3::new(60.0, 0.0, 0.0)).z > 0.0);
     }
 
     #[test]

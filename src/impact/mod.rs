@@ -48,10 +48,7 @@ pub struct Equipment {
 impl Equipment {
     /// A club with the seed's ball.
     pub fn new(club: ClubSpec) -> Self {
-        Equipment {
-            club,
-            ball: BallSpec::SEED,
-        }
+        Equipment { club, ball: BallSpec::SEED }
     }
 }
 
@@ -89,10 +86,7 @@ impl ImpactState {
     /// The contact geometry of this state on `club`.
     pub fn contact(&self, club: &ClubSpec) -> Result<ContactGeometry, ImpactError> {
         if !club.on_face(self.impact_h_m, self.impact_v_m) {
-            return Err(ImpactError::OffFace {
-                h_mm: self.impact_h_m * 1e3,
-                v_mm: self.impact_v_m * 1e3,
-            });
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
         }
         let contact_club = club.face.contact(self.impact_h_m, self.impact_v_m)?;
         let rot = *self.world_from_club.rotation.to_rotation_matrix().matrix();
@@ -100,15 +94,8 @@ impl ImpactState {
         let normal = rot * contact_club.normal;
         let toe = rot.column(2).into_owned();
         let frame = impact_frame(&normal, &toe);
-        let contact_velocity_mps =
-            self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
-        Ok(ContactGeometry {
-            world_from_club: rot,
-            r_club_m,
-            frame,
-            contact_velocity_mps,
-            contact_club,
-        })
+        let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
+        Ok(ContactGeometry { world_from_club: rot, r_club_m, frame, contact_velocity_mps, contact_club })
     }
 
     /// The state mirrored for a left-handed golfer (z -> -z), on the mirrored club.
@@ -118,11 +105,7 @@ impl ImpactState {
     /// velocity as an axial one.
     pub fn mirrored(&self) -> ImpactState {
         use crate::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Rotation3, UnitQuaternion};
-        let r = self
-            .world_from_club
-            .rotation
-            .to_rotation_matrix()
-            .into_inner();
+        let r = self.world_from_club.rotation.to_rotation_matrix().into_inner();
         let r_m = mirror_z_tensor(&r);
         let t = mirror_z(&self.world_from_club.translation.vector);
         ImpactState {

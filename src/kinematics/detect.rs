@@ -61,13 +61,7 @@ pub struct ImpactDetector {
 
 impl ImpactDetector {
     pub fn new(config: DetectorConfig) -> Self {
-        ImpactDetector {
-            config,
-            armed: false,
-            previous: None,
-            before_previous: None,
-            scratch: Vec::with_capacity(64),
-        }
+        ImpactDetector { config, armed: false, previous: None, before_previous: None, scratch: Vec::with_capacity(64) }
     }
 
     /// Whether the next crossing would fire.
@@ -76,12 +70,7 @@ impl ImpactDetector {
     }
 
     /// Call after each pose the track accepted; returns a detection when this pose revealed an impact.
-    pub fn on_pose(
-        &mut self,
-        track: &Track,
-        club: &ClubSpec,
-        estimators: &[EstimatorSpec],
-    ) -> Option<Vec<Detection>> {
+    pub fn on_pose(&mut self, track: &Track, club: &ClubSpec, estimators: &[EstimatorSpec]) -> Option<Vec<Detection>> {
         let newest = *track.latest()?;
         let scene = Scene {
             face: &club.face,
@@ -121,11 +110,7 @@ impl ImpactDetector {
                     h_m: prev.h_m + k * (prev.h_m - old.h_m),
                     v_m: prev.v_m + k * (prev.v_m - old.v_m),
                 };
-                (predicted.distance_m <= 0.0).then_some((
-                    prev,
-                    predicted,
-                    (old.distance_m - prev.distance_m) / dt_old,
-                ))
+                (predicted.distance_m <= 0.0).then_some((prev, predicted, (old.distance_m - prev.distance_m) / dt_old))
             }
         } else {
             None
@@ -138,23 +123,14 @@ impl ImpactDetector {
         // against swings that pass beside the ball. The estimator finds the exact location, and a model refuses
         // a contact off the face.
         let f = prev.distance_m / (prev.distance_m - g.distance_m);
-        let (h, v) = (
-            prev.h_m + f * (g.h_m - prev.h_m),
-            prev.v_m + f * (g.v_m - prev.v_m),
-        );
+        let (h, v) = (prev.h_m + f * (g.h_m - prev.h_m), prev.v_m + f * (g.v_m - prev.v_m));
         let m = self.config.face_margin_m;
         if h.abs() > club.face_half_width_m + m || v.abs() > club.face_half_height_m + m {
             return None;
         }
         self.armed = false;
         self.scratch.clear();
-        self.scratch.extend(
-            track
-                .poses()
-                .iter()
-                .filter(|p| p.t_ns < newest.t_ns)
-                .copied(),
-        );
+        self.scratch.extend(track.poses().iter().filter(|p| p.t_ns < newest.t_ns).copied());
         Some(
             estimators
                 .iter()

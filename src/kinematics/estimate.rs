@@ -73,10 +73,8 @@ impl EstimatorSpec {
             "linear2" => Some(Self::linear2()),
             "poly" => Some(Self::poly()),
             custom if custom.starts_with("poly@") => {
-                let parts: Vec<Real> = custom["poly@".len()..]
-                    .split(':')
-                    .map(|p| p.parse().ok())
-                    .collect::<Option<_>>()?;
+                let parts: Vec<Real> =
+                    custom["poly@".len()..].split(':').map(|p| p.parse().ok()).collect::<Option<_>>()?;
                 let [pos_ms, pos_deg, rot_ms, rot_deg] = parts[..] else {
                     return None;
                 };
@@ -95,10 +93,7 @@ impl EstimatorSpec {
                     .then_some(spec)
             }
             custom => {
-                let mut parts = custom
-                    .strip_prefix("poly:")?
-                    .split(':')
-                    .map(|p| p.parse::<usize>().ok());
+                let mut parts = custom.strip_prefix("poly:")?.split(':').map(|p| p.parse::<usize>().ok());
                 let spec = EstimatorSpec {
                     name: custom.to_string(),
                     frames: parts.next()??,
@@ -117,15 +112,11 @@ impl EstimatorSpec {
 
     /// Checks the numbers are usable.
     pub fn validate(&self) -> Result<(), String> {
-        for (what, frames, degree) in [
-            ("position", self.frames, self.position_degree),
-            ("rotation", self.rotation_frames, self.rotation_degree),
-        ] {
+        for (what, frames, degree) in
+            [("position", self.frames, self.position_degree), ("rotation", self.rotation_frames, self.rotation_degree)]
+        {
             if degree > super::fit::MAX_DEGREE {
-                return Err(format!(
-                    "{what} degree {degree} is above the maximum {}",
-                    super::fit::MAX_DEGREE
-                ));
+                return Err(format!("{what} degree {degree} is above the maximum {}", super::fit::MAX_DEGREE));
             }
             if frames <= degree || frames > 64 {
                 return Err(format!(
@@ -150,9 +141,7 @@ const LACK_OF_FIT_RATIO: Real = 1.5;
 pub enum EstimateError {
     #[error("too few good pre-impact frames: {have}, need {need}")]
     TooFewFrames { have: usize, need: usize },
-    #[error(
-        "the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)"
-    )]
+    #[error("the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)")]
     StaleFrames { gap_ms: Real, limit_ms: Real },
     #[error("the fit of the pre-impact frames is singular")]
     SingularFit,
@@ -172,9 +161,7 @@ impl EstimateError {
 }
 
 /// How much to trust an estimate.
-#[derive(
-    Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Quality {
     pub frames_used: usize,
     /// RMS residual of the position fit (mm); 0 for an exact fit (linear2).
@@ -229,61 +216,29 @@ pub fn estimate(
     let (need, pos_frames, pos_degree, rot_frames, rot_degree) = match spec.window_ms {
         None => {
             if pre_impact.len() < spec.frames {
-                return Err(EstimateError::TooFewFrames {
-                    have: pre_impact.len(),
-                    need: spec.frames,
-                });
+                return Err(EstimateError::TooFewFrames { have: pre_impact.len(), need: spec.frames });
             }
-            (
-                spec.frames,
-                spec.frames,
-                spec.position_degree,
-                spec.rotation_frames,
-                spec.rotation_degree,
-            )
+            (spec.frames, spec.frames, spec.position_degree, spec.rotation_frames, spec.rotation_degree)
         }
         Some(window_ms) => {
             let newest = pre_impact.last().map(|p| p.t_ns).unwrap_or(0);
             let within = |ms: Real, cap: usize| {
                 let span_ns = (ms * 1e6) as u64;
-                pre_impact
-                    .iter()
-                    .rev()
-                    .take_while(|p| newest - p.t_ns <= span_ns)
-                    .count()
-                    .min(cap)
-                    .min(64)
+                pre_impact.iter().rev().take_while(|p| newest - p.t_ns <= span_ns).count().min(cap).min(64)
             };
             let n_p = within(window_ms, spec.frames);
-            let n_r = within(
-                spec.rotation_window_ms.unwrap_or(window_ms),
-                spec.rotation_frames,
-            )
-            .min(n_p);
+            let n_r = within(spec.rotation_window_ms.unwrap_or(window_ms), spec.rotation_frames).min(n_p);
             if n_r < EstimatorSpec::MIN_WINDOW_FRAMES {
-                return Err(EstimateError::TooFewFrames {
-                    have: n_r,
-                    need: EstimatorSpec::MIN_WINDOW_FRAMES,
-                });
+                return Err(EstimateError::TooFewFrames { have: n_r, need: EstimatorSpec::MIN_WINDOW_FRAMES });
             }
             let cap = |n: usize, d: usize| d.min(n / 2 - 1);
-            (
-                n_p,
-                n_p,
-                cap(n_p, spec.position_degree),
-                n_r,
-                cap(n_r, spec.rotation_degree),
-            )
+            (n_p, n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
         }
     };
     let used = &pre_impact[pre_impact.len() - need..];
     // Times relative to the revealing frame keep full precision in f64.
     let rel = |t_ns: u64| -((reveal_t_ns - t_ns) as Real) * 1e-9;
-    let mut poses = [TimedPose {
-        t_s: 0.0,
-        position_m: Vector3::zeros(),
-        orientation: Default::default(),
-    }; 64];
+    let mut poses = [TimedPose { t_s: 0.0, position_m: Vector3::zeros(), orientation: Default::default() }; 64];
     // The position fit follows the face centre, not the CG: the contact velocity then comes straight from the
     // fitted path instead of through the (noisier) differentiated orientation, v_cg + w x r.
     let r_fit = scene.face.center_m;
@@ -294,14 +249,8 @@ pub fn estimate(
             orientation: p.world_from_club.rotation,
         };
     }
-    let mut fit = PoseFit::fit_windows(
-        &poses[..need],
-        pos_frames,
-        pos_degree,
-        rot_frames,
-        rot_degree,
-    )
-    .ok_or(EstimateError::SingularFit)?;
+    let mut fit = PoseFit::fit_windows(&poses[..need], pos_frames, pos_degree, rot_frames, rot_degree)
+        .ok_or(EstimateError::SingularFit)?;
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
@@ -328,25 +277,14 @@ pub fn estimate(
         }
     }
     let club_pose = |face_centre: Vector3, orientation: crate::math::UnitQuaternion| {
-        Isometry3::from_parts(
-            (face_centre - orientation * r_fit).into_translation(),
-            orientation,
-        )
+        Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
     };
-    let gap_at = |t: Real| {
-        scene
-            .gap(&club_pose(fit.position(t), fit.orientation(t)))
-            .distance_m
-    };
+    let gap_at = |t: Real| scene.gap(&club_pose(fit.position(t), fit.orientation(t))).distance_m;
     // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
     // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
     // falls short).
     let t_last = fit.t_ref_s();
-    let dt = if need >= 2 {
-        (t_last - poses[need - 2].t_s).max(1e-5)
-    } else {
-        1.0 / 720.0
-    };
+    let dt = if need >= 2 { (t_last - poses[need - 2].t_s).max(1e-5) } else { 1.0 / 720.0 };
     let mut lo = t_last;
     let mut g_lo = gap_at(lo);
     let mut steps = 0;
@@ -401,14 +339,12 @@ pub fn estimate(
     }
     let at = fit.at(t);
     let world_from_club = club_pose(at.position_m, at.orientation);
-    let cg_velocity_mps =
-        at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
+    let cg_velocity_mps = at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
     let g = scene.gap(&world_from_club);
     let residual_rms_mm = fit.residual_rms_m * 1e3;
     let residual_rms_deg = fit.residual_rms_rad.to_degrees();
     let extrapolation_ms = extrapolation_s.max(0.0) * 1e3;
-    let score =
-        1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);
+    let score = 1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);
     let t_impact_ns = (reveal_t_ns as i128 + (t * 1e9).round() as i128).max(0) as u64;
     Ok(ImpactEstimate {
         t_impact_ns,
@@ -420,12 +356,6 @@ pub fn estimate(
             impact_h_m: g.h_m,
             impact_v_m: g.v_m,
         },
-        quality: Quality {
-            frames_used: need,
-            residual_rms_mm,
-            residual_rms_deg,
-            extrapolation_ms,
-            score,
-        },
+        quality: Quality { frames_used: need, residual_rms_mm, residual_rms_deg, extrapolation_ms, score },
     })
 }

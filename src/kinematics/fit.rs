@@ -45,12 +45,7 @@ pub struct PoseAt {
 
 /// Fits `values` (one per frame) at normalised times `tau` with a polynomial of `degree` by least squares
 /// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5).
-fn poly_fit(
-    tau: &[Real],
-    values: &[Vector3],
-    degree: usize,
-    out: &mut [Vector3; MAX_DEGREE + 1],
-) -> Option<Real> {
+fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3; MAX_DEGREE + 1]) -> Option<Real> {
     let m = degree + 1;
     let mut ata = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
     let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
@@ -188,18 +183,8 @@ impl PoseFit {
         }
         let mut pos = [Vector3::zeros(); MAX_DEGREE + 1];
         let mut rot = [Vector3::zeros(); MAX_DEGREE + 1];
-        let rp = poly_fit(
-            &tau[n - pos_frames..n],
-            &p[n - pos_frames..n],
-            pos_degree,
-            &mut pos,
-        )?;
-        let rr = poly_fit(
-            &tau[n - rot_frames..n],
-            &th[n - rot_frames..n],
-            rot_degree,
-            &mut rot,
-        )?;
+        let rp = poly_fit(&tau[n - pos_frames..n], &p[n - pos_frames..n], pos_degree, &mut pos)?;
+        let rr = poly_fit(&tau[n - rot_frames..n], &th[n - rot_frames..n], rot_degree, &mut rot)?;
         pos[0] += newest.position_m;
         Some(PoseFit {
             t_ref_s,
@@ -226,22 +211,13 @@ impl PoseFit {
     /// Position (m) at time `t_s`.
     #[inline]
     pub fn position(&self, t_s: Real) -> Vector3 {
-        eval(
-            &self.pos,
-            self.pos_degree,
-            (t_s - self.t_ref_s) / self.scale_s,
-        )
+        eval(&self.pos, self.pos_degree, (t_s - self.t_ref_s) / self.scale_s)
     }
 
     /// Orientation at time `t_s`.
     #[inline]
     pub fn orientation(&self, t_s: Real) -> UnitQuaternion {
-        self.r_ref
-            * so3::exp(&eval(
-                &self.rot,
-                self.rot_degree,
-                (t_s - self.t_ref_s) / self.scale_s,
-            ))
+        self.r_ref * so3::exp(&eval(&self.rot, self.rot_degree, (t_s - self.t_ref_s) / self.scale_s))
     }
 
     /// Full state at time `t_s`.
@@ -285,11 +261,7 @@ mod tests {
             .map(|k| {
                 let t = -0.02 + k as Real / 720.0;
                 let (p, q) = truth(t);
-                TimedPose {
-                    t_s: t,
-                    position_m: p,
-                    orientation: q,
-                }
+                TimedPose { t_s: t, position_m: p, orientation: q }
             })
             .collect();
         let fit = PoseFit::fit(&poses, 2, 2).unwrap();
@@ -300,10 +272,6 @@ mod tests {
         assert!((s.velocity_mps - Vector3::new(40.0, -2.0, 0.0)).norm() < 1e-7);
         assert!(q.angle_to(&s.orientation) < 1e-9);
         let w = r0 * axis * (30.0 + 1000.0 * t);
-        assert!(
-            (s.angular_velocity_radps - w).norm() < 1e-6,
-            "{} vs {w}",
-            s.angular_velocity_radps
-        );
+        assert!((s.angular_velocity_radps - w).norm() < 1e-6, "{} vs {w}", s.angular_velocity_radps);
     }
 }

@@ -28,10 +28,7 @@ pub struct Calibration {
 
 impl Default for Calibration {
     fn default() -> Self {
-        Calibration {
-            world_from_lab: Isometry3::identity(),
-            club_from_body: Isometry3::identity(),
-        }
+        Calibration { world_from_lab: Isometry3::identity(), club_from_body: Isometry3::identity() }
     }
 }
 

@@ -114,22 +114,13 @@ impl Track {
     fn check(&mut self, s: &ClubheadSample) -> Result<Accepted, Reject> {
         if let Some((frame, t_ns)) = self.last_frame {
             if s.t_ns == t_ns || s.frame == frame {
-                return Err(Reject::Duplicate {
-                    frame: s.frame,
-                    t_ns: s.t_ns,
-                });
+                return Err(Reject::Duplicate { frame: s.frame, t_ns: s.t_ns });
             }
             if s.t_ns < t_ns || s.frame < frame {
-                return Err(Reject::Backwards {
-                    frame: s.frame,
-                    back_ns: t_ns.saturating_sub(s.t_ns),
-                });
+                return Err(Reject::Backwards { frame: s.frame, back_ns: t_ns.saturating_sub(s.t_ns) });
             }
         }
-        let dropped_before = self
-            .last_frame
-            .map(|(f, _)| s.frame.saturating_sub(f + 1))
-            .unwrap_or(0);
+        let dropped_before = self.last_frame.map(|(f, _)| s.frame.saturating_sub(f + 1)).unwrap_or(0);
         if s.occluded {
             self.last_frame = Some((s.frame, s.t_ns));
             self.counts.occluded += 1;
@@ -137,29 +128,18 @@ impl Track {
             return Ok(Accepted::Occluded);
         }
         if s.position_m.iter().any(|v| !v.is_finite()) {
-            return Err(Reject::NonFinite {
-                field: "position_m",
-            });
+            return Err(Reject::NonFinite { field: "position_m" });
         }
         if s.orientation_xyzw.iter().any(|v| !v.is_finite()) {
-            return Err(Reject::NonFinite {
-                field: "orientation",
-            });
+            return Err(Reject::NonFinite { field: "orientation" });
         }
         let distance_m = s.position_m.norm();
         if distance_m > self.limits.max_distance_m {
             return Err(Reject::OutOfRange { distance_m });
         }
-        let q = unit_quaternion(&s.orientation_xyzw, self.limits.quaternion_tolerance).ok_or_else(
-            || Reject::NotUnitQuaternion {
-                norm: s
-                    .orientation_xyzw
-                    .iter()
-                    .map(|v| v * v)
-                    .sum::<Real>()
-                    .sqrt(),
-            },
-        )?;
+        let q = unit_quaternion(&s.orientation_xyzw, self.limits.quaternion_tolerance).ok_or_else(|| {
+            Reject::NotUnitQuaternion { norm: s.orientation_xyzw.iter().map(|v| v * v).sum::<Real>().sqrt() }
+        })?;
         let lab_from_body = Isometry3::from_parts(s.position_m.into_translation(), q);
         let world_from_club = self.calibration.world_from_club(&lab_from_body);
         if let Some(prev) = self.poses.back() {
@@ -167,9 +147,7 @@ impl Track {
             if dt > self.limits.reset_gap_s {
                 self.poses.clear();
             } else {
-                let d = (world_from_club.translation.vector
-                    - prev.world_from_club.translation.vector)
-                    .norm();
+                let d = (world_from_club.translation.vector - prev.world_from_club.translation.vector).norm();
                 let speed_mps = d / dt;
                 if speed_mps > self.limits.max_speed_mps {
                     return Err(Reject::Jump { speed_mps });
@@ -182,11 +160,7 @@ impl Track {
         if self.poses.len() == self.limits.history {
             self.poses.pop_front();
         }
-        self.poses.push_back(ClubPose {
-            frame: s.frame,
-            t_ns: s.t_ns,
-            world_from_club,
-        });
+        self.poses.push_back(ClubPose { frame: s.frame, t_ns: s.t_ns, world_from_club });
         Ok(Accepted::Pose { dropped_before })
     }
 

@@ -57,17 +57,9 @@ impl FaceSurface {
                 }
                 let depth = depth.min(2.0 * r);
                 let (v, z) = cap(r, depth);
-                Some(Overlap {
-                    volume_m3: v,
-                    centroid_m: ball_m - z * normal,
-                    normal,
-                    depth_m: depth,
-                })
+                Some(Overlap { volume_m3: v, centroid_m: ball_m - z * normal, normal, depth_m: depth })
             }
-            FaceSurface::Sphere {
-                centre,
-                radius_m: r2,
-            } => {
+            FaceSurface::Sphere { centre, radius_m: r2 } => {
                 let delta = ball_m - centre;
                 let d = delta.norm();
                 let depth = r + r2 - d;
@@ -85,12 +77,7 @@ impl FaceSurface {
                 let p_face = centre + z_face * normal;
                 let p_ball = ball_m - z_ball * normal;
                 let centroid_m = (v_face * p_face + v_ball * p_ball) / volume;
-                Some(Overlap {
-                    volume_m3: volume,
-                    centroid_m,
-                    normal,
-                    depth_m: depth,
-                })
+                Some(Overlap { volume_m3: volume, centroid_m, normal, depth_m: depth })
             }
         }
     }
@@ -103,9 +90,7 @@ pub fn overlap_energy(surface: &FaceSurface, r: Real, depth: Real) -> Real {
     }
     match *surface {
         // V(s) = π (R s² − s³/3)  =>  ∫ = π (R δ³/3 − δ⁴/12)
-        FaceSurface::Plane { .. } => {
-            std::f64::consts::PI * (r * depth.powi(3) / 3.0 - depth.powi(4) / 12.0)
-        }
+        FaceSurface::Plane { .. } => std::f64::consts::PI * (r * depth.powi(3) / 3.0 - depth.powi(4) / 12.0),
         // Numerically (Simpson) along the centre distance; the lens volume is smooth in the overlap.
         FaceSurface::Sphere { radius_m: r2, .. } => {
             let v = |s: Real| {
@@ -113,8 +98,7 @@ pub fn overlap_energy(surface: &FaceSurface, r: Real, depth: Real) -> Real {
                     return 0.0;
                 }
                 let d = r + r2 - s;
-                std::f64::consts::PI * s * s * (d * d + 2.0 * d * (r + r2) - 3.0 * (r - r2).powi(2))
-                    / (12.0 * d)
+                std::f64::consts::PI * s * s * (d * d + 2.0 * d * (r + r2) - 3.0 * (r - r2).powi(2)) / (12.0 * d)
             };
             let n = 200;
             let h = depth / n as Real;
@@ -136,24 +120,13 @@ mod tests {
     fn lens_tends_to_cap() {
         let r = 0.0213;
         let depth = 0.004;
-        let plane = FaceSurface::Plane {
-            point: Vector3::zeros(),
-            normal: Vector3::x(),
-        };
+        let plane = FaceSurface::Plane { point: Vector3::zeros(), normal: Vector3::x() };
         let ball = Vector3::new(r - depth, 0.0, 0.0);
         let a = plane.overlap(&ball, r).unwrap();
         let big = 1e6; // the lens differs from the cap by O(r / R), 2e-8 here
-        let sphere = FaceSurface::Sphere {
-            centre: Vector3::new(-big, 0.0, 0.0),
-            radius_m: big,
-        };
+        let sphere = FaceSurface::Sphere { centre: Vector3::new(-big, 0.0, 0.0), radius_m: big };
         let b = sphere.overlap(&ball, r).unwrap();
-        assert!(
-            (a.volume_m3 - b.volume_m3).abs() < 1e-6 * a.volume_m3,
-            "{} {}",
-            a.volume_m3,
-            b.volume_m3
-        );
+        assert!((a.volume_m3 - b.volume_m3).abs() < 1e-6 * a.volume_m3, "{} {}", a.volume_m3, b.volume_m3);
         assert!((a.centroid_m - b.centroid_m).norm() < 1e-6);
     }
 
@@ -163,10 +136,7 @@ mod tests {
     fn equal_spheres_lens() {
         let r = 0.02;
         let d = 0.035;
-        let s = FaceSurface::Sphere {
-            centre: Vector3::zeros(),
-            radius_m: r,
-        };
+        let s = FaceSurface::Sphere { centre: Vector3::zeros(), radius_m: r };
         let o = s.overlap(&Vector3::new(d, 0.0, 0.0), r).unwrap();
         let want = std::f64::consts::PI * (4.0 * r + d) * (2.0 * r - d).powi(2) / 12.0;
         assert!((o.volume_m3 - want).abs() < 1e-12 * want.max(1e-12) + 1e-18);
@@ -178,20 +148,12 @@ mod tests {
     fn energy_derivative_is_volume() {
         let r = 0.0213;
         for surface in [
-            FaceSurface::Plane {
-                point: Vector3::zeros(),
-                normal: Vector3::x(),
-            },
-            FaceSurface::Sphere {
-                centre: Vector3::new(-0.305, 0.0, 0.0),
-                radius_m: 0.305,
-            },
+            FaceSurface::Plane { point: Vector3::zeros(), normal: Vector3::x() },
+            FaceSurface::Sphere { centre: Vector3::new(-0.305, 0.0, 0.0), radius_m: 0.305 },
         ] {
             let depth = 0.003;
             let h = 1e-7;
-            let dv = (overlap_energy(&surface, r, depth + h)
-                - overlap_energy(&surface, r, depth - h))
-                / (2.0 * h);
+            let dv = (overlap_energy(&surface, r, depth + h) - overlap_energy(&surface, r, depth - h)) / (2.0 * h);
             let ball = match surface {
                 FaceSurface::Plane { .. } => Vector3::new(r - depth, 0.0, 0.0),
                 FaceSurface::Sphere { .. } => Vector3::new(r - depth, 0.0, 0.0),

@@ -89,10 +89,7 @@ impl TwoLayerParams {
                 return Err(format!("`{name}` must be positive, got {v}"));
             }
         }
-        for (name, v) in [
-            ("d_s_per_m", self.d_s_per_m),
-            ("c_ball_nms_per_rad", self.c_ball_nms_per_rad),
-        ] {
+        for (name, v) in [("d_s_per_m", self.d_s_per_m), ("c_ball_nms_per_rad", self.c_ball_nms_per_rad)] {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(format!("`{name}` must not be negative, got {v}"));
             }
@@ -212,11 +209,7 @@ pub struct ContinuousModel {
 
 impl Default for ContinuousModel {
     fn default() -> Self {
-        ContinuousModel {
-            params: None,
-            step_s: 0.5e-6,
-            max_contact_s: 3e-3,
-        }
+        ContinuousModel { params: None, step_s: 0.5e-6, max_contact_s: 3e-3 }
     }
 }
 
@@ -255,12 +248,7 @@ impl Setup {
             Vector3::zeros()
         };
         (
-            ContactForces {
-                normal_n: normal,
-                friction_n: friction,
-                in_contact: true,
-                depth_m: o.depth_m,
-            },
+            ContactForces { normal_n: normal, friction_n: friction, in_contact: true, depth_m: o.depth_m },
             normal * n + friction,
             r_b,
         )
@@ -272,11 +260,9 @@ impl Setup {
         let r_c = s.p_b + r_b - s.p_c;
         let torque_club_body = rot.inverse_transform_vector(&r_c.cross(&(-f_ball)));
         let w = s.w_c_body;
-        let alpha_c_body =
-            self.club_inertia_inv * (torque_club_body - w.cross(&(self.club_inertia * w)));
+        let alpha_c_body = self.club_inertia_inv * (torque_club_body - w.cross(&(self.club_inertia * w)));
         let w_rel = s.w_cover - s.w_core;
-        let spring =
-            self.params.k_ball_nm_per_rad * s.theta + self.params.c_ball_nms_per_rad * w_rel;
+        let spring = self.params.k_ball_nm_per_rad * s.theta + self.params.c_ball_nms_per_rad * w_rel;
         let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
         (
             Rates {
@@ -306,8 +292,8 @@ impl Setup {
     }
 
     fn energy(&self, s: &State) -> Real {
-        let ke_club = 0.5 * self.club_mass * s.v_c.norm_squared()
-            + 0.5 * s.w_c_body.dot(&(self.club_inertia * s.w_c_body));
+        let ke_club =
+            0.5 * self.club_mass * s.v_c.norm_squared() + 0.5 * s.w_c_body.dot(&(self.club_inertia * s.w_c_body));
         let ke_ball = 0.5 * self.ball.mass_kg * s.v_b.norm_squared()
             + 0.5 * self.ball.core_inertia_kg_m2 * s.w_core.norm_squared()
             + 0.5 * self.ball.cover_inertia_kg_m2 * s.w_cover.norm_squared();
@@ -317,10 +303,7 @@ impl Setup {
         let contact = self
             .surface
             .overlap(&ball_club, self.ball.radius_m)
-            .map(|o| {
-                self.params.k_v_n_per_m3
-                    * overlap_energy(&self.surface, self.ball.radius_m, o.depth_m)
-            })
+            .map(|o| self.params.k_v_n_per_m3 * overlap_energy(&self.surface, self.ball.radius_m, o.depth_m))
             .unwrap_or(0.0);
         ke_club + ke_ball + spring + contact
     }
@@ -346,21 +329,11 @@ fn combine(k1: &Rates, k2: &Rates, k3: &Rates, k4: &Rates) -> Rates {
         v_c: c(k1.v_c, k2.v_c, k3.v_c, k4.v_c),
         a_c: c(k1.a_c, k2.a_c, k3.a_c, k4.a_c),
         q_dot: (k1.q_dot + k2.q_dot * 2.0 + k3.q_dot * 2.0 + k4.q_dot) / 6.0,
-        alpha_c_body: c(
-            k1.alpha_c_body,
-            k2.alpha_c_body,
-            k3.alpha_c_body,
-            k4.alpha_c_body,
-        ),
+        alpha_c_body: c(k1.alpha_c_body, k2.alpha_c_body, k3.alpha_c_body, k4.alpha_c_body),
         v_b: c(k1.v_b, k2.v_b, k3.v_b, k4.v_b),
         a_b: c(k1.a_b, k2.a_b, k3.a_b, k4.a_b),
         alpha_core: c(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
-        alpha_cover: c(
-            k1.alpha_cover,
-            k2.alpha_cover,
-            k3.alpha_cover,
-            k4.alpha_cover,
-        ),
+        alpha_cover: c(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
         theta_dot: c(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
     }
 }
@@ -370,23 +343,14 @@ impl ContinuousModel {
     fn surface(club: &ClubSpec) -> FaceSurface {
         let face = &club.face;
         match face.shape {
-            FaceShape::Plane => FaceSurface::Plane {
-                point: face.center_m,
-                normal: face.n0(),
-            },
-            FaceShape::Torus {
-                bulge_radius_m,
-                roll_radius_m,
-            } => {
+            FaceShape::Plane => FaceSurface::Plane { point: face.center_m, normal: face.n0() },
+            FaceShape::Torus { bulge_radius_m, roll_radius_m } => {
                 let radius_m = if bulge_radius_m.is_finite() && roll_radius_m.is_finite() {
                     (bulge_radius_m * roll_radius_m).sqrt()
                 } else {
                     bulge_radius_m.min(roll_radius_m)
                 };
-                FaceSurface::Sphere {
-                    centre: face.center_m - radius_m * face.n0(),
-                    radius_m,
-                }
+                FaceSurface::Sphere { centre: face.center_m - radius_m * face.n0(), radius_m }
             }
         }
     }
@@ -400,17 +364,9 @@ impl ContinuousModel {
     ) -> Result<ContinuousResult, ImpactError> {
         let club = &equipment.club;
         let params = self.params.unwrap_or(club.continuous);
-        params
-            .validate(&equipment.ball)
-            .map_err(|reason| ImpactError::NotConverged {
-                model: "continuous",
-                reason,
-            })?;
+        params.validate(&equipment.ball).map_err(|reason| ImpactError::NotConverged { model: "continuous", reason })?;
         if !club.on_face(state.impact_h_m, state.impact_v_m) {
-            return Err(ImpactError::OffFace {
-                h_mm: state.impact_h_m * 1e3,
-                v_mm: state.impact_v_m * 1e3,
-            });
+            return Err(ImpactError::OffFace { h_mm: state.impact_h_m * 1e3, v_mm: state.impact_v_m * 1e3 });
         }
         let surface = Self::surface(club);
         let setup = Setup {
@@ -444,8 +400,7 @@ impl ContinuousModel {
             theta: Vector3::zeros(),
         };
         let n0 = rot * contact.normal;
-        let v_contact0 =
-            state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
+        let v_contact0 = state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
         if v_contact0.dot(&n0) <= 0.0 {
             return Err(ImpactError::NotApproaching);
         }
@@ -470,8 +425,7 @@ impl ContinuousModel {
         let mut energy = energy_before;
         let mut contact_time = 0.0;
         let record = |t: Real, s: &State, cf: &ContactForces, trace: &mut Vec<TracePoint>| {
-            let total = (setup.ball.core_inertia_kg_m2 * s.w_core
-                + setup.ball.cover_inertia_kg_m2 * s.w_cover)
+            let total = (setup.ball.core_inertia_kg_m2 * s.w_core + setup.ball.cover_inertia_kg_m2 * s.w_cover)
                 / (setup.ball.core_inertia_kg_m2 + setup.ball.cover_inertia_kg_m2);
             trace.push(TracePoint {
                 t_us: t * 1e6,
