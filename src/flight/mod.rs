@@ -18,7 +18,7 @@
 //!
 //! Integration: classical Runge-Kutta at 40 ms with the landing found exactly on the cubic Hermite interpolant of
 //! the last step (position and velocity at both ends) crossing the ground plane `y = 0` (within 0.1 mm of a
-//! 0.05 ms reference; the apex, taken at the steps, within ½ g (20 ms)² = 2 mm).
+//! 0.05 ms reference); the apex is the peak of the same interpolant over the step where the ball turns down.
 
 pub mod air;
 pub mod fit;
@@ -100,6 +100,31 @@ impl LaunchState {
         };
         LaunchState { velocity_mps: m.velocity_mps(), spin_radps: m.spin_vector_radps() }
     }
+}
+
+/// The highest value of the cubic Hermite interpolant through `(0, y0, v0)` and `(h, y1, v1)`.
+fn hermite_peak(y0: Real, v0: Real, y1: Real, v1: Real, h: Real) -> Real {
+    // y(u) = a u³ + b u² + c u + d on u in [0, 1]; y'(u) = 3a u² + 2b u + c.
+    let (c, d) = (h * v0, y0);
+    let a = 2.0 * y0 + h * v0 - 2.0 * y1 + h * v1;
+    let b = -3.0 * y0 - 2.0 * h * v0 + 3.0 * y1 - h * v1;
+    let y = |u: Real| ((a * u + b) * u + c) * u + d;
+    let mut best = y0.max(y1);
+    let disc = 4.0 * b * b - 12.0 * a * c;
+    let roots = if a.abs() < 1e-15 {
+        if b.abs() > 1e-15 { [-c / (2.0 * b), f64::NAN] } else { [f64::NAN; 2] }
+    } else if disc >= 0.0 {
+        let q = disc.sqrt();
+        [(-2.0 * b + q) / (6.0 * a), (-2.0 * b - q) / (6.0 * a)]
+    } else {
+        [f64::NAN; 2]
+    };
+    for u in roots {
+        if (0.0..=1.0).contains(&u) {
+            best = best.max(y(u));
+        }
+    }
+    best
 }
 
 /// Where and how the ball lands.
@@ -213,6 +238,9 @@ impl Flight {
             let n = self.step(&env, &s, h);
             if n.p.y < 0.0 && (t > 0.0 || n.v.y < 0.0) {
                 break Some((s, n));
+            }
+            if s.v.y > 0.0 && n.v.y <= 0.0 {
+                apex = apex.max(hermite_peak(s.p.y, s.v.y, n.p.y, n.v.y, h));
             }
             t += h;
             s = n;
