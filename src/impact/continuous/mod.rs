@@ -11,7 +11,7 @@
 //! - Clubhead: a free 6-DOF rigid body (Newton-Euler in its body frame, unit-quaternion attitude); no shaft and no
 //!   gravity during the half millisecond of contact.
 //!
-//! Integration: classical fourth-order Runge-Kutta at a fixed step (default 0.5 us), from first contact until the
+//! Integration: classical fourth-order Runge-Kutta at a fixed step (default 0.6 us), from first contact until the
 //! bodies separate. Forces are equal and opposite at every stage, so linear momentum is conserved to rounding.
 //! After separation the ball's spin is its total angular momentum over its total inertia (core and cover keep
 //! ringing against each other, exchanging nothing with the outside).
@@ -209,7 +209,7 @@ pub struct ContinuousModel {
 
 impl Default for ContinuousModel {
     fn default() -> Self {
-        ContinuousModel { params: None, step_s: 0.5e-6, max_contact_s: 3e-3 }
+        ContinuousModel { params: None, step_s: 0.6e-6, max_contact_s: 3e-3 }
     }
 }
 
@@ -223,8 +223,7 @@ struct Setup {
 }
 
 impl Setup {
-    fn forces(&self, s: &State) -> (ContactForces, Vector3, Vector3) {
-        let rot = s.q_c.to_rotation_matrix();
+    fn forces(&self, s: &State, rot: &nalgebra::Rotation3<Real>) -> (ContactForces, Vector3, Vector3) {
         let ball_club = rot.inverse_transform_vector(&(s.p_b - s.p_c));
         let Some(o) = self.surface.overlap(&ball_club, self.ball.radius_m) else {
             return (ContactForces::default(), Vector3::zeros(), Vector3::zeros());
@@ -255,8 +254,8 @@ impl Setup {
     }
 
     fn rates(&self, s: &State) -> (Rates, ContactForces) {
-        let (cf, f_ball, r_b) = self.forces(s);
         let rot = s.q_c.to_rotation_matrix();
+        let (cf, f_ball, r_b) = self.forces(s, &rot);
         let r_c = s.p_b + r_b - s.p_c;
         let torque_club_body = rot.inverse_transform_vector(&r_c.cross(&(-f_ball)));
         let w = s.w_c_body;
