@@ -43,7 +43,7 @@ pub enum Command {
     Flight(FlightArgs),
     /// Refit the flight model's coefficients to the TrackMan tour averages and show the fit.
     FlightFit {
-        /// Nelder-Mead iterations.
+        /// Nelder-Mead iterations (0: show the current coefficients' errors).
         #[arg(long, default_value_t = 3000)]
         iterations: usize,
     },
@@ -590,8 +590,9 @@ fn flight_fit(iterations: usize) -> Result<ExitCode> {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
     let start = crate::flight::Aero::FITTED;
     eprintln!("cost of the current coefficients: {:.4}", fit::cost(&start, &rows));
-    let (aero, cost) = fit::fit(&rows, &start, iterations);
-    println!("fitted (cost {cost:.4}): {aero:?}");
+    let (aero, cost) =
+        if iterations == 0 { (start, fit::cost(&start, &rows)) } else { fit::fit(&rows, &start, iterations) };
+    println!("{} (cost {cost:.4}): {aero:?}", if iterations == 0 { "current" } else { "fitted" });
     println!("{:<8} {:>12} {:>12} {:>14}", "club", "carry yd", "apex yd", "land deg");
     for r in &rows {
         let (c, a, l) = fit::predict(&aero, r);

@@ -1,3 +1,50 @@
+//! `impactd` predicts golf ball launch conditions from motion-capture samples of the clubhead, live.
+//!
+//! ```text
+//! zenoh / MCAP replay / synthetic rig         (daemon: sources)
+//!         |  ClubheadSample (lab frame)
+//!         v
+//! kinematics: calibrate -> track -> detect impact -> extrapolate to t_impact -> ImpactState (world frame)
+//!         v
+//! impact models: ImpactModel::predict(&ImpactState, &Equipment) -> Launch (+ the club after impact)
+//!         v                                   (impulse-momentum family; continuous two-layer ball)
+//! flight: Launch -> Trajectory (carry, apex, land angle, offline)
+//!         v
+//! daemon: zenoh publisher, MCAP recorder, stdout JSONL
+//! ```
+//!
+//! Frames (TrackMan's): the world has its origin at the ball, x toward the target, y up, z to the right of the
+//! target line; the club frame sits at the head's CG and equals the world at a square address (z toward the toe).
+//! Units are SI inside (m, s, kg, rad); `_mph`, `_rpm`, `_deg` and `_mm` appear only in names that say so.
+//! The physics follows the thesis in `../shared/seed/` ("the seed"), chapters 3 and 4; each model cites its
+//! equations.
+//!
+//! The seed's driver with the adjusted impulse-momentum model (its Table 3.1 and 3.3), 113 mph, 13 deg of dynamic
+//! loft and 1.3 deg down, launches the ball at 163.96 mph with 2447 rpm of backspin:
+//!
+//! ```
+//! use impactd::equipment::ClubSpec;
+//! use impactd::impact::{Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
+//! use impactd::math::Vector3;
+//!
+//! let equipment = Equipment::new(ClubSpec::driver());
+//! let delivery = Delivery {
+//!     club_speed_mps: impactd::units::mph_to_mps(113.0),
+//!     attack_angle_rad: (-1.3f64).to_radians(),
+//!     club_path_rad: 0.0,
+//!     face_angle_rad: 0.0,
+//!     dynamic_loft_rad: 13f64.to_radians(),
+//!     impact_h_m: 0.0,
+//!     impact_v_m: 0.0,
+//!     club_angular_velocity_radps: Vector3::zeros(),
+//! };
+//! let state = delivery.to_state(&equipment).unwrap();
+//! let launch = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&state, &equipment).unwrap();
+//! let m = LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps);
+//! assert!((m.ball_speed_mph - 163.957).abs() < 1e-3);
+//! assert!((m.backspin_rpm - 2447.3).abs() < 0.1);
+//! ```
+
 pub mod cli;
 #[cfg(feature = "daemon")]
 pub mod cli_daemon;

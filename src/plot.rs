@@ -154,19 +154,7 @@ impl LineChart {
             );
         }
         let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
-        let _ = write!(
-            out,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            ml + pw / 2.0,
-            height - 12.0,
-            escape(&self.x_label)
-        );
-        let _ = write!(
-            out,
-            r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
-            mt + ph / 2.0,
-            escape(&self.y_label)
-        );
+        axis_labels(&mut out, (ml, mt, pw, ph), height, &self.x_label, &self.y_label);
         if let Some(l) = &self.y2_label {
             let _ = write!(
                 out,
@@ -205,6 +193,23 @@ impl LineChart {
         out.push_str("</svg>\n");
         out
     }
+}
+
+/// The x label under the plot area and the y label beside it; `area` is (left, top, width, height).
+fn axis_labels(out: &mut String, (ml, mt, pw, ph): (f64, f64, f64, f64), height: f64, x: &str, y: &str) {
+    let _ = write!(
+        out,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+        ml + pw / 2.0,
+        height - 12.0,
+        escape(x)
+    );
+    let _ = write!(
+        out,
+        r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
+        mt + ph / 2.0,
+        escape(y)
+    );
 }
 
 fn fmt_tick(v: f64, step: f64) -> String {
@@ -288,19 +293,7 @@ impl Heatmap {
                 mt + ph - (j as f64 + 0.5) * ch + 4.0
             );
         }
-        let _ = write!(
-            out,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            ml + pw / 2.0,
-            height - 12.0,
-            escape(&self.x_label)
-        );
-        let _ = write!(
-            out,
-            r#"<text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
-            mt + ph / 2.0,
-            escape(&self.y_label)
-        );
+        axis_labels(&mut out, (ml, mt, pw, ph), height, &self.x_label, &self.y_label);
         // Colour bar.
         let bx = ml + pw + 20.0;
         for k in 0..50 {

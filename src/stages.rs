@@ -40,44 +40,38 @@ pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
     delivery_spread(&equipment.club).iter().filter_map(|d| d.to_state(equipment).ok()).collect()
 }
 
+/// One prediction of `model` per operation on the club's spread of impact states.
+fn model_stage(name: String, model: impl ImpactModel + 'static, club: ClubSpec) -> Stage {
+    let eq = Equipment::new(club);
+    let states = state_spread(&eq);
+    Stage {
+        name,
+        run: Box::new(move |i| {
+            let s = &states[i % states.len()];
+            model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
+        }),
+    }
+}
+
 /// The impulse-momentum stages: `impulse/<variant>/<club>`, one prediction per operation.
 pub fn impulse_stages() -> Vec<Stage> {
-    let mut out = Vec::new();
-    for variant in ImpulseVariant::ALL {
-        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
-            let name = format!("impulse/{}/{}", variant.as_str(), club.name);
-            let eq = Equipment::new(club);
-            let states = state_spread(&eq);
-            let model = ImpulseModel::new(variant);
-            out.push(Stage {
-                name,
-                run: Box::new(move |i| {
-                    let s = &states[i % states.len()];
-                    model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
-                }),
-            });
-        }
-    }
-    out
+    ImpulseVariant::ALL
+        .into_iter()
+        .flat_map(|variant| {
+            [ClubSpec::driver(), ClubSpec::iron7()].map(|club| {
+                model_stage(format!("impulse/{}/{}", variant.as_str(), club.name), ImpulseModel::new(variant), club)
+            })
+        })
+        .collect()
 }
 
 /// The continuous two-layer model: `continuous/two_layer/<club>`, one prediction per operation.
 pub fn continuous_stages() -> Vec<Stage> {
-    let mut out = Vec::new();
-    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
-        let name = format!("continuous/two_layer/{}", club.name);
-        let eq = Equipment::new(club);
-        let states = state_spread(&eq);
-        let model = crate::impact::ContinuousModel::default();
-        out.push(Stage {
-            name,
-            run: Box::new(move |i| {
-                let s = &states[i % states.len()];
-                model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
-            }),
-        });
-    }
-    out
+    [ClubSpec::driver(), ClubSpec::iron7()]
+        .map(|club| {
+            model_stage(format!("continuous/two_layer/{}", club.name), crate::impact::ContinuousModel::default(), club)
+        })
+        .into()
 }
 
 /// Pre-impact frames of 32 noisy synthetic swings at 720 Hz (0.2 mm, 0.1 deg), with their revealing times.
@@ -181,7 +175,13 @@ pub fn flight_stages() -> Vec<Stage> {
     let launches: Vec<crate::flight::LaunchState> = rows
         .iter()
         .map(|r| {
-            crate::flight::LaunchState::from_metrics(crate::units::mph_to_mps(r.ball_speed_mph), r.launch_angle_deg, 1.0, r.spin_rpm, 300.0)
+            crate::flight::LaunchState::from_metrics(
+                crate::units::mph_to_mps(r.ball_speed_mph),
+                r.launch_angle_deg,
+                1.0,
+                r.spin_rpm,
+                300.0,
+            )
         })
         .collect();
     let flight = crate::flight::Flight::default();

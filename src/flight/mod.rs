@@ -112,7 +112,11 @@ fn hermite_peak(y0: Real, v0: Real, y1: Real, v1: Real, h: Real) -> Real {
     let mut best = y0.max(y1);
     let disc = 4.0 * b * b - 12.0 * a * c;
     let roots = if a.abs() < 1e-15 {
-        if b.abs() > 1e-15 { [-c / (2.0 * b), f64::NAN] } else { [f64::NAN; 2] }
+        if b.abs() > 1e-15 {
+            [-c / (2.0 * b), f64::NAN]
+        } else {
+            [f64::NAN; 2]
+        }
     } else if disc >= 0.0 {
         let q = disc.sqrt();
         [(-2.0 * b + q) / (6.0 * a), (-2.0 * b - q) / (6.0 * a)]
