@@ -366,3 +366,30 @@ async fn kill_9_then_recover() {
     let input = replay::load(&recovered).unwrap();
     assert_eq!(input.samples.len() as u64, samples);
 }
+
+/// `model = "both"`: every shot is predicted twice, the impulse-momentum prediction first and the continuous one
+/// after it, each labelled, with the same shot number.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn both_models_publish_impulse_first() {
+    let daemon = start_daemon("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"both\"\n", None).await;
+    let rig = client(&daemon.endpoint).await;
+    let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay1/launch");
+    run_sim(&rig, sim_options("bay1", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    daemon.stop().await;
+    rig.close().await.unwrap();
+    let launches = launches.lock().unwrap().clone();
+    let models: Vec<(u64, &str)> = launches.iter().map(|l| (l.shot, l.model.as_str())).collect();
+    assert_eq!(
+        models,
+        vec![
+            (1, "impulse/adjusted"),
+            (1, "continuous/two_layer"),
+            (2, "impulse/adjusted"),
+            (2, "continuous/two_layer")
+        ]
+    );
+    // The continuous prediction takes longer and says so.
+    assert!(launches[1].latency_us > launches[0].latency_us);
+    assert!(launches.iter().all(|l| l.flight.as_ref().is_some_and(|f| f.carry_m > 50.0)));
+}
