@@ -393,3 +393,41 @@ async fn both_models_publish_impulse_first() {
     assert!(launches[1].latency_us > launches[0].latency_us);
     assert!(launches.iter().all(|l| l.flight.as_ref().is_some_and(|f| f.carry_m > 50.0)));
 }
+
+/// SIGTERM finishes the recording: the summary and footer are written, and `recover` finds nothing lost (exit 0).
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn sigterm_closes_the_recording() {
+    let dir = tempfile::tempdir().unwrap();
+    let recording = dir.path().join("term.mcap");
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .arg("run")
+        .arg("--record")
+        .arg(&recording)
+        .args(["-m", "peer", "-l", &endpoint, "--no-multicast-scouting"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let rig = client(&endpoint).await;
+    let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/rig1/launch");
+    run_sim(&rig, sim_options("rig1", ClubSpec::driver(), 2, 8), std::future::pending()).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert_eq!(launches.lock().unwrap().len(), 2);
+    let status = std::process::Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
+    assert!(status.success());
+    let exit = child.wait().unwrap();
+    assert!(exit.success(), "{exit:?}");
+    rig.close().await.unwrap();
+    let bytes = std::fs::read(&recording).unwrap();
+    assert!(mcap::read::footer(&bytes).is_ok(), "the footer is written");
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("a summary section");
+    assert!(summary.stats.unwrap().message_count > 800);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .arg("recover")
+        .arg(&recording)
+        .arg("-o")
+        .arg(dir.path().join("copy.mcap"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+}
