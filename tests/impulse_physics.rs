@@ -100,15 +100,15 @@ fn kinetic_energy(p: &ContactProblem, vc: Vector3, wc: Vector3, vb: Vector3, wb:
         + wb.dot(&(ib * wb)))
 }
 
-/// Kinetic energy never increases for 0 <= e <= 0.99 with rolling (e_y = e_z = 0) or the seed's slip values.
-///
-/// At e = 1 exactly the seed's kinematic restitution (eq. 3.6 with 3.9-3.10) can gain energy when the contact's
-/// normal and tangential directions are coupled through the inertia (off-centre CG), a known property of Newton's
-/// restitution law; `energy_change_matches_the_closed_form` proves that the change is exactly the model's.
+/// Kinetic energy never increases for 0 <= e <= 1, with rolling (e_y = e_z = 0) or the seed's slip values. Below
+/// e = 0.99 it strictly decreases. At e = 1 Newton's restitution (eq. 3.6) would create energy when the contact
+/// couples normal and tangential motion; the solver then lowers the normal restitution to the largest value that
+/// does not (energetic consistency), so the energy is conserved to rounding there.
 #[test]
 fn energy_never_increases() {
+    let mut lowered = 0;
     for (_, _, _, p0) in spread(300) {
-        for e in [0.0, 0.2, 0.4, 0.6, 0.7, 0.8, 0.83, 0.9, 0.95, 0.98, 0.99] {
+        for e in [0.0, 0.2, 0.4, 0.6, 0.7, 0.8, 0.83, 0.9, 0.95, 0.98, 0.99, 0.995, 1.0] {
             let mut p = p0;
             p.restitution.x = e;
             let s = solve(&p).unwrap();
@@ -126,9 +126,25 @@ fn energy_never_increases() {
                 s.ball_velocity_mps,
                 s.ball_angular_velocity_radps,
             );
-            assert!(after < before, "e = {e}: {before} -> {after}");
+            assert!(after <= before * (1.0 + 1e-12), "e = {e}: {before} -> {after}");
+            if e <= 0.99 {
+                assert!(after < before, "e = {e}");
+            }
+            // Eq. 3.6 holds exactly unless the solver had to lower the restitution.
+            let u0 = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps);
+            let u1 = p.club_contact_velocity(&s.club_velocity_mps, &s.club_angular_velocity_radps)
+                - p.ball_contact_velocity(&s.ball_velocity_mps, &s.ball_angular_velocity_radps);
+            let n = p.frame.column(0);
+            let e_eff = -u1.dot(&n) / u0.dot(&n);
+            if (e_eff - e).abs() > 1e-9 {
+                assert!(e_eff < e && e > 0.99, "restitution lowered at e = {e} to {e_eff}");
+                assert!((after - before).abs() <= 1e-9 * before, "lowered to conserve energy");
+                lowered += 1;
+            }
         }
     }
+    // The correction is real but rare: it engages for some deliveries only very near e = 1.
+    assert!(lowered > 0 && lowered < 60, "{lowered}");
 }
 
 /// Closed form of the energy change of an impulsive contact: with relative contact velocity u before, u' =
