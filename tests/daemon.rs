@@ -28,6 +28,21 @@ club = "iron7"
 model = "adjusted"
 "#;
 
+/// The real `impactd run` binary, recording to `recording`, listening on a fresh loopback endpoint.
+fn spawn_daemon_process(extra: &[&std::ffi::OsStr], recording: &Path) -> (std::process::Child, String) {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .arg("run")
+        .args(extra)
+        .arg("--record")
+        .arg(recording)
+        .args(["-m", "peer", "-l", &endpoint, "--no-multicast-scouting"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    (child, endpoint)
+}
+
 struct Daemon {
     endpoint: String,
     stop: tokio::sync::oneshot::Sender<()>,
@@ -302,16 +317,7 @@ async fn kill_9_then_recover() {
     let recording = dir.path().join("killed.mcap");
     let config = dir.path().join("impactd.toml");
     std::fs::write(&config, "[[rig]]\nname = \"rig1\"\n").unwrap();
-    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
-        .args(["run", "-c"])
-        .arg(&config)
-        .arg("--record")
-        .arg(&recording)
-        .args(["-m", "peer", "-l", &endpoint, "--no-multicast-scouting"])
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
+    let (mut child, endpoint) = spawn_daemon_process(&["-c".as_ref(), config.as_os_str()], &recording);
     let rig = client(&endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/rig1/launch");
     let (seen, _s2) = collect::<serde_json::Value>(&rig, "mocap/rig1/clubhead");
@@ -399,15 +405,7 @@ async fn both_models_publish_impulse_first() {
 async fn sigterm_closes_the_recording() {
     let dir = tempfile::tempdir().unwrap();
     let recording = dir.path().join("term.mcap");
-    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
-        .arg("run")
-        .arg("--record")
-        .arg(&recording)
-        .args(["-m", "peer", "-l", &endpoint, "--no-multicast-scouting"])
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
+    let (mut child, endpoint) = spawn_daemon_process(&[], &recording);
     let rig = client(&endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/rig1/launch");
     run_sim(&rig, sim_options("rig1", ClubSpec::driver(), 2, 8), std::future::pending()).await.unwrap();

@@ -91,6 +91,26 @@ fn restitution_constraints_hold() {
     }
 }
 
+/// Kinetic energy of both bodies before and after a solved collision (J).
+fn energies(p: &ContactProblem, s: &impactd::impact::impulse::ContactSolution) -> (f64, f64) {
+    (
+        kinetic_energy(
+            p,
+            p.club_velocity_mps,
+            p.club_angular_velocity_radps,
+            p.ball_velocity_mps,
+            p.ball_angular_velocity_radps,
+        ),
+        kinetic_energy(
+            p,
+            s.club_velocity_mps,
+            s.club_angular_velocity_radps,
+            s.ball_velocity_mps,
+            s.ball_angular_velocity_radps,
+        ),
+    )
+}
+
 fn kinetic_energy(p: &ContactProblem, vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3) -> f64 {
     let ic = p.club_inertia_inv.try_inverse().unwrap();
     let ib = p.ball_inertia_inv.try_inverse().unwrap();
@@ -112,20 +132,7 @@ fn energy_never_increases() {
             let mut p = p0;
             p.restitution.x = e;
             let s = solve(&p).unwrap();
-            let before = kinetic_energy(
-                &p,
-                p.club_velocity_mps,
-                p.club_angular_velocity_radps,
-                p.ball_velocity_mps,
-                p.ball_angular_velocity_radps,
-            );
-            let after = kinetic_energy(
-                &p,
-                s.club_velocity_mps,
-                s.club_angular_velocity_radps,
-                s.ball_velocity_mps,
-                s.ball_angular_velocity_radps,
-            );
+            let (before, after) = energies(&p, &s);
             assert!(after <= before * (1.0 + 1e-12), "e = {e}: {before} -> {after}");
             if e <= 0.99 {
                 assert!(after < before, "e = {e}");
@@ -156,20 +163,7 @@ fn energy_change_matches_the_closed_form() {
             let mut p = p0;
             p.restitution.x = e;
             let s = solve(&p).unwrap();
-            let before = kinetic_energy(
-                &p,
-                p.club_velocity_mps,
-                p.club_angular_velocity_radps,
-                p.ball_velocity_mps,
-                p.ball_angular_velocity_radps,
-            );
-            let after = kinetic_energy(
-                &p,
-                s.club_velocity_mps,
-                s.club_angular_velocity_radps,
-                s.ball_velocity_mps,
-                s.ball_angular_velocity_radps,
-            );
+            let (before, after) = energies(&p, &s);
             let u0 = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps);
             let u1 = p.club_contact_velocity(&s.club_velocity_mps, &s.club_angular_velocity_radps)
                 - p.ball_contact_velocity(&s.ball_velocity_mps, &s.ball_angular_velocity_radps);
