@@ -128,7 +128,7 @@ impl SimRig {
     }
 
     /// The next frame, and the truth of a shot whose impact it has just passed.
-    pub fn next(&mut self) -> (ClubheadSample, Option<TruthMessage>) {
+    pub fn next_sample(&mut self) -> (ClubheadSample, Option<TruthMessage>) {
         let t_ns = self.next_t_ns();
         let k = (t_ns - self.start_ns) / self.interval_ns;
         if self.current.as_ref().map(|c| c.0) != Some(k) {
@@ -230,7 +230,7 @@ pub async fn run_sim(
                 if due > now {
                     std::thread::sleep(Duration::from_nanos(due - now));
                 }
-                let (sample, truth) = rig.next();
+                let (sample, truth) = rig.next_sample();
                 let msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
                 if let Err(e) = samples.put(serde_json::to_vec(&msg).unwrap_or_default()).wait() {
                     tracing::warn!("rig {}: publishing a sample: {e}", rig.name);
