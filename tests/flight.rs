@@ -1,7 +1,7 @@
 //! Ball flight: closed forms, symmetry, the landing's accuracy, and the fit to the TrackMan tour averages.
 
-use impactd::flight::{fit, Aero, Conditions, Flight, LaunchState};
-use impactd::units::{m_to_yd, mph_to_mps};
+use impactd::flight::{fit, Aero, Conditions, Flight};
+use impactd::units::mph_to_mps;
 
 /// Closed form: with no drag and no lift the ball flies the vacuum parabola: range v² sin 2θ / g, apex
 /// v² sin² θ / (2g), time 2 v sin θ / g, landing at the launch angle and speed.
@@ -104,5 +104,4 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
     assert!(within >= 3, "{within} clubs within 3 yd, 2 yd, 2 deg");
     // The fit's cost is reproducible from the table.
     assert!(fit::cost(&Aero::FITTED, &rows) < 250.0);
-    let _ = (m_to_yd(1.0), LaunchState::from_metrics(1.0, 0.0, 0.0, 0.0, 0.0));
 }

@@ -25,7 +25,6 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::DaemonError;
-use crate::equipment::ClubSpec;
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
 use crate::pipeline::{ModelChoice, RigSetup};
@@ -170,7 +169,7 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let club = load_club(&r.club).map_err(|e| invalid(f("club"), e))?;
+                let club = crate::cli::load_club(&r.club).map_err(|e| invalid(f("club"), format!("{e:#}")))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
@@ -205,17 +204,6 @@ impl DaemonConfig {
                 Ok(setup)
             })
             .collect()
-    }
-}
-
-/// A club preset by name or a club file by path, with the error as text.
-pub fn load_club(spec: &str) -> Result<ClubSpec, String> {
-    let path = Path::new(spec);
-    if spec.ends_with(".toml") || path.exists() {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("reading {spec}: {e}"))?;
-        ClubSpec::from_toml_str(&text).map_err(|e| format!("{spec}: {e}"))
-    } else {
-        ClubSpec::preset(spec).map_err(|e| e.to_string())
     }
 }
 

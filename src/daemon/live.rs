@@ -110,7 +110,8 @@ pub async fn run(
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
         let worker = Worker {
-            rig: setup.name.clone(),
+            rig: Arc::from(setup.name.as_str()),
+            keys: RigKeys::new(&setup.name),
             pipeline: Some(Pipeline::new(setup)),
             impact,
             launch,
@@ -178,8 +179,30 @@ pub async fn run(
     Ok(summary)
 }
 
+/// A rig's key expressions, built once.
+struct RigKeys {
+    clubhead: String,
+    rejected: String,
+    impact: String,
+    launch: String,
+    status: String,
+}
+
+impl RigKeys {
+    fn new(rig: &str) -> Self {
+        RigKeys {
+            clubhead: keys::clubhead(rig),
+            rejected: format!("{}/rejected", keys::clubhead(rig)),
+            impact: keys::impact(rig),
+            launch: keys::launch(rig),
+            status: keys::status(rig),
+        }
+    }
+}
+
 struct Worker {
-    rig: String,
+    rig: Arc<str>,
+    keys: RigKeys,
     /// The rig's pipeline; taken out while it runs a sample, so its events can be published as they come.
     pipeline: Option<Pipeline>,
     impact: zenoh::pubsub::Publisher<'static>,
@@ -218,7 +241,7 @@ impl Worker {
             }
         }
         self.publish_status();
-        (self.rig.clone(), self.p().counts.clone())
+        (self.rig.to_string(), self.p().counts.clone())
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
@@ -232,9 +255,9 @@ impl Worker {
         }
     }
 
-    fn record(&self, key: String, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
+    fn record(&self, key: &str, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
         if self.recorder.enabled() {
-            self.recorder.send(Record::Message { key, type_name, log_time_ns, publish_time_ns, data });
+            self.recorder.send(Record::Message { key: key.to_string(), type_name, log_time_ns, publish_time_ns, data });
         }
     }
 
@@ -255,18 +278,12 @@ impl Worker {
                     payload: String::from_utf8_lossy(keep).into_owned(),
                 })
                 .unwrap_or_default();
-                self.record(
-                    format!("{}/rejected", keys::clubhead(&rig)),
-                    "RejectedInput",
-                    incoming.log_time_ns,
-                    incoming.log_time_ns,
-                    data,
-                );
+                self.record(&self.keys.rejected, "RejectedInput", incoming.log_time_ns, incoming.log_time_ns, data);
                 return;
             }
         };
         let sample = msg.to_sample();
-        self.record(keys::clubhead(&rig), "ClubheadSample", incoming.log_time_ns, msg.t_ns, incoming.payload);
+        self.record(&self.keys.clubhead, "ClubheadSample", incoming.log_time_ns, msg.t_ns, incoming.payload);
         let mut any_event = false;
         let received = incoming.received;
         let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
@@ -280,7 +297,7 @@ impl Worker {
                 let lab = crate::math::Isometry3::from_parts(sample.position_m.into(), q);
                 let world_from_club = self.p().setup.calibration.world_from_club(&lab);
                 self.recorder.send(Record::ClubPose {
-                    rig: rig.clone(),
+                    rig: rig.to_string(),
                     t_ns: sample.t_ns,
                     log_time_ns: incoming.log_time_ns,
                     world_from_club,
@@ -300,7 +317,7 @@ impl Worker {
                     tracing::error!("rig {rig}: publishing the impact: {e}");
                 }
                 let now = wall_ns();
-                self.record(keys::impact(rig), "ImpactMessage", now, now, data);
+                self.record(&self.keys.impact, "ImpactMessage", now, now, data);
                 if self.recorder.enabled() {
                     self.recorder.send(Record::ImpactScene {
                         rig: rig.to_string(),
@@ -325,7 +342,7 @@ impl Worker {
                     l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
                 );
                 let now = wall_ns();
-                self.record(keys::launch(rig), "LaunchPrediction", now, now, data);
+                self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
                 self.recorder.send(Record::Flush);
             }
             Event::Failed { shot, frame, reason, .. } => {
@@ -343,7 +360,7 @@ impl Worker {
             rejected.insert("queue_full".into(), queue);
         }
         let status = StatusMessage {
-            rig: self.rig.clone(),
+            rig: self.rig.to_string(),
             t_ns: wall_ns(),
             uptime_s: self.started.elapsed().as_secs_f64(),
             samples: c.samples + queue,
@@ -362,6 +379,6 @@ impl Worker {
         if let Err(e) = self.status.put(data.clone()).wait() {
             tracing::warn!("publishing status: {e}");
         }
-        self.record(keys::status(&status.rig), "StatusMessage", status.t_ns, status.t_ns, data);
+        self.record(&self.keys.status, "StatusMessage", status.t_ns, status.t_ns, data);
     }
 }

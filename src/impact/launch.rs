@@ -47,8 +47,7 @@ impl LaunchMetrics {
     /// The ball's spin vector (rad/s, world) for the given launch numbers: backspin about the horizontal axis,
     /// sidespin about the up axis; spin along the flight direction (rifle spin) is not represented.
     pub fn spin_vector_radps(&self) -> Vector3 {
-        let (u, a, up) = self.axes();
-        let _ = u;
+        let (_, a, up) = self.axes();
         crate::units::rpm_to_radps(self.backspin_rpm) * a - crate::units::rpm_to_radps(self.sidespin_rpm) * up
     }
 

@@ -97,28 +97,6 @@ impl ImpactState {
         let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
         Ok(ContactGeometry { world_from_club: rot, r_club_m, frame, contact_velocity_mps, contact_club })
     }
-
-    /// The state mirrored for a left-handed golfer (z -> -z), on the mirrored club.
-    ///
-    /// The club frame of a left-handed club is the mirror image too, so `world_from_club`'s rotation `R` becomes
-    /// `M R M` (a proper rotation), the CG position and velocity are mirrored as polar vectors and the angular
-    /// velocity as an axial one.
-    pub fn mirrored(&self) -> ImpactState {
-        use crate::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Rotation3, UnitQuaternion};
-        let r = self.world_from_club.rotation.to_rotation_matrix().into_inner();
-        let r_m = mirror_z_tensor(&r);
-        let t = mirror_z(&self.world_from_club.translation.vector);
-        ImpactState {
-            world_from_club: Isometry3::from_parts(
-                t.into(),
-                UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r_m)),
-            ),
-            cg_velocity_mps: mirror_z(&self.cg_velocity_mps),
-            angular_velocity_radps: mirror_z_axial(&self.angular_velocity_radps),
-            impact_h_m: self.impact_h_m,
-            impact_v_m: self.impact_v_m,
-        }
-    }
 }
 
 /// What a model predicts: the ball's launch and the club just after impact (world frame).
