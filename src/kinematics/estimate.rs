@@ -5,9 +5,10 @@
 //!   in R³, orientation along the geodesic of SO(3)).
 //! - `poly`: a least-squares polynomial in time over the last frames for position (cubic) and for the rotation
 //!   vector relative to the newest frame (cubic), so curvature of the arc (100-200 g of centripetal
-//!   acceleration) and the face's angular acceleration are modelled and noise is averaged.
+//!   acceleration) and the face's angular acceleration are modelled and noise is averaged; the club speed from
+//!   a cubic in time of the path length (the speed changes slowly while the direction turns fast).
 
-use super::fit::{PoseFit, TimedPose};
+use super::fit::{PathSpeedFit, PoseFit, TimedPose};
 use super::sample::ClubPose;
 use crate::face::Face;
 use crate::impact::ImpactState;
@@ -31,6 +32,18 @@ pub struct EstimatorSpec {
     pub window_ms: Option<Real>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation_window_ms: Option<Real>,
+    /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`]) and the
+    /// velocity's direction from the position fit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path_speed: Option<PathSpeedSpec>,
+}
+
+/// The span and degree of the path-length fit that gives the club speed.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PathSpeedSpec {
+    pub window_ms: Real,
+    pub degree: usize,
 }
 
 impl EstimatorSpec {
@@ -44,11 +57,13 @@ impl EstimatorSpec {
             rotation_degree: 1,
             window_ms: None,
             rotation_window_ms: None,
+            path_speed: None,
         }
     }
 
-    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5) and
-    /// the last 39 ms of the orientation (degree up to 3). The spans were chosen with
+    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5), the
+    /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
+    /// (cubic, [`PathSpeedFit`]). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
     pub fn poly() -> Self {
         EstimatorSpec {
@@ -59,6 +74,7 @@ impl EstimatorSpec {
             rotation_degree: 3,
             window_ms: Some(44.0),
             rotation_window_ms: Some(39.0),
+            path_speed: Some(PathSpeedSpec { window_ms: 40.0, degree: 3 }),
         }
     }
 
@@ -75,8 +91,12 @@ impl EstimatorSpec {
             custom if custom.starts_with("poly@") => {
                 let parts: Vec<Real> =
                     custom["poly@".len()..].split(':').map(|p| p.parse().ok()).collect::<Option<_>>()?;
-                let [pos_ms, pos_deg, rot_ms, rot_deg] = parts[..] else {
-                    return None;
+                let (pos_ms, pos_deg, rot_ms, rot_deg, path_speed) = match parts[..] {
+                    [a, b, c, d] => (a, b, c, d, None),
+                    [a, b, c, d, e, f] if e > 0.0 && (1.0..=3.0).contains(&f) => {
+                        (a, b, c, d, Some(PathSpeedSpec { window_ms: e, degree: f as usize }))
+                    }
+                    _ => return None,
                 };
                 let spec = EstimatorSpec {
                     name: custom.to_string(),
@@ -84,6 +104,7 @@ impl EstimatorSpec {
                     rotation_window_ms: Some(rot_ms),
                     position_degree: pos_deg as usize,
                     rotation_degree: rot_deg as usize,
+                    path_speed,
                     ..Self::poly()
                 };
                 (pos_ms > 0.0
@@ -102,6 +123,7 @@ impl EstimatorSpec {
                     rotation_degree: parts.next()??,
                     window_ms: None,
                     rotation_window_ms: None,
+                    path_speed: None,
                 };
                 (parts.next().is_none() && spec.validate().is_ok()).then_some(spec)
             }
@@ -232,7 +254,8 @@ pub fn estimate(
                 return Err(EstimateError::TooFewFrames { have: n_r, need: EstimatorSpec::MIN_WINDOW_FRAMES });
             }
             let cap = |n: usize, d: usize| d.min(n / 2 - 1);
-            (n_p, n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
+            let n_s = spec.path_speed.map_or(0, |ps| within(ps.window_ms, 64));
+            (n_p.max(n_s), n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
         }
     };
     let used = &pre_impact[pre_impact.len() - need..];
@@ -337,7 +360,18 @@ pub fn estimate(
             limit_ms: scene.max_extrapolation_s * 1e3,
         });
     }
-    let at = fit.at(t);
+    let mut at = fit.at(t);
+    if let Some(ps) = spec.path_speed.filter(|_| spec.window_ms.is_some()) {
+        let n_s = {
+            let span_ns = (ps.window_ms * 1e6) as u64;
+            let newest = used[need - 1].t_ns;
+            used.iter().rev().take_while(|p| newest - p.t_ns <= span_ns).count()
+        };
+        let degree = ps.degree.min(n_s / 2 - 1);
+        if let Some(speed) = PathSpeedFit::fit(&poses[need - n_s..need], degree) {
+            at.velocity_mps = at.velocity_mps.normalize() * speed.speed_mps(t);
+        }
+    }
     let world_from_club = club_pose(at.position_m, at.orientation);
     let cg_velocity_mps = at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
     let g = scene.gap(&world_from_club);
