@@ -8,8 +8,10 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, [adjusted], [slip]
+//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, [adjusted], [slip], [continuous]
 //! ```
+//!
+//! `clubs/` holds example files: the seed's driver and 7-iron with the continuous model's one-cycle ball.
 
 use serde::Deserialize;
 
