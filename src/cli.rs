@@ -43,7 +43,7 @@ pub enum Command {
     Flight(FlightArgs),
     /// Refit the flight model's coefficients to the TrackMan tour averages and show the fit.
     FlightFit {
-        /// Nelder-Mead iterations (0: show the current coefficients' errors).
+        /// Nelder-Mead iterations per restart, from `flight::fit::START` (0: show the errors of `Aero::FITTED`).
         #[arg(long, default_value_t = 3000)]
         iterations: usize,
     },
@@ -588,10 +588,14 @@ fn flight(args: &FlightArgs) -> Result<ExitCode> {
 fn flight_fit(iterations: usize) -> Result<ExitCode> {
     use crate::flight::fit;
     let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
-    let start = crate::flight::Aero::FITTED;
-    eprintln!("cost of the current coefficients: {:.4}", fit::cost(&start, &rows));
-    let (aero, cost) =
-        if iterations == 0 { (start, fit::cost(&start, &rows)) } else { fit::fit(&rows, &start, iterations) };
+    let current = crate::flight::Aero::FITTED;
+    eprintln!("cost of the current coefficients: {:.4}", fit::cost(&current, &rows));
+    let (aero, cost) = if iterations == 0 {
+        (current, fit::cost(&current, &rows))
+    } else {
+        eprintln!("fitting from fit::START ({iterations} iterations per restart)...");
+        fit::fit(&rows, &fit::START, iterations)
+    };
     println!("{} (cost {cost:.4}): {aero:?}", if iterations == 0 { "current" } else { "fitted" });
     println!("{:<8} {:>12} {:>12} {:>14}", "club", "carry yd", "apex yd", "land deg");
     for r in &rows {

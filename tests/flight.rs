@@ -56,6 +56,7 @@ fn landing_interpolation_is_within_a_centimetre() {
     }
 }
 
+/// Thin air: a drive carries 6-10 % further at 1600 m (Denver) than at sea level, as measured on course.
 #[test]
 fn thinner_air_and_a_tailwind_carry_further() {
     let base = Flight::default().fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
@@ -71,14 +72,15 @@ fn thinner_air_and_a_tailwind_carry_further() {
         ..Flight::default()
     }
     .fly_metrics(mph_to_mps(167.0), 10.9, 0.0, 2686.0, 0.0);
-    assert!(high.carry_m > base.carry_m + 5.0);
+    let gain = high.carry_m / base.carry_m - 1.0;
+    assert!((0.06..=0.10).contains(&gain), "carry at 1600 m: {:+.1} %", 100.0 * gain);
     assert!(tail.carry_m > base.carry_m + 3.0);
     assert!(cross.offline_m > 3.0, "a left-to-right wind moves the ball right");
 }
 
 /// Regression guard on the fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: no club's
-/// carry is off by more than 10 yd, apex by more than 3 yd or land angle by more than 6 deg, and a quarter of the bag is
-/// within carry 3 yd, apex 2 yd and land angle 2 deg. (The target of every club within 3 yd, 2 yd and 2 deg is
+/// carry is off by more than 4 yd, apex by more than 2.1 yd or land angle by more than 3 deg, and half of the bag
+/// is within carry 3 yd, apex 2 yd and land angle 2 deg. (The target of every club within 3 yd, 2 yd and 2 deg is
 /// not reached by this model family; the README lists each club's errors.)
 #[test]
 fn fit_to_the_trackman_tour_averages_does_not_regress() {
@@ -90,7 +92,7 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
         let (dc, da, dl) =
             ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
         assert!(
-            dc < 10.0 && da < 3.0 && dl < 6.0,
+            dc < 4.0 && da < 2.1 && dl < 3.0,
             "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})",
             r.club,
             r.carry_yd,
@@ -101,7 +103,7 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
             within += 1;
         }
     }
-    assert!(within >= 3, "{within} clubs within 3 yd, 2 yd, 2 deg");
+    assert!(within >= 6, "{within} clubs within 3 yd, 2 yd, 2 deg");
     // The fit's cost is reproducible from the table.
-    assert!(fit::cost(&Aero::FITTED, &rows) < 250.0);
+    assert!(fit::cost(&Aero::FITTED, &rows) < 30.0);
 }
