@@ -27,6 +27,7 @@
 //! use impactd::impact::{Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
 //! use impactd::math::Vector3;
 //!
+//! # fn main() -> Result<(), impactd::impact::ImpactError> {
 //! let equipment = Equipment::new(ClubSpec::driver());
 //! let delivery = Delivery {
 //!     club_speed_mps: impactd::units::mph_to_mps(113.0),
@@ -38,11 +39,13 @@
 //!     impact_v_m: 0.0,
 //!     club_angular_velocity_radps: Vector3::zeros(),
 //! };
-//! let state = delivery.to_state(&equipment).unwrap();
-//! let launch = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&state, &equipment).unwrap();
+//! let state = delivery.to_state(&equipment)?;
+//! let launch = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&state, &equipment)?;
 //! let m = LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps);
 //! assert!((m.ball_speed_mph - 163.957).abs() < 1e-3);
 //! assert!((m.backspin_rpm - 2447.3).abs() < 0.1);
+//! # Ok(())
+//! # }
 //! ```
 
 pub mod cli;
