@@ -594,7 +594,7 @@ fn flight_fit(iterations: usize) -> Result<ExitCode> {
         (current, fit::cost(&current, &rows))
     } else {
         eprintln!("fitting from fit::START ({iterations} iterations per restart)...");
-        fit::fit(&rows, &fit::START, iterations)
+        fit::fit(&rows, &fit::START, iterations, |run, cost| eprintln!("run {run}: cost {cost:.4}"))
     };
     println!("{} (cost {cost:.4}): {aero:?}", if iterations == 0 { "current" } else { "fitted" });
     println!("{:<8} {:>12} {:>12} {:>14}", "club", "carry yd", "apex yd", "land deg");

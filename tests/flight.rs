@@ -107,3 +107,28 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
     // The fit's cost is reproducible from the table.
     assert!(fit::cost(&Aero::FITTED, &rows) < 30.0);
 }
+
+/// The fit is reproducible: from `fit::START`, `impactd flight-fit` (3000 iterations per run) lands on the
+/// coefficients in `Aero::FITTED`.
+#[test]
+fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
+    let mut runs = 0;
+    let (aero, cost) = fit::fit(&rows, &fit::START, 3000, |_, _| runs += 1);
+    let f = Aero::FITTED;
+    let pairs = [
+        (aero.c_ds, f.c_ds),
+        (aero.c_dq, f.c_dq),
+        (aero.c_dc, f.c_dc),
+        (aero.v_crisis_mps, f.v_crisis_mps),
+        (aero.v_width_mps, f.v_width_mps),
+        (aero.c_l1, f.c_l1),
+        (aero.c_l2, f.c_l2),
+        (aero.spin_tau_s, f.spin_tau_s),
+    ];
+    for (got, shipped) in pairs {
+        assert!((got - shipped).abs() <= 1e-6 * shipped.abs(), "{got} vs {shipped}");
+    }
+    assert!(aero.c_d0 < 1e-9 && f.c_d0 < 1e-9, "the constant drag term is driven to zero: {}", aero.c_d0);
+    assert!((cost - fit::cost(&f, &rows)).abs() < 1e-6 && runs >= 2);
+}

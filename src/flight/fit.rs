@@ -130,11 +130,18 @@ fn from_aero(a: &Aero) -> [Real; N] {
 const RESTARTS: usize = 8;
 
 /// Nelder-Mead from `start`, restarted from its own best point up to `RESTARTS` times (a fresh simplex escapes the
-/// collapses that stall a single run); returns the best coefficients and their cost.
-pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {
+/// collapses that stall a single run); returns the best coefficients and their cost. `progress` hears the cost after
+/// each run (run number from 1, cost).
+pub fn fit(
+    rows: &[TourAverage],
+    start: &Aero,
+    iterations: usize,
+    mut progress: impl FnMut(usize, Real),
+) -> (Aero, Real) {
     let mut best = (*start, cost(start, rows));
-    for _ in 0..RESTARTS {
+    for run in 1..=RESTARTS {
         let next = nelder_mead(rows, &best.0, iterations);
+        progress(run, next.1);
         if next.1 >= best.1 - 1e-9 {
             break;
         }
