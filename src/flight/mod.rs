@@ -6,8 +6,8 @@
 //! - `m dv/dt = m g − ½ ρ A C_D |u| u + ½ ρ A C_L |u|² (ŵ × û)`, with `u = v − wind` the air-relative velocity and
 //!   `ŵ` the spin axis (the lift is perpendicular to both).
 //! - `C_D = c_d0 + c_ds S / (1 + c_dq S) + c_dc σ` and `C_L = c_l1 S / (1 + c_l2 S) · (1 − σ)`, with spin ratio
-//!   `S = r |ω| / |u|` and `σ = 1 / (1 + exp((|u| − v_c) / v_w))` the share of subcritical flow: drag grows with
-//!   spin and saturates; below the drag crisis (airspeed `v_c`, a transition `v_w` wide) the boundary layer
+//!   `S = r |ω| / |u|` (held at 0.08 or more in the drag, [`DRAG_MIN_SPIN_RATIO`]) and `σ = 1 / (1 + exp((|u| −
+//!   v_c) / v_w))` the share of subcritical flow: drag grows with spin and saturates; below the drag crisis (airspeed `v_c`, a transition `v_w` wide) the boundary layer
 //!   separates earlier, the drag rises by `c_dc` and the Magnus lift fades out, as wind-tunnel measurements of
 //!   spinning dimpled balls show between Re 5·10⁴ and 10⁵ (with a free lift factor below the crisis, the fit
 //!   drives it to zero); lift grows with the spin ratio and saturates at high spin. The crisis is placed in
@@ -90,11 +90,17 @@ impl Aero {
     /// `(C_D, C_L)` at spin ratio `s` and airspeed `airspeed_mps`.
     fn coefficients(&self, s: Real, airspeed_mps: Real) -> (Real, Real) {
         let sub = self.subcritical(airspeed_mps);
-        let drag = self.c_d0 + self.c_ds * s / (1.0 + self.c_dq * s) + self.c_dc * sub;
+        let s_drag = s.max(DRAG_MIN_SPIN_RATIO);
+        let drag = self.c_d0 + self.c_ds * s_drag / (1.0 + self.c_dq * s_drag) + self.c_dc * sub;
         let lift = self.c_l1 * s / (1.0 + self.c_l2 * s) * (1.0 - sub);
         (drag, lift)
     }
 }
+
+/// The lowest spin ratio in the table the drag is fitted to (the driver's launch, 0.080). Below it the drag is
+/// held at its value there (0.19 above the crisis, a dimpled ball's drag without spin) instead of following the
+/// fitted curve, which the table does not constrain there and which falls to nothing at no spin.
+pub const DRAG_MIN_SPIN_RATIO: Real = 0.08;
 
 /// `Aero::FITTED` in field order, as `impactd flight-fit` prints them.
 const FIT: [Real; 8] = [
@@ -368,5 +374,21 @@ impl Flight {
         sidespin_rpm: Real,
     ) -> Trajectory {
         self.fly(&LaunchState::from_metrics(speed_mps, launch_deg, direction_deg, backspin_rpm, sidespin_rpm), 0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ball without spin above the crisis has a dimpled ball's drag (wind-tunnel values for non-spinning golf
+    /// balls are 0.2-0.25) and no lift, whatever the fit does below the table's spin ratios.
+    #[test]
+    fn a_ball_without_spin_keeps_its_drag() {
+        let (drag, lift) = Aero::FITTED.coefficients(0.0, 60.0);
+        assert!((0.17..=0.3).contains(&drag), "C_D = {drag}");
+        assert_eq!(lift, 0.0);
+        let (drag_low, _) = Aero::FITTED.coefficients(0.02, 60.0);
+        assert_eq!(drag, drag_low);
     }
 }
