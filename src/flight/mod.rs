@@ -23,7 +23,7 @@
 //! by [`fit`]: carry, apex and land angle of every club in the table together. `impactd flight-fit` reruns the fit.
 //!
 //! Integration: classical Runge-Kutta at 40 ms with the landing found exactly on the cubic Hermite interpolant of
-//! the last step (position and velocity at both ends) crossing the ground plane `y = 0` (within 0.1 mm of a
+//! the last step (position and velocity at both ends) crossing the ground plane `y = 0` (within 0.11 mm of a
 //! 0.05 ms reference); the apex is the peak of the same interpolant over the step where the ball turns down.
 
 pub mod air;
