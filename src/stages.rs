@@ -105,7 +105,7 @@ pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
 /// state) per operation.
 pub fn extrapolation_stages() -> Vec<Stage> {
     let mut out = Vec::new();
-    for spec in [EstimatorSpec::linear2(), EstimatorSpec::poly()] {
+    for spec in [EstimatorSpec::linear2(), EstimatorSpec::poly(), EstimatorSpec::arc()] {
         for club in [ClubSpec::driver(), ClubSpec::iron7()] {
             let name = format!("extrapolate/{}/{}", spec.name, club.name);
             let shots = pre_impact_spread(&club);

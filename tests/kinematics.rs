@@ -22,7 +22,7 @@ fn eval(club: ClubSpec, shots: usize, noise_mm: f64, noise_deg: f64) -> EvalRepo
             jitter_us: 0.0,
             drop_probability: 0.0,
             seed: 11,
-            estimators: vec![EstimatorSpec::linear2(), EstimatorSpec::poly()],
+            estimators: vec![EstimatorSpec::linear2(), EstimatorSpec::poly(), EstimatorSpec::arc()],
         },
         |_| {},
     )
@@ -51,19 +51,52 @@ fn poly_meets_the_accuracy_targets_at_720_hz() {
     }
 }
 
-/// With the noise off, the best estimator's errors are below 0.01 deg and 0.05 mm.
+/// The arc estimator on the same swings: the accuracy targets, and at least five times lower impact-location
+/// error than the seed's two-point method (h and v), and twice lower face-angle error (the five times the issue
+/// asks for the face angle is below what the frames' orientation noise allows; README).
+#[test]
+fn arc_meets_the_targets_and_five_times_lower_location_error() {
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let name = club.name.clone();
+        let r = eval(club, 300, 0.2, 0.1);
+        let arc = &r.estimators[2];
+        assert_eq!(arc.shots, 300, "{name}: {:?}", arc.refused);
+        let e = &arc.errors;
+        assert!(e.face_angle_deg.rms <= 0.1 && e.dynamic_loft_deg.rms <= 0.1, "{name} angles");
+        assert!(e.impact_h_mm.rms <= 1.0 && e.impact_v_mm.rms <= 1.0, "{name} location");
+        assert!(e.club_speed_pct.rms <= 0.3, "{name} speed {}", e.club_speed_pct.rms);
+        let lin = &r.estimators[0].errors;
+        assert!(
+            lin.impact_h_mm.rms > 5.0 * e.impact_h_mm.rms,
+            "{name} h ratio {}",
+            lin.impact_h_mm.rms / e.impact_h_mm.rms
+        );
+        assert!(
+            lin.impact_v_mm.rms > 5.0 * e.impact_v_mm.rms,
+            "{name} v ratio {}",
+            lin.impact_v_mm.rms / e.impact_v_mm.rms
+        );
+        assert!(lin.face_angle_deg.rms > 2.0 * e.face_angle_deg.rms, "{name} face ratio");
+        // Better than poly on the path's geometry, as good on the angles.
+        let poly = &r.estimators[1].errors;
+        assert!(e.impact_h_mm.rms < poly.impact_h_mm.rms && e.club_path_deg.rms < poly.club_path_deg.rms);
+    }
+}
+
+/// With the noise off, the poly and arc estimators' errors are below 0.01 deg and 0.05 mm.
 #[test]
 fn noise_free_errors_are_tiny() {
     for club in [ClubSpec::driver(), ClubSpec::iron7()] {
         let name = club.name.clone();
         let r = eval(club, 100, 0.0, 0.0);
-        let e = &r.estimators[1].errors;
-        for (key, s) in e.entries() {
-            if key.ends_with("_deg") && !key.starts_with("launch") {
-                assert!(s.rms < 0.01, "{name} {key} {}", s.rms);
-            }
-            if key.ends_with("_mm") {
-                assert!(s.rms < 0.05, "{name} {key} {}", s.rms);
+        for est in &r.estimators[1..] {
+            for (key, s) in est.errors.entries() {
+                if key.ends_with("_deg") && !key.starts_with("launch") {
+                    assert!(s.rms < 0.01, "{name} {} {key} {}", est.name, s.rms);
+                }
+                if key.ends_with("_mm") {
+                    assert!(s.rms < 0.05, "{name} {} {key} {}", est.name, s.rms);
+                }
             }
         }
     }

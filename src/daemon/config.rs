@@ -9,7 +9,7 @@
 //! club = "driver"               # preset (driver, iron7) or a path to a club .toml
 //! model = "adjusted"            # standard | adjusted | slip | continuous | both
 //! cor = 0.83
-//! estimator = "poly"            # linear2 | poly | poly@44:5:39:3 | poly:24:4:24:3
+//! estimator = "poly"            # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
 //! flight = true                 # add carry, apex, landing and offline to each prediction
 //! [rig.world_from_lab]          # default identity

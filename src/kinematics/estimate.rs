@@ -8,6 +8,7 @@
 //!   acceleration) and the face's angular acceleration are modelled and noise is averaged; the club speed from
 //!   a cubic in time of the path length (the speed changes slowly while the direction turns fast).
 
+use super::arc::ArcFit;
 use super::fit::{PathSpeedFit, PoseFit, TimedPose};
 use super::sample::ClubPose;
 use crate::face::Face;
@@ -36,6 +37,10 @@ pub struct EstimatorSpec {
     /// velocity's direction from the position fit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_speed: Option<PathSpeedSpec>,
+    /// When set, the face centre's position and velocity come from an arc ([`ArcFit`]) fitted to the frames
+    /// within this span (ms); the polynomial position fit remains the fallback when the arc fit fails.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arc_window_ms: Option<Real>,
 }
 
 /// The span and degree of the path-length fit that gives the club speed.
@@ -58,6 +63,7 @@ impl EstimatorSpec {
             window_ms: None,
             rotation_window_ms: None,
             path_speed: None,
+            arc_window_ms: None,
         }
     }
 
@@ -75,8 +81,18 @@ impl EstimatorSpec {
             window_ms: Some(44.0),
             rotation_window_ms: Some(39.0),
             path_speed: Some(PathSpeedSpec { window_ms: 40.0, degree: 3 }),
+            arc_window_ms: None,
         }
     }
+
+    /// `poly` with the face centre's path as an arc over the last `ARC_WINDOW_MS` ([`ArcFit`]): a cubic angle and
+    /// a quadratic radius in the swing's plane instead of a degree-5 polynomial in space.
+    pub fn arc() -> Self {
+        EstimatorSpec { name: "arc".into(), arc_window_ms: Some(Self::ARC_WINDOW_MS), ..Self::poly() }
+    }
+
+    /// The span of the arc fit (ms).
+    pub const ARC_WINDOW_MS: Real = 60.0;
 
     /// The fewest frames a windowed fit accepts (a quadratic with two frames per coefficient).
     pub const MIN_WINDOW_FRAMES: usize = 6;
@@ -88,6 +104,15 @@ impl EstimatorSpec {
         match name {
             "linear2" => Some(Self::linear2()),
             "poly" => Some(Self::poly()),
+            "arc" => Some(Self::arc()),
+            custom if custom.starts_with("arc@") => {
+                let ms: Real = custom["arc@".len()..].parse().ok()?;
+                (ms > 0.0 && ms <= 90.0).then(|| EstimatorSpec {
+                    name: custom.to_string(),
+                    arc_window_ms: Some(ms),
+                    ..Self::poly()
+                })
+            }
             custom if custom.starts_with("poly@") => {
                 let parts: Vec<Real> =
                     custom["poly@".len()..].split(':').map(|p| p.parse().ok()).collect::<Option<_>>()?;
@@ -124,13 +149,14 @@ impl EstimatorSpec {
                     window_ms: None,
                     rotation_window_ms: None,
                     path_speed: None,
+                    arc_window_ms: None,
                 };
                 (parts.next().is_none() && spec.validate().is_ok()).then_some(spec)
             }
         }
     }
 
-    pub const NAMES: [&'static str; 2] = ["linear2", "poly"];
+    pub const NAMES: [&'static str; 3] = ["linear2", "poly", "arc"];
 
     /// Checks the numbers are usable.
     pub fn validate(&self) -> Result<(), String> {
@@ -255,7 +281,8 @@ pub fn estimate(
             }
             let cap = |n: usize, d: usize| d.min(n / 2 - 1);
             let n_s = spec.path_speed.map_or(0, |ps| within(ps.window_ms, 64));
-            (n_p.max(n_s), n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
+            let n_a = spec.arc_window_ms.map_or(0, |ms| within(ms, 64));
+            (n_p.max(n_s).max(n_a), n_p, cap(n_p, spec.position_degree), n_r, cap(n_r, spec.rotation_degree))
         }
     };
     let used = &pre_impact[pre_impact.len() - need..];
@@ -299,10 +326,18 @@ pub fn estimate(
             }
         }
     }
+    let arc = spec.arc_window_ms.filter(|_| spec.window_ms.is_some()).and_then(|ms| {
+        let span_s = ms * 1e-3;
+        let t_newest = poses[need - 1].t_s;
+        let points: Vec<(Real, Vector3)> =
+            poses[..need].iter().filter(|p| t_newest - p.t_s <= span_s + 1e-9).map(|p| (p.t_s, p.position_m)).collect();
+        ArcFit::fit(&points)
+    });
+    let position_at = |t: Real| arc.as_ref().map_or_else(|| fit.position(t), |a| a.position(t));
     let club_pose = |face_centre: Vector3, orientation: crate::math::UnitQuaternion| {
         Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
     };
-    let gap_at = |t: Real| scene.gap(&club_pose(fit.position(t), fit.orientation(t))).distance_m;
+    let gap_at = |t: Real| scene.gap(&club_pose(position_at(t), fit.orientation(t))).distance_m;
     // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
     // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
     // falls short).
@@ -361,6 +396,10 @@ pub fn estimate(
         });
     }
     let mut at = fit.at(t);
+    if let Some(a) = &arc {
+        at.position_m = a.position(t);
+        at.velocity_mps = a.velocity(t);
+    }
     if let Some(ps) = spec.path_speed.filter(|_| spec.window_ms.is_some()) {
         let n_s = {
             let span_ns = (ps.window_ms * 1e6) as u64;
@@ -375,7 +414,7 @@ pub fn estimate(
     let world_from_club = club_pose(at.position_m, at.orientation);
     let cg_velocity_mps = at.velocity_mps - at.angular_velocity_radps.cross(&(at.orientation * r_fit));
     let g = scene.gap(&world_from_club);
-    let residual_rms_mm = fit.residual_rms_m * 1e3;
+    let residual_rms_mm = arc.as_ref().map_or(fit.residual_rms_m, |a| a.residual_rms_m) * 1e3;
     let residual_rms_deg = fit.residual_rms_rad.to_degrees();
     let extrapolation_ms = extrapolation_s.max(0.0) * 1e3;
     let score = 1.0 / (1.0 + residual_rms_mm / 1.0 + residual_rms_deg / 0.5 + extrapolation_ms / 5.0);

@@ -2,6 +2,7 @@
 //! frames with a reason, impact detection, and estimators that extrapolate the pre-impact frames to the first
 //! contact between the face and the ball.
 
+pub mod arc;
 pub mod detect;
 pub mod estimate;
 pub mod fit;
