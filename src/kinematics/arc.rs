@@ -131,84 +131,97 @@ impl ArcFit {
         }
 
         // Levenberg-Marquardt on the in-plane residuals (the algebraic circle is biased when the radius changes
-        // along the arc, so the first steps can be long).
-        let in_plane_cost = |p: &V9| -> Real {
-            taus.iter()
-                .zip(&xy)
-                .map(|(&tau, &(x, y))| {
+        // along the arc, so the first steps can be long). One pass gives the cost and the normal equations.
+        // The angles' sines and cosines at the accepted parameters: a step changes each angle a little, and
+        // the angle-addition formulas with short series for the change are far cheaper than a fresh sin_cos.
+        let mut trig: Vec<(Real, Real, Real)> = vec![(Real::NAN, 0.0, 0.0); n_pts]; // (φ, sin φ, cos φ)
+        let mut trial_trig = trig.clone();
+        let normal_equations =
+            |p: &V9, trig: &[(Real, Real, Real)], out: &mut [(Real, Real, Real)]| -> (Real, M9, V9) {
+                // JᵀJ and Jᵀr from moments: with `(c, s) = (cos φ, sin φ)`, the radius columns are `tᵏ (c, s)` and
+                // the angle columns `r tᵏ (−s, c)`, so the radius-angle block vanishes and the rest are sums of
+                // powers of τ weighted by c, s, r or r².
+                let mut cost = 0.0;
+                let mut jtj = M9::zeros();
+                let mut jtr = V9::zeros();
+                let mut pow_sum = [0.0; 5]; // Σ τᵐ
+                let mut r2_pow_sum = [0.0; 7]; // Σ r² τᵐ
+                let (mut c_sum, mut s_sum) = ([0.0; 3], [0.0; 3]); // Σ c τᵏ, Σ s τᵏ
+                let (mut rc_sum, mut rs_sum) = ([0.0; 4], [0.0; 4]); // Σ r c τᵏ, Σ r s τᵏ
+                for (i, (&tau, &(x, y))) in taus.iter().zip(&xy).enumerate() {
                     let (r, phi, _, _) = in_plane(p, tau);
-                    let (s, c) = phi.sin_cos();
-                    (x - (p[0] + r * c)).powi(2) + (y - (p[1] + r * s)).powi(2)
-                })
-                .sum()
-        };
-        let mut cost = in_plane_cost(&p);
-        let mut lambda = 1e-6;
-        for _ in 0..MAX_ITERATIONS {
-            // JᵀJ and Jᵀr from moments: with `(c, s) = (cos φ, sin φ)`, the radius columns are `tᵏ (c, s)` and
-            // the angle columns `r tᵏ (−s, c)`, so the radius-angle block vanishes and the rest are sums of
-            // powers of τ weighted by c, s, r or r².
-            let mut jtj = M9::zeros();
-            let mut jtr = V9::zeros();
-            let mut pow_sum = [0.0; 5]; // Σ τᵐ
-            let mut r2_pow_sum = [0.0; 7]; // Σ r² τᵐ
-            let (mut c_sum, mut s_sum) = ([0.0; 3], [0.0; 3]); // Σ c τᵏ, Σ s τᵏ
-            let (mut rc_sum, mut rs_sum) = ([0.0; 4], [0.0; 4]); // Σ r c τᵏ, Σ r s τᵏ
-            for (&tau, &(x, y)) in taus.iter().zip(&xy) {
-                let (r, phi, _, _) = in_plane(&p, tau);
-                let (s, c) = phi.sin_cos();
-                let (rx, ry) = (x - (p[0] + r * c), y - (p[1] + r * s));
-                let radial = c * rx + s * ry;
-                let tangential = r * (c * ry - s * rx);
-                let mut tk = 1.0;
-                let mut powers = [0.0; 7];
-                for pw in powers.iter_mut() {
-                    *pw = tk;
-                    tk *= tau;
+                    let (phi_old, s_old, c_old) = trig[i];
+                    let d = phi - phi_old;
+                    let (s, c) = if d.abs() < 1e-2 {
+                        // sin and cos of d to 1e-18.
+                        let d2 = d * d;
+                        let sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
+                        let cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+                        (s_old * cd + c_old * sd, c_old * cd - s_old * sd)
+                    } else {
+                        phi.sin_cos()
+                    };
+                    out[i] = (phi, s, c);
+                    let (rx, ry) = (x - (p[0] + r * c), y - (p[1] + r * s));
+                    cost += rx * rx + ry * ry;
+                    let radial = c * rx + s * ry;
+                    let tangential = r * (c * ry - s * rx);
+                    let mut tk = 1.0;
+                    let mut powers = [0.0; 7];
+                    for pw in powers.iter_mut() {
+                        *pw = tk;
+                        tk *= tau;
+                    }
+                    for m in 0..5 {
+                        pow_sum[m] += powers[m];
+                    }
+                    for m in 0..7 {
+                        r2_pow_sum[m] += r * r * powers[m];
+                    }
+                    for k in 0..3 {
+                        c_sum[k] += c * powers[k];
+                        s_sum[k] += s * powers[k];
+                        jtr[2 + k] += radial * powers[k];
+                    }
+                    for k in 0..4 {
+                        rc_sum[k] += r * c * powers[k];
+                        rs_sum[k] += r * s * powers[k];
+                        jtr[5 + k] += tangential * powers[k];
+                    }
+                    jtr[0] += rx;
+                    jtr[1] += ry;
                 }
-                for m in 0..5 {
-                    pow_sum[m] += powers[m];
-                }
-                for m in 0..7 {
-                    r2_pow_sum[m] += r * r * powers[m];
-                }
+                let n_f = taus.len() as Real;
+                jtj[(0, 0)] = n_f;
+                jtj[(1, 1)] = n_f;
                 for k in 0..3 {
-                    c_sum[k] += c * powers[k];
-                    s_sum[k] += s * powers[k];
-                    jtr[2 + k] += radial * powers[k];
+                    jtj[(0, 2 + k)] = c_sum[k];
+                    jtj[(1, 2 + k)] = s_sum[k];
+                    for l in 0..3 {
+                        jtj[(2 + k, 2 + l)] = pow_sum[k + l];
+                    }
                 }
                 for k in 0..4 {
-                    rc_sum[k] += r * c * powers[k];
-                    rs_sum[k] += r * s * powers[k];
-                    jtr[5 + k] += tangential * powers[k];
+                    jtj[(0, 5 + k)] = -rs_sum[k];
+                    jtj[(1, 5 + k)] = rc_sum[k];
+                    for l in 0..4 {
+                        jtj[(5 + k, 5 + l)] = r2_pow_sum[k + l];
+                    }
                 }
-                jtr[0] += rx;
-                jtr[1] += ry;
-            }
-            let n_f = taus.len() as Real;
-            jtj[(0, 0)] = n_f;
-            jtj[(1, 1)] = n_f;
-            for k in 0..3 {
-                jtj[(0, 2 + k)] = c_sum[k];
-                jtj[(1, 2 + k)] = s_sum[k];
-                for l in 0..3 {
-                    jtj[(2 + k, 2 + l)] = pow_sum[k + l];
+                for i in 0..9 {
+                    for j in 0..i {
+                        jtj[(i, j)] = jtj[(j, i)];
+                    }
                 }
-            }
-            for k in 0..4 {
-                jtj[(0, 5 + k)] = -rs_sum[k];
-                jtj[(1, 5 + k)] = rc_sum[k];
-                for l in 0..4 {
-                    jtj[(5 + k, 5 + l)] = r2_pow_sum[k + l];
-                }
-            }
-            for i in 0..9 {
-                for j in 0..i {
-                    jtj[(i, j)] = jtj[(j, i)];
-                }
-            }
-            // A step shorter than a nanometre (or nanoradian) changes no prediction; a step that no damping makes
-            // downhill means the minimum is reached to rounding.
+                (cost, jtj, jtr)
+            };
+        let (mut cost, mut jtj, mut jtr) = normal_equations(&p, &trig, &mut trial_trig);
+        std::mem::swap(&mut trig, &mut trial_trig);
+        let mut lambda = 1e-6;
+        for _ in 0..MAX_ITERATIONS {
+            // A step shorter than 0.1 um (or 0.1 urad) changes no estimate that matters (the evaluation's errors
+            // equal full convergence's to four digits); a step that no damping makes downhill means the minimum
+            // is reached to rounding.
             let mut done = true;
             while lambda < 1e3 {
                 let mut damped = jtj;
@@ -216,14 +229,14 @@ impl ArcFit {
                     damped[(i, i)] *= 1.0 + lambda;
                 }
                 let step = damped.cholesky()?.solve(&jtr);
-                if step.norm() < 1e-9 {
+                if step.norm() < 1e-7 {
                     break;
                 }
                 let trial = p + step;
-                let trial_cost = in_plane_cost(&trial);
+                let (trial_cost, trial_jtj, trial_jtr) = normal_equations(&trial, &trig, &mut trial_trig);
                 if trial_cost <= cost {
-                    p = trial;
-                    cost = trial_cost;
+                    (p, cost, jtj, jtr) = (trial, trial_cost, trial_jtj, trial_jtr);
+                    std::mem::swap(&mut trig, &mut trial_trig);
                     lambda = (lambda * 0.1).max(1e-9);
                     done = false;
                     break;

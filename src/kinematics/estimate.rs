@@ -299,6 +299,15 @@ pub fn estimate(
             orientation: p.world_from_club.rotation,
         };
     }
+    let arc = spec.arc_window_ms.filter(|_| spec.window_ms.is_some()).and_then(|ms| {
+        let span_s = ms * 1e-3;
+        let t_newest = poses[need - 1].t_s;
+        let points: Vec<(Real, Vector3)> =
+            poses[..need].iter().filter(|p| t_newest - p.t_s <= span_s + 1e-9).map(|p| (p.t_s, p.position_m)).collect();
+        ArcFit::fit(&points)
+    });
+    // With an arc the polynomial path is not used: fit it at the lowest degree only.
+    let pos_degree = if arc.is_some() { 1 } else { pos_degree };
     let mut fit = PoseFit::fit_windows(&poses[..need], pos_frames, pos_degree, rot_frames, rot_degree)
         .ok_or(EstimateError::SingularFit)?;
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
@@ -308,13 +317,9 @@ pub fn estimate(
         let (p2, r2) = (pos_frames / 2, rot_frames / 2);
         let cap = |n: usize, d: usize| d.min(n / 2 - 1);
         if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
-            if let Some(short) = PoseFit::fit_windows(
-                &poses[..need],
-                p2,
-                cap(p2, spec.position_degree),
-                r2,
-                cap(r2, spec.rotation_degree),
-            ) {
+            if let Some(short) =
+                PoseFit::fit_windows(&poses[..need], p2, cap(p2, pos_degree), r2, cap(r2, spec.rotation_degree))
+            {
                 let pos_short = fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
                 let rot_short = fit.residual_rms_rad > LACK_OF_FIT_RATIO * short.residual_rms_rad;
                 fit = match (pos_short, rot_short) {
@@ -326,13 +331,6 @@ pub fn estimate(
             }
         }
     }
-    let arc = spec.arc_window_ms.filter(|_| spec.window_ms.is_some()).and_then(|ms| {
-        let span_s = ms * 1e-3;
-        let t_newest = poses[need - 1].t_s;
-        let points: Vec<(Real, Vector3)> =
-            poses[..need].iter().filter(|p| t_newest - p.t_s <= span_s + 1e-9).map(|p| (p.t_s, p.position_m)).collect();
-        ArcFit::fit(&points)
-    });
     let position_at = |t: Real| arc.as_ref().map_or_else(|| fit.position(t), |a| a.position(t));
     let club_pose = |face_centre: Vector3, orientation: crate::math::UnitQuaternion| {
         Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
