@@ -14,8 +14,9 @@ use crate::math::{Real, Vector3};
 type M9 = nalgebra::SMatrix<Real, 9, 9>;
 type V9 = nalgebra::SVector<Real, 9>;
 
-/// Levenberg-Marquardt iterations at most: 5-10 usually reach the nanometre steps that end it; a short or nearly
-/// straight arc, where centre and radius trade against each other, can need tens.
+/// Levenberg-Marquardt iterations at most. The evaluation's swings take 11 on average: centre and radius trade
+/// against each other along a shallow valley (a centre moved along the arc's mid-radius is almost a change of the
+/// quadratic radius), which the steps follow slowly.
 const MAX_ITERATIONS: usize = 200;
 
 /// The fewest frames an arc fit accepts (nine in-plane coefficients and two out of the plane).
