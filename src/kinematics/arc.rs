@@ -230,7 +230,11 @@ impl ArcFit {
                     damped[(i, i)] *= 1.0 + lambda;
                 }
                 let step = damped.cholesky()?.solve(&jtr);
-                if step.norm() < 1e-7 {
+                // The Gauss-Newton model's predicted fall of the squared residuals; negligible against their sum
+                // means there is nothing left to gain (otherwise the last steps are rejected one by one as the
+                // damping climbs, each costing a pass over the frames).
+                let predicted = step.dot(&jtr);
+                if step.norm() < 1e-7 || predicted < 1e-9 * cost {
                     break;
                 }
                 let trial = p + step;
