@@ -133,8 +133,10 @@ impl ArcFit {
 
         // Levenberg-Marquardt on the in-plane residuals (the algebraic circle is biased when the radius changes
         // along the arc, so the first steps can be long). One pass gives the cost and the normal equations.
-        // The angles' sines and cosines at the accepted parameters: a step changes each angle a little, and
-        // the angle-addition formulas with short series for the change are far cheaper than a fresh sin_cos.
+        //
+        // `trig` keeps the angles' sines and cosines at the accepted parameters: a step changes each angle a
+        // little, and the angle-addition formulas with short series for the change are far cheaper than a fresh
+        // sin_cos.
         let mut trig: Vec<(Real, Real, Real)> = vec![(Real::NAN, 0.0, 0.0); n_pts]; // (φ, sin φ, cos φ)
         let mut trial_trig = trig.clone();
         let normal_equations =
@@ -255,10 +257,20 @@ impl ArcFit {
 
         let zs: Vec<Real> = points.iter().map(|(_, q)| (q - origin).dot(&n)).collect();
         let zc = scalar_poly_fit(&taus, &zs, 1)?;
-        let fit = ArcFit { t_ref_s, scale_s, origin, e1, e2, n, p, z: [zc[0], zc[1]], residual_rms_m: 0.0 };
-        let ss: Real = points.iter().map(|(t, q)| (fit.position(*t) - q).norm_squared()).sum();
-        let residual_rms_m = (ss / n_pts as Real).sqrt();
-        residual_rms_m.is_finite().then_some(ArcFit { residual_rms_m, ..fit })
+        // The in-plane squared residuals are the last accepted cost; the plane's are added to them.
+        let ss_out_of_plane: Real = taus.iter().zip(&zs).map(|(&tau, &z)| (z - (zc[0] + zc[1] * tau)).powi(2)).sum();
+        let residual_rms_m = ((cost + ss_out_of_plane) / n_pts as Real).sqrt();
+        residual_rms_m.is_finite().then_some(ArcFit {
+            t_ref_s,
+            scale_s,
+            origin,
+            e1,
+            e2,
+            n,
+            p,
+            z: [zc[0], zc[1]],
+            residual_rms_m,
+        })
     }
 
     /// Position (m) at `t_s`.
