@@ -214,7 +214,7 @@ pub struct ExtrapolationArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Estimators to compare (comma-separated).
-    #[arg(long, value_delimiter = ',', default_value = "linear2,poly")]
+    #[arg(long, value_delimiter = ',', default_value = "linear2,poly,arc")]
     pub estimators: Vec<String>,
     /// Print the report as JSON.
     #[arg(long)]

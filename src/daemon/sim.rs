@@ -61,7 +61,9 @@ pub struct SimSummary {
     pub shots: u64,
 }
 
-const BEFORE_S: f64 = 0.06;
+/// The swing follows its arc from this long before impact (s); earlier the club waits at the top. It spans the
+/// longest estimator window (the arc's 60 ms, counted from the newest frame before contact) with room to spare.
+const BEFORE_S: f64 = 0.07;
 const AFTER_S: f64 = 0.03;
 
 /// One synthetic rig: samples at any frame, deterministic for a seed.

@@ -14,9 +14,10 @@ use crate::math::{Real, Vector3};
 type M9 = nalgebra::SMatrix<Real, 9, 9>;
 type V9 = nalgebra::SVector<Real, 9>;
 
-/// Levenberg-Marquardt iterations at most. The evaluation's swings take 11 on average: centre and radius trade
-/// against each other along a shallow valley (a centre moved along the arc's mid-radius is almost a change of the
-/// quadratic radius), which the steps follow slowly.
+/// Levenberg-Marquardt iterations at most. The benchmark's noisy swings take three accepted steps on average; a
+/// few take a dozen or more: centre and radius trade against each other along a shallow valley (a centre moved
+/// along the arc's mid-radius is almost a change of the quadratic radius), where the Gauss-Newton steps overshoot
+/// and alternate with damped ones.
 const MAX_ITERATIONS: usize = 200;
 
 /// The fewest frames an arc fit accepts (nine in-plane coefficients and two out of the plane).
@@ -59,6 +60,17 @@ impl ArcFit {
         let t_ref_s = points[n_pts - 1].0;
         let scale_s = (t_ref_s - points[0].0).max(1e-6);
         let taus: Vec<Real> = points.iter().map(|(t, _)| (t - t_ref_s) / scale_s).collect();
+        // The sums of powers of τ (to the tenth) do not depend on the parameters: the normal equations of every
+        // polynomial fit below are made of them (the refinement's angle-angle block too, `Σ r² τᵏ⁺ˡ` with `r²` a
+        // quartic in τ).
+        let mut pow_sum = [0.0; 11]; // Σ τᵐ
+        for &tau in &taus {
+            let mut tk = 1.0;
+            for ps in pow_sum.iter_mut() {
+                *ps += tk;
+                tk *= tau;
+            }
+        }
         let origin = points.iter().map(|(_, p)| p).sum::<Vector3>() / n_pts as Real;
         let mut scatter = nalgebra::Matrix3::zeros();
         for (_, p) in points {
@@ -101,32 +113,42 @@ impl ArcFit {
             return None;
         }
 
-        // Starting angle and radius polynomials from the polar coordinates about that centre (angles unwrapped).
-        let mut phis = Vec::with_capacity(n_pts);
-        let mut radii = Vec::with_capacity(n_pts);
-        let mut last: Option<Real> = None;
+        // Starting angle and radius polynomials from the polar coordinates about that centre. Each angle is the
+        // previous one plus the turn between neighbouring frames (a few degrees), so the angles come unwrapped
+        // and the turns from a short series instead of a full atan2. The frames' own sines and cosines seed the
+        // angle cache of the refinement below.
+        let (mut r_moments, mut phi_moments) = ([0.0; 4], [0.0; 4]); // Σ r τᵏ, Σ φ τᵏ
+        let mut trig: Vec<(Real, Real, Real)> = Vec::with_capacity(n_pts); // (φ, sin φ, cos φ)
+        let mut last: Option<(Real, Real, Real)> = None;
         for &(x, y) in &xy {
-            radii.push((x - cx).hypot(y - cy));
-            let mut phi = (y - cy).atan2(x - cx);
-            if let Some(prev) = last {
-                while phi - prev > std::f64::consts::PI {
-                    phi -= std::f64::consts::TAU;
+            let (dx, dy) = (x - cx, y - cy);
+            let r = (dx * dx + dy * dy).sqrt();
+            let (c, s) = (dx / r, dy / r);
+            let phi = match last {
+                None => dy.atan2(dx),
+                Some((phi_prev, s_prev, c_prev)) => {
+                    phi_prev + turn_angle(c_prev * s - s_prev * c, c_prev * c + s_prev * s)
                 }
-                while phi - prev < -std::f64::consts::PI {
-                    phi += std::f64::consts::TAU;
-                }
+            };
+            let tau = taus[trig.len()];
+            let (mut tr, mut tphi) = (r, phi);
+            for k in 0..4 {
+                r_moments[k] += tr;
+                phi_moments[k] += tphi;
+                tr *= tau;
+                tphi *= tau;
             }
-            last = Some(phi);
-            phis.push(phi);
+            trig.push((phi, s, c));
+            last = Some((phi, s, c));
         }
         let mut p = V9::zeros();
         p[0] = cx;
         p[1] = cy;
-        let r_coeffs = scalar_poly_fit(&taus, &radii, 2)?;
+        let r_coeffs = poly_from_moments(&pow_sum, &r_moments, 2)?;
         for k in 0..3 {
             p[2 + k] = r_coeffs[k];
         }
-        let phi_coeffs = scalar_poly_fit(&taus, &phis, 3)?;
+        let phi_coeffs = poly_from_moments(&pow_sum, &phi_moments, 3)?;
         for k in 0..4 {
             p[5 + k] = phi_coeffs[k];
         }
@@ -137,20 +159,16 @@ impl ArcFit {
         // `trig` keeps the angles' sines and cosines at the accepted parameters: a step changes each angle a
         // little, and the angle-addition formulas with short series for the change are far cheaper than a fresh
         // sin_cos.
-        let mut trig: Vec<(Real, Real, Real)> = vec![(Real::NAN, 0.0, 0.0); n_pts]; // (φ, sin φ, cos φ)
         let mut trial_trig = trig.clone();
         let normal_equations =
             |p: &V9, trig: &[(Real, Real, Real)], out: &mut [(Real, Real, Real)]| -> (Real, M9, V9) {
-                // JᵀJ and Jᵀr from moments: with `(c, s) = (cos φ, sin φ)`, the radius columns are `tᵏ (c, s)` and
-                // the angle columns `r tᵏ (−s, c)`, so the radius-angle block vanishes and the rest are sums of
-                // powers of τ weighted by c, s, r or r².
+                // JᵀJ and Jᵀr from moments: with `(c, s) = (cos φ, sin φ)`, the radius columns are `τᵏ (c, s)` and
+                // the angle columns `r τᵏ (−s, c)`, so the radius-angle block vanishes and the rest are sums of
+                // powers of τ weighted by c or s (`Σ r c τᵏ` expands the quadratic r into `Σ c τᵏ⁺ʲ`).
                 let mut cost = 0.0;
                 let mut jtj = M9::zeros();
                 let mut jtr = V9::zeros();
-                let mut pow_sum = [0.0; 5]; // Σ τᵐ
-                let mut r2_pow_sum = [0.0; 7]; // Σ r² τᵐ
-                let (mut c_sum, mut s_sum) = ([0.0; 3], [0.0; 3]); // Σ c τᵏ, Σ s τᵏ
-                let (mut rc_sum, mut rs_sum) = ([0.0; 4], [0.0; 4]); // Σ r c τᵏ, Σ r s τᵏ
+                let (mut c_sum, mut s_sum) = ([0.0; 6], [0.0; 6]); // Σ c τᵏ, Σ s τᵏ
                 for (i, (&tau, &(x, y))) in taus.iter().zip(&xy).enumerate() {
                     let (r, phi, _, _) = in_plane(p, tau);
                     let (phi_old, s_old, c_old) = trig[i];
@@ -169,32 +187,28 @@ impl ArcFit {
                     cost += rx * rx + ry * ry;
                     let radial = c * rx + s * ry;
                     let tangential = r * (c * ry - s * rx);
-                    let mut tk = 1.0;
-                    let mut powers = [0.0; 7];
-                    for pw in powers.iter_mut() {
-                        *pw = tk;
-                        tk *= tau;
-                    }
-                    for m in 0..5 {
-                        pow_sum[m] += powers[m];
-                    }
-                    for m in 0..7 {
-                        r2_pow_sum[m] += r * r * powers[m];
-                    }
-                    for k in 0..3 {
-                        c_sum[k] += c * powers[k];
-                        s_sum[k] += s * powers[k];
-                        jtr[2 + k] += radial * powers[k];
-                    }
-                    for k in 0..4 {
-                        rc_sum[k] += r * c * powers[k];
-                        rs_sum[k] += r * s * powers[k];
-                        jtr[5 + k] += tangential * powers[k];
+                    let (mut tc, mut ts, mut tr, mut tt) = (c, s, radial, tangential);
+                    for k in 0..6 {
+                        c_sum[k] += tc;
+                        s_sum[k] += ts;
+                        if k < 3 {
+                            jtr[2 + k] += tr;
+                            tr *= tau;
+                        }
+                        if k < 4 {
+                            jtr[5 + k] += tt;
+                            tt *= tau;
+                        }
+                        tc *= tau;
+                        ts *= tau;
                     }
                     jtr[0] += rx;
                     jtr[1] += ry;
                 }
                 let n_f = taus.len() as Real;
+                // r² = Σ q_j τʲ.
+                let q =
+                    [p[2] * p[2], 2.0 * p[2] * p[3], p[3] * p[3] + 2.0 * p[2] * p[4], 2.0 * p[3] * p[4], p[4] * p[4]];
                 jtj[(0, 0)] = n_f;
                 jtj[(1, 1)] = n_f;
                 for k in 0..3 {
@@ -205,10 +219,10 @@ impl ArcFit {
                     }
                 }
                 for k in 0..4 {
-                    jtj[(0, 5 + k)] = -rs_sum[k];
-                    jtj[(1, 5 + k)] = rc_sum[k];
+                    jtj[(0, 5 + k)] = -(p[2] * s_sum[k] + p[3] * s_sum[k + 1] + p[4] * s_sum[k + 2]);
+                    jtj[(1, 5 + k)] = p[2] * c_sum[k] + p[3] * c_sum[k + 1] + p[4] * c_sum[k + 2];
                     for l in 0..4 {
-                        jtj[(5 + k, 5 + l)] = r2_pow_sum[k + l];
+                        jtj[(5 + k, 5 + l)] = (0..5).map(|j| q[j] * pow_sum[k + l + j]).sum();
                     }
                 }
                 for i in 0..9 {
@@ -222,9 +236,11 @@ impl ArcFit {
         std::mem::swap(&mut trig, &mut trial_trig);
         let mut lambda = 1e-6;
         for _ in 0..MAX_ITERATIONS {
-            // A step shorter than 0.1 um (or 0.1 urad) changes no estimate that matters (the evaluation's errors
-            // equal full convergence's to four digits); a step that no damping makes downhill means the minimum
-            // is reached to rounding.
+            // The loop ends when a step is shorter than 0.1 um (or 0.1 urad), when the Gauss-Newton model
+            // predicts that the squared residuals can fall by less than 1e-5 of their sum (the parameters are then
+            // within a few percent of their statistical uncertainty of the minimum; the evaluation's errors equal
+            // full convergence's to three digits), or when no damping makes a step downhill (the minimum is
+            // reached to rounding).
             let mut done = true;
             while lambda < 1e3 {
                 let mut damped = jtj;
@@ -232,11 +248,10 @@ impl ArcFit {
                     damped[(i, i)] *= 1.0 + lambda;
                 }
                 let step = damped.cholesky()?.solve(&jtr);
-                // The Gauss-Newton model's predicted fall of the squared residuals; negligible against their sum
-                // means there is nothing left to gain (otherwise the last steps are rejected one by one as the
-                // damping climbs, each costing a pass over the frames).
+                // The Gauss-Newton model's predicted fall of the squared residuals (stopping on it saves the last
+                // steps, which would be rejected one by one as the damping climbs, each a pass over the frames).
                 let predicted = step.dot(&jtr);
-                if step.norm() < 1e-7 || predicted < 1e-9 * cost {
+                if step.norm() < 1e-7 || predicted < 1e-5 * cost {
                     break;
                 }
                 let trial = p + step;
@@ -256,7 +271,8 @@ impl ArcFit {
         }
 
         let zs: Vec<Real> = points.iter().map(|(_, q)| (q - origin).dot(&n)).collect();
-        let zc = scalar_poly_fit(&taus, &zs, 1)?;
+        let z_moments = taus.iter().zip(&zs).fold([0.0; 4], |m, (&tau, &z)| [m[0] + z, m[1] + z * tau, 0.0, 0.0]);
+        let zc = poly_from_moments(&pow_sum, &z_moments, 1)?;
         // The in-plane squared residuals are the last accepted cost; the plane's are added to them.
         let ss_out_of_plane: Real = taus.iter().zip(&zs).map(|(&tau, &z)| (z - (zc[0] + zc[1] * tau)).powi(2)).sum();
         let residual_rms_m = ((cost + ss_out_of_plane) / n_pts as Real).sqrt();
@@ -293,22 +309,31 @@ impl ArcFit {
     }
 }
 
-/// Least-squares polynomial of `degree` (at most 3) through scalar `values` at `taus`.
-fn scalar_poly_fit(taus: &[Real], values: &[Real], degree: usize) -> Option<[Real; 4]> {
-    let m = degree + 1;
-    let mut ata = nalgebra::Matrix4::<Real>::zeros();
-    let mut aty = nalgebra::Vector4::<Real>::zeros();
-    for (&t, &v) in taus.iter().zip(values) {
-        let row = nalgebra::Vector4::new(1.0, t, t * t, t * t * t);
-        for i in 0..m {
-            for j in 0..m {
-                ata[(i, j)] += row[i] * row[j];
-            }
-            aty[i] += row[i] * v;
-        }
+/// The angle whose sine and cosine are proportional to `sin` and `cos` (an atan2), by a series when it is small.
+#[inline]
+fn turn_angle(sin: Real, cos: Real) -> Real {
+    if cos > 0.0 && sin.abs() < 0.25 * cos {
+        // atan x = x − x³/3 + x⁵/5 − …, to 2e-10 for |x| < 0.25.
+        let x = sin / cos;
+        let x2 = x * x;
+        x * (1.0
+            - x2 * (1.0 / 3.0
+                - x2 * (1.0 / 5.0 - x2 * (1.0 / 7.0 - x2 * (1.0 / 9.0 - x2 / 11.0 * (1.0 - x2 * 11.0 / 13.0))))))
+    } else {
+        sin.atan2(cos)
     }
-    for i in m..4 {
-        ata[(i, i)] = 1.0;
+}
+
+/// Least-squares polynomial of `degree` (at most 3) from the moments of its samples: `pow_sum[m] = Σ τᵐ` and
+/// `moments[k] = Σ vᵢ τᵢᵏ`.
+fn poly_from_moments(pow_sum: &[Real; 11], moments: &[Real; 4], degree: usize) -> Option<[Real; 4]> {
+    let mut ata = nalgebra::Matrix4::<Real>::identity();
+    let mut aty = nalgebra::Vector4::<Real>::zeros();
+    for i in 0..=degree {
+        for j in 0..=degree {
+            ata[(i, j)] = pow_sum[i + j];
+        }
+        aty[i] = moments[i];
     }
     let c = ata.cholesky()?.solve(&aty);
     Some([c[0], c[1], c[2], c[3]])

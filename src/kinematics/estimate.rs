@@ -7,9 +7,11 @@
 //!   vector relative to the newest frame (cubic), so curvature of the arc (100-200 g of centripetal
 //!   acceleration) and the face's angular acceleration are modelled and noise is averaged; the club speed from
 //!   a cubic in time of the path length (the speed changes slowly while the direction turns fast).
+//! - `arc` (the default): `poly`'s orientation, with the face centre's path and the club speed from an arc in the
+//!   swing's plane ([`ArcFit`]) over a longer span.
 
 use super::arc::ArcFit;
-use super::fit::{PathSpeedFit, PoseFit, TimedPose};
+use super::fit::{PathSpeedFit, PoseSeries, TimedPose};
 use super::sample::ClubPose;
 use crate::face::Face;
 use crate::impact::ImpactState;
@@ -67,7 +69,7 @@ impl EstimatorSpec {
         }
     }
 
-    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5), the
+    /// Least squares over the last 44 ms of the face centre's path (degree up to 5), the
     /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
     /// (cubic, [`PathSpeedFit`]). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
@@ -86,9 +88,14 @@ impl EstimatorSpec {
     }
 
     /// `poly` with the face centre's path as an arc over the last `ARC_WINDOW_MS` ([`ArcFit`]): a cubic angle and
-    /// a quadratic radius in the swing's plane instead of a degree-5 polynomial in space.
+    /// a quadratic radius in the swing's plane instead of a degree-5 polynomial in space. The club speed comes
+    /// from the arc too (`r φ'` and `r'`): over its longer span it is about half as noisy as the path-length fit.
     pub fn arc() -> Self {
-        EstimatorSpec { name: "arc".into(), arc_window_ms: Some(Self::ARC_WINDOW_MS), ..Self::poly() }
+        Self::arc_over(Self::ARC_WINDOW_MS, "arc")
+    }
+
+    fn arc_over(window_ms: Real, name: &str) -> Self {
+        EstimatorSpec { name: name.into(), arc_window_ms: Some(window_ms), path_speed: None, ..Self::poly() }
     }
 
     /// The span of the arc fit (ms).
@@ -107,11 +114,7 @@ impl EstimatorSpec {
             "arc" => Some(Self::arc()),
             custom if custom.starts_with("arc@") => {
                 let ms: Real = custom["arc@".len()..].parse().ok()?;
-                (ms > 0.0 && ms <= 90.0).then(|| EstimatorSpec {
-                    name: custom.to_string(),
-                    arc_window_ms: Some(ms),
-                    ..Self::poly()
-                })
+                (ms > 0.0 && ms <= 90.0).then(|| Self::arc_over(ms, custom))
             }
             custom if custom.starts_with("poly@") => {
                 let parts: Vec<Real> =
@@ -308,8 +311,8 @@ pub fn estimate(
     });
     // With an arc the polynomial path is not used: fit it at the lowest degree only.
     let pos_degree = if arc.is_some() { 1 } else { pos_degree };
-    let mut fit = PoseFit::fit_windows(&poses[..need], pos_frames, pos_degree, rot_frames, rot_degree)
-        .ok_or(EstimateError::SingularFit)?;
+    let series = PoseSeries::new(&poses[..need], rot_frames).ok_or(EstimateError::SingularFit)?;
+    let mut fit = series.fit(pos_frames, pos_degree, rot_frames, rot_degree).ok_or(EstimateError::SingularFit)?;
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
@@ -317,9 +320,7 @@ pub fn estimate(
         let (p2, r2) = (pos_frames / 2, rot_frames / 2);
         let cap = |n: usize, d: usize| d.min(n / 2 - 1);
         if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
-            if let Some(short) =
-                PoseFit::fit_windows(&poses[..need], p2, cap(p2, pos_degree), r2, cap(r2, spec.rotation_degree))
-            {
+            if let Some(short) = series.fit(p2, cap(p2, pos_degree), r2, cap(r2, spec.rotation_degree)) {
                 let pos_short = fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
                 let rot_short = fit.residual_rms_rad > LACK_OF_FIT_RATIO * short.residual_rms_rad;
                 fit = match (pos_short, rot_short) {

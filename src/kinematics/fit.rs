@@ -44,26 +44,43 @@ pub struct PoseAt {
 }
 
 /// Fits `values` (one per frame) at normalised times `tau` with a polynomial of `degree` by least squares
-/// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5).
+/// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5). Returns the
+/// RMS residual.
 fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3; MAX_DEGREE + 1]) -> Option<Real> {
-    let m = degree + 1;
-    let mut ata = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
+    // One instance per size, so the small loops unroll.
+    match degree {
+        0 => poly_fit_sized::<1>(tau, values, out),
+        1 => poly_fit_sized::<2>(tau, values, out),
+        2 => poly_fit_sized::<3>(tau, values, out),
+        3 => poly_fit_sized::<4>(tau, values, out),
+        4 => poly_fit_sized::<5>(tau, values, out),
+        5 => poly_fit_sized::<6>(tau, values, out),
+        _ => None,
+    }
+}
+
+fn poly_fit_sized<const M: usize>(
+    tau: &[Real],
+    values: &[Vector3],
+    out: &mut [Vector3; MAX_DEGREE + 1],
+) -> Option<Real> {
+    let mut ata = [[0.0; M]; M];
+    let mut aty = [Vector3::zeros(); M];
     for (&t, y) in tau.iter().zip(values) {
-        let mut p = [1.0; MAX_DEGREE + 1];
-        for k in 1..m {
+        let mut p = [1.0; M];
+        for k in 1..M {
             p[k] = p[k - 1] * t;
         }
-        for i in 0..m {
-            for j in 0..m {
+        for i in 0..M {
+            for j in 0..=i {
                 ata[i][j] += p[i] * p[j];
             }
             aty[i] += p[i] * y;
         }
     }
-    // Cholesky of the (m x m) normal matrix.
-    let mut l = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    for i in 0..m {
+    // Cholesky of the (M x M) normal matrix (its lower triangle).
+    let mut l = [[0.0; M]; M];
+    for i in 0..M {
         for j in 0..=i {
             let mut s = ata[i][j];
             for k in 0..j {
@@ -79,27 +96,27 @@ fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3;
             }
         }
     }
-    let mut z = [Vector3::zeros(); MAX_DEGREE + 1];
-    for i in 0..m {
+    let mut z = [Vector3::zeros(); M];
+    for i in 0..M {
         let mut s = aty[i];
         for k in 0..i {
             s -= l[i][k] * z[k];
         }
         z[i] = s / l[i][i];
     }
-    for i in (0..m).rev() {
+    for i in (0..M).rev() {
         let mut s = z[i];
-        for k in i + 1..m {
+        for k in i + 1..M {
             s -= l[k][i] * out[k];
         }
         out[i] = s / l[i][i];
     }
-    for c in out.iter_mut().skip(m) {
+    for c in out.iter_mut().skip(M) {
         *c = Vector3::zeros();
     }
     let mut ss = 0.0;
     for (&t, y) in tau.iter().zip(values) {
-        ss += (eval(out, degree, t) - y).norm_squared();
+        ss += (eval(out, M - 1, t) - y).norm_squared();
     }
     Some((ss / tau.len() as Real).sqrt())
 }
@@ -125,6 +142,93 @@ fn eval_derivative(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> V
     v
 }
 
+/// Poses prepared for fitting: times scaled to the window, positions relative to the newest frame and, for the
+/// newest frames an orientation fit may use, rotation vectors relative to the newest frame. Several fits over
+/// nested windows share one series, so each frame's logarithm is taken once.
+#[derive(Debug, Clone)]
+pub struct PoseSeries {
+    n: usize,
+    rot_frames: usize,
+    t_ref_s: Real,
+    scale_s: Real,
+    tau: [Real; 64],
+    p: [Vector3; 64],
+    th: [Vector3; 64],
+    newest: TimedPose,
+}
+
+impl PoseSeries {
+    /// Prepares the poses (oldest first, at most 64) with rotation vectors for the newest `rot_frames`.
+    pub fn new(poses: &[TimedPose], rot_frames: usize) -> Option<PoseSeries> {
+        let n = poses.len();
+        if n == 0 || n > 64 || rot_frames > n {
+            return None;
+        }
+        let newest = poses[n - 1];
+        let t_ref_s = newest.t_s;
+        let scale_s = (t_ref_s - poses[0].t_s).max(1e-6);
+        let mut tau = [0.0; 64];
+        let mut p = [Vector3::zeros(); 64];
+        let mut th = [Vector3::zeros(); 64];
+        for (i, pose) in poses.iter().enumerate() {
+            tau[i] = (pose.t_s - t_ref_s) / scale_s;
+            p[i] = pose.position_m - newest.position_m;
+        }
+        // Rotation vectors relative to the newest frame, unwrapped from newest to oldest so that a window turning
+        // through more than π stays continuous (θ and θ (1 − 2π/|θ|) are the same rotation).
+        let r_ref_inv = newest.orientation.inverse();
+        let mut previous = Vector3::zeros();
+        for i in (n - rot_frames..n).rev() {
+            let mut theta = so3::log(&(r_ref_inv * poses[i].orientation));
+            let angle = theta.norm();
+            // The other representative has a norm of 2π − |θ| >= π, so it can only be nearer the previous vector
+            // when |θ| + |previous| > π.
+            if angle > 1e-9 && angle + previous.norm() > std::f64::consts::PI {
+                for k in [-1.0, 1.0] {
+                    let alt = theta * (1.0 + k * 2.0 * std::f64::consts::PI / angle);
+                    if (alt - previous).norm() < (theta - previous).norm() {
+                        theta = alt;
+                    }
+                }
+            }
+            th[i] = theta;
+            previous = theta;
+        }
+        Some(PoseSeries { n, rot_frames, t_ref_s, scale_s, tau, p, th, newest })
+    }
+
+    /// Fits position over the newest `pos_frames` and orientation over the newest `rot_frames` (at most the
+    /// series' own); `None` for a window too short for its degree or a singular fit.
+    pub fn fit(&self, pos_frames: usize, pos_degree: usize, rot_frames: usize, rot_degree: usize) -> Option<PoseFit> {
+        let n = self.n;
+        if pos_frames > n
+            || rot_frames > self.rot_frames
+            || pos_frames <= pos_degree
+            || rot_frames <= rot_degree
+            || pos_degree > MAX_DEGREE
+            || rot_degree > MAX_DEGREE
+        {
+            return None;
+        }
+        let mut pos = [Vector3::zeros(); MAX_DEGREE + 1];
+        let mut rot = [Vector3::zeros(); MAX_DEGREE + 1];
+        let rp = poly_fit(&self.tau[n - pos_frames..n], &self.p[n - pos_frames..n], pos_degree, &mut pos)?;
+        let rr = poly_fit(&self.tau[n - rot_frames..n], &self.th[n - rot_frames..n], rot_degree, &mut rot)?;
+        pos[0] += self.newest.position_m;
+        Some(PoseFit {
+            t_ref_s: self.t_ref_s,
+            scale_s: self.scale_s,
+            pos,
+            pos_degree,
+            rot,
+            rot_degree,
+            r_ref: self.newest.orientation,
+            residual_rms_m: rp,
+            residual_rms_rad: rr,
+        })
+    }
+}
+
 impl PoseFit {
     /// Fits the poses (oldest first; at least `max(d_p, d_r) + 1` of them). Returns `None` for a singular fit.
     pub fn fit(poses: &[TimedPose], pos_degree: usize, rot_degree: usize) -> Option<PoseFit> {
@@ -139,66 +243,8 @@ impl PoseFit {
         rot_frames: usize,
         rot_degree: usize,
     ) -> Option<PoseFit> {
-        let n = poses.len();
-        if n == 0
-            || pos_frames > n
-            || rot_frames > n
-            || pos_frames <= pos_degree
-            || rot_frames <= rot_degree
-            || pos_degree > MAX_DEGREE
-            || rot_degree > MAX_DEGREE
-        {
-            return None;
-        }
-        let newest = poses[n - 1];
-        let t_ref_s = newest.t_s;
-        let scale_s = (t_ref_s - poses[0].t_s).max(1e-6);
-        let mut tau = [0.0; 64];
-        let mut p = [Vector3::zeros(); 64];
-        let mut th = [Vector3::zeros(); 64];
-        if n > 64 {
-            return None;
-        }
-        let r_ref_inv = newest.orientation.inverse();
-        for (i, pose) in poses.iter().enumerate() {
-            tau[i] = (pose.t_s - t_ref_s) / scale_s;
-            p[i] = pose.position_m - newest.position_m;
-        }
-        // Rotation vectors relative to the newest frame, unwrapped from newest to oldest so that a window turning
-        // through more than π stays continuous (θ and θ (1 − 2π/|θ|) are the same rotation).
-        let mut previous = Vector3::zeros();
-        for i in (0..n).rev() {
-            let mut theta = so3::log(&(r_ref_inv * poses[i].orientation));
-            let angle = theta.norm();
-            if angle > 1e-9 {
-                for k in [-1.0, 1.0] {
-                    let alt = theta * (1.0 + k * 2.0 * std::f64::consts::PI / angle);
-                    if (alt - previous).norm() < (theta - previous).norm() {
-                        theta = alt;
-                    }
-                }
-            }
-            th[i] = theta;
-            previous = theta;
-        }
-        let mut pos = [Vector3::zeros(); MAX_DEGREE + 1];
-        let mut rot = [Vector3::zeros(); MAX_DEGREE + 1];
-        let rp = poly_fit(&tau[n - pos_frames..n], &p[n - pos_frames..n], pos_degree, &mut pos)?;
-        let rr = poly_fit(&tau[n - rot_frames..n], &th[n - rot_frames..n], rot_degree, &mut rot)?;
-        pos[0] += newest.position_m;
-        Some(PoseFit {
-            t_ref_s,
-            scale_s,
-            pos,
-            pos_degree,
-            rot,
-            rot_degree,
-            r_ref: newest.orientation,
-            residual_rms_m: rp,
-            residual_rms_rad: rr,
-        })
+        PoseSeries::new(poses, rot_frames)?.fit(pos_frames, pos_degree, rot_frames, rot_degree)
     }
-
     /// This fit's position with `other`'s orientation (both fitted to the same poses).
     pub fn with_rotation_of(mut self, other: &PoseFit) -> PoseFit {
         debug_assert!(self.t_ref_s == other.t_ref_s && self.scale_s == other.scale_s);
@@ -270,18 +316,29 @@ impl PathSpeedFit {
         let scale_s = (t_ref_s - poses[0].t_s).max(1e-6);
         let mut tau = [0.0; 64];
         let mut s = [Vector3::zeros(); 64];
-        let chord = |i: usize| poses[i].position_m - poses[i - 1].position_m;
-        let turn = |i: usize| chord(i).angle(&chord(i + 1)); // at frame i, between chords i and i + 1
+        // chords[i] from frame i to i + 1, its length, and turns[i] between chords i and i + 1 (at frame i + 1).
+        let mut chords = [Vector3::zeros(); 64];
+        let mut lengths = [0.0; 64];
+        let mut turns = [0.0; 64];
+        for i in 0..n - 1 {
+            chords[i] = poses[i + 1].position_m - poses[i].position_m;
+            lengths[i] = chords[i].norm();
+        }
+        for i in 0..n.saturating_sub(2) {
+            let cos = chords[i].dot(&chords[i + 1]) / (lengths[i] * lengths[i + 1]);
+            turns[i] = cos.clamp(-1.0, 1.0).acos();
+        }
         let mut length = 0.0;
         for i in 0..n {
             if i > 0 {
+                // Chord i − 1 joins frames i − 1 and i; its turning angle is the mean of the turns at its ends.
                 let dphi = match (i > 1, i + 1 < n) {
-                    (true, true) => 0.5 * (turn(i - 1) + turn(i)),
-                    (true, false) => turn(i - 1),
-                    (false, true) => turn(i),
+                    (true, true) => 0.5 * (turns[i - 2] + turns[i - 1]),
+                    (true, false) => turns[i - 2],
+                    (false, true) => turns[i - 1],
                     (false, false) => 0.0,
                 };
-                length += chord(i).norm() * (1.0 + dphi * dphi / 24.0);
+                length += lengths[i - 1] * (1.0 + dphi * dphi / 24.0);
             }
             tau[i] = (poses[i].t_s - t_ref_s) / scale_s;
             s[i] = Vector3::new(length, 0.0, 0.0);
