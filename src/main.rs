@@ -16,6 +16,13 @@ fn main() -> ExitCode {
     match impactd::cli::run(cli) {
         Ok(code) => code,
         Err(err) => {
+            // The reader went away (`impactd flight | head`): nothing is lost that anyone wanted.
+            let broken_pipe = err.chain().any(|e| {
+                e.downcast_ref::<std::io::Error>().is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+            });
+            if broken_pipe {
+                return ExitCode::SUCCESS;
+            }
             eprintln!("impactd: {err:#}");
             ExitCode::from(2)
         }
