@@ -309,16 +309,17 @@ pub fn estimate(
             poses[..need].iter().filter(|p| t_newest - p.t_s <= span_s + 1e-9).map(|p| (p.t_s, p.position_m)).collect();
         ArcFit::fit(&points)
     });
-    // With an arc the polynomial path is not used: fit it at the lowest degree only.
-    let pos_degree = if arc.is_some() { 1 } else { pos_degree };
+    // With an arc the polynomial path is not used: a constant through the newest frame stands in for it (exact,
+    // so it never calls for the short window).
+    let (pos_frames, pos_degree) = if arc.is_some() { (1, 0) } else { (pos_frames, pos_degree) };
     let series = PoseSeries::new(&poses[..need], rot_frames).ok_or(EstimateError::SingularFit)?;
     let mut fit = series.fit(pos_frames, pos_degree, rot_frames, rot_degree).ok_or(EstimateError::SingularFit)?;
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
     if spec.window_ms.is_some() {
-        let (p2, r2) = (pos_frames / 2, rot_frames / 2);
-        let cap = |n: usize, d: usize| d.min(n / 2 - 1);
+        let (p2, r2) = ((pos_frames / 2).max(1), rot_frames / 2);
+        let cap = |n: usize, d: usize| d.min((n / 2).saturating_sub(1));
         if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
             if let Some(short) = series.fit(p2, cap(p2, pos_degree), r2, cap(r2, spec.rotation_degree)) {
                 let pos_short = fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
