@@ -176,7 +176,10 @@ impl DaemonConfig {
                 let model = ModelChoice::parse(&r.model, r.cor)
                     .ok_or_else(|| invalid(f("model"), format!("`{}` is not {}", r.model, ModelChoice::NAMES)))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
-                    invalid(f("estimator"), format!("`{}` is not linear2, poly, poly@... or poly:...", r.estimator))
+                    invalid(
+                        f("estimator"),
+                        format!("`{}` is not arc, arc@MS, poly, poly@..., poly:... or linear2", r.estimator),
+                    )
                 })?;
                 if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
                     return Err(invalid(f("ball_position_m"), "must be finite and within 50 m"));
