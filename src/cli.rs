@@ -216,9 +216,20 @@ pub struct ExtrapolationArgs {
     /// Estimators to compare (comma-separated).
     #[arg(long, value_delimiter = ',', default_value = "linear2,poly,arc")]
     pub estimators: Vec<String>,
+    /// Shape of the swings' path before impact: an arc (the `arc` estimator's own model) or a double pendulum
+    /// (arm and club, the wrist uncocking).
+    #[arg(long, value_enum, default_value_t = PathArg::Arc)]
+    pub path: PathArg,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `--path` of `impactd eval extrapolation`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PathArg {
+    Arc,
+    DoublePendulum,
 }
 
 /// Impact models selectable on the command line.
@@ -470,6 +481,10 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         drop_probability: args.drop,
         seed: args.seed,
         estimators,
+        path: match args.path {
+            PathArg::Arc => crate::swing::SwingPath::Arc,
+            PathArg::DoublePendulum => crate::swing::SwingPath::DoublePendulum,
+        },
     };
     let mut err = std::io::stderr().lock();
     let step = (args.shots / 20).max(1);
@@ -488,8 +503,17 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
     }
     writeln!(
         out,
-        "{} at {} Hz, {} swings, noise {} mm / {} deg, seed {}",
-        report.club, report.rate_hz, report.shots, report.noise_mm, report.noise_deg, report.seed
+        "{} at {} Hz, {} swings on {} paths, noise {} mm / {} deg, seed {}",
+        report.club,
+        report.rate_hz,
+        report.shots,
+        match report.path {
+            crate::swing::SwingPath::Arc => "arc",
+            crate::swing::SwingPath::DoublePendulum => "double-pendulum",
+        },
+        report.noise_mm,
+        report.noise_deg,
+        report.seed
     )?;
     write!(out, "{:<22}", "error (est - truth)")?;
     for e in &report.estimators {

@@ -24,6 +24,8 @@ pub struct EvalConfig {
     pub drop_probability: Real,
     pub seed: u64,
     pub estimators: Vec<EstimatorSpec>,
+    /// The shape of the synthetic swings' path.
+    pub path: crate::swing::SwingPath,
 }
 
 /// RMS and largest absolute error.
@@ -92,6 +94,7 @@ pub struct EvalReport {
     pub noise_mm: Real,
     pub noise_deg: Real,
     pub seed: u64,
+    pub path: crate::swing::SwingPath,
     pub estimators: Vec<EstimatorReport>,
 }
 
@@ -154,7 +157,7 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
     let mut refused = vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
     let calibration = Calibration::default();
     for shot in 0..config.shots {
-        let spec = SwingSpec::random(&config.club, &mut rng);
+        let spec = SwingSpec::random_on(config.path, &config.club, &mut rng);
         let Ok(swing) = Swing::new(&spec, &eq) else {
             progress(shot + 1);
             continue;
@@ -216,6 +219,7 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
         noise_mm: config.noise_mm,
         noise_deg: config.noise_deg,
         seed: config.seed,
+        path: config.path,
         estimators: config
             .estimators
             .iter()

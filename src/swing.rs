@@ -6,6 +6,12 @@
 //!   `c = f_i + ρ₀ n_c`, `φ(τ) = (s τ + a τ²/2 + j τ³/6) / ρ₀` and `ρ(τ) = ρ₀ (1 + κ τ²)`, so `f(0) = f_i` and
 //!   `f'(0) = s v̂` exactly (club speed, attack angle and path), with a centripetal acceleration `s²/ρ₀` of
 //!   100-200 g for ρ₀ of 1-2 m.
+//! - Or, with [`SwingSpec::double_pendulum`], the face centre is the end of a double pendulum in the same plane:
+//!   `f(τ) = c + l₁ u(θ₁) + l₂ u(θ₂)`, `u(θ) = −n_c cos θ + v̂ sin θ`, an arm `l₁` about a fixed shoulder at the
+//!   arc's centre and a club `l₂` about the wrist (`l₁ + l₂ = ρ₀`), aligned at impact, the club turning 2.5-4
+//!   times as fast as the arm (`l₁ θ₁' + l₂ θ₂' = s`, so `f(0)` and `f'(0)` are the same) and each with its own
+//!   angular acceleration. Over the last 60 ms the wrist uncocks through 60-90 deg, so the distance from the
+//!   shoulder changes by 10-30 % along a cosine, not a parabola: a path no estimator's model reproduces exactly.
 //! - The head turns as `R(τ) = Exp(τ ω + τ² α/2 + τ³ ζ/6) R_i`: `R(0) = R_i` (face angle and dynamic loft) and
 //!   the angular velocity at impact is exactly `ω` = the arc's rate `s/ρ₀` about the swing-plane normal plus the
 //!   face closure rate (1500-3000 deg/s) about the shaft.
@@ -46,6 +52,31 @@ pub struct SwingSpec {
     /// Angular acceleration and its rate at impact (rad/s², rad/s³, world).
     pub angular_accel_radps2: Vector3,
     pub angular_jerk_radps3: Vector3,
+    /// When set, the face centre's path before impact is a double pendulum instead of the arc.
+    pub double_pendulum: Option<DoublePendulum>,
+}
+
+/// The arm and club of a double-pendulum path (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DoublePendulum {
+    /// The arm's share of the arc radius (the club has the rest).
+    pub arm_share: Real,
+    /// The club's angular rate over the arm's at impact.
+    pub rate_ratio: Real,
+    /// Angular accelerations at impact (rad/s²).
+    pub arm_accel_radps2: Real,
+    pub club_accel_radps2: Real,
+}
+
+/// The shape of the face centre's path before impact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SwingPath {
+    /// A circle in the swing plane with a slowly changing radius (the estimators' `arc` model is exact for it).
+    #[default]
+    Arc,
+    /// A double pendulum (arm and club) in the swing plane.
+    DoublePendulum,
 }
 
 impl SwingSpec {
@@ -82,7 +113,22 @@ impl SwingSpec {
             radius_curvature_per_s2: rng.uniform(-20.0, 20.0),
             angular_accel_radps2: rand_vec(rng, 400.0),
             angular_jerk_radps3: rand_vec(rng, 1.5e4),
+            double_pendulum: None,
         }
+    }
+
+    /// A plausible swing whose path has the given shape (the double pendulum's parameters drawn after the rest).
+    pub fn random_on(path: SwingPath, club: &ClubSpec, rng: &mut Rng) -> SwingSpec {
+        let mut spec = Self::random(club, rng);
+        if path == SwingPath::DoublePendulum {
+            spec.double_pendulum = Some(DoublePendulum {
+                arm_share: rng.uniform(0.35, 0.45),
+                rate_ratio: rng.uniform(2.5, 4.0),
+                arm_accel_radps2: rng.uniform(-150.0, 0.0),
+                club_accel_radps2: rng.uniform(-200.0, 200.0),
+            });
+        }
+        spec
     }
 }
 
@@ -161,7 +207,18 @@ impl Swing {
             (arc / rho0, tau_s * self.omega_after)
         };
         let rho = rho0 * (1.0 + sp.radius_curvature_per_s2 * tau_s * tau_s);
-        let f = self.centre + rho * (-self.n_c * phi.cos() + self.v_hat * phi.sin());
+        let u = |angle: Real| -self.n_c * angle.cos() + self.v_hat * angle.sin();
+        let f = match sp.double_pendulum {
+            Some(dp) if tau_s <= 0.0 => {
+                let (l1, l2) = (dp.arm_share * rho0, (1.0 - dp.arm_share) * rho0);
+                let w1 = self.delivery.club_speed_mps / (l1 + dp.rate_ratio * l2);
+                let w2 = dp.rate_ratio * w1;
+                let theta1 = w1 * tau_s + 0.5 * dp.arm_accel_radps2 * tau_s * tau_s;
+                let theta2 = w2 * tau_s + 0.5 * dp.club_accel_radps2 * tau_s * tau_s;
+                self.centre + l1 * u(theta1) + l2 * u(theta2)
+            }
+            _ => self.centre + rho * u(phi),
+        };
         let r = so3::exp(&rotation) * self.r_i;
         let p = f - r * self.r_fc;
         Isometry3::from_parts(p.into_translation(), r)

@@ -7,8 +7,9 @@
 //!   vector relative to the newest frame (cubic), so curvature of the arc (100-200 g of centripetal
 //!   acceleration) and the face's angular acceleration are modelled and noise is averaged; the club speed from
 //!   a cubic in time of the path length (the speed changes slowly while the direction turns fast).
-//! - `arc` (the default): `poly`'s orientation, with the face centre's path and the club speed from an arc in the
-//!   swing's plane ([`ArcFit`]) over a longer span.
+//! - `arc`: `poly`'s orientation, with the face centre's path and the club speed from an arc in the swing's plane
+//!   ([`ArcFit`]) over a longer span: more accurate than `poly` when the path is such an arc, less when it is not
+//!   (a double pendulum's, as the wrist uncocks), so `poly` is the default.
 
 use super::arc::ArcFit;
 use super::fit::{PathSpeedFit, PoseSeries, TimedPose};
@@ -69,7 +70,7 @@ impl EstimatorSpec {
         }
     }
 
-    /// Least squares over the last 44 ms of the face centre's path (degree up to 5), the
+    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5), the
     /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
     /// (cubic, [`PathSpeedFit`]). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
