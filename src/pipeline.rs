@@ -61,14 +61,14 @@ pub struct RigSetup {
 }
 
 impl RigSetup {
-    /// A rig with the defaults: the adjusted model, the `poly` estimator, identity calibration, ball at the
+    /// A rig with the defaults: the adjusted model, the `arc` estimator, identity calibration, ball at the
     /// origin.
     pub fn new(name: &str, club: ClubSpec) -> Self {
         RigSetup {
             name: name.to_string(),
             club,
             model: ModelChoice::Impulse(ImpulseModel::new(ImpulseVariant::Adjusted)),
-            estimator: EstimatorSpec::poly(),
+            estimator: EstimatorSpec::arc(),
             calibration: Calibration::default(),
             detector: DetectorConfig::default(),
             track: TrackLimits::default(),

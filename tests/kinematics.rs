@@ -107,18 +107,25 @@ fn noise_free_errors_are_tiny() {
     }
 }
 
-/// On double-pendulum paths (the wrist uncocking through the window, a path no estimator models exactly) the
-/// default estimator still meets the accuracy targets and beats the two-point line by at least 3x (h) and 4x (v)
-/// in impact location (measured 4.5x and 5.7x on the driver; README).
+/// On double-pendulum paths (the wrist uncocking through the window, a path no estimator models exactly) `poly`
+/// and the default `arc` (which falls back to `poly`'s path where the arc does not fit) still meet the accuracy
+/// targets; `poly` beats the two-point line by at least 3x (h) and 4x (v) in impact location and `arc` by 4.5x
+/// and 5x (measured over 1000 swings: `poly` 4.5x and 5.7x, `arc` 5.2x and 6.3x on the driver; README), and
+/// `arc` is not worse than `poly` there.
 #[test]
-fn poly_meets_the_targets_on_double_pendulum_paths() {
+fn the_estimators_meet_the_targets_on_double_pendulum_paths() {
     for club in [ClubSpec::driver(), ClubSpec::iron7()] {
         let name = club.name.clone();
         let r = eval_on(SwingPath::DoublePendulum, club, 300, 0.2, 0.1);
         assert_meets_the_accuracy_targets(&name, &r.estimators[1]);
-        let (lin, e) = (&r.estimators[0].errors, &r.estimators[1].errors);
-        assert!(lin.impact_h_mm.rms > 3.0 * e.impact_h_mm.rms, "{name} h ratio");
-        assert!(lin.impact_v_mm.rms > 4.0 * e.impact_v_mm.rms, "{name} v ratio");
+        assert_meets_the_accuracy_targets(&name, &r.estimators[2]);
+        let (lin, poly, arc) = (&r.estimators[0].errors, &r.estimators[1].errors, &r.estimators[2].errors);
+        let ratio = |e: &impactd::eval::ErrorStats, l: &impactd::eval::ErrorStats| l.rms / e.rms;
+        assert!(ratio(&poly.impact_h_mm, &lin.impact_h_mm) > 3.0, "{name} poly h ratio");
+        assert!(ratio(&poly.impact_v_mm, &lin.impact_v_mm) > 4.0, "{name} poly v ratio");
+        let (h, v) = (ratio(&arc.impact_h_mm, &lin.impact_h_mm), ratio(&arc.impact_v_mm, &lin.impact_v_mm));
+        assert!(h > 4.5 && v > 5.0, "{name} arc ratios h {h} v {v}");
+        assert!(arc.impact_h_mm.rms <= poly.impact_h_mm.rms && arc.impact_v_mm.rms <= poly.impact_v_mm.rms);
     }
 }
 

@@ -9,7 +9,7 @@
 //! club = "driver"               # preset (driver, iron7) or a path to a club .toml
 //! model = "adjusted"            # standard | adjusted | slip | continuous | both
 //! cor = 0.83
-//! estimator = "poly"            # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
+//! estimator = "arc"             # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
 //! flight = true                 # add carry, apex, landing and offline to each prediction
 //! [rig.world_from_lab]          # default identity
@@ -81,7 +81,7 @@ fn default_cor() -> f64 {
     crate::impact::impulse::DEFAULT_COR
 }
 fn default_estimator() -> String {
-    "poly".into()
+    "arc".into()
 }
 
 /// A rigid transform: rotation quaternion `[x, y, z, w]` and translation (m).
@@ -178,7 +178,7 @@ impl DaemonConfig {
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
-                        format!("`{}` is not poly, poly@..., poly:..., arc, arc@MS or linear2", r.estimator),
+                        format!("`{}` is not arc, arc@MS, poly, poly@..., poly:... or linear2", r.estimator),
                     )
                 })?;
                 if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
@@ -227,7 +227,7 @@ mod tests {
         assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
         assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
         let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
-        assert_eq!(c.rigs[0].estimator, "poly");
+        assert_eq!(c.rigs[0].estimator, "arc");
         assert_eq!(r[0].club.name, "iron7");
     }
 }

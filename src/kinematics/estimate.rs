@@ -7,9 +7,9 @@
 //!   vector relative to the newest frame (cubic), so curvature of the arc (100-200 g of centripetal
 //!   acceleration) and the face's angular acceleration are modelled and noise is averaged; the club speed from
 //!   a cubic in time of the path length (the speed changes slowly while the direction turns fast).
-//! - `arc`: `poly`'s orientation, with the face centre's path and the club speed from an arc in the swing's plane
-//!   ([`ArcFit`]) over a longer span: more accurate than `poly` when the path is such an arc, less when it is not
-//!   (a double pendulum's, as the wrist uncocks), so `poly` is the default.
+//! - `arc` (the default): `poly`, with the face centre's path from an arc in the swing's plane ([`ArcFit`]) over a
+//!   longer span, kept while it fits the frames about as well as `poly`'s path (on a double pendulum's path, as
+//!   the wrist uncocks, it may not).
 
 use super::arc::ArcFit;
 use super::fit::{PathSpeedFit, PoseSeries, TimedPose};
@@ -70,7 +70,7 @@ impl EstimatorSpec {
         }
     }
 
-    /// The default estimator: least squares over the last 44 ms of the face centre's path (degree up to 5), the
+    /// Least squares over the last 44 ms of the face centre's path (degree up to 5), the
     /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
     /// (cubic, [`PathSpeedFit`]). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
@@ -88,15 +88,17 @@ impl EstimatorSpec {
         }
     }
 
-    /// `poly` with the face centre's path as an arc over the last `ARC_WINDOW_MS` ([`ArcFit`]): a cubic angle and
-    /// a quadratic radius in the swing's plane instead of a degree-5 polynomial in space. The club speed comes
-    /// from the arc too (`r φ'` and `r'`): over its longer span it is about half as noisy as the path-length fit.
+    /// The default estimator: `poly` with the face centre's path as an arc over the last `ARC_WINDOW_MS`
+    /// ([`ArcFit`]), a cubic angle and a quadratic radius in the swing's plane instead of a degree-5 polynomial in
+    /// space, while the arc fits the frames about as well as the polynomial does (`ARC_LACK_OF_FIT_RATIO`), and
+    /// `poly`'s path otherwise. The club speed stays the path-length fit's: the arc's own is twice as precise on
+    /// an exact arc but biased on other paths.
     pub fn arc() -> Self {
         Self::arc_over(Self::ARC_WINDOW_MS, "arc")
     }
 
     fn arc_over(window_ms: Real, name: &str) -> Self {
-        EstimatorSpec { name: name.into(), arc_window_ms: Some(window_ms), path_speed: None, ..Self::poly() }
+        EstimatorSpec { name: name.into(), arc_window_ms: Some(window_ms), ..Self::poly() }
     }
 
     /// The span of the arc fit (ms).
@@ -187,6 +189,12 @@ impl EstimatorSpec {
 /// A long window's residual this many times the half window's means the long model lacks fit. With white noise
 /// alone the ratio is about sqrt((N - p) / N) / sqrt((N/2 - p) / (N/2)), 1.1-1.2 for the default spans.
 const LACK_OF_FIT_RATIO: Real = 1.5;
+
+/// The arc is dropped for the polynomial path when its RMS residual exceeds the polynomial's by this factor. With
+/// noise alone the ratio is 1.05 (99 % of the evaluation's arc swings below 1.21); on double-pendulum paths the
+/// median is 1.24 and a twentieth are above 3.8. Shots between keep the arc: its small misfit there costs less than
+/// the polynomial's noise.
+const ARC_LACK_OF_FIT_RATIO: Real = 1.3;
 
 /// Why an estimator refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -310,11 +318,11 @@ pub fn estimate(
             poses[..need].iter().filter(|p| t_newest - p.t_s <= span_s + 1e-9).map(|p| (p.t_s, p.position_m)).collect();
         ArcFit::fit(&points)
     });
-    // With an arc the polynomial path is not used: a constant through the newest frame stands in for it (exact,
-    // so it never calls for the short window).
-    let (pos_frames, pos_degree) = if arc.is_some() { (1, 0) } else { (pos_frames, pos_degree) };
     let series = PoseSeries::new(&poses[..need], rot_frames).ok_or(EstimateError::SingularFit)?;
     let mut fit = series.fit(pos_frames, pos_degree, rot_frames, rot_degree).ok_or(EstimateError::SingularFit)?;
+    // The arc is kept only while it fits the frames about as well as the polynomial path does: a path of another
+    // shape leaves the arc a residual well above the noise, and its extrapolation a bias (README).
+    let arc = arc.filter(|a| a.residual_rms_m <= ARC_LACK_OF_FIT_RATIO * fit.residual_rms_m);
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
@@ -322,8 +330,10 @@ pub fn estimate(
         let (p2, r2) = ((pos_frames / 2).max(1), rot_frames / 2);
         let cap = |n: usize, d: usize| d.min((n / 2).saturating_sub(1));
         if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
-            if let Some(short) = series.fit(p2, cap(p2, pos_degree), r2, cap(r2, spec.rotation_degree)) {
-                let pos_short = fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
+            // With an arc the polynomial path is not used: its short window is not needed.
+            let (p2, short_pos_degree) = if arc.is_some() { (1, 0) } else { (p2, cap(p2, pos_degree)) };
+            if let Some(short) = series.fit(p2, short_pos_degree, r2, cap(r2, spec.rotation_degree)) {
+                let pos_short = arc.is_none() && fit.residual_rms_m > LACK_OF_FIT_RATIO * short.residual_rms_m;
                 let rot_short = fit.residual_rms_rad > LACK_OF_FIT_RATIO * short.residual_rms_rad;
                 fit = match (pos_short, rot_short) {
                     (false, false) => fit,
