@@ -237,10 +237,10 @@ impl ArcFit {
         let mut lambda = 1e-6;
         for _ in 0..MAX_ITERATIONS {
             // The loop ends when a step is shorter than 0.1 um (or 0.1 urad), when the Gauss-Newton model
-            // predicts that the squared residuals can fall by less than 1e-5 of their sum (the parameters are then
-            // within a few percent of their statistical uncertainty of the minimum; the evaluation's errors equal
-            // full convergence's to three digits), or when no damping makes a step downhill (the minimum is
-            // reached to rounding).
+            // predicts that the squared residuals can fall by less than 1e-4 of their sum (the parameters are then
+            // within a tenth of their standard error of the minimum; the evaluation's errors equal full
+            // convergence's to three digits), or when no damping makes a step downhill (the minimum is reached to
+            // rounding).
             let mut done = true;
             while lambda < 1e3 {
                 let mut damped = jtj;
@@ -251,7 +251,7 @@ impl ArcFit {
                 // The Gauss-Newton model's predicted fall of the squared residuals (stopping on it saves the last
                 // steps, which would be rejected one by one as the damping climbs, each a pass over the frames).
                 let predicted = step.dot(&jtr);
-                if step.norm() < 1e-7 || predicted < 1e-5 * cost {
+                if step.norm() < 1e-7 || predicted < 1e-4 * cost {
                     break;
                 }
                 let trial = p + step;

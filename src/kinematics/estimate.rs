@@ -327,7 +327,7 @@ pub fn estimate(
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
     if spec.window_ms.is_some() {
-        let (p2, r2) = ((pos_frames / 2).max(1), rot_frames / 2);
+        let (p2, r2) = (pos_frames / 2, rot_frames / 2);
         let cap = |n: usize, d: usize| d.min((n / 2).saturating_sub(1));
         if r2 >= EstimatorSpec::MIN_WINDOW_FRAMES {
             // With an arc the polynomial path is not used: its short window is not needed.
@@ -380,7 +380,8 @@ pub fn estimate(
     for _ in 0..60 {
         t = (a * fb - b * fa) / (fb - fa);
         let ft = gap_at(t);
-        if ft.abs() < 1e-12 || (b - a).abs() < 1e-12 {
+        // A nanometre of gap is a few hundredths of a nanosecond of approach: far below the frames' noise.
+        if ft.abs() < 1e-9 || (b - a).abs() < 1e-12 {
             break;
         }
         if ft > 0.0 {
