@@ -14,7 +14,7 @@ use crate::math::{Real, Vector3};
 type M9 = nalgebra::SMatrix<Real, 9, 9>;
 type V9 = nalgebra::SVector<Real, 9>;
 
-/// Levenberg-Marquardt iterations at most. The benchmark's noisy swings take three accepted steps on average; a
+/// Levenberg-Marquardt iterations at most. The benchmark's noisy swings take two or three accepted steps; a
 /// few take a dozen or more: centre and radius trade against each other along a shallow valley (a centre moved
 /// along the arc's mid-radius is almost a change of the quadratic radius), where the Gauss-Newton steps overshoot
 /// and alternate with damped ones.
