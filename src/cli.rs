@@ -507,10 +507,7 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         report.club,
         report.rate_hz,
         report.shots,
-        match report.path {
-            crate::swing::SwingPath::Arc => "arc",
-            crate::swing::SwingPath::DoublePendulum => "double-pendulum",
-        },
+        report.path.name(),
         report.noise_mm,
         report.noise_deg,
         report.seed

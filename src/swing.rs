@@ -79,6 +79,16 @@ pub enum SwingPath {
     DoublePendulum,
 }
 
+impl SwingPath {
+    /// The name on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            SwingPath::Arc => "arc",
+            SwingPath::DoublePendulum => "double-pendulum",
+        }
+    }
+}
+
 impl SwingSpec {
     /// A plausible swing for `club` with a random delivery, drawn from `rng`.
     pub fn random(club: &ClubSpec, rng: &mut Rng) -> SwingSpec {

@@ -41,7 +41,8 @@ pub struct EstimatorSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_speed: Option<PathSpeedSpec>,
     /// When set, the face centre's position and velocity come from an arc ([`ArcFit`]) fitted to the frames
-    /// within this span (ms); the polynomial position fit remains the fallback when the arc fit fails.
+    /// within this span (ms); the polynomial position fit stands in when the arc fit fails or fits the frames
+    /// worse than it (`ARC_LACK_OF_FIT_RATIO`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arc_window_ms: Option<Real>,
 }

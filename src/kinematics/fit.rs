@@ -231,20 +231,11 @@ impl PoseSeries {
 
 impl PoseFit {
     /// Fits the poses (oldest first; at least `max(d_p, d_r) + 1` of them). Returns `None` for a singular fit.
+    /// Windows over the newest frames: [`PoseSeries::fit`].
     pub fn fit(poses: &[TimedPose], pos_degree: usize, rot_degree: usize) -> Option<PoseFit> {
-        Self::fit_windows(poses, poses.len(), pos_degree, poses.len(), rot_degree)
+        PoseSeries::new(poses, poses.len())?.fit(poses.len(), pos_degree, poses.len(), rot_degree)
     }
 
-    /// Fits position over the newest `pos_frames` poses and orientation over the newest `rot_frames`.
-    pub fn fit_windows(
-        poses: &[TimedPose],
-        pos_frames: usize,
-        pos_degree: usize,
-        rot_frames: usize,
-        rot_degree: usize,
-    ) -> Option<PoseFit> {
-        PoseSeries::new(poses, rot_frames)?.fit(pos_frames, pos_degree, rot_frames, rot_degree)
-    }
     /// This fit's position with `other`'s orientation (both fitted to the same poses).
     pub fn with_rotation_of(mut self, other: &PoseFit) -> PoseFit {
         debug_assert!(self.t_ref_s == other.t_ref_s && self.scale_s == other.scale_s);
