@@ -30,6 +30,14 @@ use crate::kinematics::{Calibration, ClubPose, ClubheadSample};
 use crate::math::{Isometry3, Real, Translation3Ext, UnitQuaternion, Vector3};
 use crate::rng::Rng;
 
+/// Spread (standard deviation per world axis) of the head's angular acceleration at impact in
+/// [`SwingSpec::random`] (rad/s²; about 23,000 deg/s²).
+pub const ANGULAR_ACCEL_SIGMA_RADPS2: Real = 400.0;
+
+/// Spread of the rate of the angular acceleration at impact (rad/s³): the club's rotation peaks within about
+/// 50 ms of impact.
+pub const ANGULAR_JERK_SIGMA_RADPS3: Real = 1.5e4;
+
 /// Lie angle used to place the shaft axis for the face-closure rotation (deg).
 const LIE_DEG: Real = 60.0;
 
@@ -121,8 +129,8 @@ impl SwingSpec {
             tangential_accel_mps2: rng.uniform(-100.0, 200.0),
             tangential_jerk_mps3: rng.uniform(-1.0e4, 1.0e4),
             radius_curvature_per_s2: rng.uniform(-20.0, 20.0),
-            angular_accel_radps2: rand_vec(rng, 400.0),
-            angular_jerk_radps3: rand_vec(rng, 1.5e4),
+            angular_accel_radps2: rand_vec(rng, ANGULAR_ACCEL_SIGMA_RADPS2),
+            angular_jerk_radps3: rand_vec(rng, ANGULAR_JERK_SIGMA_RADPS3),
             double_pendulum: None,
         }
     }
