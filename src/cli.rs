@@ -618,20 +618,26 @@ fn flight_fit(iterations: usize) -> Result<ExitCode> {
         fit::fit(&rows, &fit::START, iterations, |run, cost| eprintln!("run {run}: cost {cost:.4}"))
     };
     println!("{} (cost {cost:.4}): {aero:?}", if iterations == 0 { "current" } else { "fitted" });
-    println!("{:<8} {:>12} {:>12} {:>14}", "club", "carry yd", "apex yd", "land deg");
+    println!("{:<8} {:>15} {:>13} {:>14}  within", "club", "carry yd", "apex yd", "land deg");
+    let mut within = 0;
     for r in &rows {
         let (c, a, l) = fit::predict(&aero, r);
+        let (dc, da, dl) = (c - r.carry_yd, a - r.max_height_yd, l - r.land_angle_deg);
+        let ok = dc.abs() <= 3.0 && da.abs() <= 2.0 && dl.abs() <= 2.0;
+        within += usize::from(ok);
         println!(
-            "{:<8} {:>5.1} ({:+5.1}) {:>5.1} ({:+5.1}) {:>6.1} ({:+5.1})",
+            "{:<8} {:>6.1} ({:+6.2}) {:>5.1} ({:+5.2}) {:>5.1} ({:+5.2})  {}",
             r.club,
             c,
-            c - r.carry_yd,
+            dc,
             a,
-            a - r.max_height_yd,
+            da,
             l,
-            l - r.land_angle_deg
+            dl,
+            if ok { "yes" } else { "no" }
         );
     }
+    println!("{within} of {} clubs within carry 3 yd, apex 2 yd and land angle 2 deg", rows.len());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -78,10 +78,9 @@ fn thinner_air_and_a_tailwind_carry_further() {
     assert!(cross.offline_m > 3.0, "a left-to-right wind moves the ball right");
 }
 
-/// Regression guard on the fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: no club's
-/// carry is off by more than 4 yd, apex by more than 2.1 yd or land angle by more than 3 deg, and half of the bag
-/// is within carry 3 yd, apex 2 yd and land angle 2 deg. (The target of every club within 3 yd, 2 yd and 2 deg is
-/// not reached by this model family; the README lists each club's errors.)
+/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: 11 of the 12 clubs within carry
+/// 3 yd, apex 2 yd and land angle 2 deg, and the twelfth (the 4-iron, land angle 2.02 deg shallow) within 2.1 deg.
+/// (The target is all twelve; the README lists each club's errors.)
 #[test]
 fn fit_to_the_trackman_tour_averages_does_not_regress() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
@@ -92,7 +91,7 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
         let (dc, da, dl) =
             ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
         assert!(
-            dc < 4.0 && da < 2.1 && dl < 3.0,
+            dc <= 3.0 && da <= 2.0 && dl < 2.1,
             "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})",
             r.club,
             r.carry_yd,
@@ -103,9 +102,8 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
             within += 1;
         }
     }
-    assert!(within >= 6, "{within} clubs within 3 yd, 2 yd, 2 deg");
-    // The fit's cost is reproducible from the table.
-    assert!(fit::cost(&Aero::FITTED, &rows) < 30.0);
+    assert!(within >= 11, "{within} clubs within 3 yd, 2 yd, 2 deg");
+    assert!(fit::cost(&Aero::FITTED, &rows) < 47.0);
 }
 
 /// The fit is reproducible: from `fit::START`, `impactd flight-fit` (3000 iterations per run) lands on the
@@ -117,9 +115,12 @@ fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     let (aero, cost) = fit::fit(&rows, &fit::START, 3000, |_, _| runs += 1);
     let f = Aero::FITTED;
     let pairs = [
+        (aero.c_d0, f.c_d0),
         (aero.c_ds, f.c_ds),
         (aero.c_dq, f.c_dq),
         (aero.c_dc, f.c_dc),
+        (aero.c_dv, f.c_dv),
+        (aero.c_lv, f.c_lv),
         (aero.v_crisis_mps, f.v_crisis_mps),
         (aero.v_width_mps, f.v_width_mps),
         (aero.c_l1, f.c_l1),
@@ -129,6 +130,5 @@ fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     for (got, shipped) in pairs {
         assert!((got - shipped).abs() <= 1e-6 * shipped.abs(), "{got} vs {shipped}");
     }
-    assert!(aero.c_d0 < 1e-9 && f.c_d0 < 1e-9, "the constant drag term is driven to zero: {}", aero.c_d0);
     assert!((cost - fit::cost(&f, &rows)).abs() < 1e-6 && runs >= 2);
 }

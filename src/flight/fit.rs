@@ -1,7 +1,8 @@
 //! Fitting the aerodynamic coefficients to the TrackMan PGA Tour averages: every club's carry, apex (max height)
-//! and land angle at once, by Nelder-Mead on the logarithms of the eight coefficients (so they stay positive),
-//! minimising the sum of squared errors scaled by the accuracy each must reach (3 yd, 2 yd, 2 deg) plus a strong
-//! penalty on any error beyond it. Deterministic: the same table gives the same coefficients.
+//! and land angle at once, by Nelder-Mead on ten coefficients (the logarithms of the eight that must stay
+//! positive, the two airspeed slopes as they are), minimising the sum of squared errors scaled by the accuracy each
+//! must reach (3 yd, 2 yd, 2 deg) plus a strong penalty on any error beyond 90 % of it. Deterministic: the same
+//! table gives the same coefficients.
 
 use super::{Aero, Conditions, Flight};
 use crate::math::Real;
@@ -69,13 +70,18 @@ pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
             let (carry, apex, land) = predict(aero, r);
             let e = [(carry - r.carry_yd) / 3.0, (apex - r.max_height_yd) / 2.0, (land - r.land_angle_deg) / 2.0];
             e.iter()
-                .map(|x| if x.is_finite() { x * x + 10.0 * (x.abs() - 0.8).max(0.0).powi(2) } else { 1e6 })
+                .map(|x| if x.is_finite() { x * x + PENALTY * (x.abs() - PENALTY_FROM).max(0.0).powi(2) } else { 1e6 })
                 .sum::<Real>()
         })
         .sum()
 }
 
-const N: usize = 8;
+/// An error beyond `PENALTY_FROM` of its accuracy costs `PENALTY` times its square beyond it more: the fit trades
+/// the sum of squares for keeping every club within reach of the targets.
+const PENALTY: Real = 1000.0;
+const PENALTY_FROM: Real = 0.9;
+
+const N: usize = 10;
 
 /// The narrowest drag-crisis transition the fit may use (a Reynolds number span of about 5,500 at sea level): the
 /// fit would otherwise sharpen it into a step placed at one club's descent speed.
@@ -87,16 +93,18 @@ pub const MIN_CRISIS_WIDTH_MPS: Real = 2.0;
 pub const SPIN_TAU_S: Real = 22.0;
 
 /// Where the fit starts: textbook magnitudes (drag 0.2-0.3, lift rising with spin to about 0.3, a drag crisis near
-/// 32 m/s, Re 9·10⁴), so that `impactd flight-fit` reproduces `Aero::FITTED` from the table alone.
+/// 32 m/s, Re 9·10⁴, no airspeed dependence beyond it), so that `impactd flight-fit` reproduces `Aero::FITTED` from the table alone.
 pub const START: Aero = Aero {
     c_d0: 0.2,
     c_ds: 0.3,
     c_dq: 1.0,
     c_dc: 0.15,
+    c_dv: 0.0,
     v_crisis_mps: 32.0,
     v_width_mps: 3.0,
     c_l1: 2.4,
     c_l2: 5.3,
+    c_lv: 0.0,
     spin_tau_s: SPIN_TAU_S,
 };
 
@@ -110,6 +118,8 @@ fn to_aero(x: &[Real; N]) -> Aero {
         v_width_mps: MIN_CRISIS_WIDTH_MPS + x[5].exp(),
         c_l1: x[6].exp(),
         c_l2: x[7].exp(),
+        c_dv: x[8],
+        c_lv: x[9],
         spin_tau_s: SPIN_TAU_S,
     }
 }
@@ -124,6 +134,8 @@ fn from_aero(a: &Aero) -> [Real; N] {
         (a.v_width_mps - MIN_CRISIS_WIDTH_MPS).max(1e-4).ln(),
         a.c_l1.ln(),
         a.c_l2.ln(),
+        a.c_dv,
+        a.c_lv,
     ]
 }
 
