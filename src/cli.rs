@@ -43,7 +43,8 @@ pub enum Command {
     Flight(FlightArgs),
     /// Refit the flight model's coefficients to the TrackMan tour averages and show the fit.
     FlightFit {
-        /// Nelder-Mead iterations per restart, from `flight::fit::START` (0: show the errors of `Aero::FITTED`).
+        /// Nelder-Mead iterations per restart, from `flight::fit::START`, before the minimax stage (0: show the
+        /// errors of `Aero::FITTED`).
         #[arg(long, default_value_t = 3000)]
         iterations: usize,
     },
@@ -610,14 +611,21 @@ fn flight_fit(iterations: usize) -> Result<ExitCode> {
     use crate::flight::fit;
     let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
     let current = crate::flight::Aero::FITTED;
-    eprintln!("cost of the current coefficients: {:.4}", fit::cost(&current, &rows));
-    let (aero, cost) = if iterations == 0 {
-        (current, fit::cost(&current, &rows))
+    let (aero, cost, worst) = if iterations == 0 {
+        (current, fit::cost(&current, &rows), fit::worst(&current, &rows))
     } else {
-        eprintln!("fitting from fit::START ({iterations} iterations per restart)...");
-        fit::fit(&rows, &fit::START, iterations, |run, cost| eprintln!("run {run}: cost {cost:.4}"))
+        eprintln!("fitting from fit::START ({iterations} Nelder-Mead iterations per restart, then minimax)...");
+        let f = fit::fit(&rows, &fit::START, iterations, |step| match step {
+            fit::Step::Run(run, cost) => eprintln!("Nelder-Mead run {run}: cost {cost:.4}"),
+            fit::Step::Minimax(i, worst) => eprintln!("minimax {i}: largest scaled error {worst:.6}"),
+        });
+        (f.aero, f.cost, f.worst)
     };
-    println!("{} (cost {cost:.4}): {aero:?}", if iterations == 0 { "current" } else { "fitted" });
+    println!(
+        "{} (largest error {:.4} of its target, cost {cost:.4}): {aero:?}",
+        if iterations == 0 { "current" } else { "fitted" },
+        worst
+    );
     println!("{:<8} {:>15} {:>13} {:>14}  within", "club", "carry yd", "apex yd", "land deg");
     let mut within = 0;
     for r in &rows {

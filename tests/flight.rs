@@ -78,11 +78,10 @@ fn thinner_air_and_a_tailwind_carry_further() {
     assert!(cross.offline_m > 3.0, "a left-to-right wind moves the ball right");
 }
 
-/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: 11 of the 12 clubs within carry
-/// 3 yd, apex 2 yd and land angle 2 deg, and the twelfth (the 4-iron, land angle 2.02 deg shallow) within 2.1 deg.
-/// (The target is all twelve; the README lists each club's errors.)
+/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED` (the target): every club
+/// within carry 3 yd, apex 2 yd and land angle 2 deg, the largest error 0.97 of its target (README lists them).
 #[test]
-fn fit_to_the_trackman_tour_averages_does_not_regress() {
+fn every_club_is_within_the_trackman_targets() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
     assert_eq!(rows.len(), 12);
     let mut within = 0;
@@ -91,7 +90,7 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
         let (dc, da, dl) =
             ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
         assert!(
-            dc <= 3.0 && da <= 2.0 && dl < 2.1,
+            dc <= 3.0 && da <= 2.0 && dl <= 2.0,
             "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})",
             r.club,
             r.carry_yd,
@@ -102,17 +101,21 @@ fn fit_to_the_trackman_tour_averages_does_not_regress() {
             within += 1;
         }
     }
-    assert!(within >= 11, "{within} clubs within 3 yd, 2 yd, 2 deg");
-    assert!(fit::cost(&Aero::FITTED, &rows) < 47.0);
+    assert_eq!(within, 12);
+    assert!(fit::worst(&Aero::FITTED, &rows) < 0.975);
 }
 
-/// The fit is reproducible: from `fit::START`, `impactd flight-fit` (3000 iterations per run) lands on the
-/// coefficients in `Aero::FITTED`.
+/// The fit is reproducible: from `fit::START`, `impactd flight-fit` (3000 Nelder-Mead iterations per run, then the
+/// minimax stage) lands on the coefficients in `Aero::FITTED`.
 #[test]
 fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
-    let mut runs = 0;
-    let (aero, cost) = fit::fit(&rows, &fit::START, 3000, |_, _| runs += 1);
+    let (mut runs, mut minimax) = (0, 0);
+    let result = fit::fit(&rows, &fit::START, 3000, |step| match step {
+        fit::Step::Run(..) => runs += 1,
+        fit::Step::Minimax(..) => minimax += 1,
+    });
+    let aero = result.aero;
     let f = Aero::FITTED;
     let pairs = [
         (aero.c_d0, f.c_d0),
@@ -130,5 +133,7 @@ fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     for (got, shipped) in pairs {
         assert!((got - shipped).abs() <= 1e-6 * shipped.abs(), "{got} vs {shipped}");
     }
-    assert!((cost - fit::cost(&f, &rows)).abs() < 1e-6 && runs >= 2);
+    assert!((result.worst - fit::worst(&f, &rows)).abs() < 1e-9 && runs >= 2 && minimax >= 2);
+    // The minimax stage lowers the largest error the sum of squares leaves.
+    assert!(result.worst < 0.975);
 }

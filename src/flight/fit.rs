@@ -1,12 +1,14 @@
 //! Fitting the aerodynamic coefficients to the TrackMan PGA Tour averages: every club's carry, apex (max height)
-//! and land angle at once, by Nelder-Mead on ten coefficients (the logarithms of the eight that must stay
-//! positive, the two airspeed slopes as they are), minimising the sum of squared errors scaled by the accuracy each
-//! must reach (3 yd, 2 yd, 2 deg) plus a strong penalty on any error beyond 90 % of it. Deterministic: the same
-//! table gives the same coefficients.
+//! and land angle at once, on ten coordinates (the logarithms of the eight coefficients that must stay positive,
+//! the two airspeed slopes as they are), with every error scaled by the accuracy it must reach (3 yd, 2 yd,
+//! 2 deg). Two stages: Nelder-Mead on the sum of squared scaled errors plus a strong penalty beyond 90 % of each,
+//! then a minimax (Chebyshev) fit from there that lowers the largest scaled error. Deterministic: the same table
+//! gives the same coefficients.
 
 use super::{Aero, Conditions, Flight};
 use crate::math::Real;
 use crate::units::mph_to_mps;
+use nalgebra::{DMatrix, DVector};
 
 /// One row of the TrackMan table.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,16 +65,27 @@ pub fn predict(aero: &Aero, row: &TourAverage) -> (Real, Real, Real) {
     (t.carry_yd, t.apex_yd, t.land_angle_deg)
 }
 
-/// The fit's objective for a set of coefficients.
-pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
+/// Every club's carry, apex and land-angle errors, each divided by the accuracy it must reach (3 yd, 2 yd, 2 deg):
+/// within the targets when every one is within ±1.
+pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
     rows.iter()
-        .map(|r| {
+        .flat_map(|r| {
             let (carry, apex, land) = predict(aero, r);
-            let e = [(carry - r.carry_yd) / 3.0, (apex - r.max_height_yd) / 2.0, (land - r.land_angle_deg) / 2.0];
-            e.iter()
-                .map(|x| if x.is_finite() { x * x + PENALTY * (x.abs() - PENALTY_FROM).max(0.0).powi(2) } else { 1e6 })
-                .sum::<Real>()
+            [(carry - r.carry_yd) / 3.0, (apex - r.max_height_yd) / 2.0, (land - r.land_angle_deg) / 2.0]
         })
+        .collect()
+}
+
+/// The largest scaled error (infinite if a ball never lands).
+pub fn worst(aero: &Aero, rows: &[TourAverage]) -> Real {
+    scaled_errors(aero, rows).iter().map(|e| if e.is_finite() { e.abs() } else { Real::INFINITY }).fold(0.0, Real::max)
+}
+
+/// The first stage's objective: the sum of squared scaled errors plus the penalty beyond `PENALTY_FROM`.
+pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
+    scaled_errors(aero, rows)
+        .iter()
+        .map(|x| if x.is_finite() { x * x + PENALTY * (x.abs() - PENALTY_FROM).max(0.0).powi(2) } else { 1e6 })
         .sum()
 }
 
@@ -141,25 +154,113 @@ fn from_aero(a: &Aero) -> [Real; N] {
 
 const RESTARTS: usize = 8;
 
-/// Nelder-Mead from `start`, restarted from its own best point up to `RESTARTS` times (a fresh simplex escapes the
-/// collapses that stall a single run); returns the best coefficients and their cost. `progress` hears the cost after
-/// each run (run number from 1, cost).
-pub fn fit(
-    rows: &[TourAverage],
-    start: &Aero,
-    iterations: usize,
-    mut progress: impl FnMut(usize, Real),
-) -> (Aero, Real) {
+/// The fitted coefficients, the first stage's cost and the largest scaled error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
+    pub aero: Aero,
+    pub cost: Real,
+    pub worst: Real,
+}
+
+/// A step of the fit, for progress reports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Step {
+    /// A Nelder-Mead run (from 1) and its cost.
+    Run(usize, Real),
+    /// A minimax iteration (from 1) and the largest scaled error.
+    Minimax(usize, Real),
+}
+
+/// Fits the coefficients in two stages. First Nelder-Mead on [`cost`] from `start`, restarted from its own best
+/// point up to `RESTARTS` times (a fresh simplex escapes the collapses that stall a single run), `iterations` per
+/// run. Then [`minimax`] from there, which lowers the largest scaled error that the sum of squares leaves.
+pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize, mut progress: impl FnMut(Step)) -> Fit {
     let mut best = (*start, cost(start, rows));
     for run in 1..=RESTARTS {
         let next = nelder_mead(rows, &best.0, iterations);
-        progress(run, next.1);
+        progress(Step::Run(run, next.1));
         if next.1 >= best.1 - 1e-9 {
             break;
         }
         best = next;
     }
-    best
+    let (aero, worst) = minimax(rows, &best.0, MINIMAX_ITERATIONS, |i, w| progress(Step::Minimax(i, w)));
+    Fit { aero, cost: cost(&aero, rows), worst }
+}
+
+const MINIMAX_ITERATIONS: usize = 50;
+const LAWSON_ITERATIONS: usize = 300;
+const FD_STEP: Real = 1e-6;
+
+/// Minimises the largest scaled error from `start` (a Chebyshev fit): Gauss-Newton on the fit's coordinates with
+/// forward-difference derivatives, each step solving the linearised minimax problem by Lawson's iteratively
+/// reweighted least squares (weights multiplied by each linearised residual's size until the largest ones carry
+/// them all), damped like Levenberg-Marquardt: a step is kept only when the true largest error falls, otherwise
+/// the damping grows tenfold. Returns the coefficients and their largest scaled error.
+pub fn minimax(
+    rows: &[TourAverage],
+    start: &Aero,
+    iterations: usize,
+    mut progress: impl FnMut(usize, Real),
+) -> (Aero, Real) {
+    let residuals = |x: &[Real; N]| {
+        let e = scaled_errors(&to_aero(x), rows);
+        DVector::from_iterator(e.len(), e.into_iter().map(|v| if v.is_finite() { v } else { 1e3 }))
+    };
+    let mut x = from_aero(start);
+    let mut r = residuals(&x);
+    let mut worst = r.amax();
+    let mut damping = 1e-2;
+    for iteration in 1..=iterations {
+        let mut jac = DMatrix::zeros(r.len(), N);
+        for k in 0..N {
+            let mut xk = x;
+            xk[k] += FD_STEP;
+            jac.set_column(k, &((residuals(&xk) - &r) / FD_STEP));
+        }
+        let improved = loop {
+            let d = lawson_step(&jac, &r, damping);
+            let mut next = x;
+            for k in 0..N {
+                next[k] += d[k];
+            }
+            let r_next = residuals(&next);
+            if r_next.amax() < worst {
+                (x, worst, r) = (next, r_next.amax(), r_next);
+                damping = (damping / 3.0).max(1e-8);
+                break true;
+            }
+            damping *= 10.0;
+            if damping > 1e6 {
+                break false;
+            }
+        };
+        progress(iteration, worst);
+        if !improved {
+            break;
+        }
+    }
+    (to_aero(&x), worst)
+}
+
+/// The step `d` that minimises `max |r + J d|` (plus `damping |d|²`), by Lawson's reweighting.
+fn lawson_step(jac: &DMatrix<Real>, r: &DVector<Real>, damping: Real) -> DVector<Real> {
+    let m = r.len();
+    let mut w = DVector::from_element(m, 1.0 / m as Real);
+    let mut d = DVector::zeros(N);
+    for _ in 0..LAWSON_ITERATIONS {
+        let jw = DMatrix::from_fn(m, N, |i, k| jac[(i, k)] * w[i]);
+        let a = jac.transpose() * &jw + DMatrix::identity(N, N) * damping;
+        let Some(step) = a.lu().solve(&(-(jw.transpose() * r))) else { break };
+        d = step;
+        w = w.component_mul(&(r + jac * &d).abs());
+        let total = w.sum();
+        if !(total > 0.0) {
+            break;
+        }
+        w /= total;
+    }
+    d
 }
 
 fn nelder_mead(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {

@@ -10,7 +10,7 @@
 //!   (held at 0.08 or more in the drag, [`DRAG_MIN_SPIN_RATIO`]) and `σ = 1 / (1 + exp((|u| − v_c) / v_w))` the
 //!   share of subcritical flow. Drag grows with spin and saturates, and grows with airspeed beyond the crisis
 //!   (`c_dv`: a dimpled ball's drag rises again with the Reynolds number past its minimum, here from 0.11 at
-//!   40 m/s to 0.35 at 80 m/s at the driver's spin ratio, steeper than wind-tunnel data, which is what the table
+//!   40 m/s to 0.36 at 80 m/s at the driver's spin ratio, steeper than wind-tunnel data, which is what the table
 //!   asks for); lift grows with the spin ratio, saturates at high spin and, at the same spin ratio, falls slowly
 //!   with airspeed (`c_lv`). Below the drag crisis (airspeed `v_c`, a transition `v_w` wide) the boundary layer
 //!   separates earlier, the drag rises by `c_dc` and the Magnus lift fades out, as wind-tunnel measurements of
@@ -122,16 +122,16 @@ pub const DRAG_MIN_SPIN_RATIO: Real = 0.08;
 
 /// `Aero::FITTED` in field order, as `impactd flight-fit` prints them.
 const FIT: [Real; 10] = [
-    0.0013798070506512764,
-    4.053932462765122,
-    12.397256956532095,
-    0.26790411848231993,
-    0.31694355734099056,
-    33.06577272482265,
-    2.000000483141208,
-    2.692165517088322,
-    6.135906883921967,
-    -0.31634903508619233,
+    0.0013616267406060174,
+    3.9737710526267245,
+    12.121304755467488,
+    0.2672316502945375,
+    0.3207273318440158,
+    33.256058030784935,
+    2.0000998955397282,
+    2.7220667298710897,
+    6.231797221486451,
+    -0.38895029236096457,
 ];
 
 /// The ball leaving the face.
