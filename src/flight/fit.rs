@@ -106,7 +106,8 @@ pub const MIN_CRISIS_WIDTH_MPS: Real = 2.0;
 pub const SPIN_TAU_S: Real = 22.0;
 
 /// Where the fit starts: textbook magnitudes (drag 0.2-0.3, lift rising with spin to about 0.3, a drag crisis near
-/// 32 m/s, Re 9·10⁴, no airspeed dependence beyond it), so that `impactd flight-fit` reproduces `Aero::FITTED` from the table alone.
+/// 32 m/s, Re 9·10⁴, no airspeed slopes), so that `impactd flight-fit` reproduces `Aero::FITTED` from the table
+/// alone.
 pub const START: Aero = Aero {
     c_d0: 0.2,
     c_ds: 0.3,
@@ -154,7 +155,7 @@ fn from_aero(a: &Aero) -> [Real; N] {
 
 const RESTARTS: usize = 8;
 
-/// The fitted coefficients, the first stage's cost and the largest scaled error.
+/// The fitted coefficients, the first stage's objective ([`cost`]) at them and their largest scaled error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {
     pub aero: Aero,

@@ -8,8 +8,8 @@
 //! - `C_D = c_d0 + c_ds S / (1 + c_dq S) + c_dv (|u| / 50 m/s − 1) + c_dc σ` and
 //!   `C_L = c_l1 S / (1 + c_l2 S) · (1 − σ) · (1 + c_lv (|u| / 50 m/s − 1))`, with spin ratio `S = r |ω| / |u|`
 //!   (held at 0.08 or more in the drag, [`DRAG_MIN_SPIN_RATIO`]) and `σ = 1 / (1 + exp((|u| − v_c) / v_w))` the
-//!   share of subcritical flow. Drag grows with spin and saturates, and grows with airspeed beyond the crisis
-//!   (`c_dv`: a dimpled ball's drag rises again with the Reynolds number past its minimum, here from 0.11 at
+//!   share of subcritical flow. Drag grows with spin and saturates, and grows linearly with airspeed (`c_dv`: a
+//!   dimpled ball's drag rises again with the Reynolds number past its minimum, here from 0.11 at
 //!   40 m/s to 0.36 at 80 m/s at the driver's spin ratio, steeper than wind-tunnel data, which is what the table
 //!   asks for); lift grows with the spin ratio, saturates at high spin and, at the same spin ratio, falls slowly
 //!   with airspeed (`c_lv`). Below the drag crisis (airspeed `v_c`, a transition `v_w` wide) the boundary layer
@@ -51,8 +51,8 @@ pub struct Aero {
     pub c_dq: Real,
     /// Drag added below the drag crisis: `c_dc σ`, `σ = 1 / (1 + exp((|u| − v_crisis_mps) / v_width_mps))`.
     pub c_dc: Real,
-    /// Drag per airspeed: `c_dv (|u| / 50 m/s − 1)` (the drag of a dimpled ball rising with the Reynolds number
-    /// beyond the crisis).
+    /// Drag per airspeed: `c_dv (|u| / 50 m/s − 1)` at every airspeed (the drag of a dimpled ball rising with the
+    /// Reynolds number past its minimum; below the crisis `c_dc` dominates).
     pub c_dv: Real,
     pub v_crisis_mps: Real,
     pub v_width_mps: Real,
