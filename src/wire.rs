@@ -15,6 +15,9 @@ use crate::impact::{Delivery, DeliveryMetrics, ImpactError, Launch, LaunchMetric
 use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
+mod measured;
+pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
+
 /// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
 /// any model runs, and the launch is mirrored back.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -238,6 +241,14 @@ pub mod keys {
     /// Out of `impactd sim`: [`TruthMessage`](super::TruthMessage), what the synthetic rig really swung.
     pub fn truth(rig: &str) -> String {
         format!("sim/{rig}/truth")
+    }
+    /// In: [`MeasuredLaunch`](super::MeasuredLaunch) from a launch monitor (or the Open Connect listener).
+    pub fn measured_launch(rig: &str) -> String {
+        format!("lm/{rig}/launch")
+    }
+    /// Out: [`ComparisonMessage`](super::ComparisonMessage), a prediction paired with its measurement.
+    pub fn comparison(rig: &str) -> String {
+        format!("golf/{rig}/comparison")
     }
     /// The rig name of a `mocap/<rig>/clubhead` key.
     pub fn rig_of_clubhead(key: &str) -> Option<&str> {
@@ -480,5 +491,7 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("PredictOutput", one::<PredictOutput>()),
         ("FlightInput", one::<FlightInput>()),
         ("Trajectory", one::<crate::flight::Trajectory>()),
+        ("MeasuredLaunch", one::<MeasuredLaunch>()),
+        ("ComparisonMessage", one::<ComparisonMessage>()),
     ]
 }

@@ -1,0 +1,108 @@
+//! Measured launches from a launch monitor and their comparison with predictions.
+//!
+//! A [`MeasuredLaunch`] arrives on `lm/<rig>/launch` (from any publisher, or from the Open Connect listener); a
+//! [`ComparisonMessage`] pairs it with the rig's prediction of the same swing on `golf/<rig>/comparison`. Signs are
+//! TrackMan's, as everywhere on the wire (DESIGN.md section 2): launch direction (HLA) right +, sidespin + = fade,
+//! spin axis + = tilted right.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::math::Real;
+
+/// Club data a launch monitor may report beside the ball (every field optional).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredClubData {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_speed_mph: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attack_angle_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_path_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub face_angle_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_loft_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact_h_mm: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact_v_mm: Option<Real>,
+}
+
+/// A launch as a launch monitor measured it, on `lm/<rig>/launch`. The spin is given either as backspin and
+/// sidespin or as total spin and spin axis (both may be present; backspin and sidespin win).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredLaunch {
+    pub rig: String,
+    /// When the shot was measured (ns since the Unix epoch, the receiving host's clock).
+    pub t_ns: u64,
+    /// The device or connector that measured it (`"GC3"`, `"open_connect:Trackman"`, ...).
+    pub device: String,
+    /// The device's own shot number, when it gives one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shot_number: Option<u64>,
+    pub ball_speed_mph: Real,
+    /// Vertical launch angle (VLA), up +.
+    pub launch_angle_deg: Real,
+    /// Horizontal launch angle (HLA), right +.
+    pub launch_direction_deg: Real,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub backspin_rpm: Option<Real>,
+    /// + = fade/slice (curves right).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sidespin_rpm: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub total_spin_rpm: Option<Real>,
+    /// + = tilted right (fade).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin_axis_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carry_yd: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club: Option<MeasuredClubData>,
+}
+
+impl MeasuredLaunch {
+    /// Backspin and sidespin (rpm): given directly, or from total spin and spin axis
+    /// (`back = total cos(axis)`, `side = total sin(axis)`). `None` when neither pair is complete.
+    pub fn spin_components_rpm(&self) -> Option<(Real, Real)> {
+        match (self.backspin_rpm, self.sidespin_rpm, self.total_spin_rpm, self.spin_axis_deg) {
+            (Some(back), Some(side), _, _) => Some((back, side)),
+            (_, _, Some(total), Some(axis)) => {
+                let a = axis.to_radians();
+                Some((total * a.cos(), total * a.sin()))
+            }
+            _ => None,
+        }
+    }
+}
+
+/// The launch numbers compared field by field (the seed's Tables 3.2-3.7 fields, plus carry when both have it).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct LaunchFields {
+    pub ball_speed_mph: Real,
+    pub launch_angle_deg: Real,
+    pub launch_direction_deg: Real,
+    pub backspin_rpm: Real,
+    pub sidespin_rpm: Real,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carry_yd: Option<Real>,
+}
+
+/// A prediction paired with its measurement, on `golf/<rig>/comparison`: `residual = predicted - measured`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ComparisonMessage {
+    pub rig: String,
+    /// The prediction's shot number and model.
+    pub shot: u64,
+    pub model: String,
+    pub t_impact_ns: u64,
+    /// The measurement's time and device.
+    pub measured_t_ns: u64,
+    pub device: String,
+    pub predicted: LaunchFields,
+    pub measured: LaunchFields,
+    pub residual: LaunchFields,
+}
