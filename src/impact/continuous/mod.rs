@@ -20,6 +20,16 @@
 //! taken as a sphere of their geometric-mean radius.
 
 pub mod contact;
+pub mod hertzian;
+/// Contact laws (seed sections 3.2.2-3.2.3).
+pub mod law {
+    #[path = "arakawa.rs"]
+    pub mod arakawa;
+    #[path = "hertz.rs"]
+    pub mod hertz;
+    #[path = "maw.rs"]
+    pub mod maw;
+}
 
 use contact::{overlap_energy, FaceSurface};
 
@@ -339,7 +349,7 @@ fn combine(k1: &Rates, k2: &Rates, k3: &Rates, k4: &Rates) -> Rates {
 
 impl ContinuousModel {
     /// The face surface for the normal force: the plane for a flat face, the face sphere for a curved one.
-    fn surface(club: &ClubSpec) -> FaceSurface {
+    pub(crate) fn surface(club: &ClubSpec) -> FaceSurface {
         let face = &club.face;
         match face.shape {
             FaceShape::Plane => FaceSurface::Plane { point: face.center_m, normal: face.n0() },

@@ -1,0 +1,418 @@
+//! The seed's Hertzian continuous models (section 3.2.2 Maw, section 3.2.3 Arakawa): a rigid ball against a free
+//! clubhead, eq. 3.16's normal force along the contact normal and a tangential law in the tangent plane, both
+//! applied at one contact point, equal and opposite on the two free bodies (section 3.2.2, last paragraph).
+//!
+//! - Contact geometry: the ball against the face plane (irons) or the face sphere of the geometric-mean radius
+//!   of bulge and roll (drivers), as the two-layer model; the approach `x` is the overlap along the normal,
+//!   the contact point sits `R − x/2` from the ball's centre.
+//! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
+//! - Integration: classical RK4 at a fixed step (default 1 µs) from first contact until the bodies separate.
+//!   The ring states are history variables: inside a step each ring follows the slip since the step's start
+//!   (its own stick/slip test at every stage) and the step's end is committed. Both bodies feel equal and
+//!   opposite forces at the same point, so linear and angular momentum are conserved to rounding.
+//!
+//! Assumptions: a rigid ball (its spin is the launch spin), no gravity or shaft in the half millisecond of
+//! contact, the contact never reaches the face's edges.
+
+use super::contact::FaceSurface;
+use super::law::{
+    arakawa::{ArakawaLaw, ArakawaParams},
+    hertz::{elastic_energy, equivalent_radius, normal_force, ContactKinematics, Hertz, TangentialLaw},
+    maw::{MawParams, MawRings},
+};
+use super::ContinuousModel;
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::math::{Real, UnitQuaternion, Vector3};
+
+/// One sample of a trace.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct HertzTracePoint {
+    pub t_us: Real,
+    pub normal_force_n: Real,
+    /// Tangential force on the ball along the face's initial slip relative to the ball (N): positive while it
+    /// drives the ball's contact point along with the face, negative once it has reversed.
+    pub tangential_force_n: Real,
+    /// The ball's spin (rpm) about the axis normal x initial slip (positive: the spin the face imparts).
+    pub ball_spin_rpm: Real,
+    pub compression_mm: Real,
+    /// Maw: rings stuck.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stuck_rings: Option<usize>,
+}
+
+/// What a run gives besides the launch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HertzResult {
+    pub launch: Launch,
+    pub contact_time_s: Real,
+    pub peak_normal_force_n: Real,
+    /// The tangential force along the initial axis took both signs (each beyond 1 % of its largest size).
+    pub tangential_reversal: bool,
+    pub steps: usize,
+    pub trace: Vec<HertzTracePoint>,
+    pub energy_before_j: Real,
+    pub energy_after_j: Real,
+    /// Largest increase of the total energy (kinetic + Hertz + rings) over any step (J).
+    pub max_energy_increase_j: Real,
+    /// Linear and angular momentum (about the world origin) of both bodies before and after.
+    pub momentum_before: (Vector3, Vector3),
+    pub momentum_after: (Vector3, Vector3),
+}
+
+/// Which tangential law, with its parameters (`None`: the club's preset, driver's for a curved face).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HertzLaw {
+    Maw(Option<MawParams>),
+    Arakawa(Option<ArakawaParams>),
+}
+
+/// Maw's or Arakawa's model on a free head.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzModel {
+    pub law: HertzLaw,
+    /// Integration step (s).
+    pub step_s: Real,
+    /// Give up after this long in contact (s).
+    pub max_contact_s: Real,
+}
+
+impl HertzModel {
+    pub fn maw() -> Self {
+        HertzModel { law: HertzLaw::Maw(None), step_s: 1e-6, max_contact_s: 3e-3 }
+    }
+
+    pub fn arakawa() -> Self {
+        HertzModel { law: HertzLaw::Arakawa(None), ..Self::maw() }
+    }
+
+    fn not_converged(reason: String) -> ImpactError {
+        ImpactError::NotConverged { model: "continuous/hertz", reason }
+    }
+
+    /// Runs the collision, recording a trace every `trace_every` steps (0: none).
+    pub fn simulate(&self, state: &ImpactState, eq: &Equipment, trace_every: usize) -> Result<HertzResult, ImpactError> {
+        let curved = eq.club.face.shape.is_curved();
+        match self.law {
+            HertzLaw::Maw(p) => {
+                let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
+                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                run(self, state, eq, p.hertz(), &mut MawRings::new(&p), trace_every)
+            }
+            HertzLaw::Arakawa(p) => {
+                let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
+                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                run(self, state, eq, p.hertz(), &mut ArakawaLaw::new(&p), trace_every)
+            }
+        }
+    }
+}
+
+impl ImpactModel for HertzModel {
+    fn name(&self) -> &'static str {
+        match self.law {
+            HertzLaw::Maw(_) => "continuous/maw",
+            HertzLaw::Arakawa(_) => "continuous/arakawa",
+        }
+    }
+
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        self.simulate(state, equipment, 0).map(|r| r.launch)
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct State {
+    p_c: Vector3,
+    v_c: Vector3,
+    q_c: UnitQuaternion,
+    w_c_body: Vector3,
+    p_b: Vector3,
+    v_b: Vector3,
+    w_b: Vector3,
+    /// Tangential slip of the ball's contact point relative to the face's, integrated (m).
+    s: Vector3,
+}
+
+/// Time derivatives, in the same layout.
+#[derive(Debug, Clone, Copy)]
+struct Rates {
+    v_c: Vector3,
+    a_c: Vector3,
+    q_dot: nalgebra::Quaternion<Real>,
+    alpha_c_body: Vector3,
+    v_b: Vector3,
+    a_b: Vector3,
+    alpha_b: Vector3,
+    s_dot: Vector3,
+}
+
+struct Setup {
+    k: Real,
+    hertz: Hertz,
+    surface: FaceSurface,
+    r_ball: Real,
+    m_b: Real,
+    i_b: Real,
+    m_c: Real,
+    i_c: nalgebra::Matrix3<Real>,
+    i_c_inv: nalgebra::Matrix3<Real>,
+}
+
+/// The contact at a state: kinematics for the law, the contact point's lever arms, the normal force.
+struct Contact {
+    kin: ContactKinematics,
+    r_b: Vector3,
+    r_c: Vector3,
+}
+
+impl Setup {
+    fn contact(&self, s: &State, s_step: &Vector3) -> Option<Contact> {
+        let rot = s.q_c.to_rotation_matrix();
+        let o = self.surface.overlap(&rot.inverse_transform_vector(&(s.p_b - s.p_c)), self.r_ball)?;
+        let n = rot * o.normal;
+        let x = o.depth_m;
+        let point = s.p_b - (self.r_ball - 0.5 * x) * n;
+        let (r_b, r_c) = (point - s.p_b, point - s.p_c);
+        let w_c = rot * s.w_c_body;
+        let v_rel = (s.v_b + s.w_b.cross(&r_b)) - (s.v_c + w_c.cross(&r_c));
+        let xdot = -v_rel.dot(&n);
+        let ds = s.s - s_step;
+        let kin = ContactKinematics {
+            normal: n,
+            x_m: x,
+            xdot_mps: xdot,
+            normal_force_n: normal_force(self.k, self.hertz.d_s_per_m, x, xdot),
+            slip_velocity_mps: v_rel - v_rel.dot(&n) * n,
+            slip_since_step_m: ds - ds.dot(&n) * n,
+        };
+        Some(Contact { kin, r_b, r_c })
+    }
+
+    fn rates(&self, s: &State, s_step: &Vector3, law: &dyn TangentialLaw) -> (Rates, Option<(Contact, Vector3)>) {
+        let rot = s.q_c.to_rotation_matrix();
+        let w = s.w_c_body;
+        let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
+        let gyro = self.i_c_inv * (-w.cross(&(self.i_c * w)));
+        let mut r = Rates {
+            v_c: s.v_c,
+            a_c: Vector3::zeros(),
+            q_dot,
+            alpha_c_body: gyro,
+            v_b: s.v_b,
+            a_b: Vector3::zeros(),
+            alpha_b: Vector3::zeros(),
+            s_dot: Vector3::zeros(),
+        };
+        let Some(c) = self.contact(s, s_step) else { return (r, None) };
+        let f_t = law.force(&c.kin);
+        let f = c.kin.normal_force_n * c.kin.normal + f_t;
+        r.a_b = f / self.m_b;
+        r.alpha_b = c.r_b.cross(&f) / self.i_b;
+        r.a_c = -f / self.m_c;
+        let torque_body = rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
+        r.alpha_c_body += self.i_c_inv * torque_body;
+        r.s_dot = c.kin.slip_velocity_mps;
+        (r, Some((c, f_t)))
+    }
+
+    fn momentum(&self, s: &State) -> (Vector3, Vector3) {
+        let rot = s.q_c.to_rotation_matrix();
+        let linear = self.m_c * s.v_c + self.m_b * s.v_b;
+        let angular = self.m_c * s.p_c.cross(&s.v_c)
+            + rot * (self.i_c * s.w_c_body)
+            + self.m_b * s.p_b.cross(&s.v_b)
+            + self.i_b * s.w_b;
+        (linear, angular)
+    }
+
+    fn energy(&self, s: &State, law: &dyn TangentialLaw) -> Real {
+        let ke = 0.5 * self.m_c * s.v_c.norm_squared()
+            + 0.5 * s.w_c_body.dot(&(self.i_c * s.w_c_body))
+            + 0.5 * self.m_b * s.v_b.norm_squared()
+            + 0.5 * self.i_b * s.w_b.norm_squared();
+        let x = self.contact(s, &s.s).map(|c| c.kin.x_m).unwrap_or(0.0);
+        ke + elastic_energy(self.k, x) + law.stored_energy_j()
+    }
+}
+
+fn advance(s: &State, r: &Rates, h: Real) -> State {
+    State {
+        p_c: s.p_c + r.v_c * h,
+        v_c: s.v_c + r.a_c * h,
+        q_c: UnitQuaternion::new_unchecked(s.q_c.quaternion() + r.q_dot * h),
+        w_c_body: s.w_c_body + r.alpha_c_body * h,
+        p_b: s.p_b + r.v_b * h,
+        v_b: s.v_b + r.a_b * h,
+        w_b: s.w_b + r.alpha_b * h,
+        s: s.s + r.s_dot * h,
+    }
+}
+
+fn combine(k: [&Rates; 4]) -> Rates {
+    let c = |f: fn(&Rates) -> Vector3| (f(k[0]) + 2.0 * f(k[1]) + 2.0 * f(k[2]) + f(k[3])) / 6.0;
+    Rates {
+        v_c: c(|r| r.v_c),
+        a_c: c(|r| r.a_c),
+        q_dot: (k[0].q_dot + k[1].q_dot * 2.0 + k[2].q_dot * 2.0 + k[3].q_dot) / 6.0,
+        alpha_c_body: c(|r| r.alpha_c_body),
+        v_b: c(|r| r.v_b),
+        a_b: c(|r| r.a_b),
+        alpha_b: c(|r| r.alpha_b),
+        s_dot: c(|r| r.s_dot),
+    }
+}
+
+fn run(
+    model: &HertzModel,
+    state: &ImpactState,
+    eq: &Equipment,
+    hertz: Hertz,
+    law: &mut dyn TangentialLaw,
+    trace_every: usize,
+) -> Result<HertzResult, ImpactError> {
+    let club = &eq.club;
+    if !club.on_face(state.impact_h_m, state.impact_v_m) {
+        return Err(ImpactError::OffFace { h_mm: state.impact_h_m * 1e3, v_mm: state.impact_v_m * 1e3 });
+    }
+    if !(model.step_s.is_finite() && model.step_s > 0.0) {
+        return Err(HertzModel::not_converged(format!("step {} s must be positive", model.step_s)));
+    }
+    let surface = ContinuousModel::surface(club);
+    let r_eq = equivalent_radius(eq.ball.radius_m, &club.face.shape);
+    let setup = Setup {
+        k: hertz.stiffness(r_eq),
+        hertz,
+        surface,
+        r_ball: eq.ball.radius_m,
+        m_b: eq.ball.mass_kg,
+        i_b: eq.ball.inertia_kg_m2,
+        m_c: club.mass_kg,
+        i_c: club.inertia_kg_m2,
+        i_c_inv: club.inertia_inv_kg_m2,
+    };
+    let contact = club.face.contact(state.impact_h_m, state.impact_v_m)?;
+    let ball_club = match surface {
+        FaceSurface::Plane { .. } => contact.point_m + eq.ball.radius_m * contact.normal,
+        FaceSurface::Sphere { centre, radius_m } => {
+            centre + (radius_m + eq.ball.radius_m) * (contact.point_m - centre).normalize()
+        }
+    };
+    let iso = state.world_from_club;
+    let rot = iso.rotation;
+    let mut s = State {
+        p_c: iso.translation.vector,
+        v_c: state.cg_velocity_mps,
+        q_c: rot,
+        w_c_body: rot.inverse_transform_vector(&state.angular_velocity_radps),
+        p_b: iso.translation.vector + rot * ball_club,
+        v_b: Vector3::zeros(),
+        w_b: Vector3::zeros(),
+        s: Vector3::zeros(),
+    };
+    let n0 = (s.p_b - s.p_c - rot * contact.point_m).normalize();
+    let v_face0 = state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
+    let xdot0 = v_face0.dot(&n0);
+    if xdot0 <= 0.0 {
+        return Err(ImpactError::NotApproaching);
+    }
+    // The ball slips against the face's tangential motion; Figure 3.5's tangential axis.
+    let face_t = v_face0 - xdot0 * n0;
+    let face_dir = if face_t.norm() > 1e-9 { face_t.normalize() } else { rot * club.face.u0() };
+    let reduced_mass = setup.m_b * setup.m_c / (setup.m_b + setup.m_c);
+    law.begin(-face_dir, xdot0, setup.k, r_eq, reduced_mass);
+    let spin_axis = face_dir.cross(&n0);
+
+    let energy_before = setup.energy(&s, law);
+    let momentum_before = setup.momentum(&s);
+    let h = model.step_s;
+    let max_steps = (model.max_contact_s / h).ceil() as usize;
+    let (mut trace, mut peak, mut ft_max, mut ft_min) = (Vec::new(), 0.0f64, 0.0f64, 0.0f64);
+    let (mut touched, mut steps, mut contact_time) = (false, 0usize, 0.0);
+    let (mut energy, mut max_increase) = (energy_before, 0.0f64);
+    loop {
+        let s0 = s.s;
+        let (k1, c1) = setup.rates(&s, &s0, law);
+        if let Some((c, f_t)) = &c1 {
+            touched = true;
+            peak = peak.max(c.kin.normal_force_n);
+            let along = f_t.dot(&face_dir);
+            ft_max = ft_max.max(along);
+            ft_min = ft_min.min(along);
+        }
+        if trace_every > 0 && steps % trace_every == 0 {
+            let (fn_, ft, x) = c1.as_ref().map_or((0.0, 0.0, 0.0), |(c, f_t)| {
+                (c.kin.normal_force_n, f_t.dot(&face_dir), c.kin.x_m)
+            });
+            trace.push(HertzTracePoint {
+                t_us: steps as Real * h * 1e6,
+                normal_force_n: fn_,
+                tangential_force_n: ft,
+                ball_spin_rpm: crate::units::radps_to_rpm(s.w_b.dot(&spin_axis)),
+                compression_mm: x * 1e3,
+                stuck_rings: law.stuck_rings(),
+            });
+        }
+        if c1.is_none() && (touched || steps > 10) {
+            if touched {
+                contact_time = steps as Real * h;
+            }
+            break;
+        }
+        if steps >= max_steps {
+            return Err(HertzModel::not_converged(format!(
+                "still in contact after {:.2} ms",
+                model.max_contact_s * 1e3
+            )));
+        }
+        let (k2, _) = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
+        let (k3, _) = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
+        let (k4, _) = setup.rates(&advance(&s, &k3, h), &s0, law);
+        s = advance(&s, &combine([&k1, &k2, &k3, &k4]), h);
+        s.q_c = UnitQuaternion::new_normalize(s.q_c.into_inner());
+        match setup.contact(&s, &s0) {
+            Some(c) => law.commit(&c.kin),
+            None => law.commit(&ContactKinematics { x_m: 0.0, normal_force_n: 0.0, ..contact_at_rest(n0) }),
+        }
+        steps += 1;
+        if trace_every > 0 || cfg!(debug_assertions) {
+            let e = setup.energy(&s, law);
+            max_increase = max_increase.max(e - energy);
+            energy = e;
+        }
+    }
+    if !touched {
+        return Err(HertzModel::not_converged("the face never pressed the ball".into()));
+    }
+    let rot = s.q_c.to_rotation_matrix();
+    let size = ft_max.max(-ft_min);
+    Ok(HertzResult {
+        launch: Launch {
+            ball_velocity_mps: s.v_b,
+            ball_spin_radps: s.w_b,
+            club_velocity_mps: s.v_c,
+            club_angular_velocity_radps: rot * s.w_c_body,
+            impulse_ns: setup.m_b * s.v_b,
+        },
+        contact_time_s: contact_time,
+        peak_normal_force_n: peak,
+        tangential_reversal: ft_max > 0.01 * size && ft_min < -0.01 * size,
+        steps,
+        trace,
+        energy_before_j: energy_before,
+        energy_after_j: setup.energy(&s, law),
+        max_energy_increase_j: max_increase,
+        momentum_before,
+        momentum_after: setup.momentum(&s),
+    })
+}
+
+fn contact_at_rest(normal: Vector3) -> ContactKinematics {
+    ContactKinematics {
+        normal,
+        x_m: 0.0,
+        xdot_mps: 0.0,
+        normal_force_n: 0.0,
+        slip_velocity_mps: Vector3::zeros(),
+        slip_since_step_m: Vector3::zeros(),
+    }
+}
