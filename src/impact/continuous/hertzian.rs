@@ -6,7 +6,7 @@
 //!   of bulge and roll (drivers), as the two-layer model; the approach `x` is the overlap along the normal,
 //!   the contact point sits `R − x/2` from the ball's centre.
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
-//! - Integration: classical RK4 at a fixed step (default 1 µs) from first contact until the bodies separate.
+//! - Integration: classical RK4 at a fixed step (default 0.5 µs) from first contact until the bodies separate.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
 //!   (its own stick/slip test at every stage) and the step's end is committed. Both bodies feel equal and
 //!   opposite forces at the same point, so linear and angular momentum are conserved to rounding.
@@ -78,11 +78,19 @@ pub struct HertzModel {
 
 impl HertzModel {
     pub fn maw() -> Self {
-        HertzModel { law: HertzLaw::Maw(None), step_s: 1e-6, max_contact_s: 3e-3 }
+        HertzModel { law: HertzLaw::Maw(None), step_s: 0.5e-6, max_contact_s: 3e-3 }
     }
 
     pub fn arakawa() -> Self {
         HertzModel { law: HertzLaw::Arakawa(None), ..Self::maw() }
+    }
+
+    /// `maw` or `arakawa`.
+    pub fn law_name(&self) -> &'static str {
+        match self.law {
+            HertzLaw::Maw(_) => "maw",
+            HertzLaw::Arakawa(_) => "arakawa",
+        }
     }
 
     fn not_converged(reason: String) -> ImpactError {
@@ -168,14 +176,27 @@ struct Contact {
 impl Setup {
     fn contact(&self, s: &State, s_step: &Vector3) -> Option<Contact> {
         let rot = s.q_c.to_rotation_matrix();
-        let o = self.surface.overlap(&rot.inverse_transform_vector(&(s.p_b - s.p_c)), self.r_ball)?;
-        let n = rot * o.normal;
-        let x = o.depth_m;
+        let ball = rot.inverse_transform_vector(&(s.p_b - s.p_c));
+        let (x, normal) = match self.surface {
+            FaceSurface::Plane { point, normal } => (self.r_ball - normal.dot(&(ball - point)), normal),
+            FaceSurface::Sphere { centre, radius_m } => {
+                let d = ball - centre;
+                (self.r_ball + radius_m - d.norm(), d.normalize())
+            }
+        };
+        if x < -1e-12 {
+            return None;
+        }
+        let x = x.max(0.0);
+        let n = rot * normal;
         let point = s.p_b - (self.r_ball - 0.5 * x) * n;
         let (r_b, r_c) = (point - s.p_b, point - s.p_c);
         let w_c = rot * s.w_c_body;
         let v_rel = (s.v_b + s.w_b.cross(&r_b)) - (s.v_c + w_c.cross(&r_c));
         let xdot = -v_rel.dot(&n);
+        if x == 0.0 && xdot <= 0.0 {
+            return None; // touching, not pressing
+        }
         let ds = s.s - s_step;
         let kin = ContactKinematics {
             normal: n,
@@ -364,11 +385,41 @@ fn run(
                 model.max_contact_s * 1e3
             )));
         }
-        let (k2, _) = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
-        let (k3, _) = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
-        let (k4, _) = setup.rates(&advance(&s, &k3, h), &s0, law);
-        s = advance(&s, &combine([&k1, &k2, &k3, &k4]), h);
-        s.q_c = UnitQuaternion::new_normalize(s.q_c.into_inner());
+        let step = |h: Real| {
+            let (k2, _) = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
+            let (k3, _) = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
+            let (k4, _) = setup.rates(&advance(&s, &k3, h), &s0, law);
+            let mut next = advance(&s, &combine([&k1, &k2, &k3, &k4]), h);
+            next.q_c = UnitQuaternion::new_normalize(next.q_c.into_inner());
+            next
+        };
+        let mut next = step(h);
+        // Separation inside the step: shorten it to end where the overlap closes (secant on the overlap), so
+        // the forces that jump there (Arakawa's ẋ term) stop at the right instant.
+        if let (Some((c0, _)), None) = (&c1, setup.contact(&next, &s0)) {
+            let gap = |st: &State| signed_overlap(&setup, st);
+            let (mut lo, mut x_lo, mut hi, mut x_hi) = (0.0, c0.kin.x_m, h, gap(&next));
+            let mut t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
+            for _ in 0..4 {
+                let x = gap(&step(t));
+                if x.abs() < 1e-15 {
+                    break;
+                }
+                if x > 0.0 {
+                    (lo, x_lo) = (t, x);
+                } else {
+                    (hi, x_hi) = (t, x);
+                }
+                t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
+            }
+            next = step(t);
+            contact_time = steps as Real * h + t;
+            s = next;
+            law.commit(&ContactKinematics { x_m: 0.0, normal_force_n: 0.0, ..contact_at_rest(n0) });
+            steps += 1;
+            break;
+        }
+        s = next;
         match setup.contact(&s, &s0) {
             Some(c) => law.commit(&c.kin),
             None => law.commit(&ContactKinematics { x_m: 0.0, normal_force_n: 0.0, ..contact_at_rest(n0) }),
@@ -404,6 +455,16 @@ fn run(
         momentum_before,
         momentum_after: setup.momentum(&s),
     })
+}
+
+/// The overlap along the normal, negative when apart (m).
+fn signed_overlap(setup: &Setup, st: &State) -> Real {
+    let rot = st.q_c.to_rotation_matrix();
+    let ball = rot.inverse_transform_vector(&(st.p_b - st.p_c));
+    match setup.surface {
+        FaceSurface::Plane { point, normal } => setup.r_ball - normal.dot(&(ball - point)),
+        FaceSurface::Sphere { centre, radius_m } => setup.r_ball + radius_m - (ball - centre).norm(),
+    }
 }
 
 fn contact_at_rest(normal: Vector3) -> ContactKinematics {

@@ -21,6 +21,7 @@
 
 pub mod contact;
 pub mod hertzian;
+pub mod plate;
 /// Contact laws (seed sections 3.2.2-3.2.3).
 pub mod law {
     #[path = "arakawa.rs"]

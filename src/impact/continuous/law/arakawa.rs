@@ -79,7 +79,7 @@ impl TangentialLaw for ArakawaLaw {
     }
 
     fn force(&self, c: &ContactKinematics) -> Vector3 {
-        if c.normal_force_n <= 0.0 && c.x_m <= 0.0 {
+        if c.x_m < 0.0 {
             return Vector3::zeros();
         }
         let n = c.normal;

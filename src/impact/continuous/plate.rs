@@ -1,0 +1,170 @@
+//! A ball on a fixed rigid plate (seed section 3.2.2, Figures 3.3-3.4; Maw, Barber and Fawcett 1976 and 1981):
+//! the 2D experiment the Maw model was built for, used to check it against the published elastic theory and
+//! to draw Figure 3.4.
+//!
+//! The plate's normal is `+x`; the ball arrives at speed `V` and incidence `α` from the normal with no spin,
+//! its contact point slipping along `+y`. Forces as in [`super::hertzian`]: eq. 3.16 along the normal, a
+//! tangential law in the plane, at the contact point `R − x/2` from the ball's centre.
+//!
+//! Maw, Barber and Fawcett's non-dimensional variables (elastic bodies, `d = 0`):
+//! - `χ = (1 − ν)(1 + 1/K²)/(2 − ν)`, `K² = I/(m R²)`;
+//! - incidence `ψ₁ = (G*/E*) v_t1 / (μ v_n1)` and rebound `ψ₂ = (G*/E*) v_t2 / (μ v_n2)`, `v_t` the contact
+//!   point's tangential velocity (positive along the incident slip), `v_n` the normal speed, `G*/E* = 2(1 − ν)/(2 − ν)`;
+//! - gross slip throughout the impact for `ψ₁ ≥ 4χ − 1`, where `ψ₂ = ψ₁ − 4χ` (Coulomb's line); rigid-body
+//!   ("simple") theory rolls from `ψ₁ < 4χ` with `ψ₂ = 0`, while with tangential compliance `ψ₂ < 0` at small
+//!   `ψ₁`: the contact point's tangential velocity reverses.
+
+use super::law::hertz::{normal_force, ContactKinematics, Hertz, TangentialLaw};
+use super::law::maw::{MawParams, MawRings};
+use crate::equipment::BallSpec;
+use crate::math::{Real, Vector3};
+
+/// One sample of a plate impact.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PlateSample {
+    pub t_us: Real,
+    pub normal_force_n: Real,
+    /// Tangential force on the ball against the incident slip (N); negative once it has reversed.
+    pub tangential_force_n: Real,
+    /// The ball's spin in the sense the friction first gives it (rad/s).
+    pub spin_radps: Real,
+    pub stuck_rings: usize,
+}
+
+/// The result of a plate impact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlateImpact {
+    pub samples: Vec<PlateSample>,
+    /// Rebound normal speed and the contact point's tangential velocity after (m/s, + along the incident slip).
+    pub rebound_normal_mps: Real,
+    pub rebound_contact_tangential_mps: Real,
+    pub spin_radps: Real,
+    pub contact_time_s: Real,
+}
+
+/// The non-dimensional parameter `χ` of Maw, Barber and Fawcett.
+pub fn chi(nu: Real, ball: &BallSpec) -> Real {
+    let k2 = ball.inertia_kg_m2 / (ball.mass_kg * ball.radius_m * ball.radius_m);
+    (1.0 - nu) * (1.0 + 1.0 / k2) / (2.0 - nu)
+}
+
+#[derive(Debug, Clone, Copy)]
+struct S {
+    x: Real,
+    vn: Real,
+    vt: Real,
+    w: Real,
+    s: Real,
+}
+
+/// A ball at `speed_mps` and incidence `incidence_deg` (from the normal) on a fixed plate, Maw's rings as the
+/// tangential law; a sample every `every` steps of `step_s`. `small_strain` puts the contact point at the
+/// ball's undeformed radius, as Maw, Barber and Fawcett's theory does.
+pub fn impact(
+    small_strain: bool,
+    params: &MawParams,
+    ball: &BallSpec,
+    speed_mps: Real,
+    incidence_deg: Real,
+    step_s: Real,
+    every: usize,
+) -> PlateImpact {
+    let hertz = Hertz { e_pa: params.e_pa, nu: params.nu, d_s_per_m: params.d_s_per_m };
+    let r = ball.radius_m;
+    let k = hertz.stiffness(r);
+    let (m, i) = (ball.mass_kg, ball.inertia_kg_m2);
+    let mut law = MawRings::new(params);
+    let a = incidence_deg.to_radians();
+    law.begin(Vector3::y(), speed_mps * a.cos(), k, r, m);
+    // x: approach (overlap); vn: approach rate; vt: centre's tangential velocity; w: spin (+ gives -y contact
+    // velocity); s: slip since the start.
+    let mut st = S { x: 0.0, vn: speed_mps * a.cos(), vt: speed_mps * a.sin(), w: 0.0, s: 0.0 };
+    let kin = |st: &S, s0: Real| {
+        let arm = if small_strain { r } else { r - 0.5 * st.x };
+        let slip = st.vt - st.w * arm;
+        let f_n = normal_force(k, hertz.d_s_per_m, st.x, st.vn);
+        (
+            ContactKinematics {
+                normal: Vector3::x(),
+                x_m: st.x,
+                xdot_mps: st.vn,
+                normal_force_n: f_n,
+                slip_velocity_mps: Vector3::new(0.0, slip, 0.0),
+                slip_since_step_m: Vector3::new(0.0, st.s - s0, 0.0),
+            },
+            arm,
+        )
+    };
+    let rates = |st: &S, s0: Real, law: &MawRings| -> (S, Real, Real) {
+        let (c, arm) = kin(st, s0);
+        let f_t = if st.x > 0.0 { law.force(&c).y } else { 0.0 };
+        let f_n = c.normal_force_n;
+        // Friction -y at the contact point (r = -arm x) gives the spin torque -arm * f_t about +z.
+        (S { x: st.vn, vn: -f_n / m, vt: f_t / m, w: -arm * f_t / i, s: c.slip_velocity_mps.y }, f_n, f_t)
+    };
+    let add = |a: &S, b: &S, h: Real| S {
+        x: a.x + b.x * h,
+        vn: a.vn + b.vn * h,
+        vt: a.vt + b.vt * h,
+        w: a.w + b.w * h,
+        s: a.s + b.s * h,
+    };
+    let mut samples = Vec::new();
+    let mut steps = 0usize;
+    let h = step_s;
+    loop {
+        let s0 = st.s;
+        let (k1, f_n, f_t) = rates(&st, s0, &law);
+        if every > 0 && steps % every == 0 {
+            samples.push(PlateSample {
+                t_us: steps as Real * h * 1e6,
+                normal_force_n: f_n,
+                tangential_force_n: -f_t,
+                spin_radps: st.w,
+                stuck_rings: law.stuck_rings().unwrap_or(0),
+            });
+        }
+        if (steps > 0 && st.x <= 0.0) || steps > 1_000_000 {
+            break;
+        }
+        let (k2, ..) = rates(&add(&st, &k1, 0.5 * h), s0, &law);
+        let (k3, ..) = rates(&add(&st, &k2, 0.5 * h), s0, &law);
+        let (k4, ..) = rates(&add(&st, &k3, h), s0, &law);
+        let mut next = st;
+        for (dst, f) in [
+            (&mut next.x, (k1.x, k2.x, k3.x, k4.x)),
+            (&mut next.vn, (k1.vn, k2.vn, k3.vn, k4.vn)),
+            (&mut next.vt, (k1.vt, k2.vt, k3.vt, k4.vt)),
+            (&mut next.w, (k1.w, k2.w, k3.w, k4.w)),
+            (&mut next.s, (k1.s, k2.s, k3.s, k4.s)),
+        ] {
+            *dst += h * (f.0 + 2.0 * f.1 + 2.0 * f.2 + f.3) / 6.0;
+        }
+        st = next;
+        law.commit(&kin(&st, s0).0);
+        steps += 1;
+    }
+    PlateImpact {
+        samples,
+        rebound_normal_mps: -st.vn,
+        rebound_contact_tangential_mps: st.vt - st.w * r,
+        spin_radps: st.w,
+        contact_time_s: steps as Real * h,
+    }
+}
+
+/// Elastic Maw (`d = 0`) on the plate at non-dimensional incidence `psi1`: the rebound `ψ₂`.
+pub fn rebound_psi(params: &MawParams, ball: &BallSpec, psi1: Real) -> Real {
+    let p = MawParams { d_s_per_m: 0.0, ..*params };
+    let ratio = p.hertz().tangential_ratio();
+    let tan_a = psi1 * p.mu / ratio;
+    let speed = 10.0;
+    let incidence_deg = tan_a.atan().to_degrees();
+    // A step of 1/2000 of the Hertz contact time keeps the curve converged to 1e-3.
+    let k = p.hertz().stiffness(ball.radius_m);
+    let v_n = speed * tan_a.atan().cos();
+    let x_max = (5.0 * ball.mass_kg * v_n * v_n / (4.0 * k)).powf(0.4);
+    let step = 2.94 * x_max / v_n / 2000.0;
+    let r = impact(true, &p, ball, speed, incidence_deg, step, 0);
+    ratio * r.rebound_contact_tangential_mps / (p.mu * r.rebound_normal_mps)
+}

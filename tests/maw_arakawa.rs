@@ -1,0 +1,169 @@
+//! Maw's and Arakawa's continuous models (seed sections 3.2.2-3.2.3, eq. 3.16-3.23, Tables 3.6-3.7): the elastic
+//! Maw model against Maw, Barber and Fawcett's theory on a plate, conservation, dissipation, the tangential force
+//! reversal, contact time and convergence on a free head.
+
+use impactd::equipment::{BallSpec, ClubSpec};
+use impactd::impact::continuous::hertzian::{HertzLaw, HertzModel};
+use impactd::impact::continuous::law::maw::MawParams;
+use impactd::impact::continuous::plate::{chi, impact, rebound_psi};
+use impactd::impact::{Delivery, Equipment, LaunchMetrics};
+use impactd::math::Vector3;
+use impactd::rng::Rng;
+
+fn delivery(speed_mps: f64, attack_deg: f64, loft_deg: f64) -> Delivery {
+    Delivery {
+        club_speed_mps: speed_mps,
+        attack_angle_rad: attack_deg.to_radians(),
+        club_path_rad: 0.0,
+        face_angle_rad: 0.0,
+        dynamic_loft_rad: loft_deg.to_radians(),
+        impact_h_m: 0.0,
+        impact_v_m: 0.0,
+        club_angular_velocity_radps: Vector3::zeros(),
+    }
+}
+
+/// The clubs with a typical dynamic loft and attack angle (the two-layer model's tests use the same).
+fn clubs() -> [(ClubSpec, f64, f64); 2] {
+    [(ClubSpec::driver(), 13.0, -1.3), (ClubSpec::iron7(), 25.0, -4.3)]
+}
+
+/// Maw, Barber and Fawcett (1976, 1981): for `ψ₁ ≥ 4χ − 1` the contact slides throughout and `ψ₂ = ψ₁ − 4χ`
+/// (Coulomb's line); below it the elastic tangential compliance makes `ψ₂` negative (the contact point's
+/// tangential velocity reverses) where rigid-body theory would give `ψ₂ = 0` (rolling) up to `ψ₁ = 4χ`.
+/// The golf ball (K² = 0.400) with Table 3.6's driver ν = 0.407 has χ = 1.302, 4χ − 1 = 4.209.
+#[test]
+fn elastic_maw_follows_maw_barber_fawcett() {
+    let ball = BallSpec::SEED;
+    let p = MawParams::DRIVER;
+    let c = chi(p.nu, &ball);
+    assert!((c - 1.3022).abs() < 1e-3, "chi {c}");
+    // The gross-slip line, to 1e-3 in psi.
+    for psi1 in [4.3, 4.6, 5.0, 6.0, 8.0] {
+        let psi2 = rebound_psi(&p, &ball, psi1);
+        assert!((psi2 - (psi1 - 4.0 * c)).abs() < 1e-3, "psi1 {psi1}: {psi2} vs {}", psi1 - 4.0 * c);
+    }
+    // Reversal below it: psi2 < 0 from psi1 = 0.5 to 4.2, most negative (-1.43) near psi1 = 3.
+    for psi1 in [0.5, 1.0, 2.0, 3.0, 4.0] {
+        assert!(rebound_psi(&p, &ball, psi1) < -0.04, "psi1 {psi1}");
+    }
+    let deepest = rebound_psi(&p, &ball, 3.0);
+    assert!((deepest + 1.431).abs() < 0.01, "{deepest}");
+    // 20 rings against 80: the curve moves < 1e-3.
+    for psi1 in [1.0, 3.0] {
+        let a = rebound_psi(&p, &ball, psi1);
+        let b = rebound_psi(&MawParams { rings: 80, ..p }, &ball, psi1);
+        assert!((a - b).abs() < 1e-3, "{a} vs {b}");
+    }
+}
+
+/// Figure 3.4: 44 m/s at 30 degrees on a rigid plate. The damping lowers the peak normal force and the rebound
+/// speed and keeps the tangential force reversal.
+#[test]
+fn figure_3_4_damping_lowers_the_peak_and_keeps_the_reversal() {
+    let ball = BallSpec::SEED;
+    let elastic = impact(false, &MawParams { d_s_per_m: 0.0, ..MawParams::DRIVER }, &ball, 44.0, 30.0, 0.5e-6, 10);
+    let damped = impact(false, &MawParams::DRIVER, &ball, 44.0, 30.0, 0.5e-6, 10);
+    let peak = |r: &impactd::impact::continuous::plate::PlateImpact| {
+        r.samples.iter().map(|s| s.normal_force_n).fold(0.0, f64::max)
+    };
+    assert!(peak(&damped) < peak(&elastic));
+    // Elastic: the normal speed comes back whole (Hertz is conservative), 44 cos 30 = 38.105 m/s.
+    assert!((elastic.rebound_normal_mps - 38.105).abs() < 0.01, "{}", elastic.rebound_normal_mps);
+    assert!(damped.rebound_normal_mps < 0.9 * elastic.rebound_normal_mps);
+    for r in [&elastic, &damped] {
+        let max = r.samples.iter().map(|s| s.tangential_force_n).fold(0.0, f64::max);
+        let min = r.samples.iter().map(|s| s.tangential_force_n).fold(0.0, f64::min);
+        assert!(max > 1000.0 && min < -500.0, "{max} {min}");
+    }
+}
+
+/// Both models on a free head: linear and angular momentum conserved to 1e-9 relative on random centred and
+/// off-centre, open and closed deliveries; Maw's energy (kinetic + Hertz + rings) never increases over a step.
+/// Arakawa's eq. 3.23 keeps its axis whatever the slip does, so it can do work on the ball: its energy is
+/// reported in docs/models.md, not asserted.
+#[test]
+fn momentum_conserved_and_maw_energy_never_increases() {
+    let mut rng = Rng::new(23);
+    for (club, loft, attack) in clubs() {
+        let eq = Equipment::new(club);
+        for _ in 0..10 {
+            let d = Delivery {
+                club_speed_mps: rng.uniform(35.0, 55.0),
+                club_path_rad: rng.uniform(-4.0, 4.0).to_radians(),
+                face_angle_rad: rng.uniform(-4.0, 4.0).to_radians(),
+                dynamic_loft_rad: (loft + rng.uniform(-3.0, 3.0)).to_radians(),
+                impact_h_m: rng.uniform(-0.015, 0.015),
+                impact_v_m: rng.uniform(-0.008, 0.008),
+                club_angular_velocity_radps: Vector3::new(0.0, rng.uniform(-40.0, 0.0), 0.0),
+                ..delivery(40.0, attack, loft)
+            };
+            let state = d.to_state(&eq).unwrap();
+            for model in [HertzModel::maw(), HertzModel::arakawa()] {
+                let r = model.simulate(&state, &eq, 1).unwrap();
+                let (l0, a0) = r.momentum_before;
+                let (l1, a1) = r.momentum_after;
+                assert!((l1 - l0).norm() <= 1e-9 * l0.norm(), "linear {:e}", (l1 - l0).norm() / l0.norm());
+                assert!((a1 - a0).norm() <= 1e-9 * a0.norm(), "{} angular {:e}", model.law_name(), (a1 - a0).norm() / a0.norm());
+                if matches!(model.law, HertzLaw::Maw(_)) {
+                    assert!(r.max_energy_increase_j <= 1e-9 * r.energy_before_j, "{}", r.max_energy_increase_j);
+                    assert!(r.energy_after_j < r.energy_before_j);
+                }
+            }
+        }
+    }
+}
+
+/// The centred 7-iron at 45-50 m/s: the tangential force reverses during contact (both models), and the contact
+/// lasts 0.35-0.6 ms for both clubs (golf impacts last about 0.45 ms).
+#[test]
+fn reversal_and_contact_time() {
+    for (club, loft, attack) in clubs() {
+        let eq = Equipment::new(club.clone());
+        for speed in [45.0, 50.0] {
+            let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
+            for model in [HertzModel::maw(), HertzModel::arakawa()] {
+                let r = model.simulate(&state, &eq, 0).unwrap();
+                assert!((0.35e-3..=0.6e-3).contains(&r.contact_time_s), "{} {}", club.name, r.contact_time_s);
+                if club.name == "iron7" {
+                    assert!(r.tangential_reversal, "{speed}");
+                }
+            }
+        }
+    }
+}
+
+/// Converged: halving the step changes the ball speed < 0.01 % and the spin < 0.1 %; 40 rings instead of 20
+/// change the spin < 1 %. Arakawa's driver only: its 7-iron at 50-55 m/s does not converge: with Table 3.7's η the tangential
+/// force at first contact is 78 kN, the ball's spin passes 300,000 rpm mid-contact and the normal force
+/// clamps at zero (docs/models.md).
+#[test]
+fn converged_in_step_and_rings() {
+    for (club, loft, attack) in clubs() {
+        let eq = Equipment::new(club.clone());
+        for speed in [35.0, 45.0, 50.0] {
+            let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
+            let metrics = |m: HertzModel| {
+                let l = m.simulate(&state, &eq, 0).unwrap().launch;
+                LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps)
+            };
+            let models = if club.face.shape.is_curved() {
+                vec![HertzModel::maw(), HertzModel::arakawa()]
+            } else {
+                vec![HertzModel::maw()]
+            };
+            for base in models {
+                let a = metrics(base);
+                let b = metrics(HertzModel { step_s: base.step_s / 2.0, ..base });
+                let dv = (a.ball_speed_mps - b.ball_speed_mps).abs() / b.ball_speed_mps;
+                let dw = (a.total_spin_rpm - b.total_spin_rpm).abs() / b.total_spin_rpm;
+                assert!(dv < 1e-4 && dw < 1e-3, "{} {} {speed}: speed {dv:e} spin {dw:e}", base.law_name(), club.name);
+            }
+            let preset = if club.face.shape.is_curved() { MawParams::DRIVER } else { MawParams::IRON7 };
+            let a = metrics(HertzModel::maw());
+            let b = metrics(HertzModel { law: HertzLaw::Maw(Some(MawParams { rings: 40, ..preset })), ..HertzModel::maw() });
+            let dw = (a.total_spin_rpm - b.total_spin_rpm).abs() / b.total_spin_rpm;
+            assert!(dw < 0.01, "{} {speed}: rings {dw:e}", club.name);
+        }
+    }
+}
