@@ -1,0 +1,185 @@
+//! The seed's Hertzian continuous models (section 3.2.2 Maw, section 3.2.3 Arakawa): a rigid ball against a free
+//! clubhead, eq. 3.16's normal force along the contact normal and a tangential law in the tangent plane, both
+//! applied at one contact point, equal and opposite on the two free bodies (section 3.2.2, last paragraph).
+//!
+//! - Contact geometry: the ball against the face plane (irons) or the face sphere of the geometric-mean radius
+//!   of bulge and roll (drivers), as the two-layer model; the approach `x` is the overlap along the normal,
+//!   the contact point sits `R − x/2` from the ball's centre.
+//! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
+//! - Integration: classical RK4 at a fixed step (default 0.5 µs) from first contact until the bodies separate.
+//!   The ring states are history variables: inside a step each ring follows the slip since the step's start
+//!   (its own stick/slip test at every stage) and the step's end is committed. Both bodies feel equal and
+//!   opposite forces at the same point, so linear and angular momentum are conserved to rounding.
+//!
+//! Assumptions: a rigid ball (its spin is the launch spin), no gravity or shaft in the half millisecond of
+//! contact, the contact never reaches the face's edges.
+
+mod run;
+
+use super::{ContinuousResult, TracePoint};
+use super::law::{
+    arakawa::{ArakawaLaw, ArakawaParams},
+    maw::{MawParams, MawRings},
+};
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::math::{Real, Vector3};
+
+/// One sample of a trace.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct HertzTracePoint {
+    pub t_us: Real,
+    pub normal_force_n: Real,
+    /// Tangential force on the ball along the face's initial slip relative to the ball (N): positive while it
+    /// drives the ball's contact point along with the face, negative once it has reversed.
+    pub tangential_force_n: Real,
+    /// The ball's spin (rpm) about the axis normal x initial slip (positive: the spin the face imparts).
+    pub ball_spin_rpm: Real,
+    pub compression_mm: Real,
+    /// Maw: rings stuck.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stuck_rings: Option<usize>,
+}
+
+/// What a run gives besides the launch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HertzResult {
+    pub launch: Launch,
+    pub contact_time_s: Real,
+    pub peak_normal_force_n: Real,
+    /// The tangential force along the initial axis took both signs (each beyond 1 % of its largest size).
+    pub tangential_reversal: bool,
+    pub steps: usize,
+    pub trace: Vec<HertzTracePoint>,
+    pub energy_before_j: Real,
+    pub energy_after_j: Real,
+    /// Largest increase of the total energy (kinetic + Hertz + rings) over any step (J).
+    pub max_energy_increase_j: Real,
+    /// Linear and angular momentum (about the world origin) of both bodies before and after.
+    pub momentum_before: (Vector3, Vector3),
+    pub momentum_after: (Vector3, Vector3),
+}
+
+/// Which tangential law, with its parameters (`None`: the club's preset, driver's for a curved face).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HertzLaw {
+    Maw(Option<MawParams>),
+    Arakawa(Option<ArakawaParams>),
+}
+
+/// Maw's or Arakawa's model on a free head.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzModel {
+    pub law: HertzLaw,
+    /// Integration step (s).
+    pub step_s: Real,
+    /// Give up after this long in contact (s).
+    pub max_contact_s: Real,
+}
+
+impl HertzModel {
+    pub fn maw() -> Self {
+        HertzModel { law: HertzLaw::Maw(None), step_s: 0.5e-6, max_contact_s: 3e-3 }
+    }
+
+    pub fn arakawa() -> Self {
+        HertzModel { law: HertzLaw::Arakawa(None), ..Self::maw() }
+    }
+
+    /// `maw` or `arakawa`.
+    pub fn law_name(&self) -> &'static str {
+        match self.law {
+            HertzLaw::Maw(_) => "maw",
+            HertzLaw::Arakawa(_) => "arakawa",
+        }
+    }
+
+    /// Maw's model with the club file's `[maw]` section (Table 3.6's preset without one).
+    pub fn maw_from_sections(sections: &crate::equipment::ModelSections) -> Result<Self, ImpactError> {
+        let p = crate::impact::impulse::section::<MawParams>(sections, "maw")?;
+        if let Some(p) = &p {
+            p.validate().map_err(|e| bad_section("maw", e))?;
+        }
+        Ok(HertzModel { law: HertzLaw::Maw(p), ..Self::maw() })
+    }
+
+    /// Arakawa's model with the club file's `[arakawa]` section (Table 3.7's preset without one).
+    pub fn arakawa_from_sections(sections: &crate::equipment::ModelSections) -> Result<Self, ImpactError> {
+        let p = crate::impact::impulse::section::<ArakawaParams>(sections, "arakawa")?;
+        if let Some(p) = &p {
+            p.validate().map_err(|e| bad_section("arakawa", e))?;
+        }
+        Ok(HertzModel { law: HertzLaw::Arakawa(p), ..Self::arakawa() })
+    }
+
+    pub(crate) fn not_converged(reason: String) -> ImpactError {
+        ImpactError::NotConverged { model: "continuous/hertz", reason }
+    }
+
+    /// Runs the collision, recording a trace every `trace_every` steps (0: none).
+    pub fn simulate(&self, state: &ImpactState, eq: &Equipment, trace_every: usize) -> Result<HertzResult, ImpactError> {
+        let curved = eq.club.face.shape.is_curved();
+        match self.law {
+            HertzLaw::Maw(p) => {
+                let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
+                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                run::run(self, state, eq, p.hertz(), &mut MawRings::new(&p), trace_every)
+            }
+            HertzLaw::Arakawa(p) => {
+                let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
+                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                run::run(self, state, eq, p.hertz(), &mut ArakawaLaw::new(&p), trace_every)
+            }
+        }
+    }
+}
+
+impl ImpactModel for HertzModel {
+    fn name(&self) -> &'static str {
+        match self.law {
+            HertzLaw::Maw(_) => "continuous/maw",
+            HertzLaw::Arakawa(_) => "continuous/arakawa",
+        }
+    }
+
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        self.simulate(state, equipment, 0).map(|r| r.launch)
+    }
+
+    fn trace(
+        &self,
+        state: &ImpactState,
+        equipment: &Equipment,
+        every: usize,
+    ) -> Option<Result<ContinuousResult, ImpactError>> {
+        Some(self.simulate(state, equipment, every.max(1)).map(|r| ContinuousResult {
+            launch: r.launch,
+            contact_time_s: r.contact_time_s,
+            peak_normal_force_n: r.peak_normal_force_n,
+            steps: r.steps,
+            trace: r
+                .trace
+                .iter()
+                .map(|p| TracePoint {
+                    t_us: p.t_us,
+                    normal_force_n: p.normal_force_n,
+                    tangential_force_n: p.tangential_force_n,
+                    ball_spin_rpm: p.ball_spin_rpm,
+                    cover_spin_rpm: p.ball_spin_rpm,
+                    compression_mm: p.compression_mm,
+                    stuck_rings: p.stuck_rings,
+                })
+                .collect(),
+            energy_before_j: r.energy_before_j,
+            energy_after_j: r.energy_after_j,
+            max_energy_increase_j: r.max_energy_increase_j,
+            momentum_before: r.momentum_before,
+            momentum_after: r.momentum_after,
+        }))
+    }
+}
+
+fn bad_section(section: &str, e: super::law::hertz::LawError) -> ImpactError {
+    let super::law::hertz::LawError::OutOfRange { field, .. } = &e;
+    ImpactError::InvalidParameter { field: format!("{section}.{field}"), reason: e.to_string() }
+}
+
