@@ -86,6 +86,23 @@ pub enum PlotCommand {
     Forces(ForcesArgs),
     /// Side and top views of one or more shots: JSONL launches in (stdin or --input).
     Trajectory(TrajectoryArgs),
+    /// Seed Figure 3.4: a ball on a rigid plate at 44 m/s and 30 degrees, elastic Maw against damped Maw.
+    MawPlate(MawPlateArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MawPlateArgs {
+    /// Output SVG file.
+    #[arg(short = 'o', long = "output", default_value = "docs/maw-plate.svg")]
+    pub output: PathBuf,
+    /// Impact speed (m/s) and incidence from the plate's normal (deg).
+    #[arg(long, default_value_t = 44.0)]
+    pub speed_mps: f64,
+    #[arg(long, default_value_t = 30.0)]
+    pub incidence_deg: f64,
+    /// Rings of Maw's model.
+    #[arg(long, default_value_t = 20)]
+    pub rings: usize,
 }
 
 /// Where and in what air the ball flies.
@@ -522,6 +539,50 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+fn plot_maw_plate(args: &MawPlateArgs) -> Result<ExitCode> {
+    use crate::impact::continuous::{law::maw::MawParams, plate};
+    let damped = MawParams { rings: args.rings, ..MawParams::DRIVER };
+    damped.validate()?;
+    let ball = crate::equipment::BallSpec::SEED;
+    let mut series = Vec::new();
+    let mut title = format!("Plate, {} m/s at {} deg:", args.speed_mps, args.incidence_deg);
+    for (i, (label, p)) in
+        [("elastic", MawParams { d_s_per_m: 0.0, ..damped }), ("damped", damped)].into_iter().enumerate()
+    {
+        let r = plate::impact(false, &p, &ball, args.speed_mps, args.incidence_deg, 0.25e-6, 8);
+        title +=
+            &format!(" {label} {:.1} m/s, {:.0} rpm;", r.rebound_normal_mps, crate::units::radps_to_rpm(r.spin_radps));
+        let pick = |f: fn(&plate::PlateSample) -> f64| r.samples.iter().map(|s| (s.t_us, f(s))).collect::<Vec<_>>();
+        for (j, (name, points, right)) in [
+            ("normal force", pick(|s| s.normal_force_n), false),
+            ("tangential force", pick(|s| s.tangential_force_n), false),
+            ("spin, right axis (rpm)", pick(|s| crate::units::radps_to_rpm(s.spin_radps)), true),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            series.push(crate::plot::Series {
+                name: format!("{label}: {name}"),
+                points,
+                color: crate::plot::PALETTE[(2 * j + i) % crate::plot::PALETTE.len()],
+                right_axis: right,
+            });
+        }
+    }
+    let chart = crate::plot::LineChart {
+        title,
+        x_label: "time from first contact (us)".into(),
+        y_label: "force on the ball (N)".into(),
+        y2_label: Some("ball spin (rpm)".into()),
+        series,
+        equal_axes: false,
+    };
+    std::fs::write(&args.output, chart.svg(1000.0, 560.0))
+        .with_context(|| format!("writing {}", args.output.display()))?;
+    eprintln!("wrote {}", args.output.display());
+    Ok(ExitCode::SUCCESS)
+}
+
 fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
     let loaded = load_club(&args.club)?;
     let club = loaded.club.clone();
@@ -783,6 +844,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Eval(EvalCommand::Extrapolation(args)) => eval_extrapolation(&args),
         Command::Plot(PlotCommand::Forces(args)) => plot_forces(&args),
         Command::Plot(PlotCommand::Trajectory(args)) => plot_trajectory(&args),
+        Command::Plot(PlotCommand::MawPlate(args)) => plot_maw_plate(&args),
         Command::Flight(args) => flight(&args),
         Command::FlightFit { iterations } => flight_fit(iterations),
         Command::Map(args) => map(&args),

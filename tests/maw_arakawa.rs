@@ -104,7 +104,12 @@ fn momentum_conserved_and_maw_energy_never_increases() {
                 let (l0, a0) = r.momentum_before;
                 let (l1, a1) = r.momentum_after;
                 assert!((l1 - l0).norm() <= 1e-9 * l0.norm(), "linear {:e}", (l1 - l0).norm() / l0.norm());
-                assert!((a1 - a0).norm() <= 1e-9 * a0.norm(), "{} angular {:e}", model.law_name(), (a1 - a0).norm() / a0.norm());
+                assert!(
+                    (a1 - a0).norm() <= 1e-9 * a0.norm(),
+                    "{} angular {:e}",
+                    model.law_name(),
+                    (a1 - a0).norm() / a0.norm()
+                );
                 if matches!(model.law, HertzLaw::Maw(_)) {
                     assert!(r.max_energy_increase_j <= 1e-9 * r.energy_before_j, "{}", r.max_energy_increase_j);
                     assert!(r.energy_after_j < r.energy_before_j);
@@ -161,7 +166,10 @@ fn converged_in_step_and_rings() {
             }
             let preset = if club.face.shape.is_curved() { MawParams::DRIVER } else { MawParams::IRON7 };
             let a = metrics(HertzModel::maw());
-            let b = metrics(HertzModel { law: HertzLaw::Maw(Some(MawParams { rings: 40, ..preset })), ..HertzModel::maw() });
+            let b = metrics(HertzModel {
+                law: HertzLaw::Maw(Some(MawParams { rings: 40, ..preset })),
+                ..HertzModel::maw()
+            });
             let dw = (a.total_spin_rpm - b.total_spin_rpm).abs() / b.total_spin_rpm;
             assert!(dw < 0.01, "{} {speed}: rings {dw:e}", club.name);
         }

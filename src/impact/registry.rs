@@ -83,7 +83,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "maw",
-        summary: "rigid ball, Hertz normal force and Maw's stick-slip rings, free head, in time (seed 3.2.2, Table 3.6)",
+        summary:
+            "rigid ball, Hertz normal force and Maw's stick-slip rings, free head, in time (seed 3.2.2, Table 3.6)",
         sections: &["maw"],
         resolved_in_time: true,
         build: |c, _| Ok(Arc::new(HertzModel::maw_from_sections(&c.sections)?)),

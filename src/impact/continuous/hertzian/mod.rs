@@ -16,11 +16,11 @@
 
 mod run;
 
-use super::{ContinuousResult, TracePoint};
 use super::law::{
     arakawa::{ArakawaLaw, ArakawaParams},
     maw::{MawParams, MawRings},
 };
+use super::{ContinuousResult, TracePoint};
 use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
 use crate::math::{Real, Vector3};
 
@@ -116,7 +116,12 @@ impl HertzModel {
     }
 
     /// Runs the collision, recording a trace every `trace_every` steps (0: none).
-    pub fn simulate(&self, state: &ImpactState, eq: &Equipment, trace_every: usize) -> Result<HertzResult, ImpactError> {
+    pub fn simulate(
+        &self,
+        state: &ImpactState,
+        eq: &Equipment,
+        trace_every: usize,
+    ) -> Result<HertzResult, ImpactError> {
         let curved = eq.club.face.shape.is_curved();
         match self.law {
             HertzLaw::Maw(p) => {
@@ -151,29 +156,31 @@ impl ImpactModel for HertzModel {
         equipment: &Equipment,
         every: usize,
     ) -> Option<Result<ContinuousResult, ImpactError>> {
-        Some(self.simulate(state, equipment, every.max(1)).map(|r| ContinuousResult {
-            launch: r.launch,
-            contact_time_s: r.contact_time_s,
-            peak_normal_force_n: r.peak_normal_force_n,
-            steps: r.steps,
-            trace: r
-                .trace
-                .iter()
-                .map(|p| TracePoint {
-                    t_us: p.t_us,
-                    normal_force_n: p.normal_force_n,
-                    tangential_force_n: p.tangential_force_n,
-                    ball_spin_rpm: p.ball_spin_rpm,
-                    cover_spin_rpm: p.ball_spin_rpm,
-                    compression_mm: p.compression_mm,
-                    stuck_rings: p.stuck_rings,
-                })
-                .collect(),
-            energy_before_j: r.energy_before_j,
-            energy_after_j: r.energy_after_j,
-            max_energy_increase_j: r.max_energy_increase_j,
-            momentum_before: r.momentum_before,
-            momentum_after: r.momentum_after,
+        Some(self.simulate(state, equipment, every.max(1)).map(|r| {
+            ContinuousResult {
+                launch: r.launch,
+                contact_time_s: r.contact_time_s,
+                peak_normal_force_n: r.peak_normal_force_n,
+                steps: r.steps,
+                trace: r
+                    .trace
+                    .iter()
+                    .map(|p| TracePoint {
+                        t_us: p.t_us,
+                        normal_force_n: p.normal_force_n,
+                        tangential_force_n: p.tangential_force_n,
+                        ball_spin_rpm: p.ball_spin_rpm,
+                        cover_spin_rpm: p.ball_spin_rpm,
+                        compression_mm: p.compression_mm,
+                        stuck_rings: p.stuck_rings,
+                    })
+                    .collect(),
+                energy_before_j: r.energy_before_j,
+                energy_after_j: r.energy_after_j,
+                max_energy_increase_j: r.max_energy_increase_j,
+                momentum_before: r.momentum_before,
+                momentum_after: r.momentum_after,
+            }
         }))
     }
 }
@@ -182,4 +189,3 @@ fn bad_section(section: &str, e: super::law::hertz::LawError) -> ImpactError {
     let super::law::hertz::LawError::OutOfRange { field, .. } = &e;
     ImpactError::InvalidParameter { field: format!("{section}.{field}"), reason: e.to_string() }
 }
-

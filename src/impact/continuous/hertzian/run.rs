@@ -242,9 +242,8 @@ pub(super) fn run(
             ft_min = ft_min.min(along);
         }
         if trace_every > 0 && steps % trace_every == 0 {
-            let (fn_, ft, x) = c1.as_ref().map_or((0.0, 0.0, 0.0), |(c, f_t)| {
-                (c.kin.normal_force_n, f_t.dot(&face_dir), c.kin.x_m)
-            });
+            let (fn_, ft, x) =
+                c1.as_ref().map_or((0.0, 0.0, 0.0), |(c, f_t)| (c.kin.normal_force_n, f_t.dot(&face_dir), c.kin.x_m));
             trace.push(HertzTracePoint {
                 t_us: steps as Real * h * 1e6,
                 normal_force_n: fn_,
