@@ -78,6 +78,8 @@ pub struct MawRings {
     ring_stiffness_n_per_m: Real,
     /// Committed tangential force each ring carries on the face (N, tangent plane); minus it acts on the ball.
     force_n: Vec<Vector3>,
+    /// The previous step's forces, reused as the next step's buffer.
+    scratch: Vec<Vector3>,
     stuck: usize,
 }
 
@@ -91,51 +93,43 @@ impl MawRings {
             width_m: 0.0,
             ring_stiffness_n_per_m: 0.0,
             force_n: Vec::new(),
+            scratch: Vec::new(),
             stuck: 0,
         }
     }
 
-    /// The rings' forces at `c` from the committed state, and how many are stuck. Calls `each(i, force)`.
+    /// The rings' forces at `c` from the committed state, and how many are stuck. Calls `each(i, force)` for
+    /// the rings in contact; the others carry nothing.
     #[inline]
     fn evaluate(&self, c: &ContactKinematics, mut each: impl FnMut(usize, Vector3)) -> (Vector3, usize) {
         let n = c.normal;
-        // Normal loads of the rings in contact: E* (x − r²/R) 2 Δr, scaled to sum to F_N.
-        let mut sum_w = 0.0;
-        let mut active = 0;
-        for i in 0..self.force_n.len() {
-            let r = (i as Real + 0.5) * self.width_m;
-            let w = c.x_m - r * r / self.r_eq_m;
-            if w <= 0.0 {
-                break;
-            }
-            sum_w += w;
-            active = i + 1;
-        }
         let mut total = Vector3::zeros();
-        let mut stuck = 0;
-        if active == 0 || c.normal_force_n <= 0.0 {
-            for i in 0..self.force_n.len() {
-                each(i, Vector3::zeros());
-            }
+        if c.x_m <= 0.0 || c.normal_force_n <= 0.0 {
             return (total, 0);
         }
+        // Rings in contact: r_i = (i + 1/2) Δr < √(R x); their normal loads E* (x − r_i²/R) 2 Δr, scaled to sum
+        // to F_N: Σ (x − r_i²/R) = n x − (Δr²/R)(n³/3 − n/12).
+        let b = (self.r_eq_m * c.x_m).sqrt();
+        let active = ((b / self.width_m + 0.5).ceil() as usize).saturating_sub(1).min(self.force_n.len());
+        if active == 0 {
+            return (total, 0);
+        }
+        let nf = active as Real;
+        let dr2_r = self.width_m * self.width_m / self.r_eq_m;
+        let sum_w = nf * c.x_m - dr2_r * (nf * nf * nf / 3.0 - nf / 12.0);
         let scale = self.mu * c.normal_force_n / sum_w;
         let step = self.ring_stiffness_n_per_m * c.slip_since_step_m;
-        for (i, f0) in self.force_n.iter().enumerate() {
-            if i >= active {
-                each(i, Vector3::zeros());
-                continue;
-            }
-            let r = (i as Real + 0.5) * self.width_m;
-            let limit = scale * (c.x_m - r * r / self.r_eq_m);
-            let f0 = f0 - f0.dot(&n) * n;
-            let trial = f0 + step;
-            let mag = trial.norm();
-            let f = if mag <= limit {
+        let mut stuck = 0;
+        for (i, f0) in self.force_n[..active].iter().enumerate() {
+            let r = i as Real + 0.5;
+            let limit = scale * (c.x_m - r * r * dr2_r);
+            let trial = f0 - f0.dot(&n) * n + step;
+            let mag2 = trial.norm_squared();
+            let f = if mag2 <= limit * limit {
                 stuck += 1;
                 trial
             } else {
-                trial * (limit / mag)
+                trial * (limit / mag2.sqrt())
             };
             total += f;
             each(i, f);
@@ -167,9 +161,11 @@ impl TangentialLaw for MawRings {
     }
 
     fn commit(&mut self, c: &ContactKinematics) {
-        let mut next = vec![Vector3::zeros(); self.force_n.len()];
+        let mut next = std::mem::take(&mut self.scratch);
+        next.clear();
+        next.resize(self.force_n.len(), Vector3::zeros());
         let (_, stuck) = self.evaluate(c, |i, f| next[i] = f);
-        self.force_n = next;
+        self.scratch = std::mem::replace(&mut self.force_n, next);
         self.stuck = stuck;
     }
 
@@ -211,7 +207,7 @@ mod tests {
         let k = h.stiffness(r);
         let mut rings = MawRings::new(&p);
         rings.begin(Vector3::y(), 40.0, k, r, 0.04);
-        let x = 3e-3;
+        let x: Real = 3e-3;
         let f_n = k * x.powf(1.5);
         let b = (r * x).sqrt();
         let e_star = 3.0 * k / (4.0 * r.sqrt());
@@ -233,7 +229,7 @@ mod tests {
         let k = h.stiffness(r);
         let mut rings = MawRings::new(&p);
         rings.begin(Vector3::y(), 40.0, k, r, 0.04);
-        let x = 3e-3;
+        let x: Real = 3e-3;
         let f_n = k * x.powf(1.5);
         let b = (r * x).sqrt();
         let e_star = 3.0 * k / (4.0 * r.sqrt());
