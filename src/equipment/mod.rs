@@ -6,6 +6,9 @@
 //! bad one is named in the error.
 
 mod club_file;
+pub mod shaft;
+pub mod soil;
+pub mod sole;
 
 use crate::face::{Face, FaceShape};
 use crate::math::{Matrix3, Real, Vector3};
@@ -17,6 +20,8 @@ pub use club_file::ClubFile;
 pub enum EquipmentError {
     #[error("unknown club preset '{0}' (expected driver or iron7, or a path to a .toml file)")]
     UnknownPreset(String),
+    #[error("unknown soil '{0}' (expected soft, medium or firm, or a path to a soil .toml file)")]
+    UnknownSoil(String),
     #[error("club file is not valid TOML for a club: {0}")]
     Parse(String),
     #[error("club field `{field}` {reason}")]
