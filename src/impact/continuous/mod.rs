@@ -20,6 +20,7 @@
 //! taken as a sphere of their geometric-mean radius.
 
 pub mod contact;
+pub mod ground;
 pub mod shaft;
 
 use contact::{overlap_energy, FaceSurface};
