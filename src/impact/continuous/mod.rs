@@ -21,6 +21,7 @@
 
 pub mod contact;
 pub mod ground;
+pub mod iron_ground;
 pub mod shaft;
 
 use contact::{overlap_energy, FaceSurface};
@@ -226,33 +227,23 @@ struct Setup {
 
 impl Setup {
     fn forces(&self, s: &State, rot: &nalgebra::Rotation3<Real>) -> (ContactForces, Vector3, Vector3) {
-        let ball_club = rot.inverse_transform_vector(&(s.p_b - s.p_c));
-        let Some(o) = self.surface.overlap(&ball_club, self.ball.radius_m) else {
-            return (ContactForces::default(), Vector3::zeros(), Vector3::zeros());
+        let club = BodyMotion {
+            position_m: s.p_c,
+            rotation: *rot,
+            velocity_mps: s.v_c,
+            angular_velocity_radps: rot * s.w_c_body,
         };
-        let n = rot * o.normal;
-        let r_c = rot * o.centroid_m; // club CG -> contact (world)
-        let point = s.p_c + r_c;
-        let r_b = point - s.p_b; // ball centre -> contact
-        let w_c = rot * s.w_c_body;
-        let v_club = s.v_c + w_c.cross(&r_c);
-        let v_ball = s.v_b + s.w_cover.cross(&r_b);
-        let approach = (v_club - v_ball).dot(&n);
-        let p = &self.params;
-        let normal = (p.k_v_n_per_m3 * o.volume_m3 * (1.0 + p.d_s_per_m * approach)).max(0.0);
-        let v_rel = v_ball - v_club;
-        let v_t = v_rel - v_rel.dot(&n) * n;
-        let speed_t = v_t.norm();
-        let friction = if speed_t > 1e-12 {
-            -(p.mu * normal * (4.0 * speed_t / p.v_tr_mps).tanh() / speed_t) * v_t
-        } else {
-            Vector3::zeros()
+        let ball = BodyMotion {
+            position_m: s.p_b,
+            rotation: nalgebra::Rotation3::identity(),
+            velocity_mps: s.v_b,
+            angular_velocity_radps: s.w_cover,
         };
-        (
-            ContactForces { normal_n: normal, friction_n: friction, in_contact: true, depth_m: o.depth_m },
-            normal * n + friction,
-            r_b,
-        )
+        two_layer_contact(&self.params, self.ball.radius_m, &self.surface, &club, &ball).unwrap_or((
+            ContactForces::default(),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
     }
 
     fn rates(&self, s: &State) -> (Rates, ContactForces) {
@@ -310,6 +301,51 @@ impl Setup {
     }
 }
 
+/// A rigid body's pose and velocity at one instant (world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMotion {
+    pub position_m: Vector3,
+    pub rotation: nalgebra::Rotation3<Real>,
+    pub velocity_mps: Vector3,
+    pub angular_velocity_radps: Vector3,
+}
+
+/// The face's contact with the two-layer ball's cover (eq. 3.14-3.15): `club` the head (CG and attitude),
+/// `ball` the ball's centre and its cover's spin. Returns the forces, the force on the ball (world) and the
+/// ball centre -> contact lever; `None` when apart.
+pub fn two_layer_contact(
+    params: &TwoLayerParams,
+    ball_radius_m: Real,
+    surface: &FaceSurface,
+    club: &BodyMotion,
+    ball: &BodyMotion,
+) -> Option<(ContactForces, Vector3, Vector3)> {
+    let rot = &club.rotation;
+    let ball_club = rot.inverse_transform_vector(&(ball.position_m - club.position_m));
+    let o = surface.overlap(&ball_club, ball_radius_m)?;
+    let n = rot * o.normal;
+    let r_c = rot * o.centroid_m; // club CG -> contact (world)
+    let point = club.position_m + r_c;
+    let r_b = point - ball.position_m; // ball centre -> contact
+    let v_club = club.velocity_mps + club.angular_velocity_radps.cross(&r_c);
+    let v_ball = ball.velocity_mps + ball.angular_velocity_radps.cross(&r_b);
+    let approach = (v_club - v_ball).dot(&n);
+    let normal = (params.k_v_n_per_m3 * o.volume_m3 * (1.0 + params.d_s_per_m * approach)).max(0.0);
+    let v_rel = v_ball - v_club;
+    let v_t = v_rel - v_rel.dot(&n) * n;
+    let speed_t = v_t.norm();
+    let friction = if speed_t > 1e-12 {
+        -(params.mu * normal * (4.0 * speed_t / params.v_tr_mps).tanh() / speed_t) * v_t
+    } else {
+        Vector3::zeros()
+    };
+    Some((
+        ContactForces { normal_n: normal, friction_n: friction, in_contact: true, depth_m: o.depth_m },
+        normal * n + friction,
+        r_b,
+    ))
+}
+
 fn advance(s: &State, r: &Rates, h: Real) -> State {
     State {
         p_c: s.p_c + r.v_c * h,
@@ -341,7 +377,7 @@ fn combine(k1: &Rates, k2: &Rates, k3: &Rates, k4: &Rates) -> Rates {
 
 impl ContinuousModel {
     /// The face surface for the normal force: the plane for a flat face, the face sphere for a curved one.
-    fn surface(club: &ClubSpec) -> FaceSurface {
+    pub fn surface(club: &ClubSpec) -> FaceSurface {
         let face = &club.face;
         match face.shape {
             FaceShape::Plane => FaceSurface::Plane { point: face.center_m, normal: face.n0() },

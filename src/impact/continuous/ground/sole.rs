@@ -105,7 +105,9 @@ pub fn sole_forces(
             let slip_speed = slip.norm();
             let f_p = sigma * area * normal;
             let f_s = if slip_speed > 1e-12 {
-                -(tan_phi * sigma * area * (slip_speed / v_reg_mps).tanh() / slip_speed) * slip
+                let x = slip_speed / v_reg_mps;
+                let smooth = if x > 20.0 { 1.0 } else { x.tanh() }; // tanh(20) = 1 - 8e-18
+                -(tan_phi * sigma * area * smooth / slip_speed) * slip
             } else {
                 Vector3::zeros()
             };

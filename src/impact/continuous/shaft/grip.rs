@@ -44,8 +44,8 @@ impl ConstantTwist {
 
     /// The rigid club's pose at `t_s` from ball contact.
     pub fn world_from_club(&self, t_s: Real) -> Isometry3 {
-        let (r, i) = self.rotation_and_integral(t_s);
-        let rot = UnitQuaternion::from_matrix(&r) * self.world_from_club.rotation;
+        let (_, i) = self.rotation_and_integral(t_s);
+        let rot = UnitQuaternion::from_scaled_axis(self.angular_velocity_radps * t_s) * self.world_from_club.rotation;
         let p = self.world_from_club.translation.vector + i * self.cg_velocity_mps;
         Isometry3::from_parts(Translation3::from(p), rot)
     }
