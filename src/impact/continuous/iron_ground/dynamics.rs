@@ -79,11 +79,11 @@ impl System<'_> {
 
     /// The head's pose and velocity, and the rigid club's.
     fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
-        let pose = self.motion.world_from_club(s.t_s);
+        let (rotation, position_m, velocity_mps) = self.motion.at(s.t_s);
         let rigid = BodyMotion {
-            position_m: pose.translation.vector,
-            rotation: pose.rotation.to_rotation_matrix(),
-            velocity_mps: self.motion.cg_velocity_mps(s.t_s),
+            position_m,
+            rotation,
+            velocity_mps,
             angular_velocity_radps: self.motion.angular_velocity_radps,
         };
         let o = self.modal.head_offset(&s.shaft);

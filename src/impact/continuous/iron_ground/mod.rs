@@ -48,8 +48,9 @@ pub struct GroundModel {
 
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
-    /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 0.6 us steps in the ball's contact (as the
-    /// continuous model) and 10 us outside (the highest shaft mode, 1.5e5 rad/s, needs < 18 us).
+    /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
+    /// ball speed < 1e-5 and spin < 6e-4, tests/ground.rs) and 15 us outside (the highest shaft mode,
+    /// 1.5e5 rad/s, needs < 18 us).
     pub fn new(soil: SoilSpec) -> Self {
         GroundModel {
             soil,
@@ -58,8 +59,8 @@ impl GroundModel {
             mesh: ShaftMesh { elements: 8, clamp_m: 0.0 },
             max_mode_hz: Real::INFINITY,
             params: None,
-            ball_step_s: 0.6e-6,
-            ground_step_s: 10e-6,
+            ball_step_s: 2e-6,
+            ground_step_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
         }

@@ -42,6 +42,15 @@ impl ConstantTwist {
         (r, i)
     }
 
+    /// The rigid club's attitude (world from club), CG position and CG velocity at `t_s`, in one evaluation.
+    pub fn at(&self, t_s: Real) -> (crate::math::Rotation3, Vector3, Vector3) {
+        let (r, i) = self.rotation_and_integral(t_s);
+        let rot = crate::math::Rotation3::from_matrix_unchecked(
+            r * self.world_from_club.rotation.to_rotation_matrix().matrix(),
+        );
+        (rot, self.world_from_club.translation.vector + i * self.cg_velocity_mps, r * self.cg_velocity_mps)
+    }
+
     /// The rigid club's pose at `t_s` from ball contact.
     pub fn world_from_club(&self, t_s: Real) -> Isometry3 {
         let (_, i) = self.rotation_and_integral(t_s);
@@ -97,6 +106,10 @@ mod tests {
             assert!((w - m.angular_velocity_radps).norm() < 1e-6, "{t}");
             let dv = (m.cg_velocity_mps(t + h) - m.cg_velocity_mps(t - h)) / (2.0 * h);
             assert!((dv - m.cg_acceleration_mps2(t)).norm() < 1e-4);
+            let (rot, p, v) = m.at(t);
+            assert!((rot.matrix() - m.world_from_club(t).rotation.to_rotation_matrix().matrix()).norm() < 1e-12);
+            assert!((p - m.world_from_club(t).translation.vector).norm() < 1e-15);
+            assert!((v - m.cg_velocity_mps(t)).norm() < 1e-12);
             // Speed is constant under a constant twist.
             assert!((m.cg_velocity_mps(t).norm() - m.cg_velocity_mps.norm()).abs() < 1e-12);
         }

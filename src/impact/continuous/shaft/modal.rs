@@ -112,14 +112,16 @@ impl ModalClub {
     pub fn acceleration(&self, s: &ModalState, force_club_n: &Vector3, torque_club_nm: &Vector3) -> ModalVec {
         let f = self.club_from_shaft.inverse_transform_vector(force_club_n);
         let m = self.club_from_shaft.inverse_transform_vector(torque_club_nm) + self.cg_from_tip_shaft_m.cross(&f);
-        let load = SVector::<Real, 6>::new(f.x, f.y, f.z, m.x, m.y, m.z);
-        let mut a = self.tip_modes.tr_mul(&load);
+        let load = [f.x, f.y, f.z, m.x, m.y, m.z];
+        let mut a = ModalVec::zeros();
         for i in 0..self.n_modes {
+            let col = self.tip_modes.column(i);
+            let mut g = 0.0;
+            for k in 0..6 {
+                g += col[k] * load[k];
+            }
             let w = self.omega[i];
-            a[i] -= w * w * s.eta[i] + 2.0 * self.damping_ratio * w * s.eta_dot[i];
-        }
-        for i in self.n_modes..MAX_MODES {
-            a[i] = 0.0;
+            a[i] = g - w * w * s.eta[i] - 2.0 * self.damping_ratio * w * s.eta_dot[i];
         }
         a
     }
@@ -127,8 +129,15 @@ impl ModalClub {
     /// The head's offset from the rigid club, club frame.
     #[inline]
     pub fn head_offset(&self, s: &ModalState) -> HeadOffset {
-        let q = self.tip_modes * s.eta;
-        let qd = self.tip_modes * s.eta_dot;
+        let (mut q, mut qd) = ([0.0; 6], [0.0; 6]);
+        for i in 0..self.n_modes {
+            let col = self.tip_modes.column(i);
+            let (e, ed) = (s.eta[i], s.eta_dot[i]);
+            for k in 0..6 {
+                q[k] += col[k] * e;
+                qd[k] += col[k] * ed;
+            }
+        }
         let r = &self.cg_from_tip_shaft_m;
         let (u, phi) = (Vector3::new(q[0], q[1], q[2]), Vector3::new(q[3], q[4], q[5]));
         let (ud, phid) = (Vector3::new(qd[0], qd[1], qd[2]), Vector3::new(qd[3], qd[4], qd[5]));
@@ -148,7 +157,11 @@ impl ModalClub {
 
     /// The clamp's reaction force on the shaft, club frame (N), given the modal accelerations.
     pub fn grip_force(&self, s: &ModalState, eta_ddot: &ModalVec) -> Vector3 {
-        self.club_from_shaft * (self.grip_stiffness_modes * s.eta + self.grip_mass_modes * eta_ddot)
+        let mut g = Vector3::zeros();
+        for i in 0..self.n_modes {
+            g += self.grip_stiffness_modes.column(i) * s.eta[i] + self.grip_mass_modes.column(i) * eta_ddot[i];
+        }
+        self.club_from_shaft * g
     }
 
     /// Elastic strain plus kinetic energy of the elastic motion (J).
