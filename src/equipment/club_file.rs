@@ -8,7 +8,8 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, [adjusted], [slip], [continuous]
+//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, [adjusted], [slip], [continuous],
+//! # [sole] (an iron's sole for the ground model, `equipment::sole`), [shaft] (`equipment::shaft`)
 //! ```
 //!
 //! `clubs/` holds example files: the seed's driver and 7-iron with the continuous model's one-cycle ball.
@@ -40,6 +41,10 @@ pub struct ClubFile {
     /// `[continuous]`: the two-layer model's parameters (Table 3.5); default the driver's for a curved face, the
     /// 7-iron's for a flat one.
     pub continuous: Option<crate::impact::continuous::TwoLayerParams>,
+    /// `[sole]`: an iron's sole, lie and shaft mount for the ground model ([`super::sole::SoleSpec`]).
+    pub sole: Option<super::sole::SoleSpec>,
+    /// `[shaft]`: the shaft's stations and material ([`super::shaft::ShaftSpec`]).
+    pub shaft: Option<super::shaft::ShaftSpec>,
 }
 
 /// `[adjusted]`: the Danaei parameters (Table 3.3).
@@ -162,6 +167,12 @@ impl ClubFile {
             None if shape.is_curved() => crate::impact::continuous::TwoLayerParams::DRIVER,
             None => crate::impact::continuous::TwoLayerParams::IRON7,
         };
+        if let Some(sole) = &self.sole {
+            sole.validate()?;
+        }
+        if let Some(shaft) = &self.shaft {
+            shaft.validate()?;
+        }
         let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {
             name: self.name.unwrap_or_else(|| "custom".to_string()),
@@ -174,6 +185,8 @@ impl ClubFile {
             shaft_mass_kg,
             impulse,
             continuous,
+            sole: self.sole,
+            shaft: self.shaft,
         })
     }
 }
@@ -231,5 +244,24 @@ mod tests {
         let club = ClubSpec::from_toml_str(&text).unwrap();
         assert_eq!(club.face.shape, crate::face::FaceShape::Plane);
         assert_eq!(club.impulse, ImpulseTuning::IRON7);
+    }
+
+    /// `[sole]` and `[shaft]` load into the club and a bad field is named; the example 7-iron file carries the
+    /// preset's sole.
+    #[test]
+    fn sole_and_shaft_sections() {
+        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/clubs/iron7-one-cycle.toml")).unwrap();
+        let club = ClubSpec::from_toml_str(&text).unwrap();
+        assert_eq!(club.sole, Some(crate::equipment::sole::SoleSpec::IRON7));
+        let bad = text.replace("bounce_deg = 4.0", "bounce_deg = 45.0");
+        let e = ClubSpec::from_toml_str(&bad).unwrap_err().to_string();
+        assert!(e.contains("sole.bounce_deg"), "{e}");
+        let shaft = format!(
+            "{text}\n[shaft]\nyoungs_modulus_pa = 190e9\npoisson_ratio = 0.29\ndensity_kg_m3 = 7460.0\nmass_kg = 0.104\n\
+             stations = [{{ from_butt_m = 0.0, outer_radius_m = 7.6e-3, wall_m = 0.35e-3 }}, \
+             {{ from_butt_m = 0.965, outer_radius_m = 4.7e-3, wall_m = 0.55e-3 }}]\n"
+        );
+        let club = ClubSpec::from_toml_str(&shaft).unwrap();
+        assert_eq!(club.shaft.unwrap().stations.len(), 2);
     }
 }

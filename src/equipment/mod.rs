@@ -101,6 +101,10 @@ pub struct ClubSpec {
     pub impulse: ImpulseTuning,
     /// Parameters of the continuous two-layer model (Table 3.5).
     pub continuous: crate::impact::continuous::TwoLayerParams,
+    /// An iron's sole, lie and shaft mount, for the ground model (section 4.2; typical 7-iron values).
+    pub sole: Option<sole::SoleSpec>,
+    /// The shaft's profile and material (Tables 4.1-4.2), for the flexible-shaft models.
+    pub shaft: Option<shaft::ShaftSpec>,
 }
 
 impl ClubSpec {
@@ -162,6 +166,8 @@ impl ClubSpec {
             } else {
                 crate::impact::continuous::TwoLayerParams::IRON7
             },
+            sole: (!shape.is_curved()).then_some(sole::SoleSpec::IRON7),
+            shaft: (!shape.is_curved()).then(shaft::ShaftSpec::iron7),
         }
     }
 

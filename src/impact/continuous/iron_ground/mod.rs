@@ -30,6 +30,7 @@ pub use placement::Strike;
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundModel {
     pub soil: SoilSpec,
+    /// Sole and shaft for a club that does not give its own (`[sole]`, `[shaft]` of its file).
     pub sole: SoleSpec,
     pub shaft: ShaftSpec,
     pub mesh: ShaftMesh,
@@ -70,11 +71,19 @@ impl GroundModel {
     pub fn prepare(&self, equipment: &Equipment) -> Result<PreparedGround, ImpactError> {
         let club = &equipment.club;
         let shaft_err = |e: ShaftError| ImpactError::NotConverged { model: "ground", reason: e.to_string() };
+        // The club's own sole and shaft when its file gives them.
+        let mut model = self.clone();
+        if let Some(sole) = club.sole {
+            model.sole = sole;
+        }
+        if let Some(shaft) = &club.shaft {
+            model.shaft = shaft.clone();
+        }
         let flexible =
-            FlexibleClub::new(&self.shaft, &HeadOnShaft::of(club), &self.sole, self.mesh).map_err(shaft_err)?;
-        let modal = ModalClub::new(&flexible, self.max_mode_hz, 0.0).map_err(shaft_err)?;
-        let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&self.shaft);
-        Ok(PreparedGround { model: self.clone(), equipment: equipment.clone(), modal, shaft_cg_m })
+            FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
+        let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
+        let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&model.shaft);
+        Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m })
     }
 }
 
