@@ -85,7 +85,9 @@ impl ShaftSpec {
             if !(s.wall_m.is_finite() && s.wall_m > 0.0 && s.wall_m <= s.outer_radius_m) {
                 return invalid("shaft.stations", format!("station {i}: wall must be in (0, outer radius]"));
             }
-            if i > 0 && !(s.from_butt_m > self.stations[i - 1].from_butt_m) {
+            if i > 0
+                && s.from_butt_m.partial_cmp(&self.stations[i - 1].from_butt_m) != Some(std::cmp::Ordering::Greater)
+            {
                 return invalid("shaft.stations", format!("station {i}: positions must increase"));
             }
         }
