@@ -73,6 +73,28 @@ fn main() {
             println!("{line}");
         }
     }
+    // The leading edge's height is the one club dimension that decides which strikes are fat: a measured
+    // 7-iron's face centre sits ~20 mm up the face from the leading edge (the preset takes 12 mm).
+    for le_mm in [12.0, 20.0] {
+        let mut club = ClubSpec::iron7();
+        if let Some(sole) = club.sole.as_mut() {
+            sole.leading_edge_below_face_centre_m = le_mm * 1e-3;
+        }
+        let eq_le = Equipment::new(club);
+        let make = |with_ground: bool| {
+            let mut m = GroundModel::new(SoilSpec::firm());
+            m.with_ground = with_ground;
+            m.prepare(&eq_le)
+        };
+        let (Ok(g), Ok(n)) = (make(true), make(false)) else { continue };
+        for v in [-15.0, -10.0, -5.0, 0.0, 5.0, 10.0] {
+            let line = json!({
+                "kind": "leading_edge", "leading_edge_below_face_centre_mm": le_mm, "h_mm": 0.0, "v_mm": v,
+                "ground": shot(&g, &eq_le, &flight, 0.0, v), "no_ground": shot(&n, &eq_le, &flight, 0.0, v),
+            });
+            println!("{line}");
+        }
+    }
     for soil in SoilSpec::PRESETS {
         let Ok(spec) = SoilSpec::preset(soil) else { continue };
         let Ok(p) = prepare(spec, true) else { continue };

@@ -286,3 +286,20 @@ fn peak_ground_force_by_soil() {
     assert!(peaks[1] < peaks[2]);
     assert!(peaks[0] > peaks[1], "the shallow-sinkage crossover of Table 4.3");
 }
+
+/// The trace (seed Figures 4.10 and 4.15): on a fat strike the ground pushes before the ball arrives, vertical
+/// above horizontal (the shear is 1/√3 of the pressure), and a good strike's ground force peaks lower.
+#[test]
+fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
+    let (p, eq) = prepared(SoilSpec::firm(), true);
+    let fat = p.simulate(&swing(0.0, 15.0).to_state(&eq).unwrap(), 1).unwrap();
+    let first_ball = fat.trace.iter().position(|t| t.ball_normal_n > 0.0).unwrap();
+    let before = &fat.trace[..first_ball];
+    assert!(before.iter().any(|t| t.ground_vertical_n > 10.0), "the sole pushes up before the ball");
+    let peak = fat.trace.iter().max_by(|a, b| a.ground_vertical_n.total_cmp(&b.ground_vertical_n)).unwrap();
+    assert!(peak.ground_vertical_n > peak.ground_horizontal_n);
+    assert!(fat.trace.iter().any(|t| t.phase == impactd::impact::continuous::ground::GroundPhase::Divot));
+    let good = p.simulate(&swing(0.0, 0.0).to_state(&eq).unwrap(), 0).unwrap();
+    println!("peak ground force: fat {:.0} N, good {:.0} N", fat.peak_ground_force_n, good.peak_ground_force_n);
+    assert!(good.peak_ground_force_n < fat.peak_ground_force_n);
+}

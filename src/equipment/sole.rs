@@ -21,8 +21,8 @@
 //! finds that strikes below the face centre meet the ball before the ground (section 4.3, Figure 4.11): for a
 //! ball resting on the ground against a 30° face, the contact lies `r (1 − sin 30°) = 10.7 mm` above the
 //! ground, so a leading edge 12 mm down the face (10.3 mm vertically) puts the centred strike's leading edge at
-//! the ground. A measured 7-iron's scoreline centre sits 18-22 mm above the leading edge; with that, strikes up
-//! to ~8 mm below the centre would already be fat.
+//! the ground. A measured 7-iron's scoreline centre sits 18-22 mm above the leading edge; with 20 mm, strikes
+//! 5 mm below the centre are already fat (docs/ground.md).
 
 use super::EquipmentError;
 use crate::math::{Real, Vector3};
