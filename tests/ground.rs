@@ -303,3 +303,24 @@ fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
     println!("peak ground force: fat {:.0} N, good {:.0} N", fat.peak_ground_force_n, good.peak_ground_force_n);
     assert!(good.peak_ground_force_n < fat.peak_ground_force_n);
 }
+
+/// The `ground` object a prediction line carries, with the wire's field names.
+#[test]
+fn ground_summary_has_the_wire_names() {
+    let (p, eq) = prepared(SoilSpec::firm(), true);
+    let r = p.simulate(&swing(0.0, 15.0).to_state(&eq).unwrap(), 0).unwrap();
+    let v = serde_json::to_value(r.summary()).unwrap();
+    for key in [
+        "strike",
+        "ground_contact_before_ball_ms",
+        "club_speed_loss_mph",
+        "face_angle_change_deg",
+        "dynamic_loft_change_deg",
+        "divot_depth_mm",
+        "divot_length_mm",
+        "peak_ground_force_n",
+    ] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    assert_eq!(v["strike"], "fat");
+}

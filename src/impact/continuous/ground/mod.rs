@@ -153,7 +153,7 @@ fn linear_positive(top: Real, slope: Real, half: Real) -> Option<(Real, Real)> {
 }
 
 /// The contact phase (seed 4.2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum GroundPhase {
     Clear,

@@ -113,7 +113,7 @@ pub struct PreparedGround {
 }
 
 /// One sample of a trace: the ground's forces on the head and its face angle and loft.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct GroundTracePoint {
     /// Time from the ball's first contact on the undisturbed swing (ms).
     pub t_ms: Real,
@@ -158,6 +158,39 @@ pub struct GroundResult {
     pub grip_impulse_ns: Vector3,
     pub steps: usize,
     pub trace: Vec<GroundTracePoint>,
+}
+
+/// The `ground` object a prediction carries: how the club met the turf (names as on the wire).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+pub struct GroundSummary {
+    pub strike: Strike,
+    pub ground_contact_before_ball_ms: Option<Real>,
+    pub club_speed_loss_mph: Real,
+    pub face_angle_change_deg: Real,
+    pub dynamic_loft_change_deg: Real,
+    pub divot_depth_mm: Real,
+    pub divot_length_mm: Real,
+    pub peak_ground_force_n: Real,
+    pub ground_contact_ms: Real,
+    pub ball_contact_us: Real,
+}
+
+impl GroundResult {
+    /// The wire summary of the strike.
+    pub fn summary(&self) -> GroundSummary {
+        GroundSummary {
+            strike: self.strike,
+            ground_contact_before_ball_ms: self.ground_contact_before_ball_ms,
+            club_speed_loss_mph: self.club_speed_loss_mph,
+            face_angle_change_deg: self.face_angle_change_deg,
+            dynamic_loft_change_deg: self.dynamic_loft_change_deg,
+            divot_depth_mm: self.divot_depth_mm,
+            divot_length_mm: self.divot_length_mm,
+            peak_ground_force_n: self.peak_ground_force_n,
+            ground_contact_ms: self.ground_contact_ms,
+            ball_contact_us: self.ball_contact_us,
+        }
+    }
 }
 
 impl ImpactModel for PreparedGround {

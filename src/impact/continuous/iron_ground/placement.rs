@@ -10,7 +10,7 @@ use crate::impact::{ImpactError, ImpactState};
 use crate::math::{Real, Vector3};
 
 /// How the club met the turf.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Strike {
     /// The sole reaches the ground only after [`GOOD_WINDOW_S`] past the ball's first contact, or never.
@@ -73,5 +73,61 @@ pub fn classify(first_ground_s: Option<Real>) -> Strike {
         Some(t) if t < 0.0 => Strike::Fat,
         Some(t) if t <= GOOD_WINDOW_S => Strike::Good,
         _ => Strike::Thin,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::soil::SoilSpec;
+    use crate::equipment::sole::SoleSpec;
+    use crate::impact::{Delivery, Equipment};
+
+    fn delivery(v_mm: Real) -> Delivery {
+        Delivery {
+            club_speed_mps: 40.0,
+            attack_angle_rad: (-4.0f64).to_radians(),
+            club_path_rad: 0.0,
+            face_angle_rad: 0.0,
+            dynamic_loft_rad: 25f64.to_radians(),
+            impact_h_m: 0.0,
+            impact_v_m: v_mm * 1e-3,
+            club_angular_velocity_radps: Vector3::zeros(),
+        }
+    }
+
+    /// The ball of a delivery rests at the world origin, so the ground is the plane y = −21.3 mm (DESIGN.md 2).
+    #[test]
+    fn the_ground_is_one_radius_below_the_ball() {
+        let eq = Equipment::new(ClubSpec::iron7());
+        let state = delivery(5.0).to_state(&eq).unwrap();
+        let c = ball_centre_m(&state, &eq.club, &eq.ball).unwrap();
+        assert!(c.norm() < 1e-12, "{c:?}");
+        assert!((ground_y_m(&c, &eq.ball) + 0.0213).abs() < 1e-15);
+    }
+
+    /// Closed form for a club that does not turn: the sole's deepest point moves with the CG, so it meets the
+    /// ground at t = s₀ / v_y (s₀ its sinkage at the ball's contact, v_y < 0 descending); negative t is fat.
+    #[test]
+    fn first_contact_of_a_translating_club() {
+        let eq = Equipment::new(ClubSpec::iron7());
+        for v_mm in [-15.0, 0.0, 15.0] {
+            let state = delivery(v_mm).to_state(&eq).unwrap();
+            let c = ball_centre_m(&state, &eq.club, &eq.ball).unwrap();
+            let ground = Ground::new(SoilSpec::firm(), SoleSpec::IRON7, &eq.club, ground_y_m(&c, &eq.ball));
+            let motion = ConstantTwist {
+                world_from_club: state.world_from_club,
+                cg_velocity_mps: state.cg_velocity_mps,
+                angular_velocity_radps: Vector3::zeros(),
+            };
+            let s0 = ground.placed(&state.world_from_club).max_sinkage_m();
+            let want = s0 / state.cg_velocity_mps.y;
+            let got = first_ground_contact_s(&ground, &motion, -0.03, 0.03).unwrap();
+            assert!((got - want).abs() < 2e-9, "{v_mm}: {got} vs {want}");
+            assert_eq!(classify(Some(got)) == Strike::Fat, s0 > 0.0);
+        }
+        assert_eq!(classify(None), Strike::Thin);
+        assert_eq!(classify(Some(0.5e-3)), Strike::Good);
+        assert_eq!(classify(Some(5e-3)), Strike::Thin);
     }
 }
