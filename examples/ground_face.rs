@@ -76,13 +76,10 @@ fn main() {
     // The leading edge's height is the one club dimension that decides which strikes are fat: a measured
     // 7-iron's face centre sits ~20 mm up the face from the leading edge (the preset takes 12 mm).
     for le_mm in [12.0, 20.0] {
-        let mut club = ClubSpec::iron7();
-        if let Some(sole) = club.sole.as_mut() {
-            sole.leading_edge_below_face_centre_m = le_mm * 1e-3;
-        }
-        let eq_le = Equipment::new(club);
+        let eq_le = Equipment::new(ClubSpec::iron7());
         let make = |with_ground: bool| {
             let mut m = GroundModel::new(SoilSpec::firm());
+            m.sole.leading_edge_below_face_centre_m = le_mm * 1e-3;
             m.with_ground = with_ground;
             m.prepare(&eq_le)
         };

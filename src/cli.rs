@@ -7,8 +7,9 @@ use std::process::ExitCode;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::equipment::ClubSpec;
-use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::equipment::LoadedClub;
+use crate::impact::registry::BuildOptions;
+use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel};
 use crate::wire::{DeliveryInput, PredictOutput};
 
 /// Predicts golf ball launch conditions from motion-capture samples of the clubhead.
@@ -158,8 +159,8 @@ pub enum MapMetric {
 pub struct MapArgs {
     #[arg(long, default_value = "driver")]
     pub club: String,
-    #[arg(long, value_enum, default_value = "adjusted")]
-    pub model: ModelName,
+    #[arg(long, default_value = "adjusted", value_parser = model_name)]
+    pub model: String,
     #[arg(long, value_enum, default_value = "ball-speed")]
     pub metric: MapMetric,
     #[command(flatten)]
@@ -175,6 +176,9 @@ pub struct MapArgs {
 pub struct ForcesArgs {
     #[arg(long, default_value = "driver")]
     pub club: String,
+    /// A model resolved in time.
+    #[arg(long, default_value = "continuous", value_parser = model_name)]
+    pub model: String,
     #[command(flatten)]
     pub delivery: DeliveryArgs,
     /// Output SVG file.
@@ -234,36 +238,23 @@ pub enum PathArg {
 }
 
 /// Impact models selectable on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ModelName {
-    Standard,
-    Adjusted,
-    Slip,
-    Continuous,
+/// A model name from the registry (`impact::registry`), checked when parsed.
+fn model_name(name: &str) -> std::result::Result<String, String> {
+    let known = |n: &str| crate::impact::registry::entry(n).is_some();
+    if known(name)
+        || crate::impact::registry::GROUPS.iter().any(|g| g.0 == name)
+        || name.split(',').all(|n| known(n.trim()))
+    {
+        Ok(name.to_string())
+    } else {
+        Err(format!("unknown model '{name}' (expected {})", crate::impact::registry::names()))
+    }
 }
 
-/// A model chosen on the command line.
-pub enum Model {
-    Impulse(ImpulseModel),
-    Continuous(crate::impact::ContinuousModel),
-}
-
-impl Model {
-    pub fn new(name: ModelName, cor: f64) -> Self {
-        match name {
-            ModelName::Standard => Model::Impulse(ImpulseModel::new(ImpulseVariant::Standard).with_cor(cor)),
-            ModelName::Adjusted => Model::Impulse(ImpulseModel::new(ImpulseVariant::Adjusted).with_cor(cor)),
-            ModelName::Slip => Model::Impulse(ImpulseModel::new(ImpulseVariant::Slip).with_cor(cor)),
-            ModelName::Continuous => Model::Continuous(crate::impact::ContinuousModel::default()),
-        }
-    }
-
-    pub fn as_dyn(&self) -> &dyn ImpactModel {
-        match self {
-            Model::Impulse(m) => m,
-            Model::Continuous(m) => m,
-        }
-    }
+/// The single model a command runs, from the registry, with the club file's parameters.
+fn one_model(name: &str, club: &LoadedClub, cor: f64) -> Result<std::sync::Arc<dyn ImpactModel>> {
+    let options = BuildOptions { cor, ..BuildOptions::default() };
+    Ok(crate::impact::registry::build_one(name, club, &options)?)
 }
 
 /// A delivery given with flags (TrackMan names; unset numbers are 0, the loft the club's).
@@ -307,8 +298,8 @@ pub struct PredictArgs {
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// Impact model.
-    #[arg(long, value_enum, default_value = "adjusted")]
-    pub model: ModelName,
+    #[arg(long, default_value = "adjusted", value_parser = model_name)]
+    pub model: String,
     /// Coefficient of restitution along the face normal (seed eq. 3.6).
     #[arg(long, default_value_t = crate::impact::impulse::DEFAULT_COR)]
     pub cor: f64,
@@ -330,15 +321,9 @@ pub struct BenchArgs {
     pub filter: Option<String>,
 }
 
-/// Loads a club preset by name or a club file by path.
-pub fn load_club(spec: &str) -> Result<ClubSpec> {
-    let path = Path::new(spec);
-    if spec.ends_with(".toml") || path.exists() {
-        let text = std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
-        ClubSpec::from_toml_str(&text).with_context(|| format!("club file {spec}"))
-    } else {
-        Ok(ClubSpec::preset(spec)?)
-    }
+/// Loads a club preset by name or a club file by path, with its model sections.
+pub fn load_club(spec: &str) -> Result<LoadedClub> {
+    Ok(crate::equipment::load_club(spec)?)
 }
 
 fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
@@ -388,12 +373,13 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
     if !(0.0..=1.0).contains(&args.cor) {
         bail!("--cor must be within 0 and 1, got {}", args.cor);
     }
-    let club = load_club(&args.club)?;
+    let loaded = load_club(&args.club)?;
+    let club = loaded.club.clone();
     let equipment = Equipment::new(club.clone());
-    if args.trace && args.model != ModelName::Continuous {
-        bail!("--trace needs --model continuous");
+    let model = one_model(&args.model, &loaded, args.cor)?;
+    if args.trace && !crate::impact::registry::entry(&args.model).is_some_and(|e| e.resolved_in_time) {
+        bail!("--trace needs a model resolved in time (continuous), not {}", args.model);
     }
-    let model = Model::new(args.model, args.cor);
     let input = open_input(args.input.as_deref())?;
     let stdout = std::io::stdout().lock();
     let stderr = std::io::stderr().lock();
@@ -403,9 +389,9 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
         let state = delivery.to_state(&equipment).map_err(|e| describe(&e, &d))?;
         let metrics = DeliveryMetrics::from_state(&state, &club);
         let hand = d.handedness.unwrap_or_default();
-        match (&model, args.trace) {
-            (Model::Continuous(m), true) => {
-                let r = m.simulate(&state, &equipment, 10).map_err(|e| describe(&e, &d))?;
+        match if args.trace { model.trace(&state, &equipment, 10) } else { None } {
+            Some(r) => {
+                let r = r.map_err(|e| describe(&e, &d))?;
                 Ok(Answer::Traced(TracedOutput {
                     output: PredictOutput::new(&r.launch, &metrics, hand),
                     contact_time_us: r.contact_time_s * 1e6,
@@ -413,8 +399,8 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
                     trace: r.trace,
                 }))
             }
-            _ => {
-                let launch = model.as_dyn().predict(&state, &equipment).map_err(|e| describe(&e, &d))?;
+            None => {
+                let launch = model.predict(&state, &equipment).map_err(|e| describe(&e, &d))?;
                 Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand)))
             }
         }
@@ -472,8 +458,10 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    let loaded = load_club(&args.club)?;
     let config = crate::eval::EvalConfig {
-        club: load_club(&args.club)?,
+        launch_model: one_model("adjusted", &loaded, crate::impact::impulse::DEFAULT_COR)?,
+        club: loaded.club,
         rate_hz: args.rate,
         shots: args.shots,
         noise_mm: args.noise_mm,
@@ -535,13 +523,18 @@ fn eval_extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
 }
 
 fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
-    let club = load_club(&args.club)?;
+    let loaded = load_club(&args.club)?;
+    let club = loaded.club.clone();
     let equipment = Equipment::new(club.clone());
+    let model = one_model(&args.model, &loaded, crate::impact::impulse::DEFAULT_COR)?;
     let input = args.delivery.input();
     input.check_finite().map_err(|e| anyhow::anyhow!(describe(&e, &input)))?;
     let state =
         input.to_delivery(club.loft_deg()).to_state(&equipment).map_err(|e| anyhow::anyhow!(describe(&e, &input)))?;
-    let r = crate::impact::ContinuousModel::default().simulate(&state, &equipment, 2)?;
+    let Some(r) = model.trace(&state, &equipment, 2) else {
+        bail!("--model {} is not resolved in time: it has no forces to plot", args.model);
+    };
+    let r = r?;
     let m = crate::impact::LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     let chart = crate::plot::LineChart {
         title: format!(
@@ -719,9 +712,10 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
     if !(3..=101).contains(&args.cells) {
         bail!("--cells must be within 3 and 101");
     }
-    let club = load_club(&args.club)?;
+    let loaded = load_club(&args.club)?;
+    let club = loaded.club.clone();
     let equipment = Equipment::new(club.clone());
-    let model = Model::new(args.model, crate::impact::impulse::DEFAULT_COR);
+    let model = one_model(&args.model, &loaded, crate::impact::impulse::DEFAULT_COR)?;
     let flight = crate::flight::Flight::default();
     let n = args.cells;
     let (hw, hh) = (club.face_half_width_m * 1e3, club.face_half_height_m * 1e3);
@@ -734,7 +728,7 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
             input.impact_h_mm = *h;
             input.impact_v_mm = *v;
             let Ok(state) = input.to_delivery(club.loft_deg()).to_state(&equipment) else { continue };
-            let Ok(launch) = model.as_dyn().predict(&state, &equipment) else { continue };
+            let Ok(launch) = model.predict(&state, &equipment) else { continue };
             let m = crate::impact::LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps);
             values[j][i] = match args.metric {
                 MapMetric::BallSpeed => m.ball_speed_mph,
@@ -767,7 +761,7 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
         MapMetric::Offline => "offline (yd, right +)",
     };
     let heat = crate::plot::Heatmap {
-        title: format!("{} {}: {} at {:.0} mph", club.name, model.as_dyn().name(), label, args.delivery.club_speed_mph),
+        title: format!("{} {}: {} at {:.0} mph", club.name, model.name(), label, args.delivery.club_speed_mph),
         x_label: "impact location toward the toe (mm)".into(),
         y_label: "impact location up the face (mm)".into(),
         value_label: label.into(),

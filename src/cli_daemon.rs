@@ -174,7 +174,7 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     if args.shots == 0 {
         bail!("--shots must be at least 1");
     }
-    let club = crate::cli::load_club(&args.club)?;
+    let club = crate::cli::load_club(&args.club)?.club;
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
     let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
@@ -214,7 +214,7 @@ pub fn sim(args: &SimArgs) -> Result<ExitCode> {
     }
     let options = SimOptions {
         rigs,
-        club: crate::cli::load_club(&args.club)?,
+        club: crate::cli::load_club(&args.club)?.club,
         shots: args.shots,
         rate_hz: args.rate,
         interval_s: args.interval,

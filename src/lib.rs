@@ -58,6 +58,7 @@ pub mod eval;
 pub mod face;
 pub mod flight;
 pub mod impact;
+pub mod integrate;
 pub mod jsonl;
 pub mod kinematics;
 pub mod math;

@@ -3,13 +3,13 @@
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::sole::SoleSpec;
 use impactd::equipment::ClubSpec;
-use impactd::impact::continuous::ground::{GaussRule, Ground, GroundPhase};
+use impactd::impact::continuous::ground::{GaussRule, GroundPhase, SoilGround};
 use impactd::math::{Isometry3, Real, Translation3, UnitQuaternion, Vector3};
 
 /// A square club (no rotation) whose sole's lowest point is `z0` below the surface y = 0.
-fn pressed(soil: SoilSpec, z0: Real) -> (Ground, Isometry3) {
+fn pressed(soil: SoilSpec, z0: Real) -> (SoilGround, Isometry3) {
     let club = ClubSpec::iron7();
-    let ground = Ground::new(soil, SoleSpec::IRON7, &club, 0.0);
+    let ground = SoilGround::new(soil, SoleSpec::IRON7, &club, 0.0);
     let lowest = ground.arc.point(0.0, 0.0);
     let pose = Isometry3::from_parts(Translation3::new(0.0, -z0 - lowest.y, 0.0), UnitQuaternion::identity());
     (ground, pose)
@@ -91,7 +91,7 @@ fn shear_is_the_soils_strength_against_the_slip() {
 #[test]
 fn face_passive_pressure_closed_form() {
     let club = ClubSpec::iron7();
-    let ground = Ground::new(SoilSpec::firm(), SoleSpec::IRON7, &club, 0.0);
+    let ground = SoilGround::new(SoilSpec::firm(), SoleSpec::IRON7, &club, 0.0);
     let h = 0.01;
     let le = ground.arc.leading_edge(0.0);
     let pose = Isometry3::from_parts(Translation3::new(0.0, -h - le.y, 0.0), UnitQuaternion::identity());

@@ -9,11 +9,15 @@
 //! by the impulses of the ball, the ground and the grip (the clamp's reaction plus the force the rigid swing
 //! needs).
 
-use crate::impact::continuous::contact::FaceSurface;
-use crate::impact::continuous::ground::{Ground, GroundForces};
+use crate::impact::continuous::ball::TwoLayerBall;
+use crate::impact::continuous::club::Head as BodyMotion;
+use crate::impact::continuous::ground::{GroundForces, SoilGround};
+use crate::impact::continuous::law::volumetric::Volumetric;
+use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
-use crate::impact::continuous::{two_layer_contact, BodyMotion, ContactForces, TwoLayerBall, TwoLayerParams};
+use crate::impact::continuous::surface::FaceSurface;
+use crate::impact::continuous::{ContactForces, TwoLayerParams};
 use crate::math::{Isometry3, Real, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 /// The integrated state.
@@ -61,7 +65,7 @@ pub struct System<'a> {
     pub ball: TwoLayerBall,
     pub surface: FaceSurface,
     pub modal: &'a ModalClub,
-    pub ground: &'a Ground,
+    pub ground: &'a SoilGround,
     pub motion: ConstantTwist,
     /// The club frame at the start (world from club), in which the elastic motion is computed.
     pub elastic_frame: Rotation3,
@@ -82,7 +86,7 @@ impl System<'_> {
         let (rotation, position_m, velocity_mps) = self.motion.at(s.t_s);
         let rigid = BodyMotion {
             position_m,
-            rotation,
+            world_from_club: rotation,
             velocity_mps,
             angular_velocity_radps: self.motion.angular_velocity_radps,
         };
@@ -90,7 +94,7 @@ impl System<'_> {
         let f = &self.elastic_frame;
         let head = BodyMotion {
             position_m: rigid.position_m + f * o.cg_m,
-            rotation: Rotation3::new(f * o.rotation_rad) * rigid.rotation,
+            world_from_club: Rotation3::new(f * o.rotation_rad) * rigid.world_from_club,
             velocity_mps: rigid.velocity_mps + f * o.cg_velocity_mps,
             angular_velocity_radps: rigid.angular_velocity_radps + f * o.angular_velocity_radps,
         };
@@ -100,7 +104,7 @@ impl System<'_> {
     /// The rigid swing's club momentum (N s, world) and the grip force it needs (N).
     fn rigid_momentum_and_force(&self, rigid: &BodyMotion) -> (Vector3, Vector3) {
         let (w, v) = (rigid.angular_velocity_radps, rigid.velocity_mps);
-        let r = rigid.rotation * self.shaft_cg_m;
+        let r = rigid.world_from_club * self.shaft_cg_m;
         let m = self.head_mass_kg + self.shaft_mass_kg;
         (m * v + self.shaft_mass_kg * w.cross(&r), m * w.cross(&v) + self.shaft_mass_kg * w.cross(&w.cross(&r)))
     }
@@ -117,8 +121,10 @@ impl System<'_> {
     }
 
     fn ground_forces_on(&self, h: &BodyMotion) -> GroundForces {
-        let pose =
-            Isometry3::from_parts(Translation3::from(h.position_m), UnitQuaternion::from_rotation_matrix(&h.rotation));
+        let pose = Isometry3::from_parts(
+            Translation3::from(h.position_m),
+            UnitQuaternion::from_rotation_matrix(&h.world_from_club),
+        );
         self.ground.forces(&pose, &h.velocity_mps, &h.angular_velocity_radps)
     }
 
@@ -127,7 +133,7 @@ impl System<'_> {
         let (head, rigid) = self.head_and_rigid(s);
         let ball_motion = BodyMotion {
             position_m: s.p_b,
-            rotation: Rotation3::identity(),
+            world_from_club: Rotation3::identity(),
             velocity_mps: s.v_b,
             angular_velocity_radps: s.w_cover,
         };
@@ -142,7 +148,7 @@ impl System<'_> {
         let f_grip =
             self.elastic_frame * self.modal.grip_force(&s.shaft, &eta_ddot) + self.rigid_momentum_and_force(&rigid).1;
         let w_rel = s.w_cover - s.w_core;
-        let spring = self.params.k_ball_nm_per_rad * s.theta + self.params.c_ball_nms_per_rad * w_rel;
+        let spring = self.ball.k_ball_nm_per_rad * s.theta + self.ball.c_ball_nms_per_rad * w_rel;
         Eval {
             rates: Rates {
                 eta_ddot,
@@ -187,6 +193,46 @@ impl System<'_> {
         next.j_grip += c(r1.f_grip, r2.f_grip, r3.f_grip, r4.f_grip);
         (next, e1)
     }
+}
+
+/// The face's contact with the two-layer ball's cover through the continuous model's law (eq. 3.14-3.15,
+/// [`Volumetric`]): the forces, the force on the ball (world) and the ball centre -> contact lever.
+fn two_layer_contact(
+    params: &TwoLayerParams,
+    ball_radius_m: Real,
+    surface: &FaceSurface,
+    club: &BodyMotion,
+    ball: &BodyMotion,
+) -> Option<(ContactForces, Vector3, Vector3)> {
+    let rot = &club.world_from_club;
+    let overlap =
+        surface.overlap(&rot.inverse_transform_vector(&(ball.position_m - club.position_m)), ball_radius_m)?;
+    let normal = rot * overlap.normal;
+    let r_club_m = rot * overlap.centroid_m;
+    let r_ball_m = club.position_m + r_club_m - ball.position_m;
+    let v_club = club.velocity_mps + club.angular_velocity_radps.cross(&r_club_m);
+    let v_ball = ball.velocity_mps + ball.angular_velocity_radps.cross(&r_ball_m);
+    let v_rel = v_ball - v_club;
+    let contact = Contact {
+        overlap,
+        normal,
+        r_club_m,
+        r_ball_m,
+        approach_mps: -v_rel.dot(&normal),
+        slip_mps: v_rel - v_rel.dot(&normal) * normal,
+    };
+    let law = Volumetric {
+        k_v_n_per_m3: params.k_v_n_per_m3,
+        d_s_per_m: params.d_s_per_m,
+        mu: params.mu,
+        v_tr_mps: params.v_tr_mps,
+    };
+    let ContactForce { normal_n, friction_n } = law.force(&contact, &());
+    Some((
+        ContactForces { normal_n, friction_n, in_contact: true, depth_m: overlap.depth_m },
+        normal_n * normal + friction_n,
+        r_ball_m,
+    ))
 }
 
 /// `base` advanced by `h` along the rates `r` evaluated at `at`.

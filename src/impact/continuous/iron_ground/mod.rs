@@ -17,7 +17,7 @@ mod run;
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::SoleSpec;
-use crate::impact::continuous::ground::{Ground, GroundPhase};
+use crate::impact::continuous::ground::{GroundPhase, SoilGround};
 use crate::impact::continuous::shaft::modal::ModalClub;
 use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
 use crate::impact::continuous::TwoLayerParams;
@@ -30,7 +30,7 @@ pub use placement::Strike;
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundModel {
     pub soil: SoilSpec,
-    /// Sole and shaft for a club that does not give its own (`[sole]`, `[shaft]` of its file).
+    /// The club's sole and shaft (typical 7-iron values and Tables 4.1-4.2 by default).
     pub sole: SoleSpec,
     pub shaft: ShaftSpec,
     pub mesh: ShaftMesh,
@@ -71,14 +71,7 @@ impl GroundModel {
     pub fn prepare(&self, equipment: &Equipment) -> Result<PreparedGround, ImpactError> {
         let club = &equipment.club;
         let shaft_err = |e: ShaftError| ImpactError::NotConverged { model: "ground", reason: e.to_string() };
-        // The club's own sole and shaft when its file gives them.
-        let mut model = self.clone();
-        if let Some(sole) = club.sole {
-            model.sole = sole;
-        }
-        if let Some(shaft) = &club.shaft {
-            model.shaft = shaft.clone();
-        }
+        let model = self.clone();
         let flexible =
             FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
         let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
@@ -211,10 +204,10 @@ impl PreparedGround {
     }
 
     /// The ground under the ball of `state` (for the placement and strike).
-    pub fn ground_for(&self, state: &ImpactState) -> Result<Ground, ImpactError> {
+    pub fn ground_for(&self, state: &ImpactState) -> Result<SoilGround, ImpactError> {
         let ball = &self.equipment.ball;
         let centre = placement::ball_centre_m(state, &self.equipment.club, ball)?;
-        Ok(Ground::new(
+        Ok(SoilGround::new(
             self.model.soil.clone(),
             self.model.sole,
             &self.equipment.club,

@@ -4,7 +4,7 @@
 //! sole meets the ground along the swing's undisturbed motion.
 
 use crate::equipment::{BallSpec, ClubSpec};
-use crate::impact::continuous::ground::Ground;
+use crate::impact::continuous::ground::SoilGround;
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::{ImpactError, ImpactState};
 use crate::math::{Real, Vector3};
@@ -41,7 +41,7 @@ pub fn ground_y_m(ball_centre_m: &Vector3, ball: &BallSpec) -> Real {
 
 /// The first instant (s from ball contact) in `[t_from, t_to]` when the undisturbed club's sole touches the
 /// ground, to 1 ns; `None` if it stays clear.
-pub fn first_ground_contact_s(ground: &Ground, motion: &ConstantTwist, t_from: Real, t_to: Real) -> Option<Real> {
+pub fn first_ground_contact_s(ground: &SoilGround, motion: &ConstantTwist, t_from: Real, t_to: Real) -> Option<Real> {
     let sinkage = |t: Real| ground.placed(&motion.world_from_club(t)).max_sinkage_m();
     if sinkage(t_from) > 0.0 {
         return Some(t_from);
@@ -114,7 +114,7 @@ mod tests {
         for v_mm in [-15.0, 0.0, 15.0] {
             let state = delivery(v_mm).to_state(&eq).unwrap();
             let c = ball_centre_m(&state, &eq.club, &eq.ball).unwrap();
-            let ground = Ground::new(SoilSpec::firm(), SoleSpec::IRON7, &eq.club, ground_y_m(&c, &eq.ball));
+            let ground = SoilGround::new(SoilSpec::firm(), SoleSpec::IRON7, &eq.club, ground_y_m(&c, &eq.ball));
             let motion = ConstantTwist {
                 world_from_club: state.world_from_club,
                 cg_velocity_mps: state.cg_velocity_mps,

@@ -3,18 +3,20 @@
 use super::dynamics::{State, System};
 use super::placement::{classify, first_ground_contact_s};
 use super::{GroundResult, GroundTracePoint, PreparedGround};
-use crate::impact::continuous::contact::FaceSurface;
+use crate::impact::continuous::ball::TwoLayerBall;
+use crate::impact::continuous::club::Head as BodyMotion;
 use crate::impact::continuous::ground::GroundPhase;
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::ModalState;
-use crate::impact::continuous::{BodyMotion, ContinuousModel, TwoLayerBall};
+use crate::impact::continuous::surface::FaceSurface;
+use crate::impact::continuous::TwoLayerParams;
 use crate::impact::{ImpactError, ImpactState, Launch};
 use crate::math::{Real, Vector3};
 use crate::units::MPS_PER_MPH;
 
 /// Face angle (open +) and dynamic loft (deg) of a head whose face normal is `n0` in its frame.
 fn face_angles_deg(head: &BodyMotion, n0: &Vector3) -> (Real, Real) {
-    let n = head.rotation * n0;
+    let n = head.world_from_club * n0;
     (n.z.atan2(n.x).to_degrees(), n.y.clamp(-1.0, 1.0).asin().to_degrees())
 }
 
@@ -26,15 +28,15 @@ pub(super) fn simulate(
 ) -> Result<GroundResult, ImpactError> {
     let model = &p.model;
     let club = &p.equipment.club;
-    let params = model.params.unwrap_or(club.continuous);
-    params.validate(&p.equipment.ball).map_err(|reason| ImpactError::NotConverged { model: "ground", reason })?;
+    let params = model.params.unwrap_or_else(|| TwoLayerParams::seed_for(club));
+    params.validate(&p.equipment.ball)?;
     let mut ground = p.ground_for(state)?;
     let motion = ConstantTwist {
         world_from_club: state.world_from_club,
         cg_velocity_mps: state.cg_velocity_mps,
         angular_velocity_radps: state.angular_velocity_radps,
     };
-    let surface = ContinuousModel::surface(club);
+    let surface = FaceSurface::of_club(club);
     let FaceSurface::Plane { point: face_point, normal: face_normal } = surface else {
         return Err(ImpactError::NotConverged {
             model: "ground",
@@ -59,7 +61,12 @@ pub(super) fn simulate(
     };
     let sys = System {
         params,
-        ball: TwoLayerBall::new(&p.equipment.ball, params.cover_thickness_m),
+        ball: TwoLayerBall::new(
+            &p.equipment.ball,
+            params.cover_thickness_m,
+            params.k_ball_nm_per_rad,
+            params.c_ball_nms_per_rad,
+        ),
         surface,
         modal: &p.modal,
         ground: &ground,
@@ -91,7 +98,7 @@ pub(super) fn simulate(
     let max_steps = 2_000_000;
     loop {
         let head = sys.head(&s);
-        let ball_club = head.rotation.inverse_transform_vector(&(s.p_b - head.position_m));
+        let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b - head.position_m));
         let gap = face_normal.dot(&(ball_club - face_point)) - r_ball;
         let near_ball = launch.is_none() && (out.ball_touched || gap < 4.0 * approach0 * model.ground_step_s);
         let h = if near_ball { model.ball_step_s } else { model.ground_step_s };
@@ -112,8 +119,9 @@ pub(super) fn simulate(
                 out.ball_touched = true;
                 out.t_ball_s = s.t_s;
                 let fc = club.face.center_m;
-                let v_fc =
-                    |b: &BodyMotion| (b.velocity_mps + b.angular_velocity_radps.cross(&(b.rotation * fc))).norm();
+                let v_fc = |b: &BodyMotion| {
+                    (b.velocity_mps + b.angular_velocity_radps.cross(&(b.world_from_club * fc))).norm()
+                };
                 let rigid = sys.head(&State { shaft: ModalState::default(), ..s });
                 out.speed_loss_mps = v_fc(&rigid) - v_fc(&e.head);
                 let (fa, dl) = face_angles_deg(&e.head, &club.face.n0());
