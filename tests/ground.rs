@@ -324,3 +324,18 @@ fn ground_summary_has_the_wire_names() {
     }
     assert_eq!(v["strike"], "fat");
 }
+
+/// The registry builds `ground` for the 7-iron (`--model ground`), and it predicts what the model does.
+#[test]
+fn registry_builds_the_ground_model() {
+    use impactd::impact::registry::{build_one, BuildOptions};
+    use impactd::impact::ImpactModel;
+    let club = impactd::equipment::load_club("iron7").unwrap();
+    let model = build_one("ground", &club, &BuildOptions::default()).unwrap();
+    assert_eq!(model.name(), "ground");
+    let (p, eq) = prepared(SoilSpec::firm(), true);
+    let st = swing(0.0, 15.0).to_state(&eq).unwrap();
+    let via_registry = model.predict(&st, &eq).unwrap();
+    let direct = p.predict(&st, &eq).unwrap();
+    assert_eq!(via_registry.ball_velocity_mps, direct.ball_velocity_mps);
+}

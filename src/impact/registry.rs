@@ -45,6 +45,14 @@ fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Resu
     Ok(Arc::new(ImpulseModel::new(variant).with_cor(o.cor).with_tuning(tuning)))
 }
 
+/// The iron-plus-ground model on firm soil (Table 4.3), its ball from the `[continuous]` section.
+fn ground(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    let mut model = super::continuous::iron_ground::GroundModel::new(crate::equipment::soil::SoilSpec::firm());
+    model.params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
+    let equipment = super::Equipment { club: club.club.clone(), ball: o.ball };
+    Ok(Arc::new(model.prepare(&equipment)?))
+}
+
 fn continuous(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
     Ok(Arc::new(ContinuousModel { params, ..ContinuousModel::default() }))
@@ -79,6 +87,14 @@ pub const MODELS: &[ModelEntry] = &[
         sections: &["continuous"],
         resolved_in_time: true,
         build: continuous,
+    },
+    ModelEntry {
+        name: "ground",
+        summary: "two-layer ball on an iron head on a flexible shaft, the ball on firm turf: sole and face ground \
+                  reaction (seed chapter 4, Tables 4.1-4.3)",
+        sections: &["continuous"],
+        resolved_in_time: false,
+        build: ground,
     },
 ];
 
