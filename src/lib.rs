@@ -48,9 +48,6 @@
 //! # }
 //! ```
 
-pub mod cli;
-#[cfg(feature = "daemon")]
-pub mod cli_daemon;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;
@@ -63,6 +60,7 @@ pub mod kinematics;
 pub mod math;
 pub mod pipeline;
 pub mod plot;
+pub mod predict;
 pub mod rng;
 pub mod stages;
 pub mod swing;

@@ -169,7 +169,7 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let club = crate::cli::load_club(&r.club).map_err(|e| invalid(f("club"), format!("{e:#}")))?;
+                let club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }

@@ -4,8 +4,10 @@
 pub mod bus;
 pub mod config;
 pub mod demo;
+pub mod info;
 pub mod live;
 pub mod recorder;
+pub mod recover;
 pub mod replay;
 pub mod sim;
 pub mod stats;

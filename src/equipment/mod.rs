@@ -21,6 +21,23 @@ pub enum EquipmentError {
     Parse(String),
     #[error("club field `{field}` {reason}")]
     Invalid { field: &'static str, reason: String },
+    #[error("reading club file {path}: {error}")]
+    Read { path: String, error: std::io::Error },
+    #[error("club file {path}: {error}")]
+    File { path: String, error: Box<EquipmentError> },
+}
+
+/// A club preset by name (`driver`, `iron7`) or a club file by path (anything ending in `.toml` or naming an
+/// existing file).
+pub fn load_club(spec: &str) -> Result<ClubSpec, EquipmentError> {
+    let path = std::path::Path::new(spec);
+    if spec.ends_with(".toml") || path.exists() {
+        let text =
+            std::fs::read_to_string(path).map_err(|error| EquipmentError::Read { path: spec.to_string(), error })?;
+        ClubSpec::from_toml_str(&text).map_err(|e| EquipmentError::File { path: spec.to_string(), error: Box::new(e) })
+    } else {
+        ClubSpec::preset(spec)
+    }
 }
 
 /// The golf ball (Table 3.1): a sphere with isotropic inertia about its centre.

@@ -1,0 +1,138 @@
+//! Argument groups shared by several commands: the flight conditions, a delivery given by flags, the impact
+//! model's name and zenoh's usual flags ([`ZenohArgs`]: `--zenoh-config`, `-m/--mode`, `-e/--connect`,
+//! `-l/--listen`, `--no-multicast-scouting`).
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+
+#[cfg(feature = "daemon")]
+pub use impactd::daemon::bus::ZenohArgs;
+use impactd::impact::{ContinuousModel, ImpactModel, ImpulseModel, ImpulseVariant};
+use impactd::wire::DeliveryInput;
+
+/// Where and in what air the ball flies.
+#[derive(Debug, Clone, Args)]
+pub struct ConditionArgs {
+    #[arg(long, default_value_t = 22.5, allow_hyphen_values = true)]
+    pub temp_c: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub altitude_m: f64,
+    /// Relative humidity, 0-1.
+    #[arg(long, default_value_t = 0.5)]
+    pub humidity: f64,
+    /// Station pressure (hPa); default: the standard atmosphere at the altitude.
+    #[arg(long)]
+    pub pressure_hpa: Option<f64>,
+    #[arg(long, default_value_t = 0.0)]
+    pub wind_mps: f64,
+    /// The direction the wind blows toward (deg from the target line, right +): 0 tailwind, 180 headwind.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub wind_dir_deg: f64,
+}
+
+impl ConditionArgs {
+    pub fn conditions(&self) -> Result<impactd::flight::Conditions> {
+        let c = impactd::flight::Conditions {
+            temperature_c: self.temp_c,
+            pressure_hpa: self.pressure_hpa,
+            humidity: self.humidity,
+            altitude_m: self.altitude_m,
+            wind_mps: self.wind_mps,
+            wind_dir_deg: self.wind_dir_deg,
+        };
+        c.validate().map_err(|e| anyhow::anyhow!("conditions: {e}"))?;
+        Ok(c)
+    }
+}
+
+/// Impact models selectable on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ModelName {
+    Standard,
+    Adjusted,
+    Slip,
+    Continuous,
+}
+
+impl ModelName {
+    /// The model of this name; `cor` is the impulse-momentum models' coefficient of restitution.
+    pub fn model(self, cor: f64) -> Box<dyn ImpactModel> {
+        let impulse = |v| Box::new(ImpulseModel::new(v).with_cor(cor));
+        match self {
+            ModelName::Standard => impulse(ImpulseVariant::Standard),
+            ModelName::Adjusted => impulse(ImpulseVariant::Adjusted),
+            ModelName::Slip => impulse(ImpulseVariant::Slip),
+            ModelName::Continuous => Box::new(ContinuousModel::default()),
+        }
+    }
+}
+
+/// A delivery given with flags (TrackMan names; unset numbers are 0, the loft the club's).
+#[derive(Debug, Clone, Args)]
+pub struct DeliveryArgs {
+    #[arg(long, default_value_t = 100.0)]
+    pub club_speed_mph: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub attack_angle_deg: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub club_path_deg: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub face_angle_deg: f64,
+    #[arg(long, allow_hyphen_values = true)]
+    pub dynamic_loft_deg: Option<f64>,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub impact_h_mm: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub impact_v_mm: f64,
+}
+
+impl DeliveryArgs {
+    pub fn input(&self) -> DeliveryInput {
+        DeliveryInput {
+            club_speed_mph: self.club_speed_mph,
+            attack_angle_deg: self.attack_angle_deg,
+            club_path_deg: self.club_path_deg,
+            face_angle_deg: self.face_angle_deg,
+            dynamic_loft_deg: self.dynamic_loft_deg,
+            impact_h_mm: self.impact_h_mm,
+            impact_v_mm: self.impact_v_mm,
+            club_angular_velocity_radps: None,
+            handedness: None,
+        }
+    }
+}
+
+/// A club preset by name or a club file by path.
+pub fn load_club(spec: &str) -> Result<impactd::equipment::ClubSpec> {
+    Ok(impactd::equipment::load_club(spec)?)
+}
+
+/// The file at `path`, else stdin, by lines.
+pub fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
+    Ok(match path {
+        Some(p) => {
+            Box::new(BufReader::new(std::fs::File::open(p).with_context(|| format!("opening input {}", p.display()))?))
+        }
+        None => Box::new(BufReader::new(std::io::stdin())),
+    })
+}
+
+/// Exit 1 when any line was rejected.
+pub fn exit_code(tally: impactd::jsonl::Tally) -> ExitCode {
+    if tally.rejected > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Writes `text` to `path` and says so on stderr.
+pub fn write_output(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
