@@ -32,7 +32,7 @@ pub fn info(path: &Path) -> Result<String, DaemonError> {
         let entry = counts.entry(m.channel.topic.clone()).or_insert((schema, 0));
         entry.1 += 1;
         let topic = m.channel.topic.trim_start_matches('/');
-        if let Some(rig) = topic.strip_prefix("golf/").and_then(|t| t.strip_suffix("/launch")) {
+        if let Some(rig) = crate::wire::keys::rig_of_launch(topic) {
             *shots.entry(rig.to_string()).or_default() += 1;
         }
     }

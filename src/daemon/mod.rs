@@ -10,6 +10,7 @@ pub mod recorder;
 pub mod recover;
 pub mod replay;
 pub mod sim;
+pub mod sinks;
 pub mod stats;
 
 pub use config::DaemonConfig;

@@ -200,12 +200,12 @@ pub async fn run_sim(
         }
         let samples = session
             .declare_publisher(keys::clubhead(name))
-            .encoding(wire::encoding("ClubheadSample"))
+            .encoding(wire::MessageType::ClubheadSample.encoding())
             .await
             .map_err(DaemonError::zenoh)?;
         let truth_pub = session
             .declare_publisher(keys::truth(name))
-            .encoding(wire::encoding("TruthMessage"))
+            .encoding(wire::MessageType::TruthMessage.encoding())
             .await
             .map_err(DaemonError::zenoh)?;
         if options.wait_for_subscriber_s > 0.0 {

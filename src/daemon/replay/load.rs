@@ -74,7 +74,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         if keys::rig_of_clubhead(topic).is_some() {
             let msg: ClubheadSampleMsg = serde_json::from_slice(&message.data).map_err(|e| mcap_err(path, e))?;
             input.samples.push(msg);
-        } else if topic.starts_with("golf/") && topic.ends_with("/launch") {
+        } else if keys::rig_of_launch(topic).is_some() {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
                 input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }

@@ -47,11 +47,7 @@ pub fn replay(
         for e in events.iter_mut() {
             match e {
                 Event::Launch(l) => {
-                    l.latency_us = input
-                        .recorded_latency_us
-                        .get(&(l.rig.clone(), l.shot, l.model.clone()))
-                        .copied()
-                        .unwrap_or(0.0);
+                    l.latency_us = recorded_latency(input, l);
                     stats.predictions += 1;
                 }
                 Event::Failed { .. } => stats.failed += 1,
@@ -61,4 +57,9 @@ pub fn replay(
         }
     }
     stats
+}
+
+/// The latency recorded for the same rig, shot and model (a live measurement a replay cannot make), else 0.
+fn recorded_latency(input: &ReplayInput, l: &crate::wire::LaunchPrediction) -> f64 {
+    input.recorded_latency_us.get(&(l.rig.clone(), l.shot, l.model.clone())).copied().unwrap_or(0.0)
 }
