@@ -48,6 +48,8 @@
 //! # }
 //! ```
 
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;

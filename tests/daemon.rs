@@ -1,6 +1,8 @@
 //! The daemon for real, in one process over loopback zenoh (peer mode, multicast scouting off): a synthetic rig
 //! publishes, the daemon predicts and records, subscribers listen; the recording is read back by an independent
 //! reader (Python's `mcap`), replayed byte for byte, and salvaged after `kill -9`.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 use std::collections::HashMap;

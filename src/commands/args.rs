@@ -44,7 +44,7 @@ impl ConditionArgs {
             wind_mps: self.wind_mps,
             wind_dir_deg: self.wind_dir_deg,
         };
-        c.validate().map_err(|e| anyhow::anyhow!("conditions: {e}"))?;
+        c.validate().context("conditions")?;
         Ok(c)
     }
 }

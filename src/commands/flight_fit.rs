@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Args;
 
 #[derive(Debug, Args)]
@@ -16,7 +16,7 @@ pub struct FlightFitArgs {
 pub fn run(args: &FlightFitArgs) -> Result<ExitCode> {
     let iterations = args.iterations;
     use impactd::flight::fit;
-    let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).context("TrackMan table")?;
     let current = impactd::flight::Aero::FITTED;
     let (aero, cost, worst) = if iterations == 0 {
         (current, fit::cost(&current, &rows), fit::worst(&current, &rows))

@@ -10,7 +10,7 @@ use super::DaemonError;
 pub fn info(path: &Path) -> Result<String, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
-        return Err(DaemonError::Input(format!("{} is not an MCAP file", path.display())));
+        return Err(DaemonError::NotMcap { path: path.display().to_string() });
     }
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
     let (mut first, mut last) = (u64::MAX, 0u64);

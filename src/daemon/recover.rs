@@ -18,7 +18,7 @@ pub struct Recovered {
 pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
     let bytes = read_file(input)?;
     if !is_mcap(&bytes) {
-        return Err(DaemonError::Input(format!("{} is not an MCAP file", input.display())));
+        return Err(DaemonError::NotMcap { path: input.display().to_string() });
     }
     let file = std::fs::File::create(output)
         .map_err(|e| DaemonError::Io { what: format!("creating {}", output.display()), source: e })?;

@@ -196,7 +196,7 @@ pub async fn run_sim(
     let mut threads = Vec::new();
     for (i, name) in options.rigs.iter().enumerate() {
         if !keys::valid_rig_name(name) {
-            return Err(DaemonError::Input(format!("rig name `{name}` must be letters, digits, _ or -")));
+            return Err(DaemonError::BadRigName(name.clone()));
         }
         let samples = session
             .declare_publisher(keys::clubhead(name))

@@ -44,8 +44,11 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
             if line.trim().is_empty() {
                 continue;
             }
-            let msg: ClubheadSampleMsg = serde_json::from_str(&line)
-                .map_err(|e| DaemonError::Input(format!("{} line {}: {e}", path.display(), i + 1)))?;
+            let msg: ClubheadSampleMsg = serde_json::from_str(&line).map_err(|e| DaemonError::BadSampleLine {
+                path: path.display().to_string(),
+                line: i + 1,
+                reason: e.to_string(),
+            })?;
             input.samples.push(msg);
         }
         return Ok(input);

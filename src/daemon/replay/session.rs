@@ -106,8 +106,8 @@ pub async fn run(
     mut on_event: impl FnMut(&Event, &[u8]),
 ) -> Result<ReplayReport, DaemonError> {
     if let Some(r) = options.rate {
-        if !(r > 0.0) {
-            return Err(DaemonError::Input("--rate must be positive".into()));
+        if r.is_nan() || r <= 0.0 {
+            return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
         }
     }
     let recorder = options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config))).transpose()?;
