@@ -114,3 +114,33 @@ pub fn run(
         answer(&d, club, &equipment, predictor)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::{ImpulseModel, ImpulseVariant};
+
+    /// Good lines are answered; a bad one is answered with the field it is about and does not stop the others.
+    #[test]
+    fn bad_lines_name_their_field_and_do_not_stop_the_others() {
+        let input = concat!(
+            "{\"club_speed_mph\":113,\"dynamic_loft_deg\":13,\"attack_angle_deg\":-1.3}\n",
+            "\n",
+            "{\"club_speed_mph\":500}\n",
+            "{\"impact_h_mm\":200,\"club_speed_mph\":100}\n",
+        );
+        let model = ImpulseModel::new(ImpulseVariant::Adjusted);
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let tally = run(&ClubSpec::driver(), Predictor::Plain(&model), input.as_bytes(), &mut out, &mut err).unwrap();
+        assert_eq!(tally, Tally { answered: 1, rejected: 2 });
+        let text = String::from_utf8(out).unwrap();
+        let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        // The seed's driver with the adjusted model (Tables 3.1 and 3.3), as in the crate's example: 163.96 mph.
+        assert!((lines[0]["ball_speed_mph"].as_f64().unwrap() - 163.957).abs() < 1e-3);
+        assert_eq!(lines[1]["line"], 3);
+        assert!(lines[1]["error"].as_str().unwrap().starts_with("field `club_speed_mph`"));
+        assert_eq!(lines[2]["line"], 4);
+        assert!(lines[2]["error"].as_str().unwrap().starts_with("fields `impact_h_mm`/`impact_v_mm`"));
+        assert!(String::from_utf8(err).unwrap().starts_with("impactd predict: line 3: field `club_speed_mph`"));
+    }
+}

@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 use zenoh::Wait;
 
-use super::recorder::{Recorder, RecorderHandle, RecorderSummary};
+use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use super::stats::{LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
@@ -46,16 +46,6 @@ struct Incoming {
     log_time_ns: u64,
     payload: Vec<u8>,
     encoding: String,
-}
-
-/// The `session` metadata of a recording: versions and the configuration.
-pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
-    let mut m = BTreeMap::new();
-    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
-    m.insert("wire_version".into(), wire::WIRE_VERSION.to_string());
-    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
-    m.insert("start_ns".into(), wall_ns().to_string());
-    m
 }
 
 /// Runs the daemon on `session` until `shutdown` completes.

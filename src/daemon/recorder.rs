@@ -16,9 +16,19 @@ use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::DaemonError;
+use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::math::Isometry3;
 use crate::wire::{ImpactStateMsg, MessageType};
+
+/// The `session` metadata of a recording: versions and the configuration.
+pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
+    let mut m = BTreeMap::new();
+    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
+    m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
+    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
+    m.insert("start_ns".into(), wall_ns().to_string());
+    m
+}
 
 /// Queue length between the prediction path and the writer.
 pub const QUEUE_CAPACITY: usize = 1 << 16;

@@ -11,6 +11,10 @@ pub fn rejected(rig: &str) -> String {
 }
 /// Every rig's clubhead samples.
 pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
+/// Every rig's predictions.
+pub const LAUNCH_ALL: &str = "golf/*/launch";
+/// Every synthetic rig's truth.
+pub const TRUTH_ALL: &str = "sim/*/truth";
 /// Out: [`ImpactMessage`](super::ImpactMessage), the estimated state at impact.
 pub fn impact(rig: &str) -> String {
     format!("golf/{rig}/impact")

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use super::{recorded_latency, ReplayInput, ReplayStats};
 use crate::daemon::config::RigConfig;
-use crate::daemon::live::session_metadata;
+use crate::daemon::recorder::session_metadata;
 use crate::daemon::recorder::{Recorder, RecorderHandle};
 use crate::daemon::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use crate::daemon::stats::LatencyWindow;
