@@ -48,9 +48,8 @@
 //! # }
 //! ```
 
-pub mod cli;
-#[cfg(feature = "daemon")]
-pub mod cli_daemon;
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;
@@ -64,6 +63,7 @@ pub mod kinematics;
 pub mod math;
 pub mod pipeline;
 pub mod plot;
+pub mod predict;
 pub mod rng;
 pub mod stages;
 pub mod swing;

@@ -49,6 +49,7 @@ mod tests {
 
     /// The presets must equal the seed tables as transcribed in tests/data/seed-tables.toml.
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn presets_match_the_seed_tables() {
         let text = include_str!("../../tests/data/seed-tables.toml");
         let tables: toml::Value = toml::from_str(text).unwrap();

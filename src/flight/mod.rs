@@ -34,7 +34,7 @@
 pub mod air;
 pub mod fit;
 
-pub use air::Conditions;
+pub use air::{Conditions, ConditionsError};
 
 use crate::equipment::BallSpec;
 use crate::integrate::{rk4_step, Ode};

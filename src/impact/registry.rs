@@ -37,8 +37,11 @@ pub struct ModelEntry {
     pub sections: &'static [&'static str],
     /// Whether it resolves the contact in time (and so has a trace of forces).
     pub resolved_in_time: bool,
-    build: fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>,
+    build: BuildFn,
 }
+
+/// How an entry builds its model from a club and the options.
+type BuildFn = fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>;
 
 fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let tuning = ImpulseTuning::from_sections(&club.club, &club.sections)?;
