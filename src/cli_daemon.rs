@@ -235,6 +235,15 @@ pub fn sim(args: &SimArgs) -> Result<ExitCode> {
 
 pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
     let input = replay::load(&args.file)?;
+    for d in &input.damage {
+        eprintln!("{}: damaged: {d}", args.file.display());
+    }
+    if !input.skipped_lines.is_empty() {
+        for l in input.skipped_lines.iter().take(5) {
+            eprintln!("skipped {l}");
+        }
+        eprintln!("{} lines skipped: not clubhead samples", input.skipped_lines.len());
+    }
     let (config, setups) = match (&args.config, &input.config_toml) {
         (Some(p), _) => DaemonConfig::load(p)?,
         (None, Some(text)) => DaemonConfig::parse(text).context("the configuration stored in the recording")?,
@@ -338,31 +347,22 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
                 String::new()
             }
         );
-        if !input.recorded_launches.is_empty() {
-            let same = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
-            eprintln!(
-                "{same} of {} recorded predictions reproduced byte for byte{}",
-                input.recorded_launches.len(),
-                if produced.len() != input.recorded_launches.len() {
-                    format!(" ({} produced)", produced.len())
-                } else {
-                    String::new()
-                }
-            );
-            if same != input.recorded_launches.len() || produced.len() != input.recorded_launches.len() {
-                return Ok(ExitCode::from(1));
-            }
-        }
+        let verdict = replay::Verdict::of(&input, &produced);
+        eprintln!("{verdict}");
         if let Some(s) = session {
             let _ = s.close().await;
+        }
+        if !verdict.success() {
+            return Ok(ExitCode::from(if input.damage.is_empty() { 1 } else { 3 }));
         }
         Ok(ExitCode::SUCCESS)
     })
 }
 
 pub fn info(file: &std::path::Path) -> Result<ExitCode> {
-    print!("{}", replay::info(file)?);
-    Ok(ExitCode::SUCCESS)
+    let info = replay::info(file)?;
+    print!("{}", info.text);
+    Ok(if info.intact { ExitCode::SUCCESS } else { ExitCode::from(3) })
 }
 
 pub fn recover(args: &RecoverArgs) -> Result<ExitCode> {
@@ -372,14 +372,17 @@ pub fn recover(args: &RecoverArgs) -> Result<ExitCode> {
     let r = replay::recover(&args.file, &args.output)?;
     if r.complete {
         eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
-        Ok(ExitCode::SUCCESS)
-    } else {
-        eprintln!(
-            "{}: cut off; salvaged {} messages into {} (the unfinished last chunk, at most about a second, is lost)",
-            args.file.display(),
-            r.messages,
-            args.output.display()
-        );
-        Ok(ExitCode::from(3))
+        return Ok(ExitCode::SUCCESS);
     }
+    eprintln!(
+        "{}: cut off or damaged; salvaged {} messages in {} intact chunks into {}",
+        args.file.display(),
+        r.messages,
+        r.chunks,
+        args.output.display()
+    );
+    for line in r.report() {
+        eprintln!("  {line}");
+    }
+    Ok(ExitCode::from(3))
 }

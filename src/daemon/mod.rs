@@ -5,8 +5,10 @@ pub mod bus;
 pub mod config;
 pub mod demo;
 pub mod live;
+pub mod mcap_read;
 pub mod recorder;
 pub mod replay;
+pub mod salvage;
 pub mod sim;
 pub mod stats;
 

@@ -5,7 +5,6 @@
 //! measurement: a replay carries the value recorded for the same rig and shot (0 for samples from JSONL).
 
 use std::collections::{BTreeMap, HashMap};
-use std::io::BufRead;
 use std::path::Path;
 
 use super::DaemonError;
@@ -23,10 +22,11 @@ pub struct ReplayInput {
     pub recorded_latency_us: HashMap<(String, u64, String), f64>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
-}
-
-fn mcap_err(path: &Path, e: impl std::fmt::Display) -> DaemonError {
-    DaemonError::Mcap { path: path.display().to_string(), reason: e.to_string() }
+    /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
+    /// nothing byte for byte.
+    pub damage: Vec<String>,
+    /// JSONL lines skipped because they are not samples.
+    pub skipped_lines: Vec<String>,
 }
 
 fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
@@ -43,46 +43,38 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
         let mut input = ReplayInput::default();
-        for (i, line) in bytes.lines().enumerate() {
-            let line = line.map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
-            if line.trim().is_empty() {
-                continue;
-            }
-            let msg: ClubheadSampleMsg = serde_json::from_str(&line)
-                .map_err(|e| DaemonError::Input(format!("{} line {}: {e}", path.display(), i + 1)))?;
-            input.samples.push(msg);
+        for (i, line) in bytes.split(|b| *b == b'\n').enumerate() {
+            let reason = match std::str::from_utf8(line) {
+                Err(e) => format!("not UTF-8 ({e})"),
+                Ok(text) if text.trim().is_empty() => continue,
+                Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
+                    Ok(msg) => {
+                        input.samples.push(msg);
+                        continue;
+                    }
+                    Err(e) => e.to_string(),
+                },
+            };
+            input.skipped_lines.push(format!("{} line {}: {reason}", path.display(), i + 1));
         }
         return Ok(input);
     }
-    let mut input = ReplayInput::default();
-    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-    {
-        if let Ok(mcap::records::Record::Metadata(m)) = record {
-            if m.name == "session" {
-                input.config_toml = m.metadata.get("config_toml").cloned();
-            }
-        }
-    }
-    let stream = mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?;
-    for message in stream {
-        let message = match message {
-            Ok(m) => m,
-            Err(e) => {
-                tracing::warn!("{}: stopped reading at a damaged record ({e}); `impactd recover` salvages files cut off by a crash", path.display());
-                break;
-            }
-        };
-        let topic = message.channel.topic.trim_start_matches('/');
+    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
+    let mut input = ReplayInput { damage: scan.problems(), ..ReplayInput::default() };
+    input.config_toml = scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
+    for message in &scan.messages {
+        let Some(channel) = scan.channels.get(&message.channel_id) else { continue };
+        let topic = channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
-            let msg: ClubheadSampleMsg = serde_json::from_slice(&message.data).map_err(|e| mcap_err(path, e))?;
-            input.samples.push(msg);
+            match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
+                Ok(msg) => input.samples.push(msg),
+                Err(e) => input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time)),
+            }
         } else if topic.starts_with("golf/") && topic.ends_with("/launch") {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
                 input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
-            input.recorded_launches.push(message.data.into_owned());
+            input.recorded_launches.push(message.data.clone());
         }
     }
     Ok(input)
@@ -136,65 +128,114 @@ pub fn replay(
     stats
 }
 
-/// A description of a recording for `impactd info`.
-pub fn info(path: &Path) -> Result<String, DaemonError> {
+/// How a replay's predictions compare with the recorded ones.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Verdict {
+    /// Nothing was recorded to compare with.
+    NothingRecorded,
+    /// The whole file was read and every recorded prediction was produced again, byte for byte.
+    Identical { predictions: usize },
+    /// The whole file was read and the predictions differ.
+    Differ { same: usize, recorded: usize, produced: usize },
+    /// Part of the file could not be read: no claim of identity is made.
+    Damaged { same: usize, recorded: usize, produced: usize },
+}
+
+impl Verdict {
+    /// Compares `produced` with the recording's predictions, claiming identity only over a file read whole.
+    pub fn of(input: &ReplayInput, produced: &[Vec<u8>]) -> Verdict {
+        let recorded = input.recorded_launches.len();
+        let same = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
+        if !input.damage.is_empty() {
+            return Verdict::Damaged { same, recorded, produced: produced.len() };
+        }
+        if recorded == 0 {
+            return Verdict::NothingRecorded;
+        }
+        if same == recorded && produced.len() == recorded {
+            Verdict::Identical { predictions: recorded }
+        } else {
+            Verdict::Differ { same, recorded, produced: produced.len() }
+        }
+    }
+
+    /// Replays that reproduce the recording (or had nothing to compare) succeed.
+    pub fn success(&self) -> bool {
+        matches!(self, Verdict::NothingRecorded | Verdict::Identical { .. })
+    }
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Verdict::NothingRecorded => write!(f, "no recorded predictions to compare with"),
+            Verdict::Identical { predictions } => {
+                write!(f, "{predictions} of {predictions} recorded predictions reproduced byte for byte")
+            }
+            Verdict::Differ { same, recorded, produced } => {
+                write!(f, "{same} of {recorded} recorded predictions reproduced ({produced} produced)")
+            }
+            Verdict::Damaged { same, recorded, produced } => write!(
+                f,
+                "the recording is damaged: {produced} predictions over its readable part, {same} equal to the \
+                 {recorded} recorded predictions that could be read; not a reproduction"
+            ),
+        }
+    }
+}
+
+/// A description of a recording for `impactd info`, and whether it could be read whole.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Info {
+    pub text: String,
+    /// Finished and undamaged.
+    pub intact: bool,
+}
+
+/// Describes a recording: channels, counts, duration, shots, metadata, and anything it could not read.
+pub fn info(path: &Path) -> Result<Info, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
         return Err(DaemonError::Input(format!("{} is not an MCAP file", path.display())));
     }
+    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
-    let mut damaged = None;
     let mut shots: BTreeMap<String, u64> = BTreeMap::new();
-    for message in mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-    {
-        let m = match message {
-            Ok(m) => m,
-            Err(e) => {
-                damaged = Some(e.to_string());
-                break;
-            }
-        };
+    for m in &scan.messages {
         first = first.min(m.log_time);
         last = last.max(m.log_time);
-        let schema = m.channel.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default();
-        let entry = counts.entry(m.channel.topic.clone()).or_insert((schema, 0));
-        entry.1 += 1;
-        let topic = m.channel.topic.trim_start_matches('/');
-        if let Some(rig) = topic.strip_prefix("golf/").and_then(|t| t.strip_suffix("/launch")) {
+        let (topic, schema) = match scan.channels.get(&m.channel_id) {
+            Some(c) => (c.topic.clone(), scan.schemas.get(&c.schema_id).map(|s| s.name.clone()).unwrap_or_default()),
+            None => (format!("(unknown channel {})", m.channel_id), String::new()),
+        };
+        if let Some(rig) = topic.trim_start_matches('/').strip_prefix("golf/").and_then(|t| t.strip_suffix("/launch")) {
             *shots.entry(rig.to_string()).or_default() += 1;
         }
+        counts.entry(topic).or_insert((schema, 0)).1 += 1;
     }
-    let mut metadata = Vec::new();
-    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-        .flatten()
-    {
-        if let mcap::records::Record::Metadata(m) = record {
-            let keys: Vec<String> = m
-                .metadata
-                .iter()
-                .filter(|(k, _)| k.as_str() != "config_toml")
-                .map(|(k, v)| format!("{k}={v}"))
-                .collect();
-            metadata.push(format!("  {}: {}", m.name, keys.join(", ")));
-        }
-    }
-    let complete = mcap::read::footer(&bytes).is_ok() && damaged.is_none();
+    let metadata: Vec<String> = scan
+        .metadata
+        .iter()
+        .map(|(name, m)| {
+            let keys: Vec<String> =
+                m.iter().filter(|(k, _)| k.as_str() != "config_toml").map(|(k, v)| format!("{k}={v}")).collect();
+            format!("  {name}: {}", keys.join(", "))
+        })
+        .collect();
     let total: u64 = counts.values().map(|c| c.1).sum();
     let mut out = format!("file:      {} ({} bytes)\n", path.display(), bytes.len());
     out += &format!(
         "complete:  {}\n",
-        if complete { "yes (summary and footer present)" } else { "no: cut off; run `impactd recover`" }
+        if scan.intact() { "yes (summary and footer present)" } else { "no: cut off or damaged; run `impactd recover`" }
     );
-    if let Some(d) = damaged {
-        out += &format!("damaged:   {d}\n");
+    for p in scan.problems() {
+        out += &format!("damaged:   {p}\n");
     }
     if total > 0 {
         out += &format!("duration:  {:.3} s\n", (last - first) as f64 * 1e-9);
     }
-    out += &format!("messages:  {total}\n");
+    out += &format!("messages:  {total}{}\n", if scan.intact() { "" } else { " (readable)" });
     out += "channels:\n";
     for (topic, (schema, n)) in &counts {
         out += &format!("  {topic:<40} {schema:<32} {n:>9}\n");
@@ -208,89 +249,7 @@ pub fn info(path: &Path) -> Result<String, DaemonError> {
         out += &metadata.join("\n");
         out.push('\n');
     }
-    Ok(out)
+    Ok(Info { text: out, intact: scan.intact() })
 }
 
-/// What `recover` salvaged.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Recovered {
-    pub messages: u64,
-    /// The input was complete: nothing was lost.
-    pub complete: bool,
-}
-
-/// Copies every readable message and metadata record of `input` into a new, complete MCAP file.
-pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
-    let bytes = read_file(input)?;
-    if !is_mcap(&bytes) {
-        return Err(DaemonError::Input(format!("{} is not an MCAP file", input.display())));
-    }
-    let file = std::fs::File::create(output)
-        .map_err(|e| DaemonError::Io { what: format!("creating {}", output.display()), source: e })?;
-    let mut w = mcap::WriteOptions::new()
-        .compression(Some(mcap::Compression::Zstd))
-        .profile("")
-        .create(std::io::BufWriter::new(file))
-        .map_err(|e| mcap_err(output, e))?;
-    let mut complete = mcap::read::footer(&bytes).is_ok();
-    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(input, e))?
-    {
-        match record {
-            Ok(mcap::records::Record::Metadata(m)) => w.write_metadata(&m).map_err(|e| mcap_err(output, e))?,
-            Ok(_) => {}
-            Err(_) => {
-                complete = false;
-                break;
-            }
-        }
-    }
-    let mut channels: HashMap<u16, u16> = HashMap::new();
-    let mut schemas: HashMap<u16, u16> = HashMap::new();
-    let mut messages = 0;
-    for message in mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(input, e))?
-    {
-        let m = match message {
-            Ok(m) => m,
-            Err(_) => {
-                complete = false;
-                break;
-            }
-        };
-        let channel_id = match channels.get(&m.channel.id) {
-            Some(id) => *id,
-            None => {
-                let schema_id = match &m.channel.schema {
-                    Some(s) => match schemas.get(&s.id) {
-                        Some(id) => *id,
-                        None => {
-                            let id = w.add_schema(&s.name, &s.encoding, &s.data).map_err(|e| mcap_err(output, e))?;
-                            schemas.insert(s.id, id);
-                            id
-                        }
-                    },
-                    None => 0,
-                };
-                let id = w
-                    .add_channel(schema_id, &m.channel.topic, &m.channel.message_encoding, &m.channel.metadata)
-                    .map_err(|e| mcap_err(output, e))?;
-                channels.insert(m.channel.id, id);
-                id
-            }
-        };
-        w.write_to_known_channel(
-            &mcap::records::MessageHeader {
-                channel_id,
-                sequence: m.sequence,
-                log_time: m.log_time,
-                publish_time: m.publish_time,
-            },
-            &m.data,
-        )
-        .map_err(|e| mcap_err(output, e))?;
-        messages += 1;
-    }
-    w.finish().map_err(|e| mcap_err(output, e))?;
-    Ok(Recovered { messages, complete })
-}
+pub use super::salvage::{recover, Recovered};
