@@ -334,7 +334,8 @@ pub struct BenchArgs {
 pub fn load_club(spec: &str) -> Result<ClubSpec> {
     let path = Path::new(spec);
     if spec.ends_with(".toml") || path.exists() {
-        let text = std::fs::read_to_string(path).with_context(|| format!("reading club file {spec}"))?;
+        let text = crate::capped::read_to_string(path, crate::capped::MAX_INPUT_FILE_BYTES)
+            .with_context(|| format!("reading club file {spec}"))?;
         ClubSpec::from_toml_str(&text).with_context(|| format!("club file {spec}"))
     } else {
         Ok(ClubSpec::preset(spec)?)
@@ -399,6 +400,7 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
     let stderr = std::io::stderr().lock();
     let tally = crate::jsonl::process("impactd predict", input, stdout, stderr, |d: DeliveryInput| {
         d.check_finite().map_err(|e| describe(&e, &d))?;
+        d.check_plausible().map_err(|e| e.to_string())?;
         let delivery = d.to_delivery(club.loft_deg());
         let state = delivery.to_state(&equipment).map_err(|e| describe(&e, &d))?;
         let metrics = DeliveryMetrics::from_state(&state, &club);
@@ -590,11 +592,14 @@ fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The finest path sampling `flight --points-s` accepts: a ball in flight for 10 s gives at most 10,000 points.
+const MIN_POINTS_S: f64 = 1e-3;
+
 fn flight(args: &FlightArgs) -> Result<ExitCode> {
     let flight = crate::flight::Flight { conditions: args.conditions.conditions()?, ..Default::default() };
     let every = args.points_s.unwrap_or(0.0);
-    if every < 0.0 || !every.is_finite() {
-        bail!("--points-s must be positive");
+    if !every.is_finite() || (every != 0.0 && !(MIN_POINTS_S..=60.0).contains(&every)) {
+        bail!("--points-s must be within {MIN_POINTS_S} and 60 s");
     }
     let input = open_input(args.input.as_deref())?;
     let tally = crate::jsonl::process(

@@ -19,9 +19,12 @@ pub struct RunArgs {
     /// impactd's configuration (rigs, clubs, models, calibration); default: one rig `rig1` with a driver.
     #[arg(short = 'c', long = "config")]
     pub config: Option<PathBuf>,
-    /// Record every message to this MCAP file.
+    /// Record every message to this MCAP file (a new file, unless --overwrite).
     #[arg(long)]
     pub record: Option<PathBuf>,
+    /// Replace an existing recording.
+    #[arg(long, alias = "force")]
+    pub overwrite: bool,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
 }
@@ -157,14 +160,24 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
             tracing::info!("recording to {}", r.display());
         }
         let summary =
-            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone() }, shutdown_signal())
+            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone(), overwrite: args.overwrite }, shutdown_signal())
                 .await?;
         let _ = session.close().await;
         for (rig, c) in &summary.rigs {
             tracing::info!("rig {rig}: {} samples, {} shots, {} predictions", c.samples, c.shots, c.predictions);
         }
+        if summary.unknown_rig_samples > 0 {
+            tracing::warn!("{} samples arrived for rigs this daemon does not serve", summary.unknown_rig_samples);
+        }
         if let Some(r) = &summary.recorder {
-            tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped);
+            match &r.error {
+                Some(e) => tracing::error!(
+                    "recording failed: {e}; {} messages written before it, {} not recorded",
+                    r.messages,
+                    r.dropped
+                ),
+                None => tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped),
+            }
         }
         Ok(ExitCode::SUCCESS)
     })
@@ -225,7 +238,7 @@ pub fn sim(args: &SimArgs) -> Result<ExitCode> {
     };
     let rt = runtime()?;
     rt.block_on(async {
-        let session = args.zenoh.open().await?;
+        let session = args.zenoh.open_as(crate::daemon::bus::Role::Join).await?;
         let s = run_sim(&session, options, shutdown_signal()).await?;
         let _ = session.close().await;
         eprintln!("sent {} samples, {} shots", s.samples, s.shots);
@@ -270,7 +283,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
     }
     let rt = runtime()?;
     rt.block_on(async {
-        let session = if args.publish { Some(args.zenoh.open().await?) } else { None };
+        let session = if args.publish { Some(args.zenoh.open_as(crate::daemon::bus::Role::Join).await?) } else { None };
         let mut publishers = std::collections::HashMap::new();
         if let Some(s) = &session {
             for r in &config.rigs {
@@ -285,7 +298,7 @@ pub fn replay_cmd(args: &ReplayArgs) -> Result<ExitCode> {
         let recorder = args
             .output
             .as_deref()
-            .map(|p| crate::daemon::recorder::Recorder::create(p, crate::daemon::live::session_metadata(&config)))
+            .map(|p| crate::daemon::recorder::Recorder::create(p, crate::daemon::live::session_metadata(&config), true))
             .transpose()?;
         let mut out = std::io::stdout().lock();
         let mut produced = Vec::new();

@@ -57,13 +57,19 @@ where
     F: FnMut(I) -> Result<O, String>,
 {
     let mut tally = Tally::default();
-    for (i, line) in input.lines().enumerate() {
-        let line = line.map_err(JsonlError::Read)?;
-        if line.trim().is_empty() {
-            continue;
+    let mut input = input;
+    let mut buf = Vec::new();
+    for n in 1.. {
+        buf.clear();
+        if input.read_until(b'\n', &mut buf).map_err(JsonlError::Read)? == 0 {
+            break;
         }
-        let n = i + 1;
-        let result = parse_line::<I>(&line).and_then(&mut answer);
+        // A line that is not UTF-8 is answered like any other bad line.
+        let result = match std::str::from_utf8(&buf) {
+            Ok(line) if line.trim().is_empty() => continue,
+            Ok(line) => parse_line::<I>(line).and_then(&mut answer),
+            Err(e) => Err(format!("not UTF-8 text: {e}")),
+        };
         let text = match result {
             Ok(o) => {
                 tally.answered += 1;

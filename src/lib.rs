@@ -63,6 +63,7 @@ pub mod kinematics;
 pub mod math;
 pub mod pipeline;
 pub mod plot;
+pub mod capped;
 pub mod rng;
 pub mod stages;
 pub mod swing;

@@ -54,7 +54,49 @@ pub struct DeliveryInput {
     pub handedness: Option<Handedness>,
 }
 
+/// The most spin a flight accepts: tour wedges reach about 12,000 rpm (TrackMan).
+pub const MAX_BALL_SPIN_RPM: Real = 20_000.0;
+
+/// The largest angular velocity of a clubhead `predict` accepts (rad/s): a driver's head turns at about 30-60
+/// rad/s through impact; ten times that is no swing.
+pub const MAX_CLUB_ANGULAR_VELOCITY_RADPS: Real = 500.0;
+
+/// A number of an input outside what any swing could give.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {value} is outside {min} to {max}")]
+pub struct OutOfBounds {
+    pub field: &'static str,
+    pub value: Real,
+    pub min: Real,
+    pub max: Real,
+}
+
 impl DeliveryInput {
+    /// Every number within plausible bounds (a model would answer nonsense beyond them).
+    pub fn check_plausible(&self) -> Result<(), OutOfBounds> {
+        let within = |field: &'static str, value: Real, min: Real, max: Real| {
+            if (min..=max).contains(&value) {
+                Ok(())
+            } else {
+                Err(OutOfBounds { field, value, min, max })
+            }
+        };
+        within("club_speed_mph", self.club_speed_mph, 0.0, 250.0)?;
+        within("attack_angle_deg", self.attack_angle_deg, -60.0, 60.0)?;
+        within("club_path_deg", self.club_path_deg, -60.0, 60.0)?;
+        within("face_angle_deg", self.face_angle_deg, -60.0, 60.0)?;
+        if let Some(l) = self.dynamic_loft_deg {
+            within("dynamic_loft_deg", l, -30.0, 90.0)?;
+        }
+        within("impact_h_mm", self.impact_h_mm, -100.0, 100.0)?;
+        within("impact_v_mm", self.impact_v_mm, -100.0, 100.0)?;
+        if let Some(w) = self.club_angular_velocity_radps {
+            let m = MAX_CLUB_ANGULAR_VELOCITY_RADPS;
+            within("club_angular_velocity_radps", Vector3::from(w).norm(), 0.0, m)?;
+        }
+        Ok(())
+    }
+
     /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
     /// left-handed golfer.
     pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {
@@ -134,6 +176,12 @@ impl FlightInput {
             if !(1.0..=150.0).contains(&speed) {
                 return Err(format!("field `ball_velocity_mps`: speed {speed:.1} m/s is outside 1-150 m/s"));
             }
+            let spin_rpm = crate::units::radps_to_rpm(Vector3::from(w).norm());
+            if spin_rpm > MAX_BALL_SPIN_RPM {
+                return Err(format!(
+                    "field `ball_spin_radps`: {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm"
+                ));
+            }
             return Ok(crate::flight::LaunchState { velocity_mps: Vector3::from(v), spin_radps: Vector3::from(w) });
         }
         let speed = match (self.ball_speed_mps, self.ball_speed_mph) {
@@ -158,8 +206,8 @@ impl FlightInput {
             }
             (None, s, None, _) => (0.0, finite("sidespin_rpm", s.unwrap_or(0.0))?),
         };
-        if back.hypot(side) > 20_000.0 {
-            return Err("spin above 20000 rpm".into());
+        if back.hypot(side) > MAX_BALL_SPIN_RPM {
+            return Err(format!("spin {:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm", back.hypot(side)));
         }
         Ok(crate::flight::LaunchState::from_metrics(speed, launch, direction, back, side))
     }
@@ -218,6 +266,8 @@ pub mod keys {
     }
     /// Every rig's clubhead samples.
     pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
+    /// Recorded only: [`RejectedInput`](super::RejectedInput)s of samples on the keys of rigs no daemon serves.
+    pub const UNKNOWN_RIG_REJECTED: &str = "impactd/unknown_rig/rejected";
     /// Out: [`ImpactMessage`](super::ImpactMessage), the estimated state at impact.
     pub fn impact(rig: &str) -> String {
         format!("golf/{rig}/impact")
@@ -262,14 +312,46 @@ pub mod keys {
     }
 }
 
-/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order). Only the object form is read: an array is
+/// refused with a reason, since rigs disagree on its order (`[x, y, z, w]` or `[w, x, y, z]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct QuaternionMsg {
     pub x: f64,
     pub y: f64,
     pub z: f64,
     pub w: f64,
+}
+
+impl<'de> Deserialize<'de> for QuaternionMsg {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Fields {
+            x: f64,
+            y: f64,
+            z: f64,
+            w: f64,
+        }
+        struct Object;
+        impl<'de> serde::de::Visitor<'de> for Object {
+            type Value = QuaternionMsg;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a quaternion object {x, y, z, w}")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<QuaternionMsg, A::Error> {
+                let q = Fields::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(QuaternionMsg { x: q.x, y: q.y, z: q.z, w: q.w })
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<QuaternionMsg, A::Error> {
+                Err(serde::de::Error::custom(
+                    "an orientation must be an object {x, y, z, w}: an array's order ([x, y, z, w] or \
+                     [w, x, y, z]) is ambiguous",
+                ))
+            }
+        }
+        d.deserialize_any(Object)
+    }
 }
 
 impl From<crate::math::UnitQuaternion> for QuaternionMsg {
@@ -440,6 +522,9 @@ pub struct StatusMessage {
     pub occluded: u64,
     /// Frames missing from the rig's frame numbering.
     pub dropped: u64,
+    /// Time bases or frame counts the track moved onto (a publisher restart, a wrapped frame counter).
+    #[serde(default)]
+    pub resets: u64,
     /// Samples rejected, by reason.
     pub rejected: BTreeMap<String, u64>,
     pub shots: u64,
@@ -450,6 +535,15 @@ pub struct StatusMessage {
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).
     pub recorder_dropped: u64,
+    /// Samples on keys of rigs this daemon does not serve (counted over all such keys).
+    #[serde(default)]
+    pub unknown_rig_samples: u64,
+    /// Rejected payloads counted but not recorded: over the per-rig recording budget.
+    #[serde(default)]
+    pub rejected_not_recorded: u64,
+    /// The recording's write error (a full disk...), once one happened: nothing is recorded after it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recorder_error: Option<String>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

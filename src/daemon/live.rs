@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
-use super::stats::{LatencyWindow, RateLimiter};
+use super::stats::{Budget, LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, StatusMessage};
@@ -30,7 +30,17 @@ pub const RIG_QUEUE: usize = 1 << 14;
 pub struct RunOptions {
     /// Record every message to this MCAP file.
     pub record: Option<PathBuf>,
+    /// Replace an existing recording (otherwise an existing file stops the start).
+    pub overwrite: bool,
 }
+
+/// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
+/// counted, not stored.
+pub const REJECTED_RECORDS_PER_S: u32 = 20;
+/// Bytes of rejected payloads recorded per rig per second.
+pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
+/// The most of one rejected payload that is kept.
+pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 
 /// What a run did, per rig.
 #[derive(Debug, Clone, Default)]
@@ -65,7 +75,9 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
-    let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
+    let recorder =
+        options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config), options.overwrite)).transpose()?;
+    let unknown = Arc::new(AtomicU64::new(0));
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
@@ -123,6 +135,8 @@ pub async fn run(
             started: Instant::now(),
             ball_position_m: setup_ball.0,
             ball_radius_m: setup_ball.1,
+            budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
+            unknown: unknown.clone(),
         };
         workers.push(
             std::thread::Builder::new()
@@ -132,9 +146,10 @@ pub async fn run(
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
-    let unknown = Arc::new(AtomicU64::new(0));
     let unknown_cb = unknown.clone();
     let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
+    let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
+    let unknown_recorder = handle.clone();
     let routes = senders;
     let subscriber = session
         .declare_subscriber(keys::CLUBHEAD_ALL)
@@ -146,6 +161,24 @@ pub async fn run(
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow(key)) {
                     tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
+                }
+                let payload = sample.payload().to_bytes();
+                let keep = payload.len().min(REJECTED_KEEP_BYTES);
+                if unknown_recorder.enabled() && unknown_budget.lock().is_ok_and(|mut b| b.allow(keep)) {
+                    let data = serde_json::to_vec(&wire::RejectedInput {
+                        reason: format!("no configured rig serves `{key}`"),
+                        bytes: payload.len(),
+                        payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
+                    })
+                    .unwrap_or_default();
+                    let now = wall_ns();
+                    unknown_recorder.send(Record::Message {
+                        key: keys::UNKNOWN_RIG_REJECTED.to_string(),
+                        type_name: "RejectedInput",
+                        log_time_ns: now,
+                        publish_time_ns: now,
+                        data,
+                    });
                 }
                 return;
             };
@@ -215,6 +248,10 @@ struct Worker {
     started: Instant,
     ball_position_m: [f64; 3],
     ball_radius_m: f64,
+    /// The recording budget for this rig's rejected payloads.
+    budget: Budget,
+    /// Samples for unknown rigs, over all of them (shown in every rig's status).
+    unknown: Arc<AtomicU64>,
 }
 
 impl Worker {
@@ -270,8 +307,12 @@ impl Worker {
                 self.p_mut().counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
-                // Nothing is lost: the raw payload goes to the recording beside the reason.
-                let keep = &incoming.payload[..bytes.min(wire::MAX_PAYLOAD_BYTES)];
+                // The raw payload goes to the recording beside the reason, within the budget; beyond it the
+                // payload is counted (status `rejected_not_recorded`), so a flood cannot fill the disk.
+                let keep = &incoming.payload[..bytes.min(REJECTED_KEEP_BYTES)];
+                if !self.recorder.enabled() || !self.budget.allow(keep.len()) {
+                    return;
+                }
                 let data = serde_json::to_vec(&wire::RejectedInput {
                     reason: e.to_string(),
                     bytes,
@@ -367,6 +408,7 @@ impl Worker {
             accepted: c.accepted,
             occluded: c.occluded,
             dropped: c.dropped,
+            resets: c.resets,
             rejected,
             shots: c.shots,
             predictions: c.predictions,
@@ -374,6 +416,9 @@ impl Worker {
             latency_p50_us: self.latency.quantile(0.5),
             latency_p99_us: self.latency.quantile(0.99),
             recorder_dropped: self.recorder.dropped(),
+            unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
+            rejected_not_recorded: self.budget.refused,
+            recorder_error: self.recorder.error(),
         };
         let data = serde_json::to_vec(&status).unwrap_or_default();
         if let Err(e) = self.status.put(data.clone()).wait() {

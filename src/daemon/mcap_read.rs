@@ -402,8 +402,13 @@ fn valid_at(bytes: &[u8], pos: usize) -> bool {
 pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
     let mut s = Scan::default();
     if !bytes.starts_with(MAGIC) {
-        s.stopped = Some("not an MCAP file (no magic)".into());
-        return s;
+        // A damaged magic costs nothing more when the records behind it are found.
+        if on_damage == OnDamage::Stop || bytes.len() <= MAGIC.len() {
+            s.stopped = Some("not an MCAP file (no magic)".into());
+            return s;
+        }
+        let reason = "the opening magic is damaged".to_string();
+        s.damage.push(Damage { offset: 0, bytes: MAGIC.len() as u64, time_range_ns: None, after_message: 0, reason });
     }
     let mut pos = MAGIC.len();
     while pos < bytes.len() {
@@ -435,6 +440,9 @@ pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
         let after_message = s.messages.len();
         s.damage.push(Damage { offset: pos as u64, bytes: (next - pos) as u64, time_range_ns: None, after_message, reason: damaged });
         pos = next;
+    }
+    if !bytes.starts_with(MAGIC) && s.chunks.is_empty() && s.messages.is_empty() {
+        s.stopped = Some("not an MCAP file (no magic, no readable record)".into());
     }
     s
 }
