@@ -237,3 +237,47 @@ fn run_with_no_flags_listens_on_loopback_only() {
         assert!(loopback, "listening outside loopback: {l} (all: {listening:?})");
     }
 }
+
+/// The README's example zenoh configuration starts, and its access control works: a peer may put samples
+/// (`mocap/**`) but not predictions (`golf/**`), and still receives the router's predictions.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn the_example_acl_config_limits_who_may_put() {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let router_args = ZenohArgs {
+        zenoh_config: Some(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/zenoh-acl.json5").into()),
+        listen: vec![endpoint.clone()],
+        ..ZenohArgs::default()
+    };
+    let router = router_args.open().await.unwrap();
+    let seen: Arc<Mutex<Vec<String>>> = Default::default();
+    let seen_cb = seen.clone();
+    let _sub = router
+        .declare_subscriber("**")
+        .callback(move |s| seen_cb.lock().unwrap().push(s.key_expr().to_string()))
+        .await
+        .unwrap();
+    let peer = ZenohArgs { mode: Some("client".into()), connect: vec![endpoint], ..ZenohArgs::default() }
+        .open()
+        .await
+        .unwrap();
+    let got: Arc<Mutex<Vec<String>>> = Default::default();
+    let got_cb = got.clone();
+    let _peer_sub = peer
+        .declare_subscriber("golf/**")
+        .callback(move |s| got_cb.lock().unwrap().push(s.key_expr().to_string()))
+        .await
+        .unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    for _ in 0..5 {
+        peer.put("mocap/bay1/clubhead", "{}").await.unwrap();
+        peer.put("golf/bay1/launch", "spoofed").await.unwrap();
+        router.put("golf/bay1/status", "{}").await.unwrap();
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let seen = seen.lock().unwrap().clone();
+    assert!(seen.iter().any(|k| k == "mocap/bay1/clubhead"), "{seen:?}");
+    assert!(!seen.iter().any(|k| k == "golf/bay1/launch"), "a spoofed prediction got through: {seen:?}");
+    assert!(got.lock().unwrap().iter().any(|k| k == "golf/bay1/status"), "predictions reach subscribers");
+    peer.close().await.unwrap();
+    router.close().await.unwrap();
+}

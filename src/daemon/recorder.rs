@@ -92,7 +92,12 @@ impl Recorder {
                 let mut summary = RecorderSummary::default();
                 if let Err(e) = write_all(file, session, &rx, &mut summary, &dropped_w) {
                     // Said once, at once, with the OS's reason; the daemon goes on predicting.
-                    let reason = e.to_string();
+                    let mut reason = e.to_string();
+                    let mut source = std::error::Error::source(&e);
+                    while let Some(s) = source {
+                        reason = format!("{reason}: {s}");
+                        source = s.source();
+                    }
                     tracing::error!("recording {path_s}: {reason}; nothing more is recorded");
                     let _ = error_w.set(reason.clone());
                     summary.error = Some(reason);
