@@ -3,8 +3,11 @@
 
 use std::time::Instant;
 
-use crate::equipment::ClubSpec;
-use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
+use std::sync::Arc;
+
+use crate::equipment::{ClubSpec, LoadedClub, ModelSections};
+use crate::impact::registry::{self, BuildOptions};
+use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState};
 use crate::kinematics::estimate::estimate;
 use crate::kinematics::{Calibration, ClubPose, EstimatorSpec, Scene, Track, TrackLimits};
 use crate::math::Vector3;
@@ -41,7 +44,7 @@ pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
 }
 
 /// One prediction of `model` per operation on the club's spread of impact states.
-fn model_stage(name: String, model: impl ImpactModel + 'static, club: ClubSpec) -> Stage {
+fn model_stage(name: String, model: Arc<dyn ImpactModel>, club: ClubSpec) -> Stage {
     let eq = Equipment::new(club);
     let states = state_spread(&eq);
     Stage {
@@ -53,25 +56,19 @@ fn model_stage(name: String, model: impl ImpactModel + 'static, club: ClubSpec) 
     }
 }
 
-/// The impulse-momentum stages: `impulse/<variant>/<club>`, one prediction per operation.
-pub fn impulse_stages() -> Vec<Stage> {
-    ImpulseVariant::ALL
-        .into_iter()
-        .flat_map(|variant| {
-            [ClubSpec::driver(), ClubSpec::iron7()].map(|club| {
-                model_stage(format!("impulse/{}/{}", variant.as_str(), club.name), ImpulseModel::new(variant), club)
-            })
-        })
-        .collect()
-}
-
-/// The continuous two-layer model: `continuous/two_layer/<club>`, one prediction per operation.
-pub fn continuous_stages() -> Vec<Stage> {
-    [ClubSpec::driver(), ClubSpec::iron7()]
-        .map(|club| {
-            model_stage(format!("continuous/two_layer/{}", club.name), crate::impact::ContinuousModel::default(), club)
-        })
-        .into()
+/// Every registered model on both presets: `<model name>/<club>` (`impulse/adjusted/driver`,
+/// `continuous/two_layer/iron7`, ...), one prediction per operation.
+pub fn model_stages() -> Vec<Stage> {
+    let mut stages = Vec::new();
+    for entry in registry::MODELS {
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let loaded = LoadedClub { club, sections: ModelSections::default() };
+            if let Ok(model) = registry::build_one(entry.name, &loaded, &BuildOptions::default()) {
+                stages.push(model_stage(format!("{}/{}", model.name(), loaded.club.name), model, loaded.club));
+            }
+        }
+    }
+    stages
 }
 
 /// Pre-impact frames of 32 noisy synthetic swings at 720 Hz (0.2 mm, 0.1 deg), with their revealing times.
@@ -193,8 +190,7 @@ pub fn flight_stages() -> Vec<Stage> {
 
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
-    let mut stages = impulse_stages();
-    stages.extend(continuous_stages());
+    let mut stages = model_stages();
     stages.extend(extrapolation_stages());
     stages.extend(flight_stages());
     stages.extend(pipeline_stages());

@@ -23,30 +23,35 @@ fn keys_of(messages: &[RawMessage], topic: impl Fn(u16) -> String) -> Vec<Key> {
 }
 
 /// Runs `info`, `replay` and `recover` on one file in a thread; fails if it panics or takes over 5 s.
-fn run_all(path: PathBuf, out: PathBuf) -> Option<replay::Recovered> {
+fn run_all(path: PathBuf, out: PathBuf) -> Option<impactd::daemon::recover::Recovered> {
     let (tx, rx) = mpsc::channel();
     let name = path.display().to_string();
     let label = name.clone();
     let worker = std::thread::spawn(move || {
-        let _ = replay::info(&path);
+        let _ = impactd::daemon::info::info(&path);
         if let Ok(input) = replay::load(&path) {
             let setups = match input.config_toml.as_deref().map(DaemonConfig::parse) {
                 Some(Ok((_, s))) => s,
                 _ => DaemonConfig::default().setups().unwrap(),
             };
             let mut produced = Vec::new();
-            replay::replay(&input, setups, |_| {}, |e| {
-                if let impactd::pipeline::Event::Launch(l) = e {
-                    produced.push(serde_json::to_vec(l).unwrap());
-                }
-            });
+            replay::replay(
+                &input,
+                setups,
+                |_| {},
+                |e| {
+                    if let impactd::pipeline::Event::Launch(l) = e {
+                        produced.push(serde_json::to_vec(l).unwrap());
+                    }
+                },
+            );
             let verdict = replay::Verdict::of(&input, &produced);
             if !input.damage.is_empty() {
                 assert!(!verdict.success(), "{label}: a damaged file replayed as a success");
             }
         }
         // Only a file too short to hold the magic is refused as not MCAP.
-        let r = replay::recover(&path, &out);
+        let r = impactd::daemon::recover::recover(&path, &out);
         let short = std::fs::metadata(&path).map(|m| m.len() <= 8).unwrap_or(true);
         assert!(r.is_ok() || short, "{label}: recover: {r:?}");
         let r = r.ok();

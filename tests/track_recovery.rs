@@ -20,7 +20,14 @@ fn swings(seed: u64, t0_ns: u64, first_frame: u64) -> Vec<Vec<ClubheadSample>> {
     (0..3)
         .map(|k| {
             let swing = Swing::new(&SwingSpec::random(&club, &mut rng), &eq).unwrap();
-            let s = sample(&swing, &Sampling::default(), &Calibration::default(), t0_ns + k * 2_000_000_000, frame, &mut rng);
+            let s = sample(
+                &swing,
+                &Sampling::default(),
+                &Calibration::default(),
+                t0_ns + k * 2_000_000_000,
+                frame,
+                &mut rng,
+            );
             frame = s.samples.last().unwrap().frame + 1;
             s.samples
         })

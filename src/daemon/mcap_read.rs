@@ -113,11 +113,8 @@ impl Scan {
 
     /// One line per problem, for people.
     pub fn problems(&self) -> Vec<String> {
-        let mut out: Vec<String> = self
-            .damage
-            .iter()
-            .map(|d| format!("{} bytes at offset {}: {}", d.bytes, d.offset, d.reason))
-            .collect();
+        let mut out: Vec<String> =
+            self.damage.iter().map(|d| format!("{} bytes at offset {}: {}", d.bytes, d.offset, d.reason)).collect();
         if let Some(s) = &self.stopped {
             out.push(format!("stopped: {s}"));
         } else if !self.finished {
@@ -424,7 +421,13 @@ pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
                 Err(e) if on_damage == OnDamage::Stop => {
                     // The length is intact as far as anyone can tell: step over the record.
                     let reason = format!("record 0x{opcode:02x}: {e}");
-                    s.damage.push(Damage { offset: pos as u64, bytes: (next - pos) as u64, time_range_ns: None, after_message: s.messages.len(), reason });
+                    s.damage.push(Damage {
+                        offset: pos as u64,
+                        bytes: (next - pos) as u64,
+                        time_range_ns: None,
+                        after_message: s.messages.len(),
+                        reason,
+                    });
                     pos = next;
                     continue;
                 }
@@ -438,7 +441,13 @@ pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
         }
         let next = (pos + 1..bytes.len()).find(|&p| valid_at(bytes, p)).unwrap_or(bytes.len());
         let after_message = s.messages.len();
-        s.damage.push(Damage { offset: pos as u64, bytes: (next - pos) as u64, time_range_ns: None, after_message, reason: damaged });
+        s.damage.push(Damage {
+            offset: pos as u64,
+            bytes: (next - pos) as u64,
+            time_range_ns: None,
+            after_message,
+            reason: damaged,
+        });
         pos = next;
     }
     if !bytes.starts_with(MAGIC) && s.chunks.is_empty() && s.messages.is_empty() {

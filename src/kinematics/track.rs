@@ -150,9 +150,9 @@ impl Track {
         let on_base = s.t_ns > t_ns && (ahead_ns as Real) * 1e-9 <= self.limits.max_ahead_s;
         if !on_base {
             // Off the base: a candidate for a new one, confirmed only by consecutive samples that follow it.
-            let follows = self.candidate.is_some_and(|(t0, _)| {
-                s.t_ns > t0 && ((s.t_ns - t0) as Real) * 1e-9 <= self.limits.reset_gap_s
-            });
+            let follows = self
+                .candidate
+                .is_some_and(|(t0, _)| s.t_ns > t0 && ((s.t_ns - t0) as Real) * 1e-9 <= self.limits.reset_gap_s);
             let n = if follows { self.candidate.map_or(1, |(_, n)| n + 1) } else { 1 };
             self.candidate = Some((s.t_ns, n));
             if n < self.limits.resync_frames.max(1) {

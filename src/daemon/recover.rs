@@ -109,7 +109,7 @@ pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
         .map_err(|e| DaemonError::Io { what: format!("reading {}", input.display()), source: e })?;
     let s = scan(&bytes, OnDamage::Resync);
     if let Some(reason) = &s.stopped {
-        return Err(DaemonError::Input(format!("{}: {reason}", input.display())));
+        return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
     }
     let file = std::fs::File::create(output)
         .map_err(|e| DaemonError::Io { what: format!("creating {}", output.display()), source: e })?;
