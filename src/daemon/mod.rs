@@ -7,6 +7,7 @@ pub mod demo;
 pub mod info;
 pub mod live;
 pub mod mcap_read;
+mod mcap_records;
 pub mod recorder;
 pub mod recover;
 pub mod replay;

@@ -58,7 +58,8 @@ pub struct OutOfBounds {
 }
 
 impl DeliveryInput {
-    /// Every number within plausible bounds (a model would answer nonsense beyond them).
+    /// Every angle and the angular velocity within plausible bounds (a model would answer nonsense beyond them;
+    /// club speed and impact location are checked by the models, which name them).
     pub fn check_plausible(&self) -> Result<(), OutOfBounds> {
         let within = |field: &'static str, value: Real, min: Real, max: Real| {
             if (min..=max).contains(&value) {
@@ -67,15 +68,12 @@ impl DeliveryInput {
                 Err(OutOfBounds { field, value, min, max })
             }
         };
-        within("club_speed_mph", self.club_speed_mph, 0.0, 250.0)?;
         within("attack_angle_deg", self.attack_angle_deg, -60.0, 60.0)?;
         within("club_path_deg", self.club_path_deg, -60.0, 60.0)?;
         within("face_angle_deg", self.face_angle_deg, -60.0, 60.0)?;
         if let Some(l) = self.dynamic_loft_deg {
             within("dynamic_loft_deg", l, -30.0, 90.0)?;
         }
-        within("impact_h_mm", self.impact_h_mm, -100.0, 100.0)?;
-        within("impact_v_mm", self.impact_v_mm, -100.0, 100.0)?;
         if let Some(w) = self.club_angular_velocity_radps {
             let m = MAX_CLUB_ANGULAR_VELOCITY_RADPS;
             within("club_angular_velocity_radps", Vector3::from(w).norm(), 0.0, m)?;
