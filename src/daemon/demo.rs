@@ -89,7 +89,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let r = super::run(config, setups, &daemon_session, RunOptions { record }, shutdown).await;
+        let r = super::run(config, setups, &daemon_session, RunOptions { record, overwrite: true }, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });

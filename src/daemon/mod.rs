@@ -6,6 +6,8 @@ pub mod config;
 pub mod demo;
 pub mod info;
 pub mod live;
+pub mod mcap_read;
+mod mcap_records;
 pub mod recorder;
 pub mod recover;
 pub mod replay;
@@ -37,6 +39,8 @@ pub enum DaemonError {
     Mcap { path: String, reason: String },
     #[error("{path} is not an MCAP file")]
     NotMcap { path: String },
+    #[error("{path}: {reason}")]
+    Unreadable { path: String, reason: String },
     #[error("{path} line {line}: {reason}")]
     BadSampleLine { path: String, line: usize, reason: String },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
