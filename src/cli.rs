@@ -45,8 +45,14 @@ pub enum Command {
     FlightFit {
         /// Nelder-Mead iterations per restart, from `flight::fit::START`, before the minimax stage (0: show the
         /// errors of `Aero::FITTED`).
-        #[arg(long, default_value_t = 3000)]
+        #[arg(long, default_value_t = crate::flight::fit::ITERATIONS)]
         iterations: usize,
+        /// Skip the leave-one-club-out cross-validation (twelve more fits).
+        #[arg(long)]
+        no_cv: bool,
+        /// One JSON object (coefficients, per-club errors, cross-validation) instead of tables.
+        #[arg(long)]
+        json: bool,
     },
     /// A heatmap over the clubface (SVG) of a launch or flight number, for a delivery given by flags.
     Map(MapArgs),
@@ -126,6 +132,15 @@ impl ConditionArgs {
 pub struct FlightArgs {
     #[command(flatten)]
     pub conditions: ConditionArgs,
+    /// Firmness of the fairway the ball bounces and rolls on: 0 soft, 0.5 Penner's fairway, 1 firm.
+    #[arg(long, default_value_t = 0.5)]
+    pub firmness: f64,
+    /// Print the drag and lift coefficients over a grid of airspeeds and spin ratios instead of flying.
+    #[arg(long)]
+    pub coefficients: bool,
+    /// With --coefficients: JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
     /// Also output the path, sampled every this many seconds.
     #[arg(long)]
     pub points_s: Option<f64>,
@@ -137,6 +152,9 @@ pub struct FlightArgs {
 pub struct TrajectoryArgs {
     #[command(flatten)]
     pub conditions: ConditionArgs,
+    /// Firmness of the fairway the ball bounces and rolls on: 0 soft, 0.5 Penner's fairway, 1 firm.
+    #[arg(long, default_value_t = 0.5)]
+    pub firmness: f64,
     #[arg(long, short)]
     pub input: Option<PathBuf>,
     #[arg(short = 'o', long = "output", default_value = "trajectory.svg")]
@@ -590,8 +608,41 @@ fn plot_forces(args: &ForcesArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The flight model for the given air and turf.
+fn flight_model(conditions: &ConditionArgs, firmness: f64) -> Result<crate::flight::Flight> {
+    let ground = crate::flight::Ground { firmness };
+    ground.validate()?;
+    Ok(crate::flight::Flight { conditions: conditions.conditions()?, ground, ..Default::default() })
+}
+
+fn coefficients(flight: &crate::flight::Flight, json: bool) -> Result<ExitCode> {
+    let c = &flight.conditions;
+    let grid = crate::flight::aero::grid(&flight.aero, flight.ball.radius_m, c.density_kg_m3(), c.viscosity_pa_s());
+    if json {
+        println!("{}", serde_json::to_string_pretty(&grid)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!("C_D / C_L of `Aero::FITTED` (air {:.3} kg/m3); rows airspeed, columns spin ratio", c.density_kg_m3());
+    print!("{:>7} {:>8}", "m/s", "Re");
+    for s in crate::flight::aero::GRID_SPIN_RATIOS {
+        print!(" {:>11}", format!("S {s:.2}"));
+    }
+    println!();
+    for row in grid.chunks(crate::flight::aero::GRID_SPIN_RATIOS.len()) {
+        print!("{:>7.0} {:>8.0}", row[0].speed_mps, row[0].reynolds);
+        for p in row {
+            print!(" {:>11}", format!("{:.3}/{:.3}", p.c_d, p.c_l));
+        }
+        println!();
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn flight(args: &FlightArgs) -> Result<ExitCode> {
-    let flight = crate::flight::Flight { conditions: args.conditions.conditions()?, ..Default::default() };
+    let flight = flight_model(&args.conditions, args.firmness)?;
+    if args.coefficients {
+        return coefficients(&flight, args.json);
+    }
     let every = args.points_s.unwrap_or(0.0);
     if every < 0.0 || !every.is_finite() {
         bail!("--points-s must be positive");
@@ -607,50 +658,91 @@ fn flight(args: &FlightArgs) -> Result<ExitCode> {
     Ok(if tally.rejected > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS })
 }
 
-fn flight_fit(iterations: usize) -> Result<ExitCode> {
-    use crate::flight::fit;
+fn flight_fit(iterations: usize, cross_validate: bool, json: bool) -> Result<ExitCode> {
+    use crate::flight::{cv, fit};
     let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
     let current = crate::flight::Aero::FITTED;
     let (aero, cost, worst) = if iterations == 0 {
         (current, fit::cost(&current, &rows), fit::worst(&current, &rows))
     } else {
-        eprintln!("fitting from fit::START ({iterations} Nelder-Mead iterations per restart, then minimax)...");
+        if !json {
+            eprintln!("fitting from fit::START ({iterations} Nelder-Mead iterations per restart, then minimax)...");
+        }
         let f = fit::fit(&rows, &fit::START, iterations, |step| match step {
-            fit::Step::Run(run, cost) => eprintln!("Nelder-Mead run {run}: cost {cost:.4}"),
-            fit::Step::Minimax(i, worst) => eprintln!("minimax {i}: largest scaled error {worst:.6}"),
+            fit::Step::Run(run, cost) if !json => eprintln!("Nelder-Mead run {run}: cost {cost:.4}"),
+            fit::Step::Minimax(i, worst) if !json => eprintln!("minimax {i}: largest scaled error {worst:.6}"),
+            _ => {}
         });
         (f.aero, f.cost, f.worst)
     };
+    let clubs = cv::club_errors(&aero, &rows);
+    let validation = if cross_validate {
+        if !json {
+            eprintln!("leave-one-club-out: twelve fits of eleven clubs...");
+        }
+        Some(cv::leave_one_out(&rows, iterations.max(fit::ITERATIONS), |h| {
+            if !json {
+                eprintln!("  without {}: carry {:+.2} %", h.club, h.carry_error_pct);
+            }
+        }))
+    } else {
+        None
+    };
+    if json {
+        let out = serde_json::json!({
+            "aero": aero,
+            "largest_scaled_error": worst,
+            "cost": cost,
+            "clubs": clubs,
+            "within_4yd_3yd_3deg": clubs.iter().filter(|c| c.within(4.0, 3.0, 3.0)).count(),
+            "within_3yd_2yd_2deg": clubs.iter().filter(|c| c.within(3.0, 2.0, 2.0)).count(),
+            "cross_validation": validation,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(ExitCode::SUCCESS);
+    }
     println!(
         "{} (largest error {:.4} of its target, cost {cost:.4}): {aero:?}",
         if iterations == 0 { "current" } else { "fitted" },
         worst
     );
-    println!("{:<8} {:>15} {:>13} {:>14}  within", "club", "carry yd", "apex yd", "land deg");
-    let mut within = 0;
-    for r in &rows {
-        let (c, a, l) = fit::predict(&aero, r);
-        let (dc, da, dl) = (c - r.carry_yd, a - r.max_height_yd, l - r.land_angle_deg);
-        let ok = dc.abs() <= 3.0 && da.abs() <= 2.0 && dl.abs() <= 2.0;
-        within += usize::from(ok);
+    println!("{:<8} {:>15} {:>13} {:>14}  within 3/2/2", "club", "carry yd", "apex yd", "land deg");
+    for c in &clubs {
         println!(
             "{:<8} {:>6.1} ({:+6.2}) {:>5.1} ({:+5.2}) {:>5.1} ({:+5.2})  {}",
-            r.club,
-            c,
-            dc,
-            a,
-            da,
-            l,
-            dl,
-            if ok { "yes" } else { "no" }
+            c.club,
+            c.carry_yd,
+            c.carry_error_yd,
+            c.apex_yd,
+            c.apex_error_yd,
+            c.land_angle_deg,
+            c.land_angle_error_deg,
+            if c.within(3.0, 2.0, 2.0) { "yes" } else { "no" }
         );
     }
-    println!("{within} of {} clubs within carry 3 yd, apex 2 yd and land angle 2 deg", rows.len());
+    for (lim, name) in [((4.0, 3.0, 3.0), "carry 4 yd, apex 3 yd, land angle 3 deg"), ((3.0, 2.0, 2.0), "carry 3 yd, apex 2 yd, land angle 2 deg")] {
+        let n = clubs.iter().filter(|c| c.within(lim.0, lim.1, lim.2)).count();
+        println!("{n} of {} clubs within {name}", clubs.len());
+    }
+    if let Some(v) = validation {
+        println!("leave-one-club-out (each club predicted by a fit to the other eleven):");
+        println!("{:<8} {:>10} {:>10} {:>9} {:>9}", "club", "carry %", "carry yd", "apex yd", "land deg");
+        for h in &v.holdouts {
+            println!(
+                "{:<8} {:>+10.2} {:>10.1} {:>+9.2} {:>+9.2}",
+                h.club, h.carry_error_pct, h.predicted_carry_yd, h.apex_error_yd, h.land_angle_error_deg
+            );
+        }
+        println!(
+            "largest: carry {:.2} %, apex {:.2} yd, land angle {:.2} deg",
+            v.max_carry_error_pct, v.max_apex_error_yd, v.max_land_angle_error_deg
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 
 fn plot_trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
-    let flight = crate::flight::Flight { conditions: args.conditions.conditions()?, ..Default::default() };
+    let flight = flight_model(&args.conditions, args.firmness)?;
     let input = open_input(args.input.as_deref())?;
     let mut side = Vec::new();
     let mut top = Vec::new();
@@ -664,9 +756,10 @@ fn plot_trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
         let t = flight.fly(&l.to_launch().map_err(|e| anyhow::anyhow!("line {}: {e}", i + 1))?, 0.05);
         let color = crate::plot::PALETTE[side.len() % crate::plot::PALETTE.len()];
         let name = format!(
-            "shot {}: carry {:.0} yd, apex {:.0} yd, {:+.0} yd",
+            "shot {}: carry {:.0} yd, total {:.0} yd, apex {:.0} yd, {:+.0} yd",
             side.len() + 1,
             t.carry_yd,
+            t.total_yd,
             t.apex_yd,
             t.offline_yd
         );
@@ -790,7 +883,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Plot(PlotCommand::Forces(args)) => plot_forces(&args),
         Command::Plot(PlotCommand::Trajectory(args)) => plot_trajectory(&args),
         Command::Flight(args) => flight(&args),
-        Command::FlightFit { iterations } => flight_fit(iterations),
+        Command::FlightFit { iterations, no_cv, json } => flight_fit(iterations, !no_cv, json),
         Command::Map(args) => map(&args),
         Command::Schemas { output } => {
             std::fs::create_dir_all(&output).with_context(|| format!("creating {}", output.display()))?;

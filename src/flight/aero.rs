@@ -150,6 +150,36 @@ pub fn reynolds(airspeed_mps: Real, diameter_m: Real, density_kg_m3: Real, visco
     density_kg_m3 * airspeed_mps * diameter_m / viscosity_pa_s
 }
 
+/// One point of the coefficient grid `impactd flight --coefficients` prints.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct CoefficientPoint {
+    pub speed_mps: Real,
+    pub reynolds: Real,
+    pub spin_ratio: Real,
+    pub spin_rpm: Real,
+    pub c_d: Real,
+    pub c_l: Real,
+}
+
+/// Airspeeds (m/s) and spin ratios of the printed grid.
+pub const GRID_SPEEDS_MPS: [Real; 8] = [20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0];
+pub const GRID_SPIN_RATIOS: [Real; 8] = [0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5];
+
+/// `aero`'s coefficients over [`GRID_SPEEDS_MPS`] × [`GRID_SPIN_RATIOS`] for a ball of radius `radius_m` in
+/// air of density `density_kg_m3` and viscosity `viscosity_pa_s`.
+pub fn grid(aero: &Aero, radius_m: Real, density_kg_m3: Real, viscosity_pa_s: Real) -> Vec<CoefficientPoint> {
+    let mut out = Vec::with_capacity(GRID_SPEEDS_MPS.len() * GRID_SPIN_RATIOS.len());
+    for v in GRID_SPEEDS_MPS {
+        let re = reynolds(v, 2.0 * radius_m, density_kg_m3, viscosity_pa_s);
+        for s in GRID_SPIN_RATIOS {
+            let (c_d, c_l) = aero.coefficients(re, s);
+            let spin_rpm = crate::units::radps_to_rpm(s * v / radius_m);
+            out.push(CoefficientPoint { speed_mps: v, reynolds: re, spin_ratio: s, spin_rpm, c_d, c_l });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,6 +5,45 @@
 use super::fit::{self, TourAverage};
 use crate::math::Real;
 
+/// One club of the table against the model.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ClubError {
+    pub club: String,
+    pub carry_yd: Real,
+    pub carry_error_yd: Real,
+    pub apex_yd: Real,
+    pub apex_error_yd: Real,
+    pub land_angle_deg: Real,
+    pub land_angle_error_deg: Real,
+}
+
+impl ClubError {
+    /// Whether carry, apex and land angle are all within the given errors.
+    pub fn within(&self, carry_yd: Real, apex_yd: Real, land_deg: Real) -> bool {
+        self.carry_error_yd.abs() <= carry_yd
+            && self.apex_error_yd.abs() <= apex_yd
+            && self.land_angle_error_deg.abs() <= land_deg
+    }
+}
+
+/// Every club's predicted carry, apex and land angle with `aero`, and the errors against the table.
+pub fn club_errors(aero: &super::Aero, rows: &[TourAverage]) -> Vec<ClubError> {
+    rows.iter()
+        .map(|r| {
+            let (carry, apex, land) = fit::predict(aero, r);
+            ClubError {
+                club: r.club.clone(),
+                carry_yd: carry,
+                carry_error_yd: carry - r.carry_yd,
+                apex_yd: apex,
+                apex_error_yd: apex - r.max_height_yd,
+                land_angle_deg: land,
+                land_angle_error_deg: land - r.land_angle_deg,
+            }
+        })
+        .collect()
+}
+
 /// One left-out club: what the table says and what the fit without it predicts.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Holdout {

@@ -128,6 +128,9 @@ fn from_aero(a: &Aero) -> [Real; N] {
 
 const RESTARTS: usize = 8;
 
+/// Nelder-Mead iterations per restart that `impactd flight-fit` uses by default.
+pub const ITERATIONS: usize = 1000;
+
 /// The fitted coefficients, the first stage's objective ([`cost`]) at them and their largest scaled error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {

@@ -14,9 +14,9 @@
 //!   Penner's fairway). Backspin that outlasts the forward speed rolls the ball back.
 //!
 //! Firmness `f` in [0, 1] moves the three turf properties from soft to firm, with Penner's fairway at 0.5: the
-//! contact angle scales by `2 (1 − f)` (a rigid plane at 1), the restitution by `0.5 + f` (at most 0.9), and the
-//! rolling resistance by `2^(1 − 2f)` (twice Penner's at 0, half of it at 1). Only the middle is measured; the
-//! ends are this model's reading of soft and firm turf.
+//! contact angle scales by `1.5 − f` (half Penner's on firm turf, half again as much on soft), the restitution
+//! by `0.85 + 0.3 f`, and the rolling resistance by `2^(0.5 − f)` (√2 times Penner's at 0, 1/√2 at 1). Only the
+//! middle is measured; the ends are this model's reading of soft and firm turf.
 //!
 //! The bounce is taken in the vertical plane of the ball's travel, with the backspin about the horizontal axis
 //! across it; sidespin does not act on the ground.
@@ -102,18 +102,18 @@ impl Ground {
     /// Penner's normal restitution at normal speed `v_n_mps`, scaled for the firmness.
     pub fn restitution(&self, v_n_mps: Real) -> Real {
         let e = if v_n_mps <= 20.0 { 0.510 - 0.0375 * v_n_mps + 0.000903 * v_n_mps * v_n_mps } else { 0.120 };
-        (e * (0.5 + self.firmness)).min(0.9)
+        (e * (0.85 + 0.3 * self.firmness)).min(0.9)
     }
 
     /// The effective contact angle (rad) for landing speed `v_mps` at `descent_rad` below the horizontal.
     pub fn contact_angle_rad(&self, v_mps: Real, descent_rad: Real) -> Real {
         let deg = CONTACT_ANGLE_DEG * (v_mps / CONTACT_REF_MPS) * (descent_rad.to_degrees() / CONTACT_REF_DEG);
-        (deg * 2.0 * (1.0 - self.firmness)).to_radians()
+        (deg * (1.5 - self.firmness)).to_radians()
     }
 
     /// Deceleration of a rolling ball (m/s²).
     pub fn roll_decel_mps2(&self, g: Real) -> Real {
-        ROLL_RESISTANCE * (2.0 as Real).powf(1.0 - 2.0 * self.firmness) * g
+        ROLL_RESISTANCE * (2.0 as Real).powf(0.5 - self.firmness) * g
     }
 
     /// One bounce: the velocity along the travel line and upward, and the backspin (rad/s), in; out the same.
@@ -196,16 +196,20 @@ mod tests {
         assert!((g.restitution(25.0) - 0.120).abs() < 1e-12);
     }
 
-    /// Closed form: on a rigid plane (firmness 1 has no contact angle) a ball landing with the backspin that
-    /// makes it roll leaves rolling with `(5 v_t − 2 r ω) / 7` when friction suffices.
+    /// Closed form: when friction suffices, the ball leaves the (tilted) contact plane rolling, with the rigid
+    /// sphere's `v_t' = (5 v_t − 2 r ω) / 7` along the plane and topspin `v_t' / r`.
     #[test]
     fn rolling_exit_is_the_rigid_sphere_result() {
-        let g = Ground { firmness: 1.0 };
-        let (r, v_t, down, w) = (0.0213, 10.0, 8.0, 300.0);
-        let (along, _, back) = g.bounce(v_t, down, w, r);
+        let g = Ground::default();
+        let (r, along, down, w) = (0.0213, 10.0, 8.0, 300.0);
+        let tilt = g.contact_angle_rad(along.hypot(down), (down as Real).atan2(along));
+        let (sin_c, cos_c) = tilt.sin_cos();
+        let v_t = along * cos_c - down * sin_c;
+        let (along_out, up_out, back_out) = g.bounce(along, down, w, r);
+        let v_t_out = along_out * cos_c - up_out * sin_c;
         let expected = (5.0 * v_t - 2.0 * r * w) / 7.0;
-        assert!((along - expected).abs() < 1e-9, "{along} vs {expected}");
-        assert!((back + along / r).abs() < 1e-9, "rolls: topspin = v / r");
+        assert!((v_t_out - expected).abs() < 1e-9, "{v_t_out} vs {expected}");
+        assert!((back_out + v_t_out / r).abs() < 1e-6, "rolls: topspin = v / r");
     }
 
     /// Energy never increases at a bounce.
