@@ -201,8 +201,8 @@ mod tests {
     #[test]
     fn rolling_exit_is_the_rigid_sphere_result() {
         let g = Ground::default();
-        let (r, along, down, w) = (0.0213, 10.0, 8.0, 300.0);
-        let tilt = g.contact_angle_rad(along.hypot(down), (down as Real).atan2(along));
+        let (r, along, down, w): (Real, Real, Real, Real) = (0.0213, 10.0, 8.0, 300.0);
+        let tilt = g.contact_angle_rad(along.hypot(down), down.atan2(along));
         let (sin_c, cos_c) = tilt.sin_cos();
         let v_t = along * cos_c - down * sin_c;
         let (along_out, up_out, back_out) = g.bounce(along, down, w, r);

@@ -23,6 +23,7 @@ pub mod air;
 pub mod cv;
 pub mod fit;
 pub mod ground;
+pub mod reference;
 
 pub use aero::Aero;
 pub use air::Conditions;
