@@ -30,7 +30,12 @@ fn main() -> std::io::Result<()> {
                 .filter(|&&v| (1500.0..=4500.0).contains(&radps_to_rpm(s * v / 0.0215)) && v <= 91.0)
                 .map(|&v| (v, pick(lyu(v, s))))
                 .collect();
-            series.push(Series { name: format!("model, S = {s}"), points: model, color: PALETTE[k], right_axis: false });
+            series.push(Series {
+                name: format!("model, S = {s}"),
+                points: model,
+                color: PALETTE[k],
+                right_axis: false,
+            });
             series.push(Series {
                 name: format!("Bearman & Harvey 1976, S = {s}"),
                 points: bh,

@@ -720,7 +720,10 @@ fn flight_fit(iterations: usize, cross_validate: bool, json: bool) -> Result<Exi
             if c.within(3.0, 2.0, 2.0) { "yes" } else { "no" }
         );
     }
-    for (lim, name) in [((4.0, 3.0, 3.0), "carry 4 yd, apex 3 yd, land angle 3 deg"), ((3.0, 2.0, 2.0), "carry 3 yd, apex 2 yd, land angle 2 deg")] {
+    for (lim, name) in [
+        ((4.0, 3.0, 3.0), "carry 4 yd, apex 3 yd, land angle 3 deg"),
+        ((3.0, 2.0, 2.0), "carry 3 yd, apex 2 yd, land angle 2 deg"),
+    ] {
         let n = clubs.iter().filter(|c| c.within(lim.0, lim.1, lim.2)).count();
         println!("{n} of {} clubs within {name}", clubs.len());
     }

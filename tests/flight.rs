@@ -106,8 +106,14 @@ fn drag_and_lift_stay_within_the_published_measurements() {
             let tol = if v * 0.043 / 1.48e-5 >= 1e5 { 0.05 } else { 0.10 };
             let (d_lo, d_hi) = (bh_d.min(lyu_d) - tol, bh_d.max(lyu_d) + tol);
             let (l_lo, l_hi) = (bh_l.min(lyu_l) - tol, bh_l.max(lyu_l) + tol);
-            assert!((d_lo..=d_hi).contains(&drag), "C_D {drag:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {d_lo:.3}-{d_hi:.3}");
-            assert!((l_lo..=l_hi).contains(&lift), "C_L {lift:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {l_lo:.3}-{l_hi:.3}");
+            assert!(
+                (d_lo..=d_hi).contains(&drag),
+                "C_D {drag:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {d_lo:.3}-{d_hi:.3}"
+            );
+            assert!(
+                (l_lo..=l_hi).contains(&lift),
+                "C_L {lift:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {l_lo:.3}-{l_hi:.3}"
+            );
         }
     }
 }
@@ -182,7 +188,9 @@ fn leave_one_club_out_errors() {
 #[test]
 fn slower_drives_agree_with_trackman() {
     let f = Flight::default();
-    for (ball_mph, launch, carry, total) in [(126.0, 14.6, 193.0, 242.0), (133.0, 14.2, 209.0, 256.0), (140.0, 13.7, 225.0, 271.0)] {
+    for (ball_mph, launch, carry, total) in
+        [(126.0, 14.6, 193.0, 242.0), (133.0, 14.2, 209.0, 256.0), (140.0, 13.7, 225.0, 271.0)]
+    {
         for spin in [1900.0, 2050.0, 2200.0] {
             let t = f.fly_metrics(mph_to_mps(ball_mph), launch, 0.0, spin, 0.0);
             assert!((t.carry_yd / carry - 1.0).abs() <= 0.05, "{ball_mph} mph, {spin} rpm: carry {:.1}", t.carry_yd);

@@ -119,7 +119,18 @@ impl Aero {
 
     /// The nine fitted numbers in field order.
     pub fn to_array(&self) -> [Real; 10] {
-        [self.c_d0, self.c_ds, self.c_dc, self.re_crisis, self.c_dre, self.c_lmax, self.s_half, self.k_lre, self.spin_tau_s, self.crisis_width]
+        [
+            self.c_d0,
+            self.c_ds,
+            self.c_dc,
+            self.re_crisis,
+            self.c_dre,
+            self.c_lmax,
+            self.s_half,
+            self.k_lre,
+            self.spin_tau_s,
+            self.crisis_width,
+        ]
     }
 
     /// The share of subcritical flow at Reynolds number `reynolds`: 0 well above the crisis, 1 well below.

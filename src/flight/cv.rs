@@ -67,15 +67,10 @@ pub struct CrossValidation {
 
 /// Leaves each club out in turn, fitting the rest with `iterations` Nelder-Mead iterations per restart (as
 /// [`fit::fit`]); `progress` hears each club as it is done.
-pub fn leave_one_out(
-    rows: &[TourAverage],
-    iterations: usize,
-    mut progress: impl FnMut(&Holdout),
-) -> CrossValidation {
+pub fn leave_one_out(rows: &[TourAverage], iterations: usize, mut progress: impl FnMut(&Holdout)) -> CrossValidation {
     let mut holdouts = Vec::with_capacity(rows.len());
     for (i, held) in rows.iter().enumerate() {
-        let rest: Vec<TourAverage> =
-            rows.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| r.clone()).collect();
+        let rest: Vec<TourAverage> = rows.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| r.clone()).collect();
         let fitted = fit::fit(&rest, &fit::START, iterations, |_| {});
         let (carry, apex, land) = fit::predict(&fitted.aero, held);
         let h = Holdout {

@@ -71,7 +71,11 @@ pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
     rows.iter()
         .flat_map(|r| {
             let (carry, apex, land) = predict(aero, r);
-            [(carry - r.carry_yd) / TOLERANCE[0], (apex - r.max_height_yd) / TOLERANCE[1], (land - r.land_angle_deg) / TOLERANCE[2]]
+            [
+                (carry - r.carry_yd) / TOLERANCE[0],
+                (apex - r.max_height_yd) / TOLERANCE[1],
+                (land - r.land_angle_deg) / TOLERANCE[2],
+            ]
         })
         .collect()
 }

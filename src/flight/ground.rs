@@ -142,7 +142,15 @@ impl Ground {
 
     /// The run from a landing with `along_mps` forward, `down_mps` downward and backspin `backspin_radps`,
     /// starting at time `t0_s`.
-    pub fn run(&self, along_mps: Real, down_mps: Real, backspin_radps: Real, radius_m: Real, g: Real, t0_s: Real) -> Run {
+    pub fn run(
+        &self,
+        along_mps: Real,
+        down_mps: Real,
+        backspin_radps: Real,
+        radius_m: Real,
+        g: Real,
+        t0_s: Real,
+    ) -> Run {
         let mut segments = Vec::new();
         let (mut along, mut down, mut back) = (along_mps, down_mps, backspin_radps);
         let (mut d, mut t) = (0.0, t0_s);

@@ -23,7 +23,11 @@ pub const BH_CL: [[crate::math::Real; 10]; 5] = [
 ];
 
 /// Bilinear interpolation in Bearman and Harvey's table, airspeed and spin rate held inside it.
-pub fn bearman_harvey(table: &[[crate::math::Real; 10]; 5], speed_mps: crate::math::Real, rpm: crate::math::Real) -> crate::math::Real {
+pub fn bearman_harvey(
+    table: &[[crate::math::Real; 10]; 5],
+    speed_mps: crate::math::Real,
+    rpm: crate::math::Real,
+) -> crate::math::Real {
     let locate = |xs: &[crate::math::Real], x: crate::math::Real| {
         let x = x.clamp(xs[0], xs[xs.len() - 1]);
         let i = xs.windows(2).position(|w| x <= w[1]).unwrap_or(xs.len() - 2);
@@ -51,4 +55,3 @@ pub fn lyu(speed_mps: crate::math::Real, spin_ratio: crate::math::Real) -> (crat
     let s = spin_ratio.clamp(s_at(1500.0), s_at(4500.0));
     (drag, 1.99 * s - 3.25 * s * s)
 }
-
