@@ -236,7 +236,7 @@ fn lawson_step(jac: &DMatrix<Real>, r: &DVector<Real>, damping: Real) -> DVector
         d = step;
         w = w.component_mul(&(r + jac * &d).abs());
         let total = w.sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             break;
         }
         w /= total;

@@ -7,6 +7,8 @@
 /// the drag and the lift at each airspeed.
 pub const BH_SPEEDS_MPS: [crate::math::Real; 10] = [13.7, 21.6, 29.9, 38.4, 46.9, 55.2, 63.1, 71.9, 80.2, 88.1];
 pub const BH_RPM: [crate::math::Real; 5] = [2000.0, 3000.0, 4000.0, 5000.0, 6000.0];
+// Measured values; 0.318 is a drag coefficient, not 1/π.
+#[allow(clippy::approx_constant)]
 pub const BH_CD: [[crate::math::Real; 10]; 5] = [
     [0.363, 0.288, 0.275, 0.255, 0.247, 0.247, 0.247, 0.247, 0.247, 0.247],
     [0.420, 0.365, 0.318, 0.279, 0.268, 0.259, 0.256, 0.255, 0.2538, 0.2538],
