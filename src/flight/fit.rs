@@ -1,8 +1,9 @@
 //! Fitting the aerodynamic coefficients to the TrackMan PGA Tour averages: every club's carry, apex (max height)
-//! and land angle at once, on six coordinates (the logarithms of the six physical numbers of [`Aero`], all
-//! positive), with every error scaled by the accuracy it must reach (3 yd, 2 yd, 2 deg). Two stages: Nelder-Mead on the sum of squared scaled errors plus a strong penalty beyond 90 % of each,
-//! then a minimax (Chebyshev) fit from there that lowers the largest scaled error. Deterministic: the same table
-//! gives the same coefficients.
+//! and land angle at once, on ten coordinates (one per physical number of [`Aero`], each a logistic coordinate
+//! over the range the published measurements allow, [`BOUNDS`]), with every error scaled by the accuracy it must
+//! reach ([`TOLERANCE`]: 4 yd, 3 yd, 3 deg). Two stages: Nelder-Mead on the sum of squared scaled errors plus a
+//! strong penalty beyond 90 % of each, then a minimax (Chebyshev) fit from there that lowers the largest scaled
+//! error. Deterministic: the same table gives the same coefficients.
 
 use super::aero::BOUNDS;
 use super::{Aero, Conditions, Flight};
@@ -65,7 +66,7 @@ pub fn predict(aero: &Aero, row: &TourAverage) -> (Real, Real, Real) {
     (t.carry_yd, t.apex_yd, t.land_angle_deg)
 }
 
-/// Every club's carry, apex and land-angle errors, each divided by the accuracy it must reach (3 yd, 2 yd, 2 deg):
+/// Every club's carry, apex and land-angle errors, each divided by the accuracy it must reach ([`TOLERANCE`]):
 /// within the targets when every one is within ±1.
 pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
     rows.iter()
