@@ -660,7 +660,7 @@ fn flight(args: &FlightArgs) -> Result<ExitCode> {
 
 fn flight_fit(iterations: usize, cross_validate: bool, json: bool) -> Result<ExitCode> {
     use crate::flight::{cv, fit};
-    let rows = fit::parse_table(fit::TRACKMAN_CSV).map_err(|e| anyhow::anyhow!("TrackMan table: {e}"))?;
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).context("TrackMan table")?;
     let current = crate::flight::Aero::FITTED;
     let (aero, cost, worst) = if iterations == 0 {
         (current, fit::cost(&current, &rows), fit::worst(&current, &rows))
