@@ -2,6 +2,8 @@
 //! measurements, the fit to the TrackMan tour averages and its cross-validation, slower players' drives against
 //! TrackMan's model, and bounce and roll.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
 use impactd::flight::{cv, fit, Aero, Conditions, Flight, Ground};
 use impactd::units::{mph_to_mps, rpm_to_radps};

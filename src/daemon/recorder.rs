@@ -16,9 +16,19 @@ use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::DaemonError;
+use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::math::Isometry3;
-use crate::wire::ImpactStateMsg;
+use crate::wire::{ImpactStateMsg, MessageType};
+
+/// The `session` metadata of a recording: versions and the configuration.
+pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
+    let mut m = BTreeMap::new();
+    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
+    m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
+    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
+    m.insert("start_ns".into(), wall_ns().to_string());
+    m
+}
 
 /// Queue length between the prediction path and the writer.
 pub const QUEUE_CAPACITY: usize = 1 << 16;
@@ -26,8 +36,8 @@ pub const QUEUE_CAPACITY: usize = 1 << 16;
 /// One thing to record.
 #[derive(Debug, Clone)]
 pub enum Record {
-    /// A zenoh message: its key (without the leading `/`), its wire type name, and its JSON bytes.
-    Message { key: String, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
+    /// A zenoh message: its key (without the leading `/`), its wire type, and its JSON bytes.
+    Message { key: String, message_type: MessageType, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
     /// The club's pose in the world at a sample (Foxglove `PoseInFrame` on `/foxglove/<rig>/club_pose`).
     ClubPose { rig: String, t_ns: u64, log_time_ns: u64, world_from_club: Isometry3 },
     /// Ball and club at an impact (Foxglove `SceneUpdate` on `/foxglove/<rig>/impact_scene`).
@@ -183,9 +193,17 @@ impl RecorderHandle {
     }
 }
 
+/// The schema of a channel: a wire message type or one of Foxglove's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum Schema {
+    Wire(MessageType),
+    PoseInFrame,
+    SceneUpdate,
+}
+
 #[derive(Default)]
 struct Channels {
-    schemas: HashMap<&'static str, u16>,
+    schemas: HashMap<Schema, u16>,
     channels: HashMap<String, u16>,
     sequence: u32,
 }
@@ -205,21 +223,18 @@ impl Channels {
     fn schema<W: std::io::Write + std::io::Seek>(
         &mut self,
         w: &mut mcap::Writer<W>,
-        name: &'static str,
+        schema: Schema,
     ) -> Result<u16, mcap::McapError> {
-        if let Some(id) = self.schemas.get(name) {
+        if let Some(id) = self.schemas.get(&schema) {
             return Ok(*id);
         }
-        let (schema_name, data) = match name {
-            "foxglove.PoseInFrame" => (name.to_string(), FOXGLOVE_POSE_IN_FRAME.to_string()),
-            "foxglove.SceneUpdate" => (name.to_string(), FOXGLOVE_SCENE_UPDATE.to_string()),
-            other => (
-                format!("impactd.{other}"),
-                crate::wire::schemas().into_iter().find(|(n, _)| *n == other).map(|(_, s)| s).unwrap_or_default(),
-            ),
+        let (schema_name, data) = match schema {
+            Schema::PoseInFrame => ("foxglove.PoseInFrame".to_string(), FOXGLOVE_POSE_IN_FRAME.to_string()),
+            Schema::SceneUpdate => ("foxglove.SceneUpdate".to_string(), FOXGLOVE_SCENE_UPDATE.to_string()),
+            Schema::Wire(t) => (t.schema_name(), t.schema()),
         };
         let id = w.add_schema(&schema_name, "jsonschema", data.as_bytes())?;
-        self.schemas.insert(name, id);
+        self.schemas.insert(schema, id);
         Ok(id)
     }
 
@@ -227,7 +242,7 @@ impl Channels {
         &mut self,
         w: &mut mcap::Writer<W>,
         topic: &str,
-        schema: &'static str,
+        schema: Schema,
     ) -> Result<u16, mcap::McapError> {
         if let Some(id) = self.channels.get(topic) {
             return Ok(*id);
@@ -242,7 +257,7 @@ impl Channels {
         &mut self,
         w: &mut mcap::Writer<W>,
         topic: &str,
-        schema: &'static str,
+        schema: Schema,
         log_time: u64,
         publish_time: u64,
         data: &[u8],
@@ -261,8 +276,8 @@ impl Channels {
         record: Record,
     ) -> Result<(), mcap::McapError> {
         match record {
-            Record::Message { key, type_name, log_time_ns, publish_time_ns, data } => {
-                self.put(w, &format!("/{key}"), type_name, log_time_ns, publish_time_ns, &data)
+            Record::Message { key, message_type, log_time_ns, publish_time_ns, data } => {
+                self.put(w, &format!("/{key}"), Schema::Wire(message_type), log_time_ns, publish_time_ns, &data)
             }
             Record::ClubPose { rig, t_ns, log_time_ns, world_from_club } => {
                 let p = world_from_club.translation.vector;
@@ -272,7 +287,14 @@ impl Channels {
                     "pose": pose_json([p.x, p.y, p.z], world_from_club.rotation.into()),
                 });
                 let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(w, &format!("/foxglove/{rig}/club_pose"), "foxglove.PoseInFrame", log_time_ns, t_ns, &data)
+                self.put(
+                    w,
+                    &format!("/{}", crate::wire::keys::foxglove_club_pose(&rig)),
+                    Schema::PoseInFrame,
+                    log_time_ns,
+                    t_ns,
+                    &data,
+                )
             }
             Record::ImpactScene { rig, t_ns, log_time_ns, ball_position_m, ball_radius_m, club } => {
                 let d = 2.0 * ball_radius_m;
@@ -293,7 +315,14 @@ impl Channels {
                     ],
                 });
                 let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(w, &format!("/foxglove/{rig}/impact_scene"), "foxglove.SceneUpdate", log_time_ns, t_ns, &data)
+                self.put(
+                    w,
+                    &format!("/{}", crate::wire::keys::foxglove_impact_scene(&rig)),
+                    Schema::SceneUpdate,
+                    log_time_ns,
+                    t_ns,
+                    &data,
+                )
             }
             Record::Flush => Ok(()),
         }

@@ -26,44 +26,48 @@ pub struct TourAverage {
 /// The table shipped with the tests (`tests/data/trackman-pga-tour-averages.csv`).
 pub const TRACKMAN_CSV: &str = include_str!("../../tests/data/trackman-pga-tour-averages.csv");
 
-/// Why a table of tour averages could not be read.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// Why the table cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum TableError {
     #[error("empty table")]
     Empty,
     #[error("no column `{0}`")]
     MissingColumn(&'static str),
-    #[error("row {row}: `{column}` is missing or not a number")]
-    BadValue { row: usize, column: &'static str },
+    #[error("row {row}: column {column}")]
+    BadNumber { row: usize, column: usize },
+    #[error("row {row}: no club")]
+    NoClub { row: usize },
 }
 
 /// Parses the CSV (comment lines start with `#`).
 pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, TableError> {
-    const COLUMNS: [&str; 7] =
-        ["club", "ball_speed_mph", "launch_angle_deg", "spin_rpm", "max_height_yd", "land_angle_deg", "carry_yd"];
     let mut lines = csv.lines().filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
     let header: Vec<&str> = lines.next().ok_or(TableError::Empty)?.split(',').map(str::trim).collect();
-    let mut at = [0usize; 7];
-    for (slot, name) in at.iter_mut().zip(COLUMNS) {
-        *slot = header.iter().position(|h| *h == name).ok_or(TableError::MissingColumn(name))?;
-    }
+    let col = |name: &'static str| header.iter().position(|h| *h == name).ok_or(TableError::MissingColumn(name));
+    let (c_club, c_bs, c_la, c_spin, c_h, c_land, c_carry) = (
+        col("club")?,
+        col("ball_speed_mph")?,
+        col("launch_angle_deg")?,
+        col("spin_rpm")?,
+        col("max_height_yd")?,
+        col("land_angle_deg")?,
+        col("carry_yd")?,
+    );
     lines
         .enumerate()
         .map(|(i, line)| {
             let f: Vec<&str> = line.split(',').map(str::trim).collect();
-            let num = |k: usize| {
-                f.get(at[k])
-                    .and_then(|v| v.parse::<Real>().ok())
-                    .ok_or(TableError::BadValue { row: i + 1, column: COLUMNS[k] })
+            let num = |c: usize| {
+                f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(TableError::BadNumber { row: i + 1, column: c })
             };
             Ok(TourAverage {
-                club: f.get(at[0]).ok_or(TableError::BadValue { row: i + 1, column: COLUMNS[0] })?.to_string(),
-                ball_speed_mph: num(1)?,
-                launch_angle_deg: num(2)?,
-                spin_rpm: num(3)?,
-                max_height_yd: num(4)?,
-                land_angle_deg: num(5)?,
-                carry_yd: num(6)?,
+                club: f.get(c_club).ok_or(TableError::NoClub { row: i + 1 })?.to_string(),
+                ball_speed_mph: num(c_bs)?,
+                launch_angle_deg: num(c_la)?,
+                spin_rpm: num(c_spin)?,
+                max_height_yd: num(c_h)?,
+                land_angle_deg: num(c_land)?,
+                carry_yd: num(c_carry)?,
             })
         })
         .collect()
