@@ -192,7 +192,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
     out
 }
 
-/// One ball flight per operation: `flight/trajectory`, over the TrackMan table's launches.
+/// One ball flight with its bounce and roll per operation: `flight/trajectory`, over the TrackMan table's launches.
 pub fn flight_stages() -> Vec<Stage> {
     let rows = crate::flight::fit::parse_table(crate::flight::fit::TRACKMAN_CSV).unwrap_or_default();
     let launches: Vec<crate::flight::LaunchState> = rows

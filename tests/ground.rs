@@ -1,5 +1,7 @@
 //! Ground reaction on the iron's sole and face (seed section 4.2, eq. 4.3-4.13) against closed forms.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::sole::SoleSpec;
 use impactd::equipment::ClubSpec;

@@ -1,6 +1,8 @@
 //! The flexible shaft (seed section 4.1, eq. 4.1-4.2, Tables 4.1-4.2): the model's bending stiffness against the
 //! geometry's, the assembled club's first frequency, and convergence of its dynamics.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::shaft::ShaftSpec;
 use impactd::equipment::sole::SoleSpec;
 use impactd::equipment::ClubSpec;

@@ -51,6 +51,13 @@ impl ConditionArgs {
         c.validate().context("conditions")?;
         Ok(c)
     }
+
+    /// The flight model in these conditions, bouncing and rolling on turf of the given firmness.
+    pub fn flight(&self, firmness: f64) -> Result<impactd::flight::Flight> {
+        let ground = impactd::flight::Ground { firmness };
+        ground.validate().context("--firmness")?;
+        Ok(impactd::flight::Flight { conditions: self.conditions()?, ground, ..Default::default() })
+    }
 }
 
 /// A model name from the registry (`impact::registry`): one model, a group (`both`) or a comma-separated list.

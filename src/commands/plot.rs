@@ -36,6 +36,9 @@ pub struct ForcesArgs {
 pub struct TrajectoryArgs {
     #[command(flatten)]
     pub conditions: ConditionArgs,
+    /// Firmness of the fairway the ball bounces and rolls on: 0 soft, 0.5 Penner's fairway, 1 firm.
+    #[arg(long, default_value_t = 0.5)]
+    pub firmness: f64,
     #[arg(long, short)]
     pub input: Option<PathBuf>,
     #[arg(short = 'o', long = "output", default_value = "trajectory.svg")]
@@ -66,7 +69,7 @@ fn forces(args: &ForcesArgs) -> Result<ExitCode> {
 }
 
 fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
-    let flight = impactd::flight::Flight { conditions: args.conditions.conditions()?, ..Default::default() };
+    let flight = args.conditions.flight(args.firmness)?;
     let mut flights = Vec::new();
     for (i, line) in open_input(args.input.as_deref())?.lines().enumerate() {
         let line = line.context("reading input")?;

@@ -127,8 +127,14 @@ pub fn trajectories_svg(flights: &[Trajectory]) -> String {
     let mut top = Vec::new();
     for (k, t) in flights.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
-        let name =
-            format!("shot {}: carry {:.0} yd, apex {:.0} yd, {:+.0} yd", k + 1, t.carry_yd, t.apex_yd, t.offline_yd);
+        let name = format!(
+            "shot {}: carry {:.0} yd, total {:.0} yd, apex {:.0} yd, {:+.0} yd",
+            k + 1,
+            t.carry_yd,
+            t.total_yd,
+            t.apex_yd,
+            t.offline_yd
+        );
         side.push(Series {
             name: name.clone(),
             points: t.points.iter().map(|p| (m_to_yd(p[1]), m_to_yd(p[2]))).collect(),
