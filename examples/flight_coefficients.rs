@@ -1,6 +1,8 @@
 //! Draws the fitted drag and lift against the published measurements: `docs/flight-drag.svg` and
 //! `docs/flight-lift.svg` (`cargo run --release --no-default-features --example flight_coefficients`).
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
 use impactd::flight::{aero, Aero, Flight};
 use impactd::plot::{LineChart, Series, PALETTE};

@@ -3,6 +3,8 @@
 //! Usage: `cargo run --release --example ground_face -- [--json]`; `scripts/ground-table.py` turns the
 //! output into `docs/ground.md`.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::ClubSpec;
 use impactd::flight::{Flight, LaunchState};

@@ -2,6 +2,8 @@
 //! sample and a publisher restart from frame 1 cost the rig no later swing; a flood of 1 MiB payloads grows the
 //! recording by at most the budget; a full disk is logged within a second while predictions go on; and
 //! `impactd run` with no flags listens on loopback only.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 use std::io::{BufRead, BufReader};

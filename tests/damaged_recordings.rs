@@ -1,6 +1,8 @@
 //! Damaged recordings, made here from the example recording: every truncation point at a stride, and 1,000
 //! seeded single-bit flips. `info`, `replay` and `recover` end on each within 5 s without a panic, and `recover`
 //! keeps every chunk whose bytes are intact (compared with the original's chunks).
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 use std::collections::HashMap;

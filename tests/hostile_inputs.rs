@@ -1,6 +1,8 @@
 //! Property tests: arbitrary JSON and byte strings into the sample parser, the track, `predict`'s path
 //! (delivery -> state -> model) and `flight`'s (launch -> trajectory). None may panic or hang.
 
+#![allow(clippy::unwrap_used)]
+
 use proptest::prelude::*;
 use serde_json::Value;
 

@@ -2,6 +2,8 @@
 //! most the swing it lands in, and a publisher that restarts its frame count (or its clock) is followed after a
 //! reset. Swings are synthetic with exact truth (`swing::sample`), three per rig, 2 s apart.
 
+#![allow(clippy::unwrap_used, clippy::type_complexity)]
+
 use impactd::equipment::ClubSpec;
 use impactd::impact::Equipment;
 use impactd::kinematics::{Calibration, ClubheadSample};
