@@ -104,7 +104,7 @@ async fn hostile_sample_and_restart_cost_no_later_swing() {
     assert!(summary.rigs["bay1"].dropped < 1000, "{:?}", summary.rigs["bay1"]);
 }
 
-/// 1 MiB payloads as fast as zenoh takes them for 3 s: the recording grows by at most the budget (64 KiB a
+/// 1 MiB payloads as fast as zenoh takes them for 10 s: the recording grows by at most the budget (64 KiB a
 /// second, plus the record framing), and every payload is counted.
 #[tokio::test(flavor = "multi_thread", worker_threads = 4)]
 async fn a_flood_grows_the_recording_by_at_most_the_budget() {
@@ -119,7 +119,7 @@ async fn a_flood_grows_the_recording_by_at_most_the_budget() {
     }
     let payload = vec![b'x'; 1 << 20];
     let start = Instant::now();
-    let flood_s = 3.0;
+    let flood_s = 10.0;
     let mut sent = 0u64;
     while start.elapsed().as_secs_f64() < flood_s {
         p.put(payload.clone()).await.unwrap();

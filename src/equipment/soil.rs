@@ -101,7 +101,8 @@ impl SoilSpec {
         if Self::PRESETS.contains(&name_or_path) {
             return Self::preset(name_or_path);
         }
-        let text = std::fs::read_to_string(name_or_path).map_err(|e| {
+        let path = std::path::Path::new(name_or_path);
+        let text = crate::capped::read_to_string(path, crate::capped::MAX_INPUT_FILE_BYTES).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
                 EquipmentError::UnknownSoil(name_or_path.to_string())
             } else {
