@@ -22,6 +22,13 @@ pub struct RunArgs {
     /// Record every message to this MCAP file.
     #[arg(long)]
     pub record: Option<PathBuf>,
+    /// Send every rig's shots to this Open Connect v1 golf simulator (GSPro, OpenGolfSim: HOST:921), for rigs
+    /// whose configuration names none.
+    #[arg(long = "open-connect", value_name = "HOST:PORT")]
+    pub open_connect: Option<String>,
+    /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
+    pub foxglove: Option<String>,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
 }
@@ -46,6 +53,13 @@ pub struct DemoArgs {
     /// Capture rate (Hz).
     #[arg(long, default_value_t = 720.0)]
     pub rate: f64,
+    /// Send every rig's shots to this Open Connect v1 golf simulator (GSPro, OpenGolfSim: HOST:921), for rigs
+    /// whose configuration names none.
+    #[arg(long = "open-connect", value_name = "HOST:PORT")]
+    pub open_connect: Option<String>,
+    /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
+    pub foxglove: Option<String>,
 }
 
 #[derive(Debug, Args)]
@@ -141,8 +155,24 @@ fn load_config(path: Option<&std::path::Path>) -> Result<(DaemonConfig, Vec<crat
     })
 }
 
+/// Applies `--open-connect` to the rigs without a simulator and checks the result.
+fn with_open_connect(
+    mut config: DaemonConfig,
+    address: Option<&str>,
+) -> Result<(DaemonConfig, Vec<crate::pipeline::RigSetup>)> {
+    if let Some(a) = address {
+        if !crate::daemon::open_connect::valid_host_port(a) {
+            bail!("--open-connect `{a}` is not HOST:PORT");
+        }
+        config.set_default_open_connect(a);
+    }
+    let setups = config.setups()?;
+    Ok((config, setups))
+}
+
 pub fn run(args: &RunArgs) -> Result<ExitCode> {
-    let (config, setups) = load_config(args.config.as_deref())?;
+    let (config, _) = load_config(args.config.as_deref())?;
+    let (config, setups) = with_open_connect(config, args.open_connect.as_deref())?;
     let rt = runtime()?;
     rt.block_on(async {
         let session = args.zenoh.open().await?;
@@ -157,7 +187,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
             tracing::info!("recording to {}", r.display());
         }
         let summary =
-            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone() }, shutdown_signal())
+            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone(), foxglove: args.foxglove.clone() }, shutdown_signal())
                 .await?;
         let _ = session.close().await;
         for (rig, c) in &summary.rigs {
@@ -177,6 +207,7 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     let club = crate::cli::load_club(&args.club)?;
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
+    let (config, _) = with_open_connect(config, args.open_connect.as_deref())?;
     let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
     eprintln!(
         "impactd demo: daemon and a synthetic {} rig on loopback zenoh, {} shots at {} Hz; recording to {}",
@@ -187,7 +218,7 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     );
     let rt = runtime()?;
     let summary = rt.block_on(demo(
-        DemoOptions { config, sim, record: Some(args.record.clone()), json: args.json },
+        DemoOptions { config, sim, record: Some(args.record.clone()), json: args.json, foxglove: args.foxglove.clone() },
         shutdown_signal(),
     ))?;
     let (shots, predictions): (u64, u64) =

@@ -15,7 +15,11 @@ use crate::impact::{Delivery, DeliveryMetrics, ImpactError, Launch, LaunchMetric
 use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
+mod bridge;
 mod measured;
+pub use bridge::{
+    ConnectionState, LaunchMonitorStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
+};
 pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
 
 /// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
@@ -250,6 +254,14 @@ pub mod keys {
     pub fn comparison(rig: &str) -> String {
         format!("golf/{rig}/comparison")
     }
+    /// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) to and from the rig's simulator.
+    pub fn simulator_traffic(rig: &str) -> String {
+        format!("golf/{rig}/simulator")
+    }
+    /// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) of the rig's Open Connect listener.
+    pub fn launch_monitor_traffic(rig: &str) -> String {
+        format!("lm/{rig}/open_connect")
+    }
     /// The rig name of a `mocap/<rig>/clubhead` key.
     pub fn rig_of_clubhead(key: &str) -> Option<&str> {
         let rest = key.strip_prefix("mocap/")?;
@@ -450,6 +462,12 @@ pub struct StatusMessage {
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).
     pub recorder_dropped: u64,
+    /// The Open Connect client sending this rig's shots to a golf simulator, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulator: Option<SimulatorStatus>,
+    /// The Open Connect listener taking this rig's measured shots, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub launch_monitor: Option<LaunchMonitorStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).
@@ -493,5 +511,6 @@ pub fn schemas() -> Vec<(&'static str, String)> {
         ("Trajectory", one::<crate::flight::Trajectory>()),
         ("MeasuredLaunch", one::<MeasuredLaunch>()),
         ("ComparisonMessage", one::<ComparisonMessage>()),
+        ("OpenConnectTraffic", one::<OpenConnectTraffic>()),
     ]
 }

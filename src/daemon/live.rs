@@ -5,6 +5,11 @@
 //! never blocks zenoh). A worker parses and validates the sample, runs the pipeline, and publishes the impact and
 //! the launch at once; `latency_us` is the time from the callback receiving the revealing frame to the launch
 //! being handed to zenoh. Status goes out once per `status_period_s`.
+//!
+//! Optional edges, each on its own task so none can delay a prediction: a rig's Open Connect client (its first
+//! prediction of each swing goes to a golf simulator, [`super::open_connect::client`]), a rig's Open Connect
+//! listener (measured shots in, [`super::open_connect::listener`]), and the Foxglove live view
+//! ([`super::foxglove_live`]), fed the same records as the recording.
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -16,11 +21,13 @@ use std::time::{Duration, Instant};
 
 use zenoh::Wait;
 
+use super::foxglove_live::FoxgloveServer;
+use super::open_connect::{LaunchMonitorListener, SimulatorClient, SimulatorOptions};
 use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
 use super::stats::{LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
-use crate::wire::{self, keys, StatusMessage};
+use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus, StatusMessage};
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -30,6 +37,8 @@ pub const RIG_QUEUE: usize = 1 << 14;
 pub struct RunOptions {
     /// Record every message to this MCAP file.
     pub record: Option<PathBuf>,
+    /// Serve the Foxglove live view on this `HOST:PORT`.
+    pub foxglove: Option<String>,
 }
 
 /// What a run did, per rig.
@@ -38,6 +47,10 @@ pub struct RunSummary {
     pub rigs: BTreeMap<String, Counts>,
     pub unknown_rig_samples: u64,
     pub recorder: Option<RecorderSummary>,
+    /// Each rig's Open Connect client at the end, for rigs that have one.
+    pub simulators: BTreeMap<String, SimulatorStatus>,
+    /// Each rig's Open Connect listener at the end, for rigs that have one.
+    pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
 }
 
 struct Incoming {
@@ -66,7 +79,17 @@ pub async fn run(
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
     let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
-    let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
+    let rig_names: Vec<String> = setups.iter().map(|s| s.name.clone()).collect();
+    let foxglove = match &options.foxglove {
+        Some(address) => Some(FoxgloveServer::start(address, &rig_names).await?),
+        None => None,
+    };
+    let handle = recorder
+        .as_ref()
+        .map(|r| r.handle())
+        .unwrap_or_else(RecorderHandle::none)
+        .with_live(foxglove.as_ref().map(FoxgloveServer::tap));
+    let mut listeners = Vec::new();
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
@@ -106,6 +129,21 @@ pub async fn run(
                 .map_err(DaemonError::zenoh)?,
         );
         let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
+        let flight = setup.flight;
+        let simulator = rig_config
+            .simulator
+            .as_ref()
+            .and_then(|c| SimulatorOptions::from_config(&name, c))
+            .map(|o| SimulatorClient::spawn(o, handle.clone()));
+        let launch_monitor = match rig_config.launch_monitor.as_ref().and_then(|l| l.open_connect_listen.as_ref()) {
+            Some(address) => {
+                let l = LaunchMonitorListener::start(&name, address, session, handle.clone()).await?;
+                let status = l.status_handle();
+                listeners.push(l);
+                Some(status)
+            }
+            None => None,
+        };
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
@@ -123,6 +161,9 @@ pub async fn run(
             started: Instant::now(),
             ball_position_m: setup_ball.0,
             ball_radius_m: setup_ball.1,
+            flight,
+            simulator,
+            launch_monitor,
         };
         workers.push(
             std::thread::Builder::new()
@@ -168,10 +209,27 @@ pub async fn run(
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
     for w in workers {
-        if let Ok((name, counts)) = w.join() {
-            summary.rigs.insert(name, counts);
+        if let Ok(end) = w.join() {
+            if let Some(mut task) = end.simulator_task {
+                // Queued shots get a second to go out; the client (and its recorder handle) is gone after it.
+                if tokio::time::timeout(Duration::from_secs(1), &mut task).await.is_err() {
+                    task.abort();
+                    let _ = task.await;
+                }
+            }
+            if let Some(s) = end.simulator {
+                summary.simulators.insert(end.rig.clone(), s);
+            }
+            if let Some(l) = end.launch_monitor {
+                summary.launch_monitors.insert(end.rig.clone(), l);
+            }
+            summary.rigs.insert(end.rig, end.counts);
         }
     }
+    for l in listeners {
+        l.stop().await;
+    }
+    drop(foxglove);
     drop(handle);
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
@@ -215,6 +273,19 @@ struct Worker {
     started: Instant,
     ball_position_m: [f64; 3],
     ball_radius_m: f64,
+    /// The rig's flight model, for the live view's flight line.
+    flight: Option<crate::flight::Flight>,
+    simulator: Option<SimulatorClient>,
+    launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
+}
+
+/// What a rig's worker leaves behind.
+struct WorkerEnd {
+    rig: String,
+    counts: Counts,
+    simulator: Option<SimulatorStatus>,
+    simulator_task: Option<tokio::task::JoinHandle<()>>,
+    launch_monitor: Option<LaunchMonitorStatus>,
 }
 
 impl Worker {
@@ -226,7 +297,7 @@ impl Worker {
         self.pipeline.as_mut().expect("the pipeline is in place between samples")
     }
 
-    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> (String, Counts) {
+    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
         let mut next_status = Instant::now() + period;
         loop {
             let wait = next_status.saturating_duration_since(Instant::now());
@@ -240,8 +311,14 @@ impl Worker {
                 next_status += period;
             }
         }
-        self.publish_status();
-        (self.rig.to_string(), self.p().counts.clone())
+        let status = self.publish_status();
+        WorkerEnd {
+            rig: self.rig.to_string(),
+            counts: self.p().counts.clone(),
+            simulator: status.simulator,
+            simulator_task: self.simulator.take().map(SimulatorClient::close),
+            launch_monitor: status.launch_monitor,
+        }
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
@@ -336,6 +413,9 @@ impl Worker {
                     tracing::error!("rig {rig}: publishing the launch: {e}");
                 }
                 self.latency.push(l.latency_us);
+                if let Some(simulator) = &mut self.simulator {
+                    simulator.offer(&l);
+                }
                 tracing::info!(
                     "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
                     l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
@@ -343,6 +423,19 @@ impl Worker {
                 );
                 let now = wall_ns();
                 self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
+                if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
+                    let launch = crate::flight::LaunchState {
+                        velocity_mps: l.launch.ball_velocity_mps.into(),
+                        spin_radps: l.launch.ball_spin_radps.into(),
+                    };
+                    self.recorder.send(Record::Flight {
+                        rig: rig.to_string(),
+                        t_ns: l.t_impact_ns,
+                        log_time_ns: now,
+                        flight,
+                        launch,
+                    });
+                }
                 self.recorder.send(Record::Flush);
             }
             Event::Failed { shot, frame, reason, .. } => {
@@ -352,7 +445,7 @@ impl Worker {
         }
     }
 
-    fn publish_status(&mut self) {
+    fn publish_status(&mut self) -> StatusMessage {
         let c = &self.p().counts;
         let mut rejected = c.rejected.clone();
         let queue = self.queue_dropped.load(Ordering::Relaxed);
@@ -374,11 +467,14 @@ impl Worker {
             latency_p50_us: self.latency.quantile(0.5),
             latency_p99_us: self.latency.quantile(0.99),
             recorder_dropped: self.recorder.dropped(),
+            simulator: self.simulator.as_ref().map(SimulatorClient::status),
+            launch_monitor: self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone())),
         };
         let data = serde_json::to_vec(&status).unwrap_or_default();
         if let Err(e) = self.status.put(data.clone()).wait() {
             tracing::warn!("publishing status: {e}");
         }
         self.record(&self.keys.status, "StatusMessage", status.t_ns, status.t_ns, data);
+        status
     }
 }
