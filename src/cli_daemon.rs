@@ -186,9 +186,14 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
         if let Some(r) = &args.record {
             tracing::info!("recording to {}", r.display());
         }
-        let summary =
-            crate::daemon::run(config, setups, &session, RunOptions { record: args.record.clone(), foxglove: args.foxglove.clone() }, shutdown_signal())
-                .await?;
+        let summary = crate::daemon::run(
+            config,
+            setups,
+            &session,
+            RunOptions { record: args.record.clone(), foxglove: args.foxglove.clone() },
+            shutdown_signal(),
+        )
+        .await?;
         let _ = session.close().await;
         for (rig, c) in &summary.rigs {
             tracing::info!("rig {rig}: {} samples, {} shots, {} predictions", c.samples, c.shots, c.predictions);
@@ -218,7 +223,13 @@ pub fn demo_cmd(args: &DemoArgs) -> Result<ExitCode> {
     );
     let rt = runtime()?;
     let summary = rt.block_on(demo(
-        DemoOptions { config, sim, record: Some(args.record.clone()), json: args.json, foxglove: args.foxglove.clone() },
+        DemoOptions {
+            config,
+            sim,
+            record: Some(args.record.clone()),
+            json: args.json,
+            foxglove: args.foxglove.clone(),
+        },
         shutdown_signal(),
     ))?;
     let (shots, predictions): (u64, u64) =

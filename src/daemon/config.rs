@@ -255,8 +255,10 @@ mod tests {
             .contains("rig[0].world_from_lab.rotation_xyzw"));
         assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
         assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
-        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nopen_connect = \"gspro\"").contains("rig[0].simulator.open_connect"));
-        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nmax_shot_age_s = -1.0").contains("rig[0].simulator.max_shot_age_s"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nopen_connect = \"gspro\"")
+            .contains("rig[0].simulator.open_connect"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nmax_shot_age_s = -1.0")
+            .contains("rig[0].simulator.max_shot_age_s"));
         assert!(err("[[rig]]\nname = \"a\"\n[rig.launch_monitor]\nopen_connect_listen = \"localhost\"")
             .contains("rig[0].launch_monitor.open_connect_listen"));
         let (mut c, _) = DaemonConfig::parse(

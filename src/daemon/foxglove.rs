@@ -159,7 +159,10 @@ mod tests {
         };
         let carry_m = flight.fly(&launch, 0.0).carry_m;
         let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, flight, launch }).unwrap();
-        assert_eq!((e.topic.as_str(), e.schema, e.publish_time_ns), ("/foxglove/r/ball_flight", "foxglove.SceneUpdate", 5));
+        assert_eq!(
+            (e.topic.as_str(), e.schema, e.publish_time_ns),
+            ("/foxglove/r/ball_flight", "foxglove.SceneUpdate", 5)
+        );
         let v: serde_json::Value = serde_json::from_slice(&e.data).unwrap();
         let points = v["entities"][0]["lines"][0]["points"].as_array().unwrap().clone();
         assert!(points.len() > 20, "{} points", points.len());

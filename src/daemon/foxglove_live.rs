@@ -174,7 +174,12 @@ fn on_client_text(text: &str, subscriptions: &mut HashMap<u32, u32>) {
     }
 }
 
-async fn serve(stream: TcpStream, peer: SocketAddr, advertise: Arc<String>, mut rx: broadcast::Receiver<Arc<Outgoing>>) {
+async fn serve(
+    stream: TcpStream,
+    peer: SocketAddr,
+    advertise: Arc<String>,
+    mut rx: broadcast::Receiver<Arc<Outgoing>>,
+) {
     let _ = stream.set_nodelay(true);
     let mut ws = match tokio_tungstenite::accept_hdr_async(stream, select_subprotocol).await {
         Ok(ws) => ws,

@@ -120,7 +120,10 @@ mod tests {
     #[test]
     fn glued_objects_come_out_one_by_one() {
         let f = split(&[br#"{"Code":200}{"Code":201,"Player":{"Handed":"RH"}} {"a":[1,{"b":2}]}"#], 1024);
-        assert_eq!(f, vec![obj(r#"{"Code":200}"#), obj(r#"{"Code":201,"Player":{"Handed":"RH"}}"#), obj(r#"{"a":[1,{"b":2}]}"#)]);
+        assert_eq!(
+            f,
+            vec![obj(r#"{"Code":200}"#), obj(r#"{"Code":201,"Player":{"Handed":"RH"}}"#), obj(r#"{"a":[1,{"b":2}]}"#)]
+        );
     }
 
     #[test]
@@ -133,7 +136,10 @@ mod tests {
     #[test]
     fn garbage_is_reported_and_skipped() {
         let f = split(&[b"hello {\"a\":1}\r\n", b"]]{\"b\":2}"], 1024);
-        assert_eq!(f, vec![Frame::Garbage { bytes: 5 }, obj(r#"{"a":1}"#), Frame::Garbage { bytes: 2 }, obj(r#"{"b":2}"#)]);
+        assert_eq!(
+            f,
+            vec![Frame::Garbage { bytes: 5 }, obj(r#"{"a":1}"#), Frame::Garbage { bytes: 2 }, obj(r#"{"b":2}"#)]
+        );
         assert_eq!(split(&[b"{\"a\":1} junk"], 1024), vec![obj(r#"{"a":1}"#), Frame::Garbage { bytes: 4 }]);
     }
 
