@@ -77,6 +77,15 @@ fn entity(t_ns: u64, id: &str, kind: &str, primitives: serde_json::Value) -> ser
     e
 }
 
+/// The flight-line record of a prediction (flown later, by whoever encodes it).
+pub fn flight_record(l: &crate::wire::LaunchPrediction, flight: crate::flight::Flight, log_time_ns: u64) -> Record {
+    let launch = crate::flight::LaunchState {
+        velocity_mps: l.launch.ball_velocity_mps.into(),
+        spin_radps: l.launch.ball_spin_radps.into(),
+    };
+    Record::Flight { rig: l.rig.clone(), t_ns: l.t_impact_ns, log_time_ns, flight, launch }
+}
+
 /// The channel message of a record (`None` for [`Record::Flush`]).
 pub fn encode(record: Record) -> Option<Encoded> {
     let scene = |entities: Vec<serde_json::Value>| {

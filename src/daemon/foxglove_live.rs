@@ -70,14 +70,14 @@ struct Outgoing {
 }
 
 impl FoxgloveServer {
-    /// Binds `address` and serves the channels of `rigs` on the current tokio runtime.
-    pub async fn start(address: &str, rigs: &[String]) -> Result<Self, DaemonError> {
+    /// Binds `address` and serves the channels of the configuration's rigs on the current tokio runtime.
+    pub async fn start(address: &str, config: &super::DaemonConfig) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("serving the Foxglove live view on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
         let local_addr = listener.local_addr().map_err(io)?;
         let mut topics = HashMap::new();
         let mut channels = Vec::new();
-        for (topic, schema_type) in rigs.iter().flat_map(|r| rig_channels(r)) {
+        for (topic, schema_type) in config.rigs.iter().flat_map(|r| rig_channels(&r.name)) {
             let id = channels.len() as u32 + 1;
             let (schema_name, schema_text) = schema(schema_type);
             channels.push(serde_json::json!({

@@ -6,10 +6,8 @@
 //! the launch at once; `latency_us` is the time from the callback receiving the revealing frame to the launch
 //! being handed to zenoh. Status goes out once per `status_period_s`.
 //!
-//! Optional edges, each on its own task so none can delay a prediction: a rig's Open Connect client (its first
-//! prediction of each swing goes to a golf simulator, [`super::open_connect::client`]), a rig's Open Connect
-//! listener (measured shots in, [`super::open_connect::listener`]), and the Foxglove live view
-//! ([`super::foxglove_live`]), fed the same records as the recording.
+//! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
+//! listener ([`super::open_connect`]) and the Foxglove live view ([`super::foxglove_live`]).
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -22,7 +20,7 @@ use std::time::{Duration, Instant};
 use zenoh::Wait;
 
 use super::foxglove_live::FoxgloveServer;
-use super::open_connect::{LaunchMonitorListener, SimulatorClient, SimulatorOptions};
+use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
 use super::stats::{LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
@@ -47,9 +45,8 @@ pub struct RunSummary {
     pub rigs: BTreeMap<String, Counts>,
     pub unknown_rig_samples: u64,
     pub recorder: Option<RecorderSummary>,
-    /// Each rig's Open Connect client at the end, for rigs that have one.
+    /// Each rig's Open Connect client and listener at the end, for rigs that have them.
     pub simulators: BTreeMap<String, SimulatorStatus>,
-    /// Each rig's Open Connect listener at the end, for rigs that have one.
     pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
 }
 
@@ -79,16 +76,12 @@ pub async fn run(
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
     let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
-    let rig_names: Vec<String> = setups.iter().map(|s| s.name.clone()).collect();
     let foxglove = match &options.foxglove {
-        Some(address) => Some(FoxgloveServer::start(address, &rig_names).await?),
+        Some(address) => Some(FoxgloveServer::start(address, &config).await?),
         None => None,
     };
-    let handle = recorder
-        .as_ref()
-        .map(|r| r.handle())
-        .unwrap_or_else(RecorderHandle::none)
-        .with_live(foxglove.as_ref().map(FoxgloveServer::tap));
+    let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
+    let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
@@ -130,20 +123,9 @@ pub async fn run(
         );
         let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
         let flight = setup.flight;
-        let simulator = rig_config
-            .simulator
-            .as_ref()
-            .and_then(|c| SimulatorOptions::from_config(&name, c))
-            .map(|o| SimulatorClient::spawn(o, handle.clone()));
-        let launch_monitor = match rig_config.launch_monitor.as_ref().and_then(|l| l.open_connect_listen.as_ref()) {
-            Some(address) => {
-                let l = LaunchMonitorListener::start(&name, address, session, handle.clone()).await?;
-                let status = l.status_handle();
-                listeners.push(l);
-                Some(status)
-            }
-            None => None,
-        };
+        let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
+        let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
+        listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
@@ -210,12 +192,8 @@ pub async fn run(
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
     for w in workers {
         if let Ok(end) = w.join() {
-            if let Some(mut task) = end.simulator_task {
-                // Queued shots get a second to go out; the client (and its recorder handle) is gone after it.
-                if tokio::time::timeout(Duration::from_secs(1), &mut task).await.is_err() {
-                    task.abort();
-                    let _ = task.await;
-                }
+            if let Some(task) = end.simulator_task {
+                SimulatorClient::finish(task).await;
             }
             if let Some(s) = end.simulator {
                 summary.simulators.insert(end.rig.clone(), s);
@@ -424,17 +402,7 @@ impl Worker {
                 let now = wall_ns();
                 self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
                 if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
-                    let launch = crate::flight::LaunchState {
-                        velocity_mps: l.launch.ball_velocity_mps.into(),
-                        spin_radps: l.launch.ball_spin_radps.into(),
-                    };
-                    self.recorder.send(Record::Flight {
-                        rig: rig.to_string(),
-                        t_ns: l.t_impact_ns,
-                        log_time_ns: now,
-                        flight,
-                        launch,
-                    });
+                    self.recorder.send(super::foxglove::flight_record(&l, flight, now));
                 }
                 self.recorder.send(Record::Flush);
             }

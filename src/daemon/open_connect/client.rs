@@ -103,6 +103,14 @@ impl SimulatorClient {
         task
     }
 
+    /// Waits a second for a closed client's queued shots to go out, then ends it (and its recorder handle).
+    pub async fn finish(mut task: tokio::task::JoinHandle<()>) {
+        if tokio::time::timeout(Duration::from_secs(1), &mut task).await.is_err() {
+            task.abort();
+            let _ = task.await;
+        }
+    }
+
     /// The client's counts and state now.
     pub fn status(&self) -> SimulatorStatus {
         self.status.lock().map(|s| s.clone()).unwrap_or_default()

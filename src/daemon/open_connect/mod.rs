@@ -85,6 +85,24 @@ pub struct LaunchMonitorConfig {
     pub open_connect_listen: Option<String>,
 }
 
+/// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
+pub async fn start_rig(
+    rig: &crate::daemon::config::RigConfig,
+    session: &zenoh::Session,
+    recorder: &crate::daemon::recorder::RecorderHandle,
+) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
+    let simulator = rig
+        .simulator
+        .as_ref()
+        .and_then(|c| SimulatorOptions::from_config(&rig.name, c))
+        .map(|o| SimulatorClient::spawn(o, recorder.clone()));
+    let listener = match rig.launch_monitor.as_ref().and_then(|l| l.open_connect_listen.as_ref()) {
+        Some(address) => Some(LaunchMonitorListener::start(&rig.name, address, session, recorder.clone()).await?),
+        None => None,
+    };
+    Ok((simulator, listener))
+}
+
 /// Whether `address` reads as `HOST:PORT`.
 pub fn valid_host_port(address: &str) -> bool {
     match address.rsplit_once(':') {
