@@ -1,5 +1,7 @@
 //! Ball flight: closed forms, symmetry, the landing's accuracy, and the fit to the TrackMan tour averages.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::flight::{fit, Aero, Conditions, Flight};
 use impactd::units::mph_to_mps;
 

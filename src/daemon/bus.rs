@@ -37,7 +37,7 @@ impl ZenohArgs {
         let json = |v: &[String]| serde_json::to_string(v).unwrap_or_else(|_| "[]".into());
         if let Some(mode) = &self.mode {
             if mode != "peer" && mode != "client" && mode != "router" {
-                return Err(DaemonError::Zenoh(format!("--mode must be peer, client or router, got {mode}")));
+                return Err(DaemonError::BadMode(mode.clone()));
             }
             c.insert_json5("mode", &format!("\"{mode}\"")).map_err(DaemonError::zenoh)?;
         }

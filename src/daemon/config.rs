@@ -31,9 +31,10 @@ use serde::{Deserialize, Serialize};
 
 use super::open_connect::{LaunchMonitorConfig, SimulatorConfig};
 use super::DaemonError;
+use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
-use crate::pipeline::{ModelChoice, RigSetup};
+use crate::pipeline::RigSetup;
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -192,12 +193,13 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let club = crate::cli::load_club(&r.club).map_err(|e| invalid(f("club"), format!("{e:#}")))?;
+                let club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
-                let model = ModelChoice::parse(&r.model, r.cor)
-                    .ok_or_else(|| invalid(f("model"), format!("`{}` is not {}", r.model, ModelChoice::NAMES)))?;
+                let options = BuildOptions { cor: r.cor, ..BuildOptions::default() };
+                let models =
+                    registry::build(&r.model, &club, &options).map_err(|e| invalid(f("model"), e.to_string()))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
@@ -225,8 +227,8 @@ impl DaemonConfig {
                         .transpose()?
                         .unwrap_or_default(),
                 };
-                let mut setup = RigSetup::new(&r.name, club);
-                setup.model = model;
+                let mut setup = RigSetup::new(&r.name, club.club);
+                setup.models = models;
                 if !r.flight {
                     setup.flight = None;
                 }

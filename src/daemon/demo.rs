@@ -55,7 +55,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let count = Arc::new(std::sync::atomic::AtomicU64::new(0));
     let truths_cb = truths.clone();
     let _truth_sub = rig_session
-        .declare_subscriber("sim/*/truth")
+        .declare_subscriber(crate::wire::keys::TRUTH_ALL)
         .callback(move |s| {
             if let Ok(t) = serde_json::from_slice::<TruthMessage>(&s.payload().to_bytes()) {
                 if let Ok(mut m) = truths_cb.lock() {
@@ -67,7 +67,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         .map_err(DaemonError::zenoh)?;
     let (json, notify, count_cb, truths_cb) = (options.json, predicted.clone(), count.clone(), truths.clone());
     let _launch_sub = rig_session
-        .declare_subscriber("golf/*/launch")
+        .declare_subscriber(crate::wire::keys::LAUNCH_ALL)
         .callback(move |s| {
             let bytes = s.payload().to_bytes();
             if json {
@@ -123,7 +123,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let _ = stop_sim_tx.send(());
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon.await.map_err(|e| DaemonError::Input(e.to_string()))??;
+    let summary = daemon.await.map_err(|e| DaemonError::Task(e.to_string()))??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

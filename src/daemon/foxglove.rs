@@ -10,46 +10,69 @@
 //! `world`.
 
 use super::recorder::Record;
+use crate::wire::{
+    keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType, StatusMessage,
+};
 
 /// Sampling period of the ball-flight line (s).
 pub const FLIGHT_LINE_STEP_S: f64 = 0.05;
+
+/// The schema of a channel: a wire message type or one of Foxglove's well-known ones. Typed, so a channel
+/// cannot name a schema that does not exist.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Schema {
+    Wire(MessageType),
+    PoseInFrame,
+    SceneUpdate,
+}
+
+impl Schema {
+    /// The schema of a wire message type.
+    pub fn of<M: Message>() -> Self {
+        Schema::Wire(M::TYPE)
+    }
+
+    /// The schema's name: `impactd.LaunchPrediction`, `foxglove.SceneUpdate`.
+    pub fn name(self) -> String {
+        match self {
+            Schema::Wire(t) => t.schema_name(),
+            Schema::PoseInFrame => "foxglove.PoseInFrame".to_string(),
+            Schema::SceneUpdate => "foxglove.SceneUpdate".to_string(),
+        }
+    }
+
+    /// The schema's JSON Schema text.
+    pub fn text(self) -> String {
+        match self {
+            Schema::Wire(t) => t.schema(),
+            Schema::PoseInFrame => POSE_IN_FRAME.to_string(),
+            Schema::SceneUpdate => SCENE_UPDATE.to_string(),
+        }
+    }
+}
 
 /// A record as a channel message.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Encoded {
     pub topic: String,
-    /// The wire type name (`LaunchPrediction`) or Foxglove schema name (`foxglove.SceneUpdate`).
-    pub schema: &'static str,
+    pub schema: Schema,
     pub log_time_ns: u64,
     pub publish_time_ns: u64,
     pub data: Vec<u8>,
 }
 
 /// The topics of a rig's channels with their schema, in the order the live view advertises them.
-pub fn rig_channels(rig: &str) -> Vec<(String, &'static str)> {
-    use crate::wire::keys;
+pub fn rig_channels(rig: &str) -> Vec<(String, Schema)> {
     vec![
-        (format!("/{}", keys::clubhead(rig)), "ClubheadSample"),
-        (format!("/{}", keys::impact(rig)), "ImpactMessage"),
-        (format!("/{}", keys::launch(rig)), "LaunchPrediction"),
-        (format!("/{}", keys::status(rig)), "StatusMessage"),
-        (format!("/{}", keys::measured_launch(rig)), "MeasuredLaunch"),
-        (format!("/foxglove/{rig}/club_pose"), "foxglove.PoseInFrame"),
-        (format!("/foxglove/{rig}/impact_scene"), "foxglove.SceneUpdate"),
-        (format!("/foxglove/{rig}/ball_flight"), "foxglove.SceneUpdate"),
+        (format!("/{}", keys::clubhead(rig)), Schema::of::<ClubheadSampleMsg>()),
+        (format!("/{}", keys::impact(rig)), Schema::of::<ImpactMessage>()),
+        (format!("/{}", keys::launch(rig)), Schema::of::<LaunchPrediction>()),
+        (format!("/{}", keys::status(rig)), Schema::of::<StatusMessage>()),
+        (format!("/{}", keys::measured_launch(rig)), Schema::of::<MeasuredLaunch>()),
+        (format!("/{}", keys::foxglove_club_pose(rig)), Schema::PoseInFrame),
+        (format!("/{}", keys::foxglove_impact_scene(rig)), Schema::SceneUpdate),
+        (format!("/{}", keys::foxglove_ball_flight(rig)), Schema::SceneUpdate),
     ]
-}
-
-/// The schema name and JSON Schema text of a channel's schema.
-pub fn schema(name: &'static str) -> (String, String) {
-    match name {
-        "foxglove.PoseInFrame" => (name.to_string(), POSE_IN_FRAME.to_string()),
-        "foxglove.SceneUpdate" => (name.to_string(), SCENE_UPDATE.to_string()),
-        other => (
-            format!("impactd.{other}"),
-            crate::wire::schemas().into_iter().find(|(n, _)| *n == other).map(|(_, s)| s).unwrap_or_default(),
-        ),
-    }
 }
 
 fn timestamp(t_ns: u64) -> serde_json::Value {
@@ -78,7 +101,7 @@ fn entity(t_ns: u64, id: &str, kind: &str, primitives: serde_json::Value) -> ser
 }
 
 /// The flight-line record of a prediction (flown later, by whoever encodes it).
-pub fn flight_record(l: &crate::wire::LaunchPrediction, flight: crate::flight::Flight, log_time_ns: u64) -> Record {
+pub fn flight_record(l: &LaunchPrediction, flight: crate::flight::Flight, log_time_ns: u64) -> Record {
     let launch = crate::flight::LaunchState {
         velocity_mps: l.launch.ball_velocity_mps.into(),
         spin_radps: l.launch.ball_spin_radps.into(),
@@ -92,8 +115,8 @@ pub fn encode(record: Record) -> Option<Encoded> {
         serde_json::to_vec(&serde_json::json!({ "deletions": [], "entities": entities })).unwrap_or_default()
     };
     Some(match record {
-        Record::Message { key, type_name, log_time_ns, publish_time_ns, data } => {
-            Encoded { topic: format!("/{key}"), schema: type_name, log_time_ns, publish_time_ns, data }
+        Record::Message { key, message_type, log_time_ns, publish_time_ns, data } => {
+            Encoded { topic: format!("/{key}"), schema: Schema::Wire(message_type), log_time_ns, publish_time_ns, data }
         }
         Record::ClubPose { rig, t_ns, log_time_ns, world_from_club } => {
             let p = world_from_club.translation.vector;
@@ -103,8 +126,8 @@ pub fn encode(record: Record) -> Option<Encoded> {
                 "pose": pose_json([p.x, p.y, p.z], world_from_club.rotation.into()),
             });
             Encoded {
-                topic: format!("/foxglove/{rig}/club_pose"),
-                schema: "foxglove.PoseInFrame",
+                topic: format!("/{}", keys::foxglove_club_pose(&rig)),
+                schema: Schema::PoseInFrame,
                 log_time_ns,
                 publish_time_ns: t_ns,
                 data: serde_json::to_vec(&msg).unwrap_or_default(),
@@ -115,8 +138,8 @@ pub fn encode(record: Record) -> Option<Encoded> {
             let ball = serde_json::json!([{ "pose": pose_json(ball_position_m, IDENTITY), "size": { "x": d, "y": d, "z": d }, "color": { "r": 1.0, "g": 1.0, "b": 1.0, "a": 1.0 } }]);
             let head = serde_json::json!([{ "pose": pose_json(club.cg_position_m, club.orientation), "size": { "x": 0.10, "y": 0.05, "z": 0.11 }, "color": { "r": 0.2, "g": 0.4, "b": 0.9, "a": 0.8 } }]);
             Encoded {
-                topic: format!("/foxglove/{rig}/impact_scene"),
-                schema: "foxglove.SceneUpdate",
+                topic: format!("/{}", keys::foxglove_impact_scene(&rig)),
+                schema: Schema::SceneUpdate,
                 log_time_ns,
                 publish_time_ns: t_ns,
                 data: scene(vec![entity(t_ns, "ball", "spheres", ball), entity(t_ns, "club", "cubes", head)]),
@@ -132,8 +155,8 @@ pub fn encode(record: Record) -> Option<Encoded> {
                 "points": points, "color": { "r": 1.0, "g": 0.55, "b": 0.1, "a": 1.0 }, "colors": [], "indices": [],
             }]);
             Encoded {
-                topic: format!("/foxglove/{rig}/ball_flight"),
-                schema: "foxglove.SceneUpdate",
+                topic: format!("/{}", keys::foxglove_ball_flight(&rig)),
+                schema: Schema::SceneUpdate,
                 log_time_ns,
                 publish_time_ns: t_ns,
                 data: scene(vec![entity(t_ns, "flight", "lines", line)]),
@@ -170,7 +193,7 @@ mod tests {
         let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, flight, launch }).unwrap();
         assert_eq!(
             (e.topic.as_str(), e.schema, e.publish_time_ns),
-            ("/foxglove/r/ball_flight", "foxglove.SceneUpdate", 5)
+            ("/foxglove/r/ball_flight", Schema::SceneUpdate, 5)
         );
         let v: serde_json::Value = serde_json::from_slice(&e.data).unwrap();
         let points = v["entities"][0]["lines"][0]["points"].as_array().unwrap().clone();

@@ -21,7 +21,7 @@ use tokio_tungstenite::tungstenite::handshake::server::{ErrorResponse, Request, 
 use tokio_tungstenite::tungstenite::http::{HeaderValue, StatusCode};
 use tokio_tungstenite::tungstenite::Message;
 
-use super::foxglove::{encode, rig_channels, schema};
+use super::foxglove::{encode, rig_channels};
 use super::recorder::Record;
 use super::DaemonError;
 
@@ -77,12 +77,11 @@ impl FoxgloveServer {
         let local_addr = listener.local_addr().map_err(io)?;
         let mut topics = HashMap::new();
         let mut channels = Vec::new();
-        for (topic, schema_type) in config.rigs.iter().flat_map(|r| rig_channels(&r.name)) {
+        for (topic, schema) in config.rigs.iter().flat_map(|r| rig_channels(&r.name)) {
             let id = channels.len() as u32 + 1;
-            let (schema_name, schema_text) = schema(schema_type);
             channels.push(serde_json::json!({
-                "id": id, "topic": topic, "encoding": "json", "schemaName": schema_name,
-                "schema": schema_text, "schemaEncoding": "jsonschema",
+                "id": id, "topic": topic, "encoding": "json", "schemaName": schema.name(),
+                "schema": schema.text(), "schemaEncoding": "jsonschema",
             }));
             topics.insert(topic, id);
         }

@@ -21,11 +21,12 @@ use zenoh::Wait;
 
 use super::foxglove_live::FoxgloveServer;
 use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
-use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
+use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
+use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use super::stats::{LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
-use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus, StatusMessage};
+use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -57,16 +58,6 @@ struct Incoming {
     encoding: String,
 }
 
-/// The `session` metadata of a recording: versions and the configuration.
-pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
-    let mut m = BTreeMap::new();
-    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
-    m.insert("wire_version".into(), wire::WIRE_VERSION.to_string());
-    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
-    m.insert("start_ns".into(), wall_ns().to_string());
-    m
-}
-
 /// Runs the daemon on `session` until `shutdown` completes.
 pub async fn run(
     config: DaemonConfig,
@@ -90,21 +81,7 @@ pub async fn run(
     let mut queryables = Vec::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
-        let impact = session
-            .declare_publisher(keys::impact(&name))
-            .encoding(wire::encoding("ImpactMessage"))
-            .await
-            .map_err(DaemonError::zenoh)?;
-        let launch = session
-            .declare_publisher(keys::launch(&name))
-            .encoding(wire::encoding("LaunchPrediction"))
-            .await
-            .map_err(DaemonError::zenoh)?;
-        let status = session
-            .declare_publisher(keys::status(&name))
-            .encoding(wire::encoding("StatusMessage"))
-            .await
-            .map_err(DaemonError::zenoh)?;
+        let publishers = RigPublishers::declare(session, &name).await?;
         tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
         let config_json = serde_json::to_vec(rig_config).unwrap_or_default();
         let config_key = keys::config(&name);
@@ -121,29 +98,21 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
-        let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
-        let flight = setup.flight;
         let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
+        let pipeline = Pipeline::new(setup);
         let worker = Worker {
-            rig: Arc::from(setup.name.as_str()),
-            keys: RigKeys::new(&setup.name),
-            pipeline: Some(Pipeline::new(setup)),
-            impact,
-            launch,
-            status,
-            recorder: handle.clone(),
+            rig: Arc::from(name.as_str()),
+            sinks: RigSinks::new(&pipeline, Some(publishers), handle.clone()),
+            pipeline: Some(pipeline),
             queue_dropped,
             latency: LatencyWindow::new(1024),
             limiter: RateLimiter::new(Duration::from_secs(1)),
             started: Instant::now(),
-            ball_position_m: setup_ball.0,
-            ball_radius_m: setup_ball.1,
-            flight,
             simulator,
             launch_monitor,
         };
@@ -215,44 +184,15 @@ pub async fn run(
     Ok(summary)
 }
 
-/// A rig's key expressions, built once.
-struct RigKeys {
-    clubhead: String,
-    rejected: String,
-    impact: String,
-    launch: String,
-    status: String,
-}
-
-impl RigKeys {
-    fn new(rig: &str) -> Self {
-        RigKeys {
-            clubhead: keys::clubhead(rig),
-            rejected: format!("{}/rejected", keys::clubhead(rig)),
-            impact: keys::impact(rig),
-            launch: keys::launch(rig),
-            status: keys::status(rig),
-        }
-    }
-}
-
 struct Worker {
     rig: Arc<str>,
-    keys: RigKeys,
+    sinks: RigSinks,
     /// The rig's pipeline; taken out while it runs a sample, so its events can be published as they come.
     pipeline: Option<Pipeline>,
-    impact: zenoh::pubsub::Publisher<'static>,
-    launch: zenoh::pubsub::Publisher<'static>,
-    status: zenoh::pubsub::Publisher<'static>,
-    recorder: RecorderHandle,
     queue_dropped: Arc<AtomicU64>,
     latency: LatencyWindow,
     limiter: RateLimiter,
     started: Instant,
-    ball_position_m: [f64; 3],
-    ball_radius_m: f64,
-    /// The rig's flight model, for the live view's flight line.
-    flight: Option<crate::flight::Flight>,
     simulator: Option<SimulatorClient>,
     launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
 }
@@ -310,12 +250,6 @@ impl Worker {
         }
     }
 
-    fn record(&self, key: &str, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
-        if self.recorder.enabled() {
-            self.recorder.send(Record::Message { key: key.to_string(), type_name, log_time_ns, publish_time_ns, data });
-        }
-    }
-
     fn on_incoming(&mut self, incoming: Incoming) {
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
@@ -327,18 +261,17 @@ impl Worker {
                 self.warn(e.key(), || format!("rejected sample: {e}"));
                 // Nothing is lost: the raw payload goes to the recording beside the reason.
                 let keep = &incoming.payload[..bytes.min(wire::MAX_PAYLOAD_BYTES)];
-                let data = serde_json::to_vec(&wire::RejectedInput {
+                let rejected = wire::RejectedInput {
                     reason: e.to_string(),
                     bytes,
                     payload: String::from_utf8_lossy(keep).into_owned(),
-                })
-                .unwrap_or_default();
-                self.record(&self.keys.rejected, "RejectedInput", incoming.log_time_ns, incoming.log_time_ns, data);
+                };
+                self.sinks.rejected(incoming.log_time_ns, &rejected);
                 return;
             }
         };
         let sample = msg.to_sample();
-        self.record(&self.keys.clubhead, "ClubheadSample", incoming.log_time_ns, msg.t_ns, incoming.payload);
+        self.sinks.sample(incoming.log_time_ns, msg.t_ns, incoming.payload);
         let mut any_event = false;
         let received = incoming.received;
         let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
@@ -347,16 +280,9 @@ impl Worker {
             self.on_event(&rig, event, received);
         });
         self.pipeline = Some(pipeline);
-        if self.recorder.enabled() && !sample.occluded && !any_event {
-            if let Some(q) = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01) {
-                let lab = crate::math::Isometry3::from_parts(sample.position_m.into(), q);
-                let world_from_club = self.p().setup.calibration.world_from_club(&lab);
-                self.recorder.send(Record::ClubPose {
-                    rig: rig.to_string(),
-                    t_ns: sample.t_ns,
-                    log_time_ns: incoming.log_time_ns,
-                    world_from_club,
-                });
+        if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
+            if let Some(world_from_club) = sinks::world_from_club(self.p(), &sample) {
+                self.sinks.club_pose(sample.t_ns, incoming.log_time_ns, world_from_club);
             }
         }
     }
@@ -366,30 +292,10 @@ impl Worker {
             Event::Rejected { frame, reason } => {
                 self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
             }
-            Event::Impact(m) => {
-                let data = serde_json::to_vec(&m).unwrap_or_default();
-                if let Err(e) = self.impact.put(data.clone()).wait() {
-                    tracing::error!("rig {rig}: publishing the impact: {e}");
-                }
-                let now = wall_ns();
-                self.record(&self.keys.impact, "ImpactMessage", now, now, data);
-                if self.recorder.enabled() {
-                    self.recorder.send(Record::ImpactScene {
-                        rig: rig.to_string(),
-                        t_ns: m.t_impact_ns,
-                        log_time_ns: now,
-                        ball_position_m: self.ball_position_m,
-                        ball_radius_m: self.ball_radius_m,
-                        club: m.state,
-                    });
-                }
-            }
+            Event::Impact(m) => self.sinks.impact(&m, wall_ns()),
             Event::Launch(mut l) => {
                 l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
-                let data = serde_json::to_vec(&l).unwrap_or_default();
-                if let Err(e) = self.launch.put(data.clone()).wait() {
-                    tracing::error!("rig {rig}: publishing the launch: {e}");
-                }
+                self.sinks.launch(&l, wall_ns());
                 self.latency.push(l.latency_us);
                 if let Some(simulator) = &mut self.simulator {
                     simulator.offer(&l);
@@ -399,50 +305,26 @@ impl Worker {
                     l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
                     l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
                 );
-                let now = wall_ns();
-                self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
-                if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
-                    self.recorder.send(super::foxglove::flight_record(&l, flight, now));
-                }
-                self.recorder.send(Record::Flush);
             }
             Event::Failed { shot, frame, reason, .. } => {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
-                self.recorder.send(Record::Flush);
+                self.sinks.failed();
             }
         }
     }
 
-    fn publish_status(&mut self) -> StatusMessage {
-        let c = &self.p().counts;
-        let mut rejected = c.rejected.clone();
-        let queue = self.queue_dropped.load(Ordering::Relaxed);
-        if queue > 0 {
-            rejected.insert("queue_full".into(), queue);
-        }
-        let status = StatusMessage {
-            rig: self.rig.to_string(),
-            t_ns: wall_ns(),
+    fn publish_status(&mut self) -> wire::StatusMessage {
+        let inputs = StatusInputs {
+            counts: &self.p().counts,
+            queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
+            latency: &self.latency,
             uptime_s: self.started.elapsed().as_secs_f64(),
-            samples: c.samples + queue,
-            accepted: c.accepted,
-            occluded: c.occluded,
-            dropped: c.dropped,
-            rejected,
-            shots: c.shots,
-            predictions: c.predictions,
-            failed: c.failed.clone(),
-            latency_p50_us: self.latency.quantile(0.5),
-            latency_p99_us: self.latency.quantile(0.99),
-            recorder_dropped: self.recorder.dropped(),
-            simulator: self.simulator.as_ref().map(SimulatorClient::status),
-            launch_monitor: self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone())),
+            t_ns: wall_ns(),
         };
-        let data = serde_json::to_vec(&status).unwrap_or_default();
-        if let Err(e) = self.status.put(data.clone()).wait() {
-            tracing::warn!("publishing status: {e}");
-        }
-        self.record(&self.keys.status, "StatusMessage", status.t_ns, status.t_ns, data);
+        let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
+        status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
+        status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
+        self.sinks.status(&status);
         status
     }
 }

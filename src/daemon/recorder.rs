@@ -4,10 +4,9 @@
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding
 //! `jsonschema`. Foxglove's well-known `foxglove.PoseInFrame` (the club in the world) and `foxglove.SceneUpdate`
 //! (ball and club at impact, the predicted flight) channels sit beside them (built in [`super::foxglove`], shared
-//! with the live view), and a `session` metadata record holds versions and the
-//! configuration. Chunks are zstd-compressed and closed (flushed to the file) after every shot and at least once
-//! a second, so a killed daemon loses at most the last second. Sending never blocks: a full queue drops the
-//! record and counts it.
+//! with the live view), and a `session` metadata record holds versions and the configuration. Chunks are
+//! zstd-compressed and closed (flushed to the file) after every shot and at least once a second, so a killed
+//! daemon loses at most the last second. Sending never blocks: a full queue drops the record and counts it.
 
 use std::collections::{BTreeMap, HashMap};
 use std::io::BufWriter;
@@ -17,9 +16,20 @@ use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::DaemonError;
+use super::foxglove::Schema;
+use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::math::Isometry3;
-use crate::wire::ImpactStateMsg;
+use crate::wire::{ImpactStateMsg, MessageType};
+
+/// The `session` metadata of a recording: versions and the configuration.
+pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
+    let mut m = BTreeMap::new();
+    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
+    m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
+    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
+    m.insert("start_ns".into(), wall_ns().to_string());
+    m
+}
 
 /// Queue length between the prediction path and the writer.
 pub const QUEUE_CAPACITY: usize = 1 << 16;
@@ -27,8 +37,8 @@ pub const QUEUE_CAPACITY: usize = 1 << 16;
 /// One thing to record.
 #[derive(Debug, Clone)]
 pub enum Record {
-    /// A zenoh message: its key (without the leading `/`), its wire type name, and its JSON bytes.
-    Message { key: String, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
+    /// A zenoh message: its key (without the leading `/`), its wire type, and its JSON bytes.
+    Message { key: String, message_type: MessageType, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
     /// The club's pose in the world at a sample (Foxglove `PoseInFrame` on `/foxglove/<rig>/club_pose`).
     ClubPose { rig: String, t_ns: u64, log_time_ns: u64, world_from_club: Isometry3 },
     /// Ball and club at an impact (Foxglove `SceneUpdate` on `/foxglove/<rig>/impact_scene`).
@@ -209,7 +219,7 @@ impl RecorderHandle {
 
 #[derive(Default)]
 struct Channels {
-    schemas: HashMap<&'static str, u16>,
+    schemas: HashMap<Schema, u16>,
     channels: HashMap<String, u16>,
     sequence: u32,
 }
@@ -218,14 +228,13 @@ impl Channels {
     fn schema<W: std::io::Write + std::io::Seek>(
         &mut self,
         w: &mut mcap::Writer<W>,
-        name: &'static str,
+        schema: Schema,
     ) -> Result<u16, mcap::McapError> {
-        if let Some(id) = self.schemas.get(name) {
+        if let Some(id) = self.schemas.get(&schema) {
             return Ok(*id);
         }
-        let (schema_name, data) = super::foxglove::schema(name);
-        let id = w.add_schema(&schema_name, "jsonschema", data.as_bytes())?;
-        self.schemas.insert(name, id);
+        let id = w.add_schema(&schema.name(), "jsonschema", schema.text().as_bytes())?;
+        self.schemas.insert(schema, id);
         Ok(id)
     }
 
@@ -233,7 +242,7 @@ impl Channels {
         &mut self,
         w: &mut mcap::Writer<W>,
         topic: &str,
-        schema: &'static str,
+        schema: Schema,
     ) -> Result<u16, mcap::McapError> {
         if let Some(id) = self.channels.get(topic) {
             return Ok(*id);

@@ -25,11 +25,24 @@ pub struct TourAverage {
 /// The table shipped with the tests (`tests/data/trackman-pga-tour-averages.csv`).
 pub const TRACKMAN_CSV: &str = include_str!("../../tests/data/trackman-pga-tour-averages.csv");
 
+/// Why the table cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum TableError {
+    #[error("empty table")]
+    Empty,
+    #[error("no column `{0}`")]
+    MissingColumn(&'static str),
+    #[error("row {row}: column {column}")]
+    BadNumber { row: usize, column: usize },
+    #[error("row {row}: no club")]
+    NoClub { row: usize },
+}
+
 /// Parses the CSV (comment lines start with `#`).
-pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, String> {
+pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, TableError> {
     let mut lines = csv.lines().filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().ok_or("empty table")?.split(',').map(str::trim).collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).ok_or(format!("no column `{name}`"));
+    let header: Vec<&str> = lines.next().ok_or(TableError::Empty)?.split(',').map(str::trim).collect();
+    let col = |name: &'static str| header.iter().position(|h| *h == name).ok_or(TableError::MissingColumn(name));
     let (c_club, c_bs, c_la, c_spin, c_h, c_land, c_carry) = (
         col("club")?,
         col("ball_speed_mph")?,
@@ -43,10 +56,11 @@ pub fn parse_table(csv: &str) -> Result<Vec<TourAverage>, String> {
         .enumerate()
         .map(|(i, line)| {
             let f: Vec<&str> = line.split(',').map(str::trim).collect();
-            let num =
-                |c: usize| f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(format!("row {}: column {c}", i + 1));
+            let num = |c: usize| {
+                f.get(c).and_then(|v| v.parse::<Real>().ok()).ok_or(TableError::BadNumber { row: i + 1, column: c })
+            };
             Ok(TourAverage {
-                club: f.get(c_club).ok_or("no club")?.to_string(),
+                club: f.get(c_club).ok_or(TableError::NoClub { row: i + 1 })?.to_string(),
                 ball_speed_mph: num(c_bs)?,
                 launch_angle_deg: num(c_la)?,
                 spin_rpm: num(c_spin)?,
@@ -256,7 +270,7 @@ fn lawson_step(jac: &DMatrix<Real>, r: &DVector<Real>, damping: Real) -> DVector
         d = step;
         w = w.component_mul(&(r + jac * &d).abs());
         let total = w.sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             break;
         }
         w /= total;

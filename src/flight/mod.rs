@@ -34,9 +34,10 @@
 pub mod air;
 pub mod fit;
 
-pub use air::Conditions;
+pub use air::{Conditions, ConditionsError};
 
 use crate::equipment::BallSpec;
+use crate::integrate::{rk4_step, Ode};
 use crate::math::{Real, Vector3};
 use crate::units::m_to_yd;
 
@@ -228,6 +229,38 @@ impl Default for Flight {
     }
 }
 
+/// The ball in the air as an ODE for the shared integrator.
+struct Air<'a> {
+    flight: &'a Flight,
+    env: &'a Env,
+}
+
+impl Ode for Air<'_> {
+    type State = S;
+    type Rate = (Vector3, Vector3, Vector3);
+
+    #[inline]
+    fn rate(&self, s: &S) -> Self::Rate {
+        let (a, dw) = self.flight.accel(self.env, s);
+        (s.v, a, dw)
+    }
+
+    #[inline]
+    fn advance(s: &S, k: &Self::Rate, c: Real) -> S {
+        S { p: s.p + k.0 * c, v: s.v + k.1 * c, w: s.w + k.2 * c }
+    }
+
+    #[inline]
+    fn advance_rk4(s: &S, k: [&Self::Rate; 4], h: Real) -> S {
+        let [k1, k2, k3, k4] = k;
+        S {
+            p: s.p + (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0) * (h / 6.0),
+            v: s.v + (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1) * (h / 6.0),
+            w: s.w + (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2) * (h / 6.0),
+        }
+    }
+}
+
 #[derive(Clone, Copy)]
 struct S {
     p: Vector3,
@@ -268,24 +301,9 @@ impl Flight {
     }
 
     fn step(&self, env: &Env, s: &S, h: Real) -> S {
-        let f = |s: &S| {
-            let (a, dw) = self.accel(env, s);
-            (s.v, a, dw)
-        };
-        let add = |s: &S, k: &(Vector3, Vector3, Vector3), c: Real| S {
-            p: s.p + k.0 * c,
-            v: s.v + k.1 * c,
-            w: s.w + k.2 * c,
-        };
-        let k1 = f(s);
-        let k2 = f(&add(s, &k1, 0.5 * h));
-        let k3 = f(&add(s, &k2, 0.5 * h));
-        let k4 = f(&add(s, &k3, h));
-        S {
-            p: s.p + (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0) * (h / 6.0),
-            v: s.v + (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1) * (h / 6.0),
-            w: s.w + (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2) * (h / 6.0),
-        }
+        let system = Air { flight: self, env };
+        let k1 = system.rate(s);
+        rk4_step(&system, s, &k1, h)
     }
 
     /// Flies a ball launched from the ground at the origin; `sample_every_s` > 0 records the path.

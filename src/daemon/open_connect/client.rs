@@ -23,7 +23,8 @@ use super::{SimulatorConfig, MAX_MESSAGE_BYTES};
 use crate::daemon::recorder::{Record, RecorderHandle};
 use crate::daemon::wall_ns;
 use crate::wire::{
-    keys, ConnectionState, LaunchPrediction, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
+    keys, ConnectionState, LaunchPrediction, Message, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
+    TrafficDirection,
 };
 
 /// Shots waiting for the simulator.
@@ -162,7 +163,7 @@ impl Task {
         let data = serde_json::to_vec(&msg).unwrap_or_default();
         self.recorder.send(Record::Message {
             key: self.key.clone(),
-            type_name: "OpenConnectTraffic",
+            message_type: OpenConnectTraffic::TYPE,
             log_time_ns: t_ns,
             publish_time_ns: t_ns,
             data,

@@ -21,7 +21,7 @@ use super::splitter::{Frame, Splitter};
 use super::MAX_MESSAGE_BYTES;
 use crate::daemon::recorder::{Record, RecorderHandle};
 use crate::daemon::{wall_ns, DaemonError};
-use crate::wire::{self, keys, LaunchMonitorStatus, OpenConnectTraffic, TrafficDirection};
+use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, OpenConnectTraffic, TrafficDirection};
 
 /// The failure code of the Open Connect v1 replies.
 pub const FAILURE: u16 = 501;
@@ -58,7 +58,7 @@ impl LaunchMonitorListener {
         let local_addr = listener.local_addr().map_err(io)?;
         let publisher = session
             .declare_publisher(keys::measured_launch(rig))
-            .encoding(wire::encoding("MeasuredLaunch"))
+            .encoding(MeasuredLaunch::TYPE.encoding())
             .await
             .map_err(DaemonError::zenoh)?;
         let status = Arc::new(Mutex::new(LaunchMonitorStatus { listen: local_addr.to_string(), ..Default::default() }));
@@ -151,7 +151,7 @@ impl Shared {
         };
         self.recorder.send(Record::Message {
             key: self.traffic_key.clone(),
-            type_name: "OpenConnectTraffic",
+            message_type: OpenConnectTraffic::TYPE,
             log_time_ns: t_ns,
             publish_time_ns: t_ns,
             data: serde_json::to_vec(&msg).unwrap_or_default(),
@@ -234,7 +234,7 @@ impl Shared {
         let data = serde_json::to_vec(&measured).unwrap_or_default();
         self.recorder.send(Record::Message {
             key: self.measured_key.clone(),
-            type_name: "MeasuredLaunch",
+            message_type: MeasuredLaunch::TYPE,
             log_time_ns: t_ns,
             publish_time_ns: t_ns,
             data: data.clone(),

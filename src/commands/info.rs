@@ -1,0 +1,17 @@
+//! `impactd info`: channels, counts, duration and shots of a recording.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Args;
+
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    pub file: PathBuf,
+}
+
+pub fn run(args: &InfoArgs) -> Result<ExitCode> {
+    print!("{}", impactd::daemon::info::info(&args.file)?);
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,33 @@
+//! `impactd recover`: salvages a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{bail, Result};
+use clap::Args;
+
+#[derive(Debug, Args)]
+pub struct RecoverArgs {
+    pub file: PathBuf,
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+pub fn run(args: &RecoverArgs) -> Result<ExitCode> {
+    if args.file == args.output {
+        bail!("the output must be a new file");
+    }
+    let r = impactd::daemon::recover::recover(&args.file, &args.output)?;
+    if r.complete {
+        eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
+        Ok(ExitCode::SUCCESS)
+    } else {
+        eprintln!(
+            "{}: cut off; salvaged {} messages into {} (the unfinished last chunk, at most about a second, is lost)",
+            args.file.display(),
+            r.messages,
+            args.output.display()
+        );
+        Ok(ExitCode::from(3))
+    }
+}
