@@ -3,6 +3,8 @@
 //! `foxglove.websocket.v1`, reads the server info and the advertised channels, subscribes to all of them and
 //! decodes the binary message frames (opcode 1, subscription id, time, JSON) until every channel of the demo's
 //! rig has spoken.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 use impactd::daemon::bus::free_loopback_port;

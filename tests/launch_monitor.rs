@@ -2,6 +2,8 @@
 //! it would to a simulator, with glued, fragmented, malformed, oversized and repeated messages. Each shot is
 //! answered 200 and published once as a `MeasuredLaunch` on zenoh and recorded; each bad message is answered
 //! 501 with its reason, and the connection (and the next shot) carries on.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 mod common;

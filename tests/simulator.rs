@@ -3,6 +3,8 @@
 //! answer to heartbeats), answer 501 to everything, close the connection after each shot, start late, or stall.
 //! Every shot arrives once with the predicted numbers, none twice, stale ones are dropped and counted, and a
 //! stalled simulator leaves the daemon's latency where it was.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 mod common;

@@ -1,5 +1,7 @@
 //! What the bridge tests share: a daemon in-process on loopback zenoh, subscribers that collect, and a
 //! recording's messages per topic (read with the `mcap` crate).
+
+#![allow(clippy::unwrap_used)]
 #![allow(dead_code)]
 
 use std::collections::BTreeMap;
