@@ -62,15 +62,21 @@ where
     F: FnMut(I) -> Result<O, E>,
 {
     let mut tally = Tally::default();
-    for (i, line) in input.lines().enumerate() {
-        let line = line.map_err(JsonlError::Read)?;
-        if line.trim().is_empty() {
-            continue;
+    let mut input = input;
+    let mut buf = Vec::new();
+    for n in 1.. {
+        buf.clear();
+        if input.read_until(b'\n', &mut buf).map_err(JsonlError::Read)? == 0 {
+            break;
         }
-        let n = i + 1;
-        let result = match parse_line::<I>(&line) {
-            Ok(i) => answer(i).map_err(|e| e.to_string()),
-            Err(e) => Err(e.to_string()),
+        // A line that is not UTF-8 is answered like any other bad line.
+        let result = match std::str::from_utf8(&buf) {
+            Ok(line) if line.trim().is_empty() => continue,
+            Ok(line) => match parse_line::<I>(line) {
+                Ok(i) => answer(i).map_err(|e| e.to_string()),
+                Err(e) => Err(e.to_string()),
+            },
+            Err(e) => Err(format!("not UTF-8 text: {e}")),
         };
         let text = match result {
             Ok(o) => {

@@ -50,6 +50,7 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
+pub mod capped;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;

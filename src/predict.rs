@@ -50,6 +50,8 @@ pub enum DeliveryError {
     Direction(ImpactError),
     #[error("{0}")]
     Model(ImpactError),
+    #[error("{0}")]
+    Implausible(#[from] crate::wire::OutOfBounds),
 }
 
 impl DeliveryError {
@@ -70,6 +72,7 @@ impl DeliveryError {
 /// The club's state at impact for a delivery read from JSON, or the reason it has none.
 pub fn state_of(input: &DeliveryInput, club: &ClubSpec, equipment: &Equipment) -> Result<ImpactState, DeliveryError> {
     input.check_finite().map_err(|e| DeliveryError::new(e, input))?;
+    input.check_plausible()?;
     input.to_delivery(club.loft_deg()).to_state(equipment).map_err(|e| DeliveryError::new(e, input))
 }
 

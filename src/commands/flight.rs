@@ -22,8 +22,10 @@ pub struct FlightArgs {
 pub fn run(args: &FlightArgs) -> Result<ExitCode> {
     let flight = impactd::flight::Flight { conditions: args.conditions.conditions()?, ..Default::default() };
     let every = args.points_s.unwrap_or(0.0);
-    if every < 0.0 || !every.is_finite() {
-        bail!("--points-s must be positive");
+    // The finest path sampling: a ball in flight for 10 s gives at most 10,000 points.
+    const MIN_POINTS_S: f64 = 1e-3;
+    if !every.is_finite() || (every != 0.0 && !(MIN_POINTS_S..=60.0).contains(&every)) {
+        bail!("--points-s must be within {MIN_POINTS_S} and 60 s");
     }
     let input = open_input(args.input.as_deref())?;
     let tally = impactd::jsonl::process(

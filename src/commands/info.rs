@@ -12,6 +12,7 @@ pub struct InfoArgs {
 }
 
 pub fn run(args: &InfoArgs) -> Result<ExitCode> {
-    print!("{}", impactd::daemon::info::info(&args.file)?);
-    Ok(ExitCode::SUCCESS)
+    let info = impactd::daemon::info::info(&args.file)?;
+    print!("{}", info.text);
+    Ok(if info.intact { ExitCode::SUCCESS } else { ExitCode::from(3) })
 }

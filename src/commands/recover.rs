@@ -20,14 +20,17 @@ pub fn run(args: &RecoverArgs) -> Result<ExitCode> {
     let r = impactd::daemon::recover::recover(&args.file, &args.output)?;
     if r.complete {
         eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
-        Ok(ExitCode::SUCCESS)
-    } else {
-        eprintln!(
-            "{}: cut off; salvaged {} messages into {} (the unfinished last chunk, at most about a second, is lost)",
-            args.file.display(),
-            r.messages,
-            args.output.display()
-        );
-        Ok(ExitCode::from(3))
+        return Ok(ExitCode::SUCCESS);
     }
+    eprintln!(
+        "{}: cut off or damaged; salvaged {} messages in {} intact chunks into {}",
+        args.file.display(),
+        r.messages,
+        r.chunks,
+        args.output.display()
+    );
+    for line in r.report() {
+        eprintln!("  {line}");
+    }
+    Ok(ExitCode::from(3))
 }

@@ -34,11 +34,21 @@ pub struct ReplayArgs {
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     let input = replay::load(&args.file)?;
+    for d in &input.damage {
+        eprintln!("{}: damaged: {d}", args.file.display());
+    }
+    if !input.skipped_lines.is_empty() {
+        for l in input.skipped_lines.iter().take(5) {
+            eprintln!("skipped {l}");
+        }
+        eprintln!("{} lines skipped: not clubhead samples", input.skipped_lines.len());
+    }
     let (config, setups) = replay::resolve_config(&input, args.config.as_deref())?;
     let options = ReplayOptions { rate: args.rate, output: args.output.clone() };
     let rt = runtime()?;
     rt.block_on(async {
-        let session = if args.publish { Some(args.zenoh.open().await?) } else { None };
+        let session =
+            if args.publish { Some(args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?) } else { None };
         let mut out = std::io::stdout().lock();
         let report = replay::run(&input, &config, setups, session.as_ref(), &options, |e, bytes| match e {
             Event::Launch(_) => {
@@ -67,6 +77,14 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
                 String::new()
             }
         );
+        if report.damaged {
+            eprintln!(
+                "the recording is damaged: {} predictions over its readable part, {} equal to the {} recorded \
+                 predictions that could be read; not a reproduction",
+                report.produced, report.reproduced, report.recorded
+            );
+            return Ok(ExitCode::from(3));
+        }
         if report.recorded > 0 {
             eprintln!(
                 "{} of {} recorded predictions reproduced byte for byte{}",

@@ -17,6 +17,9 @@ pub struct RunArgs {
     /// Record every message to this MCAP file.
     #[arg(long)]
     pub record: Option<PathBuf>,
+    /// Replace an existing recording.
+    #[arg(long, alias = "force")]
+    pub overwrite: bool,
     #[command(flatten)]
     pub bridges: BridgeArgs,
     #[command(flatten)]
@@ -106,7 +109,11 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
             config,
             setups,
             &session,
-            RunOptions { record: args.record.clone(), foxglove: args.bridges.foxglove.clone() },
+            RunOptions {
+                record: args.record.clone(),
+                overwrite: args.overwrite,
+                foxglove: args.bridges.foxglove.clone(),
+            },
             shutdown_signal(),
         )
         .await?;
@@ -114,8 +121,18 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
         for (rig, c) in &summary.rigs {
             tracing::info!("rig {rig}: {} samples, {} shots, {} predictions", c.samples, c.shots, c.predictions);
         }
+        if summary.unknown_rig_samples > 0 {
+            tracing::warn!("{} samples arrived for rigs this daemon does not serve", summary.unknown_rig_samples);
+        }
         if let Some(r) = &summary.recorder {
-            tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped);
+            match &r.error {
+                Some(e) => tracing::error!(
+                    "recording failed: {e}; {} messages written before it, {} not recorded",
+                    r.messages,
+                    r.dropped
+                ),
+                None => tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped),
+            }
         }
         Ok(ExitCode::SUCCESS)
     })

@@ -62,7 +62,7 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
     };
     let rt = runtime()?;
     rt.block_on(async {
-        let session = args.zenoh.open().await?;
+        let session = args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
         let s = run_sim(&session, options, shutdown_signal()).await?;
         let _ = session.close().await;
         eprintln!("sent {} samples, {} shots", s.samples, s.shots);

@@ -146,10 +146,13 @@ impl Default for DaemonConfig {
     }
 }
 
+/// The largest configuration file (impactd's or zenoh's) read.
+pub const MAX_CONFIG_BYTES: u64 = crate::capped::MAX_INPUT_FILE_BYTES;
+
 impl DaemonConfig {
     /// Reads and validates a file.
     pub fn load(path: &Path) -> Result<(Self, Vec<RigSetup>), DaemonError> {
-        let text = std::fs::read_to_string(path)
+        let text = crate::capped::read_to_string(path, MAX_CONFIG_BYTES)
             .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
         Self::parse(&text)
     }

@@ -92,7 +92,8 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let r = super::run(config, setups, &daemon_session, RunOptions { record, foxglove }, shutdown).await;
+        let options = RunOptions { record, overwrite: true, foxglove };
+        let r = super::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });

@@ -1,70 +1,68 @@
-//! `impactd info`: channels, counts, duration, shots and metadata of a recording.
+//! `impactd info`: channels, counts, duration, shots and metadata of a recording, read by the bounded reader
+//! ([`mcap_read`](super::mcap_read)) up to the first damage it cannot step over, which it names.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::replay::{is_mcap, mcap_err, read_file};
+use super::replay::{is_mcap, read_file};
 use super::DaemonError;
 
-/// A description of a recording for `impactd info`.
-pub fn info(path: &Path) -> Result<String, DaemonError> {
+/// A description of a recording for `impactd info`, and whether it could be read whole.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Info {
+    pub text: String,
+    /// Finished and undamaged.
+    pub intact: bool,
+}
+
+/// Describes a recording: channels, counts, duration, shots, metadata, and anything it could not read.
+pub fn info(path: &Path) -> Result<Info, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
         return Err(DaemonError::NotMcap { path: path.display().to_string() });
     }
+    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
-    let mut damaged = None;
     let mut shots: BTreeMap<String, u64> = BTreeMap::new();
-    for message in mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-    {
-        let m = match message {
-            Ok(m) => m,
-            Err(e) => {
-                damaged = Some(e.to_string());
-                break;
-            }
-        };
+    for m in &scan.messages {
         first = first.min(m.log_time);
         last = last.max(m.log_time);
-        let schema = m.channel.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default();
-        let entry = counts.entry(m.channel.topic.clone()).or_insert((schema, 0));
-        entry.1 += 1;
-        let topic = m.channel.topic.trim_start_matches('/');
-        if let Some(rig) = crate::wire::keys::rig_of_launch(topic) {
+        let (topic, schema) = match scan.channels.get(&m.channel_id) {
+            Some(c) => (c.topic.clone(), scan.schemas.get(&c.schema_id).map(|s| s.name.clone()).unwrap_or_default()),
+            None => (format!("(unknown channel {})", m.channel_id), String::new()),
+        };
+        if let Some(rig) = topic.trim_start_matches('/').strip_prefix("golf/").and_then(|t| t.strip_suffix("/launch")) {
             *shots.entry(rig.to_string()).or_default() += 1;
         }
+        counts.entry(topic).or_insert((schema, 0)).1 += 1;
     }
-    let mut metadata = Vec::new();
-    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-        .flatten()
-    {
-        if let mcap::records::Record::Metadata(m) = record {
-            let keys: Vec<String> = m
-                .metadata
-                .iter()
-                .filter(|(k, _)| k.as_str() != "config_toml")
-                .map(|(k, v)| format!("{k}={v}"))
-                .collect();
-            metadata.push(format!("  {}: {}", m.name, keys.join(", ")));
-        }
-    }
-    let complete = mcap::read::footer(&bytes).is_ok() && damaged.is_none();
+    let metadata: Vec<String> = scan
+        .metadata
+        .iter()
+        .map(|(name, m)| {
+            let keys: Vec<String> =
+                m.iter().filter(|(k, _)| k.as_str() != "config_toml").map(|(k, v)| format!("{k}={v}")).collect();
+            format!("  {name}: {}", keys.join(", "))
+        })
+        .collect();
     let total: u64 = counts.values().map(|c| c.1).sum();
     let mut out = format!("file:      {} ({} bytes)\n", path.display(), bytes.len());
     out += &format!(
         "complete:  {}\n",
-        if complete { "yes (summary and footer present)" } else { "no: cut off; run `impactd recover`" }
+        if scan.intact() {
+            "yes (summary and footer present)"
+        } else {
+            "no: cut off or damaged; run `impactd recover`"
+        }
     );
-    if let Some(d) = damaged {
-        out += &format!("damaged:   {d}\n");
+    for p in scan.problems() {
+        out += &format!("damaged:   {p}\n");
     }
     if total > 0 {
         out += &format!("duration:  {:.3} s\n", (last - first) as f64 * 1e-9);
     }
-    out += &format!("messages:  {total}\n");
+    out += &format!("messages:  {total}{}\n", if scan.intact() { "" } else { " (readable)" });
     out += "channels:\n";
     for (topic, (schema, n)) in &counts {
         out += &format!("  {topic:<40} {schema:<32} {n:>9}\n");
@@ -78,5 +76,5 @@ pub fn info(path: &Path) -> Result<String, DaemonError> {
         out += &metadata.join("\n");
         out.push('\n');
     }
-    Ok(out)
+    Ok(Info { text: out, intact: scan.intact() })
 }

@@ -23,7 +23,7 @@ use super::foxglove_live::FoxgloveServer;
 use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
-use super::stats::{LatencyWindow, RateLimiter};
+use super::stats::{Budget, LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
@@ -36,9 +36,19 @@ pub const RIG_QUEUE: usize = 1 << 14;
 pub struct RunOptions {
     /// Record every message to this MCAP file.
     pub record: Option<PathBuf>,
+    /// Replace an existing recording (otherwise an existing file stops the start).
+    pub overwrite: bool,
     /// Serve the Foxglove live view on this `HOST:PORT`.
     pub foxglove: Option<String>,
 }
+
+/// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
+/// counted, not stored.
+pub const REJECTED_RECORDS_PER_S: u32 = 20;
+/// Bytes of rejected payloads recorded per rig per second.
+pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
+/// The most of one rejected payload that is kept.
+pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 
 /// What a run did, per rig.
 #[derive(Debug, Clone, Default)]
@@ -66,7 +76,12 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
-    let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
+    let recorder = options
+        .record
+        .as_deref()
+        .map(|p| Recorder::create(p, session_metadata(&config), options.overwrite))
+        .transpose()?;
+    let unknown = Arc::new(AtomicU64::new(0));
     let foxglove = match &options.foxglove {
         Some(address) => Some(FoxgloveServer::start(address, &config).await?),
         None => None,
@@ -113,6 +128,8 @@ pub async fn run(
             latency: LatencyWindow::new(1024),
             limiter: RateLimiter::new(Duration::from_secs(1)),
             started: Instant::now(),
+            budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
+            unknown: unknown.clone(),
             simulator,
             launch_monitor,
         };
@@ -124,9 +141,10 @@ pub async fn run(
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
-    let unknown = Arc::new(AtomicU64::new(0));
     let unknown_cb = unknown.clone();
     let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
+    let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
+    let unknown_recorder = handle.clone();
     let routes = senders;
     let subscriber = session
         .declare_subscriber(keys::CLUBHEAD_ALL)
@@ -138,6 +156,24 @@ pub async fn run(
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow(key)) {
                     tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
+                }
+                // Recorded within the same budget as a rig's rejected payloads.
+                let payload = sample.payload().to_bytes();
+                let keep = payload.len().min(REJECTED_KEEP_BYTES);
+                if unknown_recorder.enabled() && unknown_budget.lock().is_ok_and(|mut b| b.allow(keep)) {
+                    let rejected = wire::RejectedInput {
+                        reason: format!("no configured rig serves `{key}`"),
+                        bytes: payload.len(),
+                        payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
+                    };
+                    let now = wall_ns();
+                    unknown_recorder.send(super::recorder::Record::Message {
+                        key: keys::UNKNOWN_RIG_REJECTED.to_string(),
+                        message_type: <wire::RejectedInput as wire::Message>::TYPE,
+                        log_time_ns: now,
+                        publish_time_ns: now,
+                        data: serde_json::to_vec(&rejected).unwrap_or_default(),
+                    });
                 }
                 return;
             };
@@ -193,6 +229,10 @@ struct Worker {
     latency: LatencyWindow,
     limiter: RateLimiter,
     started: Instant,
+    /// The recording budget for this rig's rejected payloads.
+    budget: Budget,
+    /// Samples for unknown rigs, over all of them (shown in every rig's status).
+    unknown: Arc<AtomicU64>,
     simulator: Option<SimulatorClient>,
     launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
 }
@@ -259,8 +299,12 @@ impl Worker {
                 self.p_mut().counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
-                // Nothing is lost: the raw payload goes to the recording beside the reason.
-                let keep = &incoming.payload[..bytes.min(wire::MAX_PAYLOAD_BYTES)];
+                // The raw payload goes to the recording beside the reason, within the budget; beyond it the
+                // payload is counted (status `rejected_not_recorded`), so a flood cannot fill the disk.
+                let keep = &incoming.payload[..bytes.min(REJECTED_KEEP_BYTES)];
+                if !self.sinks.recorder().enabled() || !self.budget.allow(keep.len()) {
+                    return;
+                }
                 let rejected = wire::RejectedInput {
                     reason: e.to_string(),
                     bytes,
@@ -320,6 +364,9 @@ impl Worker {
             latency: &self.latency,
             uptime_s: self.started.elapsed().as_secs_f64(),
             t_ns: wall_ns(),
+            unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
+            rejected_not_recorded: self.budget.refused,
+            recorder_error: self.sinks.recorder().error(),
         };
         let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
         status.simulator = self.simulator.as_ref().map(SimulatorClient::status);

@@ -8,6 +8,8 @@ pub mod foxglove;
 pub mod foxglove_live;
 pub mod info;
 pub mod live;
+pub mod mcap_read;
+mod mcap_records;
 pub mod open_connect;
 pub mod recorder;
 pub mod recover;
@@ -40,6 +42,8 @@ pub enum DaemonError {
     Mcap { path: String, reason: String },
     #[error("{path} is not an MCAP file")]
     NotMcap { path: String },
+    #[error("{path}: {reason}")]
+    Unreadable { path: String, reason: String },
     #[error("{path} line {line}: {reason}")]
     BadSampleLine { path: String, line: usize, reason: String },
     #[error("rig name `{0}` must be letters, digits, _ or -")]

@@ -12,8 +12,8 @@ use std::collections::{BTreeMap, HashMap};
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender, TrySendError};
-use std::sync::Arc;
+use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TrySendError};
+use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 use super::foxglove::Schema;
@@ -69,76 +69,67 @@ pub struct RecorderSummary {
     pub messages: u64,
     pub dropped: u64,
     pub flushes: u64,
+    /// The write error (a full disk...) that stopped the recording.
+    pub error: Option<String>,
 }
 
 /// The sending side of a recording.
 pub struct Recorder {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
+    error: Arc<OnceLock<String>>,
     join: Option<std::thread::JoinHandle<Result<RecorderSummary, DaemonError>>>,
     pub path: PathBuf,
 }
 
 impl Recorder {
-    /// Creates the file and starts the writer; `session` becomes the `session` metadata record.
-    pub fn create(path: &Path, session: BTreeMap<String, String>) -> Result<Recorder, DaemonError> {
-        let file = std::fs::File::create(path)
-            .map_err(|e| DaemonError::Io { what: format!("creating {}", path.display()), source: e })?;
+    /// Creates the file and starts the writer; `session` becomes the `session` metadata record. An existing
+    /// file is replaced only with `overwrite`.
+    pub fn create(path: &Path, session: BTreeMap<String, String>, overwrite: bool) -> Result<Recorder, DaemonError> {
+        let mut open = std::fs::OpenOptions::new();
+        open.write(true);
+        if overwrite {
+            open.create(true).truncate(true);
+        } else {
+            open.create_new(true);
+        }
+        let file = open.open(path).map_err(|e| DaemonError::Io {
+            what: if e.kind() == std::io::ErrorKind::AlreadyExists {
+                format!("{} exists; choose a new name or pass --overwrite", path.display())
+            } else {
+                format!("creating {}", path.display())
+            },
+            source: e,
+        })?;
         let (tx, rx) = sync_channel::<Record>(QUEUE_CAPACITY);
         let dropped = Arc::new(AtomicU64::new(0));
-        let dropped_w = dropped.clone();
+        let error: Arc<OnceLock<String>> = Arc::new(OnceLock::new());
+        let (dropped_w, error_w) = (dropped.clone(), error.clone());
         let path_s = path.display().to_string();
         let join = std::thread::Builder::new()
             .name("impactd-recorder".into())
             .spawn(move || {
-                let err = |e: mcap::McapError| DaemonError::Mcap { path: path_s.clone(), reason: e.to_string() };
-                let mut w = mcap::WriteOptions::new()
-                    .compression(Some(mcap::Compression::Zstd))
-                    .chunk_size(Some(512 * 1024))
-                    // Chunks close after every shot; per-chunk message indexes would grow the writer's summary
-                    // in memory by ~2 KiB a chunk. Chunk indexes (time ranges) are kept, and readers scan chunks.
-                    .emit_message_indexes(false)
-                    .profile("")
-                    .library(format!("impactd {}", env!("CARGO_PKG_VERSION")))
-                    .create(BufWriter::new(file))
-                    .map_err(err)?;
-                w.write_metadata(&mcap::records::Metadata { name: "session".into(), metadata: session })
-                    .map_err(err)?;
-                let mut channels = Channels::default();
                 let mut summary = RecorderSummary::default();
-                let mut last_flush = Instant::now();
-                loop {
-                    match rx.recv_timeout(Duration::from_millis(200)) {
-                        Ok(Record::Flush) => {
-                            w.flush().map_err(err)?;
-                            summary.flushes += 1;
-                            last_flush = Instant::now();
-                        }
-                        Ok(record) => {
-                            channels.write(&mut w, record).map_err(err)?;
-                            summary.messages += 1;
-                        }
-                        Err(RecvTimeoutError::Timeout) => {}
-                        Err(RecvTimeoutError::Disconnected) => break,
+                if let Err(e) = write_all(file, session, &rx, &mut summary, &dropped_w) {
+                    // Said once, at once, with the OS's reason; the daemon goes on predicting.
+                    let mut reason = e.to_string();
+                    let mut source = std::error::Error::source(&e);
+                    while let Some(s) = source {
+                        reason = format!("{reason}: {s}");
+                        source = s.source();
                     }
-                    if last_flush.elapsed() >= Duration::from_millis(900) {
-                        w.flush().map_err(err)?;
-                        summary.flushes += 1;
-                        last_flush = Instant::now();
+                    tracing::error!("recording {path_s}: {reason}; nothing more is recorded");
+                    let _ = error_w.set(reason.clone());
+                    summary.error = Some(reason);
+                    while rx.recv().is_ok() {
+                        dropped_w.fetch_add(1, Ordering::Relaxed);
                     }
                 }
                 summary.dropped = dropped_w.load(Ordering::Relaxed);
-                let mut end = BTreeMap::new();
-                end.insert("messages".to_string(), summary.messages.to_string());
-                end.insert("dropped".to_string(), summary.dropped.to_string());
-                end.insert("end_ns".to_string(), super::wall_ns().to_string());
-                w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })
-                    .map_err(err)?;
-                w.finish().map_err(err)?;
                 Ok(summary)
             })
             .map_err(|e| DaemonError::Io { what: "starting the recorder".into(), source: e })?;
-        Ok(Recorder { tx: Some(tx), dropped, join: Some(join), path: path.to_path_buf() })
+        Ok(Recorder { tx: Some(tx), dropped, error, join: Some(join), path: path.to_path_buf() })
     }
 
     /// Queues a record without blocking; a full queue drops it and counts the drop.
@@ -157,7 +148,7 @@ impl Recorder {
 
     /// A handle that can send from other threads.
     pub fn handle(&self) -> RecorderHandle {
-        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone(), live: None }
+        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone(), error: self.error.clone(), live: None }
     }
 
     /// Writes the summary and closes the file.
@@ -178,13 +169,14 @@ impl Recorder {
 pub struct RecorderHandle {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
+    error: Arc<OnceLock<String>>,
     live: Option<super::foxglove_live::LiveTap>,
 }
 
 impl RecorderHandle {
     /// A handle that records nothing.
     pub fn none() -> Self {
-        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)), live: None }
+        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)), error: Arc::new(OnceLock::new()), live: None }
     }
 
     /// This handle, also feeding the live view.
@@ -215,6 +207,61 @@ impl RecorderHandle {
     pub fn dropped(&self) -> u64 {
         self.dropped.load(Ordering::Relaxed)
     }
+
+    /// The write error that stopped the recording, if one did.
+    pub fn error(&self) -> Option<String> {
+        self.error.get().cloned()
+    }
+}
+
+/// Writes records until the senders are gone; the first write error ends it.
+fn write_all(
+    file: std::fs::File,
+    session: BTreeMap<String, String>,
+    rx: &Receiver<Record>,
+    summary: &mut RecorderSummary,
+    dropped: &AtomicU64,
+) -> Result<(), mcap::McapError> {
+    let mut w = mcap::WriteOptions::new()
+        .compression(Some(mcap::Compression::Zstd))
+        .chunk_size(Some(512 * 1024))
+        // Chunks close after every shot; per-chunk message indexes would grow the writer's summary in memory by
+        // ~2 KiB a chunk. Chunk indexes (time ranges) are kept, and readers scan chunks.
+        .emit_message_indexes(false)
+        .profile("")
+        .library(format!("impactd {}", env!("CARGO_PKG_VERSION")))
+        .create(BufWriter::new(file))?;
+    w.write_metadata(&mcap::records::Metadata { name: "session".into(), metadata: session })?;
+    w.flush()?;
+    let mut channels = Channels::default();
+    let mut last_flush = Instant::now();
+    loop {
+        match rx.recv_timeout(Duration::from_millis(200)) {
+            Ok(Record::Flush) => {
+                w.flush()?;
+                summary.flushes += 1;
+                last_flush = Instant::now();
+            }
+            Ok(record) => {
+                channels.write(&mut w, record)?;
+                summary.messages += 1;
+            }
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
+        }
+        if last_flush.elapsed() >= Duration::from_millis(900) {
+            w.flush()?;
+            summary.flushes += 1;
+            last_flush = Instant::now();
+        }
+    }
+    let mut end = BTreeMap::new();
+    end.insert("messages".to_string(), summary.messages.to_string());
+    end.insert("dropped".to_string(), dropped.load(Ordering::Relaxed).to_string());
+    end.insert("end_ns".to_string(), super::wall_ns().to_string());
+    w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })?;
+    w.finish()?;
+    Ok(())
 }
 
 #[derive(Default)]

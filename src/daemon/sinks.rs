@@ -188,6 +188,9 @@ pub struct StatusInputs<'a> {
     pub latency: &'a LatencyWindow,
     pub uptime_s: f64,
     pub t_ns: u64,
+    pub unknown_rig_samples: u64,
+    pub rejected_not_recorded: u64,
+    pub recorder_error: Option<String>,
 }
 
 /// A rig's status message.
@@ -205,6 +208,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         accepted: c.accepted,
         occluded: c.occluded,
         dropped: c.dropped,
+        resets: c.resets,
         rejected,
         shots: c.shots,
         predictions: c.predictions,
@@ -212,6 +216,9 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         latency_p50_us: s.latency.quantile(0.5),
         latency_p99_us: s.latency.quantile(0.99),
         recorder_dropped,
+        unknown_rig_samples: s.unknown_rig_samples,
+        rejected_not_recorded: s.rejected_not_recorded,
+        recorder_error: s.recorder_error,
         simulator: None,
         launch_monitor: None,
     }

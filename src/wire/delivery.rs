@@ -43,7 +43,44 @@ pub struct DeliveryInput {
     pub handedness: Option<Handedness>,
 }
 
+/// The largest angular velocity of a clubhead `predict` accepts (rad/s): a driver's head turns at about 30-60
+/// rad/s through impact; ten times that is no swing.
+pub const MAX_CLUB_ANGULAR_VELOCITY_RADPS: Real = 500.0;
+
+/// A number of an input outside what any swing could give.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {value} is outside {min} to {max}")]
+pub struct OutOfBounds {
+    pub field: &'static str,
+    pub value: Real,
+    pub min: Real,
+    pub max: Real,
+}
+
 impl DeliveryInput {
+    /// Every angle and the angular velocity within plausible bounds (a model would answer nonsense beyond them;
+    /// club speed and impact location are checked by the models, which name them).
+    pub fn check_plausible(&self) -> Result<(), OutOfBounds> {
+        let within = |field: &'static str, value: Real, min: Real, max: Real| {
+            if (min..=max).contains(&value) {
+                Ok(())
+            } else {
+                Err(OutOfBounds { field, value, min, max })
+            }
+        };
+        within("attack_angle_deg", self.attack_angle_deg, -60.0, 60.0)?;
+        within("club_path_deg", self.club_path_deg, -60.0, 60.0)?;
+        within("face_angle_deg", self.face_angle_deg, -60.0, 60.0)?;
+        if let Some(l) = self.dynamic_loft_deg {
+            within("dynamic_loft_deg", l, -30.0, 90.0)?;
+        }
+        if let Some(w) = self.club_angular_velocity_radps {
+            let m = MAX_CLUB_ANGULAR_VELOCITY_RADPS;
+            within("club_angular_velocity_radps", Vector3::from(w).norm(), 0.0, m)?;
+        }
+        Ok(())
+    }
+
     /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
     /// left-handed golfer.
     pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {

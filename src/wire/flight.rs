@@ -40,9 +40,14 @@ pub enum FlightInputError {
     SpeedOutOfRange { speed_mps: Real },
     #[error("field `launch_angle_deg`: {launch_angle_deg} is outside -30 to 80 deg")]
     LaunchAngleOutOfRange { launch_angle_deg: Real },
-    #[error("spin above 20000 rpm")]
+    #[error("spin {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
     SpinTooHigh { spin_rpm: Real },
+    #[error("field `ball_spin_radps`: {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
+    SpinVectorTooHigh { spin_rpm: Real },
 }
+
+/// The most spin a flight accepts: tour wedges reach about 12,000 rpm (TrackMan).
+pub const MAX_BALL_SPIN_RPM: Real = 20_000.0;
 
 impl FlightInput {
     /// The launch state, or the reason it cannot be made.
@@ -64,6 +69,10 @@ impl FlightInput {
             let speed = Vector3::from(v).norm();
             if !(1.0..=150.0).contains(&speed) {
                 return Err(FlightInputError::VelocityOutOfRange { speed_mps: speed });
+            }
+            let spin_rpm = crate::units::radps_to_rpm(Vector3::from(w).norm());
+            if spin_rpm > MAX_BALL_SPIN_RPM {
+                return Err(FlightInputError::SpinVectorTooHigh { spin_rpm });
             }
             return Ok(crate::flight::LaunchState { velocity_mps: Vector3::from(v), spin_radps: Vector3::from(w) });
         }
@@ -89,7 +98,7 @@ impl FlightInput {
             }
             (None, s, None, _) => (0.0, finite("sidespin_rpm", s.unwrap_or(0.0))?),
         };
-        if back.hypot(side) > 20_000.0 {
+        if back.hypot(side) > MAX_BALL_SPIN_RPM {
             return Err(FlightInputError::SpinTooHigh { spin_rpm: back.hypot(side) });
         }
         Ok(crate::flight::LaunchState::from_metrics(speed, launch, direction, back, side))

@@ -11,6 +11,8 @@ pub fn rejected(rig: &str) -> String {
 }
 /// Every rig's clubhead samples.
 pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
+/// Recorded only: [`RejectedInput`](super::RejectedInput)s of samples on the keys of rigs no daemon serves.
+pub const UNKNOWN_RIG_REJECTED: &str = "impactd/unknown_rig/rejected";
 /// Every rig's predictions.
 pub const LAUNCH_ALL: &str = "golf/*/launch";
 /// Every synthetic rig's truth.

@@ -9,14 +9,46 @@ use serde::{Deserialize, Serialize};
 use super::PredictOutput;
 use crate::kinematics::{ClubheadSample, Quality};
 
-/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order). Only the object form is read: an array is
+/// refused with a reason, since rigs disagree on its order (`[x, y, z, w]` or `[w, x, y, z]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct QuaternionMsg {
     pub x: f64,
     pub y: f64,
     pub z: f64,
     pub w: f64,
+}
+
+impl<'de> Deserialize<'de> for QuaternionMsg {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Fields {
+            x: f64,
+            y: f64,
+            z: f64,
+            w: f64,
+        }
+        struct Object;
+        impl<'de> serde::de::Visitor<'de> for Object {
+            type Value = QuaternionMsg;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a quaternion object {x, y, z, w}")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<QuaternionMsg, A::Error> {
+                let q = Fields::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(QuaternionMsg { x: q.x, y: q.y, z: q.z, w: q.w })
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<QuaternionMsg, A::Error> {
+                Err(serde::de::Error::custom(
+                    "an orientation must be an object {x, y, z, w}: an array's order ([x, y, z, w] or \
+                     [w, x, y, z]) is ambiguous",
+                ))
+            }
+        }
+        d.deserialize_any(Object)
+    }
 }
 
 impl From<crate::math::UnitQuaternion> for QuaternionMsg {
@@ -142,6 +174,9 @@ pub struct StatusMessage {
     pub occluded: u64,
     /// Frames missing from the rig's frame numbering.
     pub dropped: u64,
+    /// Time bases or frame counts the track moved onto (a publisher restart, a wrapped frame counter).
+    #[serde(default)]
+    pub resets: u64,
     /// Samples rejected, by reason.
     pub rejected: BTreeMap<String, u64>,
     pub shots: u64,
@@ -152,6 +187,15 @@ pub struct StatusMessage {
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).
     pub recorder_dropped: u64,
+    /// Samples on keys of rigs this daemon does not serve (counted over all such keys).
+    #[serde(default)]
+    pub unknown_rig_samples: u64,
+    /// Rejected payloads counted but not recorded: over the per-rig recording budget.
+    #[serde(default)]
+    pub rejected_not_recorded: u64,
+    /// The recording's write error (a full disk...), once one happened: nothing is recorded after it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recorder_error: Option<String>,
     /// The Open Connect client sending this rig's shots to a golf simulator, when configured.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulator: Option<super::SimulatorStatus>,

@@ -17,8 +17,8 @@ mod schema;
 pub use bridge::{
     ConnectionState, LaunchMonitorStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
 };
-pub use delivery::{DeliveryInput, Handedness, PredictOutput};
-pub use flight::{FlightInput, FlightInputError};
+pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
+pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
 pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
 pub use messages::{
     ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,

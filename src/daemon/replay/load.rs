@@ -2,7 +2,6 @@
 //! file of samples.
 
 use std::collections::HashMap;
-use std::io::BufRead;
 use std::path::Path;
 
 use crate::daemon::DaemonError;
@@ -19,10 +18,11 @@ pub struct ReplayInput {
     pub recorded_latency_us: HashMap<(String, u64, String), f64>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
-}
-
-pub(crate) fn mcap_err(path: &Path, e: impl std::fmt::Display) -> DaemonError {
-    DaemonError::Mcap { path: path.display().to_string(), reason: e.to_string() }
+    /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
+    /// nothing byte for byte.
+    pub damage: Vec<String>,
+    /// JSONL lines skipped because they are not samples.
+    pub skipped_lines: Vec<String>,
 }
 
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
@@ -39,49 +39,41 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
     let bytes = read_file(path)?;
     if !is_mcap(&bytes) {
         let mut input = ReplayInput::default();
-        for (i, line) in bytes.lines().enumerate() {
-            let line = line.map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
-            if line.trim().is_empty() {
-                continue;
-            }
-            let msg: ClubheadSampleMsg = serde_json::from_str(&line).map_err(|e| DaemonError::BadSampleLine {
-                path: path.display().to_string(),
-                line: i + 1,
-                reason: e.to_string(),
-            })?;
-            input.samples.push(msg);
+        for (i, line) in bytes.split(|b| *b == b'\n').enumerate() {
+            let reason = match std::str::from_utf8(line) {
+                Err(e) => format!("not UTF-8 ({e})"),
+                Ok(text) if text.trim().is_empty() => continue,
+                Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
+                    Ok(msg) => {
+                        input.samples.push(msg);
+                        continue;
+                    }
+                    Err(e) => e.to_string(),
+                },
+            };
+            input.skipped_lines.push(format!("{} line {}: {reason}", path.display(), i + 1));
         }
         return Ok(input);
     }
-    let mut input = ReplayInput::default();
-    for record in mcap::read::LinearReader::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?
-    {
-        if let Ok(mcap::records::Record::Metadata(m)) = record {
-            if m.name == "session" {
-                input.config_toml = m.metadata.get("config_toml").cloned();
-            }
-        }
-    }
-    let stream = mcap::MessageStream::new_with_options(&bytes, mcap::read::Options::IgnoreEndMagic.into())
-        .map_err(|e| mcap_err(path, e))?;
-    for message in stream {
-        let message = match message {
-            Ok(m) => m,
-            Err(e) => {
-                tracing::warn!("{}: stopped reading at a damaged record ({e}); `impactd recover` salvages files cut off by a crash", path.display());
-                break;
-            }
-        };
-        let topic = message.channel.topic.trim_start_matches('/');
+    let scan = crate::daemon::mcap_read::scan(&bytes, crate::daemon::mcap_read::OnDamage::Stop);
+    let mut input = ReplayInput { damage: scan.problems(), ..ReplayInput::default() };
+    input.config_toml =
+        scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
+    for message in &scan.messages {
+        let Some(channel) = scan.channels.get(&message.channel_id) else { continue };
+        let topic = channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
-            let msg: ClubheadSampleMsg = serde_json::from_slice(&message.data).map_err(|e| mcap_err(path, e))?;
-            input.samples.push(msg);
+            match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
+                Ok(msg) => input.samples.push(msg),
+                Err(e) => {
+                    input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                }
+            }
         } else if keys::rig_of_launch(topic).is_some() {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
                 input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
-            input.recorded_launches.push(message.data.into_owned());
+            input.recorded_launches.push(message.data.clone());
         }
     }
     Ok(input)

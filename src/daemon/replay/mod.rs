@@ -10,10 +10,12 @@ use crate::pipeline::{Event, Pipeline, RigSetup};
 
 mod load;
 mod session;
+mod verdict;
 
+pub(crate) use load::read_file;
 pub use load::{is_mcap, load, ReplayInput};
-pub(crate) use load::{mcap_err, read_file};
 pub use session::{resolve_config, run, ReplayOptions, ReplayReport};
+pub use verdict::Verdict;
 
 /// What a replay did.
 #[derive(Debug, Clone, Default, PartialEq)]

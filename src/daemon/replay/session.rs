@@ -34,12 +34,14 @@ pub struct ReplayReport {
     pub recorded: usize,
     /// Predictions identical, byte for byte, to the recorded one at the same place.
     pub reproduced: usize,
+    /// Part of the recording could not be read: nothing is claimed reproduced.
+    pub damaged: bool,
 }
 
 impl ReplayReport {
     /// Whether every recorded prediction was reproduced byte for byte (true when none was recorded).
     pub fn reproduces_recording(&self) -> bool {
-        self.recorded == 0 || (self.reproduced == self.recorded && self.produced == self.recorded)
+        !self.damaged && (self.recorded == 0 || (self.reproduced == self.recorded && self.produced == self.recorded))
     }
 }
 
@@ -86,6 +88,9 @@ impl ReplayRig {
             latency: &self.latency,
             uptime_s: t_ns.saturating_sub(self.first_t_ns.unwrap_or(t_ns)) as f64 * 1e-9,
             t_ns: wall_ns(),
+            unknown_rig_samples: 0,
+            rejected_not_recorded: 0,
+            recorder_error: self.sinks.recorder().error(),
         };
         let status = sinks::status_message(&self.pipeline.setup.name, inputs, self.sinks.recorder().dropped());
         self.sinks.status(&status);
@@ -110,7 +115,8 @@ pub async fn run(
             return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
         }
     }
-    let recorder = options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config))).transpose()?;
+    let recorder =
+        options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config), true)).transpose()?;
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
     for setup in setups {
@@ -201,5 +207,6 @@ pub async fn run(
         produced: produced.len(),
         recorded: input.recorded_launches.len(),
         reproduced,
+        damaged: !input.damage.is_empty(),
     })
 }
