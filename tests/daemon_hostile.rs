@@ -30,7 +30,7 @@ async fn start_daemon(record: Option<&Path>) -> Daemon {
     let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
     let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let options = RunOptions { record: record.map(Path::to_path_buf), overwrite: false };
+    let options = RunOptions { record: record.map(Path::to_path_buf), ..Default::default() };
     let task = tokio::spawn(async move {
         let s = impactd::daemon::run(config, setups, &session, options, async {
             let _ = stopped.await;

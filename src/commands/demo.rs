@@ -10,7 +10,7 @@ use impactd::daemon::sim::SimOptions;
 use impactd::daemon::DaemonConfig;
 
 use super::args::load_club;
-use super::run::{runtime, shutdown_signal};
+use super::run::{runtime, shutdown_signal, BridgeArgs};
 
 #[derive(Debug, Args)]
 pub struct DemoArgs {
@@ -32,6 +32,8 @@ pub struct DemoArgs {
     /// Capture rate (Hz).
     #[arg(long, default_value_t = 720.0)]
     pub rate: f64,
+    #[command(flatten)]
+    pub bridges: BridgeArgs,
 }
 
 pub fn run(args: &DemoArgs) -> Result<ExitCode> {
@@ -41,6 +43,7 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     let club = load_club(&args.club)?.club;
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
+    args.bridges.apply(&mut config)?;
     let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
     eprintln!(
         "impactd demo: daemon and a synthetic {} rig on loopback zenoh, {} shots at {} Hz; recording to {}",
@@ -51,7 +54,13 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     );
     let rt = runtime()?;
     let summary = rt.block_on(demo(
-        DemoOptions { config, sim, record: Some(args.record.clone()), json: args.json },
+        DemoOptions {
+            config,
+            sim,
+            record: Some(args.record.clone()),
+            json: args.json,
+            foxglove: args.bridges.foxglove.clone(),
+        },
         shutdown_signal(),
     ))?;
     let (shots, predictions): (u64, u64) =

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::daemon::{DaemonConfig, RunOptions};
 
@@ -21,7 +21,34 @@ pub struct RunArgs {
     #[arg(long, alias = "force")]
     pub overwrite: bool,
     #[command(flatten)]
+    pub bridges: BridgeArgs,
+    #[command(flatten)]
     pub zenoh: ZenohArgs,
+}
+
+/// The optional edges of `run` and `demo`: a golf simulator to send shots to, and the Foxglove live view.
+#[derive(Debug, Args)]
+pub struct BridgeArgs {
+    /// Send every rig's shots to this Open Connect v1 golf simulator (GSPro, OpenGolfSim: HOST:921), for rigs
+    /// whose configuration names none.
+    #[arg(long = "open-connect", value_name = "HOST:PORT")]
+    pub open_connect: Option<String>,
+    /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
+    pub foxglove: Option<String>,
+}
+
+impl BridgeArgs {
+    /// Applies `--open-connect` to the rigs without a simulator.
+    pub(super) fn apply(&self, config: &mut DaemonConfig) -> Result<()> {
+        if let Some(a) = self.open_connect.as_deref() {
+            if !impactd::daemon::open_connect::valid_host_port(a) {
+                bail!("--open-connect `{a}` is not HOST:PORT");
+            }
+            config.set_default_open_connect(a);
+        }
+        Ok(())
+    }
 }
 
 /// Completes on SIGINT or SIGTERM.
@@ -62,7 +89,9 @@ pub(super) fn load_config(path: Option<&std::path::Path>) -> Result<(DaemonConfi
 }
 
 pub fn run(args: &RunArgs) -> Result<ExitCode> {
-    let (config, setups) = load_config(args.config.as_deref())?;
+    let (mut config, _) = load_config(args.config.as_deref())?;
+    args.bridges.apply(&mut config)?;
+    let setups = config.setups()?;
     let rt = runtime()?;
     rt.block_on(async {
         let session = args.zenoh.open().await?;
@@ -80,7 +109,11 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
             config,
             setups,
             &session,
-            RunOptions { record: args.record.clone(), overwrite: args.overwrite },
+            RunOptions {
+                record: args.record.clone(),
+                overwrite: args.overwrite,
+                foxglove: args.bridges.foxglove.clone(),
+            },
             shutdown_signal(),
         )
         .await?;

@@ -18,6 +18,8 @@ pub struct DemoOptions {
     pub sim: SimOptions,
     pub record: Option<PathBuf>,
     pub json: bool,
+    /// Serve the Foxglove live view on this `HOST:PORT`.
+    pub foxglove: Option<String>,
 }
 
 /// One readable line for a prediction, with the truth when known.
@@ -85,11 +87,13 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let (stop_daemon, daemon_stopped) = tokio::sync::oneshot::channel::<()>();
     let config = options.config.clone();
     let record = options.record.clone();
+    let foxglove = options.foxglove.clone();
     let daemon = tokio::spawn(async move {
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let r = super::run(config, setups, &daemon_session, RunOptions { record, overwrite: true }, shutdown).await;
+        let options = RunOptions { record, overwrite: true, foxglove };
+        let r = super::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });

@@ -5,6 +5,9 @@
 //! never blocks zenoh). A worker parses and validates the sample, runs the pipeline, and publishes the impact and
 //! the launch at once; `latency_us` is the time from the callback receiving the revealing frame to the launch
 //! being handed to zenoh. Status goes out once per `status_period_s`.
+//!
+//! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
+//! listener ([`super::open_connect`]) and the Foxglove live view ([`super::foxglove_live`]).
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -16,12 +19,14 @@ use std::time::{Duration, Instant};
 
 use zenoh::Wait;
 
+use super::foxglove_live::FoxgloveServer;
+use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use super::stats::{Budget, LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
-use crate::wire::{self, keys};
+use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -33,6 +38,8 @@ pub struct RunOptions {
     pub record: Option<PathBuf>,
     /// Replace an existing recording (otherwise an existing file stops the start).
     pub overwrite: bool,
+    /// Serve the Foxglove live view on this `HOST:PORT`.
+    pub foxglove: Option<String>,
 }
 
 /// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
@@ -49,6 +56,9 @@ pub struct RunSummary {
     pub rigs: BTreeMap<String, Counts>,
     pub unknown_rig_samples: u64,
     pub recorder: Option<RecorderSummary>,
+    /// Each rig's Open Connect client and listener at the end, for rigs that have them.
+    pub simulators: BTreeMap<String, SimulatorStatus>,
+    pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
 }
 
 struct Incoming {
@@ -72,7 +82,13 @@ pub async fn run(
         .map(|p| Recorder::create(p, session_metadata(&config), options.overwrite))
         .transpose()?;
     let unknown = Arc::new(AtomicU64::new(0));
-    let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
+    let foxglove = match &options.foxglove {
+        Some(address) => Some(FoxgloveServer::start(address, &config).await?),
+        None => None,
+    };
+    let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
+    let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
+    let mut listeners = Vec::new();
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
@@ -97,6 +113,9 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
+        let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
+        let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
+        listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
@@ -111,6 +130,8 @@ pub async fn run(
             started: Instant::now(),
             budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
             unknown: unknown.clone(),
+            simulator,
+            launch_monitor,
         };
         workers.push(
             std::thread::Builder::new()
@@ -175,10 +196,23 @@ pub async fn run(
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
     for w in workers {
-        if let Ok((name, counts)) = w.join() {
-            summary.rigs.insert(name, counts);
+        if let Ok(end) = w.join() {
+            if let Some(task) = end.simulator_task {
+                SimulatorClient::finish(task).await;
+            }
+            if let Some(s) = end.simulator {
+                summary.simulators.insert(end.rig.clone(), s);
+            }
+            if let Some(l) = end.launch_monitor {
+                summary.launch_monitors.insert(end.rig.clone(), l);
+            }
+            summary.rigs.insert(end.rig, end.counts);
         }
     }
+    for l in listeners {
+        l.stop().await;
+    }
+    drop(foxglove);
     drop(handle);
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
@@ -199,6 +233,17 @@ struct Worker {
     budget: Budget,
     /// Samples for unknown rigs, over all of them (shown in every rig's status).
     unknown: Arc<AtomicU64>,
+    simulator: Option<SimulatorClient>,
+    launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
+}
+
+/// What a rig's worker leaves behind.
+struct WorkerEnd {
+    rig: String,
+    counts: Counts,
+    simulator: Option<SimulatorStatus>,
+    simulator_task: Option<tokio::task::JoinHandle<()>>,
+    launch_monitor: Option<LaunchMonitorStatus>,
 }
 
 impl Worker {
@@ -210,7 +255,7 @@ impl Worker {
         self.pipeline.as_mut().expect("the pipeline is in place between samples")
     }
 
-    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> (String, Counts) {
+    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
         let mut next_status = Instant::now() + period;
         loop {
             let wait = next_status.saturating_duration_since(Instant::now());
@@ -224,8 +269,14 @@ impl Worker {
                 next_status += period;
             }
         }
-        self.publish_status();
-        (self.rig.to_string(), self.p().counts.clone())
+        let status = self.publish_status();
+        WorkerEnd {
+            rig: self.rig.to_string(),
+            counts: self.p().counts.clone(),
+            simulator: status.simulator,
+            simulator_task: self.simulator.take().map(SimulatorClient::close),
+            launch_monitor: status.launch_monitor,
+        }
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
@@ -290,6 +341,9 @@ impl Worker {
                 l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
                 self.sinks.launch(&l, wall_ns());
                 self.latency.push(l.latency_us);
+                if let Some(simulator) = &mut self.simulator {
+                    simulator.offer(&l);
+                }
                 tracing::info!(
                     "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
                     l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
@@ -303,7 +357,7 @@ impl Worker {
         }
     }
 
-    fn publish_status(&mut self) {
+    fn publish_status(&mut self) -> wire::StatusMessage {
         let inputs = StatusInputs {
             counts: &self.p().counts,
             queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
@@ -314,7 +368,10 @@ impl Worker {
             rejected_not_recorded: self.budget.refused,
             recorder_error: self.sinks.recorder().error(),
         };
-        let status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
+        let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
+        status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
+        status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
         self.sinks.status(&status);
+        status
     }
 }

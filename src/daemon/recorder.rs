@@ -3,10 +3,10 @@
 //! Every zenoh message in and out is a record with `log_time` = receive (or publish) wall time and
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding
 //! `jsonschema`. Foxglove's well-known `foxglove.PoseInFrame` (the club in the world) and `foxglove.SceneUpdate`
-//! (ball and club at impact) channels sit beside them, and a `session` metadata record holds versions and the
-//! configuration. Chunks are zstd-compressed and closed (flushed to the file) after every shot and at least once
-//! a second, so a killed daemon loses at most the last second. Sending never blocks: a full queue drops the
-//! record and counts it.
+//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`super::foxglove`], shared
+//! with the live view), and a `session` metadata record holds versions and the configuration. Chunks are
+//! zstd-compressed and closed (flushed to the file) after every shot and at least once a second, so a killed
+//! daemon loses at most the last second. Sending never blocks: a full queue drops the record and counts it.
 
 use std::collections::{BTreeMap, HashMap};
 use std::io::BufWriter;
@@ -16,6 +16,7 @@ use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TryS
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
+use super::foxglove::Schema;
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::math::Isometry3;
 use crate::wire::{ImpactStateMsg, MessageType};
@@ -48,6 +49,15 @@ pub enum Record {
         ball_position_m: [f64; 3],
         ball_radius_m: f64,
         club: ImpactStateMsg,
+    },
+    /// The predicted ball flight as a line (Foxglove `SceneUpdate` on `/foxglove/<rig>/ball_flight`), flown
+    /// from `launch` by `flight` on the consumer's thread, off the prediction path.
+    Flight {
+        rig: String,
+        t_ns: u64,
+        log_time_ns: u64,
+        flight: crate::flight::Flight,
+        launch: crate::flight::LaunchState,
     },
     /// Close the current chunk and push it to the file.
     Flush,
@@ -138,7 +148,7 @@ impl Recorder {
 
     /// A handle that can send from other threads.
     pub fn handle(&self) -> RecorderHandle {
-        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone(), error: self.error.clone() }
+        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone(), error: self.error.clone(), live: None }
     }
 
     /// Writes the summary and closes the file.
@@ -154,21 +164,34 @@ impl Recorder {
     }
 }
 
-/// A cloneable sender to a [`Recorder`].
+/// A cloneable sender to a [`Recorder`], and to the live view when one is serving.
 #[derive(Clone)]
 pub struct RecorderHandle {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
     error: Arc<OnceLock<String>>,
+    live: Option<super::foxglove_live::LiveTap>,
 }
 
 impl RecorderHandle {
     /// A handle that records nothing.
     pub fn none() -> Self {
-        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)), error: Arc::new(OnceLock::new()) }
+        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)), error: Arc::new(OnceLock::new()), live: None }
     }
 
+    /// This handle, also feeding the live view.
+    pub fn with_live(mut self, live: Option<super::foxglove_live::LiveTap>) -> Self {
+        self.live = live;
+        self
+    }
+
+    /// Queues a record without blocking (a full queue drops it and counts the drop).
     pub fn send(&self, record: Record) {
+        if let Some(live) = &self.live {
+            if !matches!(record, Record::Flush) {
+                live.send(record.clone());
+            }
+        }
         if let Some(tx) = &self.tx {
             if tx.try_send(record).is_err() {
                 self.dropped.fetch_add(1, Ordering::Relaxed);
@@ -176,8 +199,9 @@ impl RecorderHandle {
         }
     }
 
+    /// Whether anything (the recording or the live view) takes records.
     pub fn enabled(&self) -> bool {
-        self.tx.is_some()
+        self.tx.is_some() || self.live.is_some()
     }
 
     pub fn dropped(&self) -> u64 {
@@ -240,30 +264,11 @@ fn write_all(
     Ok(())
 }
 
-/// The schema of a channel: a wire message type or one of Foxglove's.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum Schema {
-    Wire(MessageType),
-    PoseInFrame,
-    SceneUpdate,
-}
-
 #[derive(Default)]
 struct Channels {
     schemas: HashMap<Schema, u16>,
     channels: HashMap<String, u16>,
     sequence: u32,
-}
-
-fn timestamp(t_ns: u64) -> serde_json::Value {
-    serde_json::json!({ "sec": t_ns / 1_000_000_000, "nsec": t_ns % 1_000_000_000 })
-}
-
-fn pose_json(p: [f64; 3], q: crate::wire::QuaternionMsg) -> serde_json::Value {
-    serde_json::json!({
-        "position": { "x": p[0], "y": p[1], "z": p[2] },
-        "orientation": { "x": q.x, "y": q.y, "z": q.z, "w": q.w },
-    })
 }
 
 impl Channels {
@@ -275,12 +280,7 @@ impl Channels {
         if let Some(id) = self.schemas.get(&schema) {
             return Ok(*id);
         }
-        let (schema_name, data) = match schema {
-            Schema::PoseInFrame => ("foxglove.PoseInFrame".to_string(), FOXGLOVE_POSE_IN_FRAME.to_string()),
-            Schema::SceneUpdate => ("foxglove.SceneUpdate".to_string(), FOXGLOVE_SCENE_UPDATE.to_string()),
-            Schema::Wire(t) => (t.schema_name(), t.schema()),
-        };
-        let id = w.add_schema(&schema_name, "jsonschema", data.as_bytes())?;
+        let id = w.add_schema(&schema.name(), "jsonschema", schema.text().as_bytes())?;
         self.schemas.insert(schema, id);
         Ok(id)
     }
@@ -300,86 +300,20 @@ impl Channels {
         Ok(id)
     }
 
-    fn put<W: std::io::Write + std::io::Seek>(
-        &mut self,
-        w: &mut mcap::Writer<W>,
-        topic: &str,
-        schema: Schema,
-        log_time: u64,
-        publish_time: u64,
-        data: &[u8],
-    ) -> Result<(), mcap::McapError> {
-        let channel_id = self.channel(w, topic, schema)?;
-        self.sequence = self.sequence.wrapping_add(1);
-        w.write_to_known_channel(
-            &mcap::records::MessageHeader { channel_id, sequence: self.sequence, log_time, publish_time },
-            data,
-        )
-    }
-
     fn write<W: std::io::Write + std::io::Seek>(
         &mut self,
         w: &mut mcap::Writer<W>,
         record: Record,
     ) -> Result<(), mcap::McapError> {
-        match record {
-            Record::Message { key, message_type, log_time_ns, publish_time_ns, data } => {
-                self.put(w, &format!("/{key}"), Schema::Wire(message_type), log_time_ns, publish_time_ns, &data)
-            }
-            Record::ClubPose { rig, t_ns, log_time_ns, world_from_club } => {
-                let p = world_from_club.translation.vector;
-                let msg = serde_json::json!({
-                    "timestamp": timestamp(t_ns),
-                    "frame_id": "world",
-                    "pose": pose_json([p.x, p.y, p.z], world_from_club.rotation.into()),
-                });
-                let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(
-                    w,
-                    &format!("/{}", crate::wire::keys::foxglove_club_pose(&rig)),
-                    Schema::PoseInFrame,
-                    log_time_ns,
-                    t_ns,
-                    &data,
-                )
-            }
-            Record::ImpactScene { rig, t_ns, log_time_ns, ball_position_m, ball_radius_m, club } => {
-                let d = 2.0 * ball_radius_m;
-                let identity = crate::wire::QuaternionMsg { x: 0.0, y: 0.0, z: 0.0, w: 1.0 };
-                let entity = |id: &str, spheres: serde_json::Value, cubes: serde_json::Value| {
-                    serde_json::json!({
-                        "timestamp": timestamp(t_ns), "frame_id": "world", "id": id,
-                        "lifetime": { "sec": 0, "nsec": 0 }, "frame_locked": false, "metadata": [],
-                        "arrows": [], "cubes": cubes, "spheres": spheres, "cylinders": [], "lines": [],
-                        "triangles": [], "texts": [], "models": [],
-                    })
-                };
-                let msg = serde_json::json!({
-                    "deletions": [],
-                    "entities": [
-                        entity("ball", serde_json::json!([{ "pose": pose_json(ball_position_m, identity), "size": { "x": d, "y": d, "z": d }, "color": { "r": 1.0, "g": 1.0, "b": 1.0, "a": 1.0 } }]), serde_json::json!([])),
-                        entity("club", serde_json::json!([]), serde_json::json!([{ "pose": pose_json(club.cg_position_m, club.orientation), "size": { "x": 0.10, "y": 0.05, "z": 0.11 }, "color": { "r": 0.2, "g": 0.4, "b": 0.9, "a": 0.8 } }])),
-                    ],
-                });
-                let data = serde_json::to_vec(&msg).unwrap_or_default();
-                self.put(
-                    w,
-                    &format!("/{}", crate::wire::keys::foxglove_impact_scene(&rig)),
-                    Schema::SceneUpdate,
-                    log_time_ns,
-                    t_ns,
-                    &data,
-                )
-            }
-            Record::Flush => Ok(()),
-        }
+        let Some(e) = super::foxglove::encode(record) else { return Ok(()) };
+        let channel_id = self.channel(w, &e.topic, e.schema)?;
+        self.sequence = self.sequence.wrapping_add(1);
+        let header = mcap::records::MessageHeader {
+            channel_id,
+            sequence: self.sequence,
+            log_time: e.log_time_ns,
+            publish_time: e.publish_time_ns,
+        };
+        w.write_to_known_channel(&header, &e.data)
     }
 }
-
-const FOXGLOVE_POSE_IN_FRAME: &str = concat!(
-    r#"{"title":"foxglove.PoseInFrame","description":"A timestamped pose for an object or reference frame in 3D space","type":"object","properties":{"timestamp":"#,
-    r#"{"type":"object","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}}"#,
-    r#","frame_id":{"type":"string"},"pose":{"type":"object","properties":{"position":{"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"}}},"orientation":{"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"},"w":{"type":"number"}}}}}}}"#
-);
-
-const FOXGLOVE_SCENE_UPDATE: &str = r#"{"title":"foxglove.SceneUpdate","description":"An update to the entities displayed in a 3D scene","type":"object","properties":{"deletions":{"type":"array","items":{"type":"object"}},"entities":{"type":"array","items":{"type":"object","properties":{"timestamp":{"type":"object"},"frame_id":{"type":"string"},"id":{"type":"string"},"lifetime":{"type":"object"},"frame_locked":{"type":"boolean"},"metadata":{"type":"array"},"arrows":{"type":"array"},"cubes":{"type":"array"},"spheres":{"type":"array"},"cylinders":{"type":"array"},"lines":{"type":"array"},"triangles":{"type":"array"},"texts":{"type":"array"},"models":{"type":"array"}}}}}}"#;

@@ -69,10 +69,13 @@ pub struct RigSinks {
     recorder: RecorderHandle,
     ball_position_m: [f64; 3],
     ball_radius_m: f64,
+    /// The rig's flight model, for the predicted flight's line (Foxglove).
+    flight: Option<crate::flight::Flight>,
 }
 
 impl RigSinks {
-    /// The sinks of the rig of `pipeline` (its ball position and radius go into the impact scene).
+    /// The sinks of the rig of `pipeline` (its ball position and radius go into the impact scene, its flight
+    /// model draws the predicted flight).
     pub fn new(pipeline: &Pipeline, publishers: Option<RigPublishers>, recorder: RecorderHandle) -> Self {
         let setup = &pipeline.setup;
         RigSinks {
@@ -82,6 +85,7 @@ impl RigSinks {
             recorder,
             ball_position_m: setup.detector.ball_position_m.into(),
             ball_radius_m: setup.detector.ball_radius_m,
+            flight: setup.flight,
         }
     }
 
@@ -150,11 +154,15 @@ impl RigSinks {
         }
     }
 
-    /// Publishes and records a prediction, and closes the recording's chunk (a shot is never half-written).
+    /// Publishes and records a prediction and the line of its flight (flown by the recorder or the live view,
+    /// off the prediction path), and closes the recording's chunk (a shot is never half-written).
     pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
         let data = serde_json::to_vec(l).unwrap_or_default();
         self.publish(|p| &p.launch, "launch", &data);
         self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
+        if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
+            self.recorder.send(super::foxglove::flight_record(l, flight, now_ns));
+        }
         self.recorder.send(Record::Flush);
         data
     }
@@ -211,6 +219,8 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         unknown_rig_samples: s.unknown_rig_samples,
         rejected_not_recorded: s.rejected_not_recorded,
         recorder_error: s.recorder_error,
+        simulator: None,
+        launch_monitor: None,
     }
 }
 

@@ -49,13 +49,25 @@ pub fn measured_launch(rig: &str) -> String {
 pub fn comparison(rig: &str) -> String {
     format!("golf/{rig}/comparison")
 }
-/// Recorded only: the club's pose in the world at each sample (Foxglove `PoseInFrame`).
+/// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) to and from the rig's simulator.
+pub fn simulator_traffic(rig: &str) -> String {
+    format!("golf/{rig}/simulator")
+}
+/// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) of the rig's Open Connect listener.
+pub fn launch_monitor_traffic(rig: &str) -> String {
+    format!("lm/{rig}/open_connect")
+}
+/// Recorded and in the live view: the club's pose in the world at each sample (Foxglove `PoseInFrame`).
 pub fn foxglove_club_pose(rig: &str) -> String {
     format!("foxglove/{rig}/club_pose")
 }
-/// Recorded only: ball and club at each impact (Foxglove `SceneUpdate`).
+/// Recorded and in the live view: ball and club at each impact (Foxglove `SceneUpdate`).
 pub fn foxglove_impact_scene(rig: &str) -> String {
     format!("foxglove/{rig}/impact_scene")
+}
+/// Recorded and in the live view: the predicted ball flight as a line strip (Foxglove `SceneUpdate`).
+pub fn foxglove_ball_flight(rig: &str) -> String {
+    format!("foxglove/{rig}/ball_flight")
 }
 /// The rig name of a `golf/<rig>/launch` key.
 pub fn rig_of_launch(key: &str) -> Option<&str> {

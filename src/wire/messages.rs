@@ -196,6 +196,12 @@ pub struct StatusMessage {
     /// The recording's write error (a full disk...), once one happened: nothing is recorded after it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub recorder_error: Option<String>,
+    /// The Open Connect client sending this rig's shots to a golf simulator, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulator: Option<super::SimulatorStatus>,
+    /// The Open Connect listener taking this rig's measured shots, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub launch_monitor: Option<super::LaunchMonitorStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

@@ -5,6 +5,7 @@
 //!
 //! This module holds the JSON forms only; it depends on no transport.
 
+mod bridge;
 mod delivery;
 mod flight;
 pub mod keys;
@@ -13,6 +14,9 @@ mod messages;
 mod sample;
 mod schema;
 
+pub use bridge::{
+    ConnectionState, LaunchMonitorStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
+};
 pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
 pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
 pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};

@@ -22,6 +22,7 @@ pub enum MessageType {
     Trajectory,
     MeasuredLaunch,
     ComparisonMessage,
+    OpenConnectTraffic,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -68,6 +69,7 @@ messages! {
     Trajectory => crate::flight::Trajectory,
     MeasuredLaunch => MeasuredLaunch,
     ComparisonMessage => ComparisonMessage,
+    OpenConnectTraffic => OpenConnectTraffic,
 }
 
 impl MessageType {
