@@ -181,15 +181,16 @@ mod tests {
     #[test]
     fn the_flight_line_follows_the_predicted_flight() {
         // A 7-iron-like launch: 54 m/s, 17 deg up, 7000 rpm of backspin (about +z: DESIGN.md's spin axis
-        // a = u x y for u along x). The line starts at the ball and ends where the flight model lands the same
-        // launch (its carry).
+        // a = u x y for u along x). The line starts at the ball and ends where the flight model stops the same
+        // launch through its bounce and roll.
         let flight = crate::flight::Flight::default();
         let (speed, angle) = (54.0_f64, 17.0_f64.to_radians());
         let launch = crate::flight::LaunchState {
             velocity_mps: crate::math::Vector3::new(speed * angle.cos(), speed * angle.sin(), 0.0),
             spin_radps: crate::math::Vector3::new(0.0, 0.0, 7000.0 * std::f64::consts::TAU / 60.0),
         };
-        let carry_m = flight.fly(&launch, 0.0).carry_m;
+        // The line runs through the bounce and roll to where the ball stops (straight here: x is the total).
+        let total_m = flight.fly(&launch, 0.0).total_m;
         let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, flight, launch }).unwrap();
         assert_eq!(
             (e.topic.as_str(), e.schema, e.publish_time_ns),
@@ -200,7 +201,7 @@ mod tests {
         assert!(points.len() > 20, "{} points", points.len());
         assert_eq!(points[0]["x"].as_f64(), Some(0.0));
         let last_x = points.last().unwrap()["x"].as_f64().unwrap();
-        assert!((last_x - carry_m).abs() < 1e-9, "{last_x} vs carry {carry_m}");
+        assert!((last_x - total_m).abs() < 1e-9, "{last_x} vs total {total_m}");
         assert!(encode(Record::Flush).is_none());
     }
 }
