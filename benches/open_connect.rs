@@ -4,6 +4,8 @@
 //! through the pipeline. Prints p50/p99/max and checks the budget (p99 <= 2 ms, DESIGN.md section 5).
 //! `cargo bench --bench open_connect [-- SHOTS]`.
 
+#![allow(clippy::unwrap_used)]
+
 use std::io::{Read, Write};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
