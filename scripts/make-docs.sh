@@ -3,7 +3,7 @@
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
-# Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 2 minutes of evaluations on 2 cores)
+# Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
