@@ -108,9 +108,9 @@ struct Acc {
 impl Acc {
     fn add(&mut self, e: &[Real; 13]) {
         self.n += 1;
-        for i in 0..13 {
-            self.sums[i] += e[i] * e[i];
-            self.maxes[i] = self.maxes[i].max(e[i].abs());
+        for ((sum, max), e) in self.sums.iter_mut().zip(self.maxes.iter_mut()).zip(e) {
+            *sum += e * e;
+            *max = max.max(e.abs());
         }
     }
     fn errors(&self) -> Errors {

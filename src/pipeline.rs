@@ -66,6 +66,8 @@ pub struct Counts {
     pub accepted: u64,
     pub occluded: u64,
     pub dropped: u64,
+    /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
+    pub resets: u64,
     pub rejected: BTreeMap<String, u64>,
     pub shots: u64,
     pub predictions: u64,
@@ -104,7 +106,9 @@ impl Pipeline {
     /// model has run).
     pub fn on_sample_with(&mut self, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
         self.counts.samples += 1;
-        match self.track.push(sample) {
+        let pushed = self.track.push(sample);
+        self.counts.resets = self.track.counts.resets;
+        match pushed {
             Err(reason) => {
                 *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
                 out(Event::Rejected { frame: sample.frame, reason });

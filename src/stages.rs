@@ -71,6 +71,32 @@ pub fn model_stages() -> Vec<Stage> {
     stages
 }
 
+/// The iron-plus-ground model on firm soil, a fat strike (15 mm up the face: the sole meets the ground 2.9 ms
+/// before the ball): `ground/firm/iron7_fat`, one prediction (to the ball's release) per operation.
+pub fn ground_stages() -> Vec<Stage> {
+    use crate::equipment::soil::SoilSpec;
+    use crate::impact::continuous::iron_ground::GroundModel;
+    let eq = Equipment::new(ClubSpec::iron7());
+    let plane = 60f64.to_radians();
+    let fat = Delivery {
+        club_speed_mps: 90.0 * crate::units::MPS_PER_MPH,
+        attack_angle_rad: (-4.3f64).to_radians(),
+        club_path_rad: 0.0,
+        face_angle_rad: 0.0,
+        dynamic_loft_rad: 25f64.to_radians(),
+        impact_h_m: 0.0,
+        impact_v_m: 0.015,
+        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
+    };
+    let (Ok(model), Ok(state)) = (GroundModel::new(SoilSpec::firm()).prepare(&eq), fat.to_state(&eq)) else {
+        return Vec::new();
+    };
+    vec![Stage {
+        name: "ground/firm/iron7_fat".into(),
+        run: Box::new(move |_| model.predict(&state, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)),
+    }]
+}
+
 /// Pre-impact frames of 32 noisy synthetic swings at 720 Hz (0.2 mm, 0.1 deg), with their revealing times.
 pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
     let eq = Equipment::new(club.clone());
@@ -166,7 +192,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
     out
 }
 
-/// One ball flight per operation: `flight/trajectory`, over the TrackMan table's launches.
+/// One ball flight with its bounce and roll per operation: `flight/trajectory`, over the TrackMan table's launches.
 pub fn flight_stages() -> Vec<Stage> {
     let rows = crate::flight::fit::parse_table(crate::flight::fit::TRACKMAN_CSV).unwrap_or_default();
     let launches: Vec<crate::flight::LaunchState> = rows
@@ -191,6 +217,7 @@ pub fn flight_stages() -> Vec<Stage> {
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
     let mut stages = model_stages();
+    stages.extend(ground_stages());
     stages.extend(extrapolation_stages());
     stages.extend(flight_stages());
     stages.extend(pipeline_stages());

@@ -1,6 +1,8 @@
 //! The continuous two-layer model (seed section 3.2.1, Table 3.5): conservation, dissipation, contact time and
 //! peak force, convergence, and its agreement with the adjusted impulse-momentum model where it holds.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::{BallSpec, ClubFile, ClubSpec};
 use impactd::impact::continuous::TwoLayerParams;
 use impactd::impact::registry::{self, BuildOptions};

@@ -1,6 +1,8 @@
 //! Physical laws the impulse-momentum family must obey (seed section 3.1), checked over a seeded spread of
 //! deliveries on both preset clubs and all three variants.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::ClubSpec;
 use impactd::impact::impulse::{solve, ContactProblem, ImpulseTuning};
 use impactd::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};

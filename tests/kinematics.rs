@@ -1,6 +1,8 @@
 //! Impact-state estimation from motion-capture frames: the accuracy targets on synthetic swings with exact truth,
 //! and the track's and detector's handling of bad, missing and misleading frames.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::ClubSpec;
 use impactd::eval::{run, EstimatorReport, EvalConfig, EvalReport};
 use impactd::impact::{Equipment, ImpulseModel, ImpulseVariant};

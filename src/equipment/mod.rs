@@ -10,6 +10,9 @@ mod ball;
 mod club;
 mod club_file;
 mod load;
+pub mod shaft;
+pub mod soil;
+pub mod sole;
 
 pub use ball::BallSpec;
 pub use club::ClubSpec;
@@ -23,6 +26,8 @@ use crate::math::{Matrix3, Real};
 pub enum EquipmentError {
     #[error("unknown club preset '{0}' (expected driver or iron7, or a path to a .toml file)")]
     UnknownPreset(String),
+    #[error("unknown soil '{0}' (expected soft, medium or firm, or a path to a soil .toml file)")]
+    UnknownSoil(String),
     #[error("club file is not valid TOML for a club: {0}")]
     Parse(String),
     #[error("club field `{field}` {reason}")]
@@ -44,6 +49,7 @@ mod tests {
 
     /// The presets must equal the seed tables as transcribed in tests/data/seed-tables.toml.
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn presets_match_the_seed_tables() {
         let text = include_str!("../../tests/data/seed-tables.toml");
         let tables: toml::Value = toml::from_str(text).unwrap();

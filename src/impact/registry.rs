@@ -38,12 +38,23 @@ pub struct ModelEntry {
     pub sections: &'static [&'static str],
     /// Whether it resolves the contact in time (and so has a trace of forces).
     pub resolved_in_time: bool,
-    build: fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>,
+    build: BuildFn,
 }
+
+/// How an entry builds its model from a club and the options.
+type BuildFn = fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>;
 
 fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let tuning = ImpulseTuning::from_sections(&club.club, &club.sections)?;
     Ok(Arc::new(ImpulseModel::new(variant).with_cor(o.cor).with_tuning(tuning)))
+}
+
+/// The iron-plus-ground model on firm soil (Table 4.3), its ball from the `[continuous]` section.
+fn ground(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    let mut model = super::continuous::iron_ground::GroundModel::new(crate::equipment::soil::SoilSpec::firm());
+    model.params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
+    let equipment = super::Equipment { club: club.club.clone(), ball: o.ball };
+    Ok(Arc::new(model.prepare(&equipment)?))
 }
 
 fn continuous(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
@@ -96,6 +107,14 @@ pub const MODELS: &[ModelEntry] = &[
         sections: &["arakawa"],
         resolved_in_time: true,
         build: |c, _| Ok(Arc::new(HertzModel::arakawa_from_sections(&c.sections)?)),
+    },
+    ModelEntry {
+        name: "ground",
+        summary: "two-layer ball on an iron head on a flexible shaft, the ball on firm turf: sole and face ground \
+                  reaction (seed chapter 4, Tables 4.1-4.3)",
+        sections: &["continuous"],
+        resolved_in_time: false,
+        build: ground,
     },
 ];
 

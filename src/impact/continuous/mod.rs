@@ -10,15 +10,18 @@
 //! - [`surface`]: the face's contact geometry (volume of intersection, its centroid, the normal).
 //!
 //! Models: [`ContinuousModel`], the two-layer model of section 3.2.1 ([`two_layer`]); [`hertzian::HertzModel`],
-//! Maw's (3.2.2) and Arakawa's (3.2.3) models on a rigid ball, and [`plate`], a ball on a rigid plate for them.
+//! Maw's (3.2.2) and Arakawa's (3.2.3) models on a rigid ball, [`plate`], a ball on a rigid plate for them;
+//! and [`iron_ground::GroundModel`], an iron on a flexible shaft ([`shaft`]) striking a ball on turf (chapter 4).
 
 pub mod assembly;
 pub mod ball;
 pub mod club;
 pub mod ground;
 pub mod hertzian;
+pub mod iron_ground;
 pub mod law;
 pub mod plate;
+pub mod shaft;
 mod start;
 pub mod surface;
 pub mod two_layer;

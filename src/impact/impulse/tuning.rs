@@ -117,6 +117,7 @@ mod tests {
 
     /// Table 3.3 and 3.4 as transcribed in tests/data/seed-tables.toml.
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn presets_match_the_seed_tables() {
         let tables: toml::Value = toml::from_str(include_str!("../../../tests/data/seed-tables.toml")).unwrap();
         for (name, club) in [("driver", ClubSpec::driver()), ("iron7", ClubSpec::iron7())] {

@@ -1,5 +1,14 @@
 //! Ground reaction on the clubhead (seed chapter 4): none for a ball on a tee or a club that never reaches the
-//! turf ([`NoGround`]).
+//! turf ([`NoGround`]); an iron's sole in Bekker soil and its face below the surface ([`SoilGround`], section
+//! 4.2, eq. 4.3-4.13).
+
+mod bekker;
+pub mod face_pressure;
+pub mod sole;
+
+pub use bekker::{GaussRule, GroundForces, GroundPhase, SoilGround, SoleArcWorld, MAX_GAUSS};
+pub use face_pressure::{face_forces, FacePressure};
+pub use sole::{sole_forces, SoleContact};
 
 use super::club::Head;
 use crate::math::Vector3;
@@ -28,5 +37,16 @@ impl Ground for NoGround {
     #[inline]
     fn wrench(&self, _: &Head) -> GroundWrench {
         GroundWrench::default()
+    }
+}
+
+impl Ground for SoilGround {
+    fn wrench(&self, head: &Head) -> GroundWrench {
+        let pose = crate::math::Isometry3::from_parts(
+            crate::math::Translation3::from(head.position_m),
+            crate::math::UnitQuaternion::from_rotation_matrix(&head.world_from_club),
+        );
+        let f = self.forces(&pose, &head.velocity_mps, &head.angular_velocity_radps);
+        GroundWrench { force_n: f.force_n(), torque_nm: f.torque_nm() }
     }
 }
