@@ -4,6 +4,7 @@
 
 use impactd::equipment::{BallSpec, ClubSpec};
 use impactd::impact::continuous::hertzian::{HertzLaw, HertzModel};
+use impactd::impact::continuous::law::arakawa::{ArakawaParams, ArakawaReading};
 use impactd::impact::continuous::law::maw::MawParams;
 use impactd::impact::continuous::plate::{chi, impact, rebound_psi};
 use impactd::impact::{Delivery, Equipment, LaunchMetrics};
@@ -79,14 +80,14 @@ fn figure_3_4_damping_lowers_the_peak_and_keeps_the_reversal() {
 }
 
 /// Both models on a free head: linear and angular momentum conserved to 1e-9 relative on random centred and
-/// off-centre, open and closed deliveries; Maw's energy (kinetic + Hertz + rings) never increases over a step.
-/// Arakawa's eq. 3.23 keeps its axis whatever the slip does, so it can do work on the ball: its energy is
-/// reported in docs/models.md, not asserted.
+/// off-centre, open and closed deliveries; the energy (kinetic + Hertz + rings or Arakawa's stick spring) never
+/// increases over a step for either model's default. Arakawa's literal reading of eq. 3.23 gains energy (the
+/// force keeps its axis when the slip reverses): asserted here as the reason it is not the default.
 #[test]
-fn momentum_conserved_and_maw_energy_never_increases() {
+fn momentum_conserved_and_energy_never_increases() {
     let mut rng = Rng::new(23);
     for (club, loft, attack) in clubs() {
-        let eq = Equipment::new(club);
+        let eq = Equipment::new(club.clone());
         for _ in 0..10 {
             let d = Delivery {
                 club_speed_mps: rng.uniform(35.0, 55.0),
@@ -110,28 +111,50 @@ fn momentum_conserved_and_maw_energy_never_increases() {
                     model.law_name(),
                     (a1 - a0).norm() / a0.norm()
                 );
-                if matches!(model.law, HertzLaw::Maw(_)) {
-                    assert!(r.max_energy_increase_j <= 1e-9 * r.energy_before_j, "{}", r.max_energy_increase_j);
-                    assert!(r.energy_after_j < r.energy_before_j);
-                }
+                assert!(
+                    r.max_energy_increase_j <= 1e-9 * r.energy_before_j,
+                    "{}: {}",
+                    model.law_name(),
+                    r.max_energy_increase_j
+                );
+                assert!(r.energy_after_j < r.energy_before_j);
             }
+        }
+        // The literal reading on the centred 7-iron at 45 m/s: the ball leaves with more energy than the
+        // system had (docs/models.md: 12-14 %); the rise is > 1 % of the impact's energy.
+        if club.name == "iron7" {
+            let state = delivery(45.0, attack, loft).to_state(&eq).unwrap();
+            let literal = ArakawaParams { reading: ArakawaReading::Literal, ..ArakawaParams::IRON7 };
+            let model = HertzModel { law: HertzLaw::Arakawa(Some(literal)), ..HertzModel::arakawa() };
+            let r = model.simulate(&state, &eq, 1).unwrap();
+            assert!(r.max_energy_increase_j > 0.0 && r.energy_after_j > r.energy_before_j, "{r:?}");
         }
     }
 }
 
-/// The centred 7-iron at 45-50 m/s: the tangential force reverses during contact (both models), and the contact
-/// lasts 0.35-0.6 ms for both clubs (golf impacts last about 0.45 ms).
+/// The centred 7-iron at 45-50 m/s: the tangential force reverses during contact for Maw (the rings' stored
+/// tangential deflection released) and for Arakawa's literal reading (eq. 3.23 changes sign once
+/// `η π R |ẋ| > F_N`); Arakawa's friction reading does not (its bound `max(F_T, 0)` falls to zero as the contact
+/// shrinks, before the stick spring can push back: docs/models.md). The contact lasts 0.35-0.6 ms for every model
+/// and both clubs (golf impacts last about 0.45 ms).
 #[test]
 fn reversal_and_contact_time() {
     for (club, loft, attack) in clubs() {
         let eq = Equipment::new(club.clone());
+        let preset = if club.face.shape.is_curved() { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 };
+        let literal = ArakawaParams { reading: ArakawaReading::Literal, ..preset };
         for speed in [45.0, 50.0] {
             let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
-            for model in [HertzModel::maw(), HertzModel::arakawa()] {
+            let models = [
+                (HertzModel::maw(), true),
+                (HertzModel { law: HertzLaw::Arakawa(Some(literal)), ..HertzModel::arakawa() }, true),
+                (HertzModel::arakawa(), false),
+            ];
+            for (model, reverses) in models {
                 let r = model.simulate(&state, &eq, 0).unwrap();
                 assert!((0.35e-3..=0.6e-3).contains(&r.contact_time_s), "{} {}", club.name, r.contact_time_s);
                 if club.name == "iron7" {
-                    assert!(r.tangential_reversal, "{speed}");
+                    assert_eq!(r.tangential_reversal, reverses, "{model:?} {speed}");
                 }
             }
         }
@@ -139,25 +162,19 @@ fn reversal_and_contact_time() {
 }
 
 /// Converged: halving the step changes the ball speed < 0.01 % and the spin < 0.1 %; 40 rings instead of 20
-/// change the spin < 1 %. Arakawa's driver only: its 7-iron at 50-55 m/s does not converge: with Table 3.7's η the tangential
-/// force at first contact is 78 kN, the ball's spin passes 300,000 rpm mid-contact and the normal force
-/// clamps at zero (docs/models.md).
+/// change the spin < 1 %. Both models, both clubs, 35-55 m/s (Arakawa's default friction reading; the literal one
+/// does not converge for the 7-iron at 50-55 m/s, docs/models.md).
 #[test]
 fn converged_in_step_and_rings() {
     for (club, loft, attack) in clubs() {
         let eq = Equipment::new(club.clone());
-        for speed in [35.0, 45.0, 50.0] {
+        for speed in [35.0, 45.0, 55.0] {
             let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
             let metrics = |m: HertzModel| {
                 let l = m.simulate(&state, &eq, 0).unwrap().launch;
                 LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps)
             };
-            let models = if club.face.shape.is_curved() {
-                vec![HertzModel::maw(), HertzModel::arakawa()]
-            } else {
-                vec![HertzModel::maw()]
-            };
-            for base in models {
+            for base in [HertzModel::maw(), HertzModel::arakawa()] {
                 let a = metrics(base);
                 let b = metrics(HertzModel { step_s: base.step_s / 2.0, ..base });
                 let dv = (a.ball_speed_mps - b.ball_speed_mps).abs() / b.ball_speed_mps;
