@@ -2,6 +2,8 @@
 //! Maw model against Maw, Barber and Fawcett's theory on a plate, conservation, dissipation, the tangential force
 //! reversal, contact time and convergence on a free head.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::{BallSpec, ClubSpec};
 use impactd::impact::continuous::hertzian::{HertzLaw, HertzModel};
 use impactd::impact::continuous::law::arakawa::{ArakawaParams, ArakawaReading};
