@@ -6,7 +6,7 @@
 //!   at the edge of what they measured), the spin decays at Smits and Smith's measured rate (`0.0004 · V[mph] · ω`
 //!   per second, as quoted by Dewhurst, *The Science of the Perfect Swing*); the trajectory model of NTNU's TKT4140
 //!   course material, which ships those tables.
-//! - Nathan's golf trajectory model with the coefficients libgolf publishes for it ([`nathan_coefficients`]).
+//! - Nathan's golf trajectory model with the coefficients libgolf publishes for it (`reference::nathan`).
 //!
 //! Both fly the same ball in the same air as the model. What they show (`docs/flight.md`, "Is the table within
 //! physical reach?"): both carry the slower drives of TrackMan's optimal-driver chart within 4 %, and both leave
@@ -18,7 +18,7 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::equipment::BallSpec;
-use impactd::flight::reference::{bearman_harvey, BH_CD, BH_CL};
+use impactd::flight::reference::{bearman_harvey, nathan, BH_CD, BH_CL};
 use impactd::flight::{fit, Aero, Conditions};
 use impactd::units::{m_to_yd, mph_to_mps};
 
@@ -81,25 +81,15 @@ fn fly_published(speed_mps: f64, launch_deg: f64, spin_rpm: f64, rho: f64, decay
     )
 }
 
-/// Nathan's golf trajectory model ("TrajectoryCalculatorGolf", A. M. Nathan) with the coefficients libgolf
-/// publishes for it (`gdifiore/libgolf`, `docs/aerodynamic_model.md`, `DefaultAerodynamicModel`): with `x = Re/10⁵`
-/// and the spin ratio `S`, drag `0.5` below x 0.5 falling linearly to `0.2` at x 1, plus `0.18 S`; lift above
-/// x 0.7 the saturating `c_max · 16 S / (1 + 16 S)`, `c_max` 0.268 up to S 0.35 rising to 0.32 at S 0.5 (below
-/// x 0.7, where these launches spend under a second, libgolf's Bearman-based bins are replaced here by the same
-/// curve faded out linearly to nothing at x 0.3); spin decay time constant `r / (2·10⁻⁵ v)` (Nathan's), 21 s
-/// at 50 m/s.
+/// Nathan's coefficients ([`nathan`]) at airspeed `speed_mps` and spin `rpm`, in the model's air.
 fn nathan_coefficients(speed_mps: f64, rpm: f64) -> (f64, f64) {
     let c = Conditions::default();
-    let ball = BallSpec::SEED;
-    let x =
-        impactd::flight::aero::reynolds(speed_mps, 2.0 * ball.radius_m, c.density_kg_m3(), c.viscosity_pa_s()) * 1e-5;
-    let s = ball.radius_m * impactd::units::rpm_to_radps(rpm) / speed_mps;
-    let drag = 0.5 - 0.3 * ((x - 0.5) / 0.5).clamp(0.0, 1.0) + 0.18 * s;
-    let c_max = 0.268 + 0.052 * ((s - 0.35) / 0.15).clamp(0.0, 1.0);
-    let lift = c_max * 16.0 * s / (1.0 + 16.0 * s) * ((x - 0.3) / 0.4).clamp(0.0, 1.0);
-    (drag, lift)
+    let r = BallSpec::SEED.radius_m;
+    let re = impactd::flight::aero::reynolds(speed_mps, 2.0 * r, c.density_kg_m3(), c.viscosity_pa_s());
+    nathan(re, r * impactd::units::rpm_to_radps(rpm) / speed_mps)
 }
 
+/// Nathan's model: his coefficients and spin decay time constant `r / (2·10⁻⁵ v)`.
 fn fly_nathan(speed_mps: f64, launch_deg: f64, spin_rpm: f64) -> (f64, f64, f64) {
     let r = BallSpec::SEED.radius_m;
     fly_with(speed_mps, launch_deg, spin_rpm, rho(), nathan_coefficients, |v| 2e-5 * v / r)
