@@ -1,9 +1,9 @@
-//! Draws the fitted drag and lift against the published measurements: `docs/flight-drag.svg` and
+//! Draws the fitted drag and lift against the published measurements and Nathan's model's coefficients: `docs/flight-drag.svg` and
 //! `docs/flight-lift.svg` (`cargo run --release --no-default-features --example flight_coefficients`).
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
+use impactd::flight::reference::{bearman_harvey, lyu, nathan, BH_CD, BH_CL};
 use impactd::flight::{aero, Aero, Flight};
 use impactd::plot::{LineChart, Series, PALETTE};
 use impactd::units::radps_to_rpm;
@@ -48,6 +48,13 @@ fn main() -> std::io::Result<()> {
                 name: format!("Lyu et al. 2018, S = {s}"),
                 points: lyu_points,
                 color: PALETTE[4 + k],
+                right_axis: false,
+            });
+            // Nathan's model is a fit over the whole range, drawn everywhere.
+            series.push(Series {
+                name: format!("Nathan (libgolf), S = {s}"),
+                points: speeds.iter().map(|&v| (v, pick(nathan(aero::reynolds(v, 2.0 * r, rho, mu), s)))).collect(),
+                color: PALETTE[6 + k],
                 right_axis: false,
             });
         }

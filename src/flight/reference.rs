@@ -1,6 +1,6 @@
 //! Published measurements of golf-ball drag and lift that the model is checked against (tests, `docs/flight.md`
-//! and its figures): Bearman and Harvey's wind tunnel (1976) and Lyu et al.'s free flight of production balls
-//! (2018).
+//! and its figures): Bearman and Harvey's wind tunnel (1976), Lyu et al.'s free flight of production balls
+//! (2018), and the coefficients of Nathan's golf trajectory model as libgolf publishes them.
 
 /// Bearman and Harvey (1976), wind tunnel, as tabulated over airspeed and spin rate in NTNU's TKT4140 course
 /// material (`experdata/dragdata.m`, `liftdata.m`): airspeeds (m/s), and for 2000, 3000, 4000, 5000 and 6000 rpm
@@ -56,4 +56,20 @@ pub fn lyu(speed_mps: crate::math::Real, spin_ratio: crate::math::Real) -> (crat
     let s_at = |rpm: crate::math::Real| 0.0215 * crate::units::rpm_to_radps(rpm) / speed_mps;
     let s = spin_ratio.clamp(s_at(1500.0), s_at(4500.0));
     (drag, 1.99 * s - 3.25 * s * s)
+}
+
+/// Nathan's golf trajectory model (A. M. Nathan, "TrajectoryCalculatorGolf") with the coefficients the open-source
+/// library libgolf publishes for it (`gdifiore/libgolf`, `docs/aerodynamic_model.md`): `(C_D, C_L)` at Reynolds
+/// number `reynolds` and spin ratio `spin_ratio`. With `x = Re / 10⁵`: drag `0.5` below x 0.5, falling linearly to
+/// `0.2` at x 1, plus `0.18 S`; lift above x 0.7 the saturating `c_max · 16 S / (1 + 16 S)`, `c_max` 0.268 up to
+/// S 0.35 rising linearly to 0.32 at S 0.5. Below x 0.7 libgolf interpolates Bearman-based lift bins; here the
+/// same saturating curve fades linearly to nothing at x 0.3 instead. Its spin decays with the time constant
+/// `r / (2·10⁻⁵ v)` (21 s at 50 m/s).
+pub fn nathan(reynolds: crate::math::Real, spin_ratio: crate::math::Real) -> (crate::math::Real, crate::math::Real) {
+    let x = reynolds * 1e-5;
+    let s = spin_ratio.max(0.0);
+    let drag = 0.5 - 0.3 * ((x - 0.5) / 0.5).clamp(0.0, 1.0) + 0.18 * s;
+    let c_max = 0.268 + 0.052 * ((s - 0.35) / 0.15).clamp(0.0, 1.0);
+    let lift = c_max * 16.0 * s / (1.0 + 16.0 * s) * ((x - 0.3) / 0.4).clamp(0.0, 1.0);
+    (drag, lift)
 }
