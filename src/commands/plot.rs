@@ -1,4 +1,4 @@
-//! `impactd plot`: pictures (SVG) of the continuous model's forces and of flights.
+//! `impactd plot`: pictures (SVG) of the continuous model's forces, of flights and of strikes off the turf.
 
 use std::io::BufRead;
 use std::path::PathBuf;
@@ -16,6 +16,8 @@ pub enum PlotCommand {
     Forces(ForcesArgs),
     /// Side and top views of one or more shots: JSONL launches in (stdin or --input).
     Trajectory(TrajectoryArgs),
+    /// The ground model's force on the head for a fat and a good strike, and the face angle and loft over time.
+    Ground(super::plot_ground::GroundPlotArgs),
 }
 
 #[derive(Debug, Args)]
@@ -49,6 +51,7 @@ pub fn run(command: &PlotCommand) -> Result<ExitCode> {
     match command {
         PlotCommand::Forces(args) => forces(args),
         PlotCommand::Trajectory(args) => trajectory(args),
+        PlotCommand::Ground(args) => super::plot_ground::run(args),
     }
 }
 

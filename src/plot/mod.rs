@@ -4,7 +4,9 @@
 use std::fmt::Write;
 
 mod figures;
+mod ground;
 pub use figures::{face_map, forces_chart, trajectories_svg, MapMetric};
+pub use ground::{ground_svg, GroundPlotError};
 
 /// One line of a chart.
 pub struct Series {
