@@ -32,22 +32,20 @@ pub fn ground_svg(title: &str, strikes: &[(&'static str, &GroundResult)]) -> Res
     let mut forces = Vec::new();
     let mut angles = Vec::new();
     for (k, (label, r)) in strikes.iter().enumerate() {
-        let what = format!("{label} ({:?}, peak {:.0} N)", r.strike, r.peak_ground_force_n).to_lowercase();
+        let what = format!("{label} strike, peak {:.0} N", r.peak_ground_force_n);
         forces.push(series(format!("{what}: vertical"), 2 * k, r, |p| p.ground_vertical_n));
         forces.push(series(format!("{what}: horizontal"), 2 * k + 1, r, |p| p.ground_horizontal_n));
-        let a0 = r.trace[0].face_angle_deg;
-        let l0 = r.trace[0].dynamic_loft_deg;
         angles.push(Series {
-            name: format!("{label}: face angle change (open +)"),
-            points: r.trace.iter().map(|p| (p.t_ms, p.face_angle_deg - a0)).collect(),
+            name: format!("{label}: face angle (open +)"),
+            points: r.trace.iter().map(|p| (p.t_ms, p.face_angle_deg)).collect(),
             color: PALETTE[2 * k],
             right_axis: false,
         });
         angles.push(Series {
-            name: format!("{label}: dynamic loft change"),
-            points: r.trace.iter().map(|p| (p.t_ms, p.dynamic_loft_deg - l0)).collect(),
+            name: format!("{label}: dynamic loft (right axis)"),
+            points: r.trace.iter().map(|p| (p.t_ms, p.dynamic_loft_deg)).collect(),
             color: PALETTE[2 * k + 1],
-            right_axis: false,
+            right_axis: true,
         });
     }
     let top = LineChart {
@@ -59,10 +57,10 @@ pub fn ground_svg(title: &str, strikes: &[(&'static str, &GroundResult)]) -> Res
         equal_axes: false,
     };
     let bottom = LineChart {
-        title: "face angle and loft from the start of each run (Figure 4.15)".into(),
+        title: "face angle and dynamic loft, the swing's own turning included (Figure 4.15)".into(),
         x_label: "time from the ball's first contact (ms)".into(),
-        y_label: "change (deg)".into(),
-        y2_label: None,
+        y_label: "face angle (deg)".into(),
+        y2_label: Some("dynamic loft (deg)".into()),
         series: angles,
         equal_axes: false,
     };
