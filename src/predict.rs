@@ -6,6 +6,7 @@ use std::io::{BufRead, Write};
 use serde::Serialize;
 
 use crate::equipment::ClubSpec;
+use crate::impact::continuous::iron_ground::{GroundSummary, GroundTracePoint};
 use crate::impact::continuous::TracePoint;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpactState};
 use crate::jsonl::{JsonlError, Tally};
@@ -30,11 +31,23 @@ struct TracedOutput {
     trace: Vec<TracePoint>,
 }
 
+/// A model of the ball on the turf (`--model ground`): the launch, how the club met the turf and, with
+/// `--trace`, the ground's forces and the face angle and loft over time.
+#[derive(Serialize)]
+struct GroundOutput {
+    #[serde(flatten)]
+    output: PredictOutput,
+    ground: GroundSummary,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    trace: Option<Vec<GroundTracePoint>>,
+}
+
 #[derive(Serialize)]
 #[serde(untagged)]
 enum Answer {
     Plain(PredictOutput),
     Traced(TracedOutput),
+    Ground(GroundOutput),
 }
 
 /// A prediction error for the delivery it came from, naming the field it is about.
@@ -86,6 +99,18 @@ fn answer(
     let metrics = DeliveryMetrics::from_state(&state, club);
     let hand = d.handedness.unwrap_or_default();
     let err = |e| DeliveryError::new(e, d);
+    let (model, every) = match predictor {
+        Predictor::Plain(m) => (m, 0),
+        Predictor::Traced(m) => (m, 10),
+    };
+    if let Some(r) = model.ground(&state, equipment, every) {
+        let r = r.map_err(err)?;
+        return Ok(Answer::Ground(GroundOutput {
+            output: PredictOutput::new(&r.launch, &metrics, hand),
+            ground: r.summary(),
+            trace: (every > 0).then_some(r.trace),
+        }));
+    }
     Ok(match predictor {
         Predictor::Traced(m) => {
             let Some(r) = m.trace(&state, equipment, 10) else {

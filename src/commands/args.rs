@@ -76,6 +76,17 @@ pub fn one_model(name: &str, club: &LoadedClub, cor: f64) -> Result<Arc<dyn Impa
     Ok(registry::build_one(name, club, &options)?)
 }
 
+/// `--soil`: the turf of the ground model (a preset or a soil file), as the club's `[soil]` section.
+pub fn set_soil(club: &mut LoadedClub, soil: Option<&str>, model: &str) -> Result<()> {
+    let Some(soil) = soil else { return Ok(()) };
+    if !model.split(',').any(|m| m.trim() == "ground") {
+        anyhow::bail!("--soil needs --model ground, not {model}");
+    }
+    let spec = impactd::equipment::soil::SoilSpec::load(soil).context("--soil")?;
+    club.sections.insert("soil", impactd::impact::continuous::iron_ground::sections::soil_section(&spec));
+    Ok(())
+}
+
 /// Whether a model is resolved in time (has a trace of forces).
 pub fn resolved_in_time(name: &str) -> bool {
     registry::entry(name).is_some_and(|e| e.resolved_in_time)

@@ -22,6 +22,9 @@ pub struct MapArgs {
     /// Grid cells along each face axis.
     #[arg(long, default_value_t = 21)]
     pub cells: usize,
+    /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
+    #[arg(long)]
+    pub soil: Option<String>,
     #[arg(short = 'o', long = "output", default_value = "map.svg")]
     pub output: PathBuf,
 }
@@ -30,7 +33,8 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     if !(3..=101).contains(&args.cells) {
         bail!("--cells must be within 3 and 101");
     }
-    let loaded = load_club(&args.club)?;
+    let mut loaded = load_club(&args.club)?;
+    super::args::set_soil(&mut loaded, args.soil.as_deref(), &args.model)?;
     let club = loaded.club.clone();
     let model = one_model(&args.model, &loaded, impactd::impact::impulse::DEFAULT_COR)?;
     let heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells);

@@ -13,6 +13,7 @@ mod flight;
 mod flight_fit;
 mod map;
 mod plot;
+mod plot_ground;
 mod predict;
 mod schemas;
 

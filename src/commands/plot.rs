@@ -1,5 +1,5 @@
-//! `impactd plot`: pictures (SVG) of a model's forces through one impact, of flights, and of a ball on a rigid
-//! plate under Maw's model (seed Figure 3.4).
+//! `impactd plot`: pictures (SVG) of a model's forces through one impact, of flights, of strikes off the turf,
+//! and of a ball on a rigid plate under Maw's model (seed Figure 3.4).
 
 use std::io::BufRead;
 use std::path::PathBuf;
@@ -20,6 +20,8 @@ pub enum PlotCommand {
     Trajectory(TrajectoryArgs),
     /// Seed Figure 3.4: a ball on a rigid plate at 44 m/s and 30 degrees, elastic Maw against damped Maw.
     MawPlate(MawPlateArgs),
+    /// The ground model's force on the head for a fat and a good strike, and the face angle and loft over time.
+    Ground(super::plot_ground::GroundPlotArgs),
 }
 
 #[derive(Debug, Args)]
@@ -70,6 +72,7 @@ pub fn run(command: &PlotCommand) -> Result<ExitCode> {
         PlotCommand::Forces(args) => forces(args),
         PlotCommand::Trajectory(args) => trajectory(args),
         PlotCommand::MawPlate(args) => maw_plate(args),
+        PlotCommand::Ground(args) => super::plot_ground::run(args),
     }
 }
 

@@ -26,15 +26,19 @@ pub struct PredictArgs {
     /// With a model resolved in time (continuous): add the normal and tangential force and the ball's spin over time.
     #[arg(long)]
     pub trace: bool,
+    /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
+    #[arg(long)]
+    pub soil: Option<String>,
 }
 
 pub fn run(args: &PredictArgs) -> Result<ExitCode> {
     if !(0.0..=1.0).contains(&args.cor) {
         bail!("--cor must be within 0 and 1, got {}", args.cor);
     }
-    let loaded = load_club(&args.club)?;
+    let mut loaded = load_club(&args.club)?;
+    super::args::set_soil(&mut loaded, args.soil.as_deref(), &args.model)?;
     if args.trace && !resolved_in_time(&args.model) {
-        bail!("--trace needs a model resolved in time (continuous), not {}", args.model);
+        bail!("--trace needs a model resolved in time (continuous, ground), not {}", args.model);
     }
     let model = one_model(&args.model, &loaded, args.cor)?;
     let predictor = if args.trace { Predictor::Traced(model.as_ref()) } else { Predictor::Plain(model.as_ref()) };

@@ -7,7 +7,9 @@
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
 //! club = "driver"               # preset (driver, iron7) or a path to a club .toml
-//! model = "adjusted"            # standard | adjusted | slip | continuous | both
+//! model = "adjusted"            # standard | adjusted | slip | continuous | ground | both
+//! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml;
+//!                               # with model = "both" it stands for "adjusted,ground"
 //! cor = 0.83
 //! estimator = "arc"             # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
@@ -61,6 +63,9 @@ pub struct RigConfig {
     pub model: String,
     #[serde(default = "default_cor")]
     pub cor: f64,
+    /// The turf under the ball for the ground model (a preset or a soil file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub soil: Option<String>,
     #[serde(default = "default_estimator")]
     pub estimator: String,
     #[serde(default)]
@@ -113,6 +118,19 @@ fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
     DaemonError::Config { field, reason: reason.into() }
 }
 
+/// A rig's `soil`: the club's `[soil]` section, and the model list it implies (`both` with a soil is the impulse
+/// model published at once and the ground model when it is ready).
+fn soil_model(r: &RigConfig, club: &mut crate::equipment::LoadedClub) -> Result<String, String> {
+    let Some(soil) = &r.soil else { return Ok(r.model.clone()) };
+    let model = if r.model == "both" { "adjusted,ground".to_string() } else { r.model.clone() };
+    if !model.split(',').any(|m| m.trim() == "ground") {
+        return Err(format!("needs model = \"ground\" or \"both\", not \"{}\"", r.model));
+    }
+    let spec = crate::equipment::soil::SoilSpec::load(soil).map_err(|e| e.to_string())?;
+    club.sections.insert("soil", crate::impact::continuous::iron_ground::sections::soil_section(&spec));
+    Ok(model)
+}
+
 impl PoseConfig {
     fn to_isometry(self, field: String) -> Result<Isometry3, DaemonError> {
         if self.rotation_xyzw.iter().chain(self.translation_m.iter()).any(|v| !v.is_finite()) {
@@ -134,6 +152,7 @@ impl Default for DaemonConfig {
                 club: default_club(),
                 model: default_model(),
                 cor: default_cor(),
+                soil: None,
                 estimator: default_estimator(),
                 ball_position_m: [0.0; 3],
                 world_from_lab: None,
@@ -196,13 +215,14 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
+                let mut club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
+                let model = soil_model(r, &mut club).map_err(|reason| invalid(f("soil"), reason))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
                 let options = BuildOptions { cor: r.cor, ..BuildOptions::default() };
                 let models =
-                    registry::build(&r.model, &club, &options).map_err(|e| invalid(f("model"), e.to_string()))?;
+                    registry::build(&model, &club, &options).map_err(|e| invalid(f("model"), e.to_string()))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
@@ -277,5 +297,22 @@ mod tests {
         let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
         assert_eq!(c.rigs[0].estimator, "arc");
         assert_eq!(r[0].club.name, "iron7");
+    }
+
+    /// `soil` gives the ground model its turf; with `both` it means the impulse model, then the ground model;
+    /// without a ground model, or an unknown soil, it is refused naming the field.
+    #[test]
+    fn soil_selects_the_turf_of_the_ground_model() {
+        let rig = |extra: &str| format!("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\n{extra}");
+        let (_, r) = DaemonConfig::parse(&rig("model = \"both\"\nsoil = \"soft\"")).unwrap();
+        let names: Vec<&str> = r[0].models.iter().map(|m| m.name()).collect();
+        assert_eq!(names, ["impulse/adjusted", "ground"]);
+        let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"firm\"")).unwrap();
+        assert_eq!(r[0].models.len(), 1);
+        let (_, r) = DaemonConfig::parse(&rig("model = \"both\"")).unwrap();
+        assert_eq!(r[0].models[1].name(), "continuous/two_layer");
+        let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
+        assert!(err(&rig("model = \"ground\"\nsoil = \"mud\"")).contains("rig[0].soil"));
+        assert!(err(&rig("model = \"adjusted\"\nsoil = \"firm\"")).contains("rig[0].soil"));
     }
 }

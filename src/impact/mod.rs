@@ -133,4 +133,14 @@ pub trait ImpactModel: Send + Sync + std::fmt::Debug {
     ) -> Option<Result<continuous::ContinuousResult, ImpactError>> {
         None
     }
+    /// A model of the ball on the turf runs the strike through the ground contact, with a trace point every
+    /// `every` steps (0: none); other models have no ground (`None`).
+    fn ground(
+        &self,
+        _state: &ImpactState,
+        _equipment: &Equipment,
+        _every: usize,
+    ) -> Option<Result<continuous::iron_ground::GroundResult, ImpactError>> {
+        None
+    }
 }

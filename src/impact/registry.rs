@@ -49,9 +49,10 @@ fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Resu
     Ok(Arc::new(ImpulseModel::new(variant).with_cor(o.cor).with_tuning(tuning)))
 }
 
-/// The iron-plus-ground model on firm soil (Table 4.3), its ball from the `[continuous]` section.
+/// The iron-plus-ground model, its soil, sole and shaft from the `[soil]`, `[sole]` and `[shaft]` sections (firm
+/// soil of Table 4.3 by default), its ball from the `[continuous]` section.
 fn ground(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    let mut model = super::continuous::iron_ground::GroundModel::new(crate::equipment::soil::SoilSpec::firm());
+    let mut model = super::continuous::iron_ground::GroundModel::from_sections(&club.sections)?;
     model.params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
     let equipment = super::Equipment { club: club.club.clone(), ball: o.ball };
     Ok(Arc::new(model.prepare(&equipment)?))
@@ -110,10 +111,10 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "ground",
-        summary: "two-layer ball on an iron head on a flexible shaft, the ball on firm turf: sole and face ground \
-                  reaction (seed chapter 4, Tables 4.1-4.3)",
-        sections: &["continuous"],
-        resolved_in_time: false,
+        summary: "two-layer ball on an iron head on a flexible shaft, the ball on the turf (firm unless --soil): \
+                  sole and face ground reaction (seed chapter 4, Tables 4.1-4.3)",
+        sections: &["continuous", "soil", "sole", "shaft"],
+        resolved_in_time: true,
         build: ground,
     },
 ];

@@ -5,6 +5,8 @@ use std::fmt::Write;
 
 mod figures;
 pub use figures::{face_map, forces_chart, maw_plate_chart, trajectories_svg, MapMetric};
+mod ground;
+pub use ground::{ground_svg, GroundPlotError};
 
 /// One line of a chart.
 pub struct Series {

@@ -13,6 +13,7 @@
 pub mod dynamics;
 pub mod placement;
 mod run;
+pub mod sections;
 
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
@@ -193,6 +194,15 @@ impl ImpactModel for PreparedGround {
 
     fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
         run::simulate(self, state, 0, 0.0).map(|r| r.launch)
+    }
+
+    fn ground(
+        &self,
+        state: &ImpactState,
+        _equipment: &Equipment,
+        trace_every: usize,
+    ) -> Option<Result<GroundResult, ImpactError>> {
+        Some(self.simulate(state, trace_every))
     }
 }
 
