@@ -493,7 +493,7 @@ async fn replay_publishes_and_records_what_run_records() {
     let input = replay::load(&live).unwrap();
     let (config, setups) = replay::resolve_config(&input, None).unwrap();
     let replayed = dir.path().join("replayed.mcap");
-    let options = replay::ReplayOptions { rate: None, output: Some(replayed.clone()) };
+    let options = replay::ReplayOptions { output: Some(replayed.clone()), ..Default::default() };
     let report = replay::run(&input, &config, setups, Some(&session), &options, |_, _| {}).await.unwrap();
     tokio::time::sleep(Duration::from_millis(200)).await;
     session.close().await.unwrap();

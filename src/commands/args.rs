@@ -6,7 +6,7 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 
 #[cfg(feature = "daemon")]
@@ -21,29 +21,35 @@ use impactd::wire::DeliveryInput;
 /// Where and in what air the ball flies.
 #[derive(Debug, Clone, Args)]
 pub struct ConditionArgs {
-    #[arg(long, default_value_t = 22.5, allow_hyphen_values = true)]
+    /// Air temperature (deg C).
+    #[arg(long, default_value_t = 22.5)]
     pub temp_c: f64,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Altitude above sea level (m); sets the default pressure.
+    #[arg(long, default_value_t = 0.0)]
     pub altitude_m: f64,
-    /// Relative humidity, 0-1.
-    #[arg(long, default_value_t = 0.5)]
+    /// Relative humidity in percent, 0-100, as weather services give it.
+    #[arg(long, default_value_t = 50.0)]
     pub humidity: f64,
     /// Station pressure (hPa); default: the standard atmosphere at the altitude.
     #[arg(long)]
     pub pressure_hpa: Option<f64>,
+    /// Wind speed (m/s).
     #[arg(long, default_value_t = 0.0)]
     pub wind_mps: f64,
     /// The direction the wind blows toward (deg from the target line, right +): 0 tailwind, 180 headwind.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0)]
     pub wind_dir_deg: f64,
 }
 
 impl ConditionArgs {
     pub fn conditions(&self) -> Result<impactd::flight::Conditions> {
+        if !(0.0..=100.0).contains(&self.humidity) {
+            bail!("--humidity is relative humidity in percent, 0-100, got {}", self.humidity);
+        }
         let c = impactd::flight::Conditions {
             temperature_c: self.temp_c,
             pressure_hpa: self.pressure_hpa,
-            humidity: self.humidity,
+            humidity: self.humidity / 100.0,
             altitude_m: self.altitude_m,
             wind_mps: self.wind_mps,
             wind_dir_deg: self.wind_dir_deg,
@@ -95,19 +101,26 @@ pub fn resolved_in_time(name: &str) -> bool {
 /// A delivery given with flags (TrackMan names; unset numbers are 0, the loft the club's).
 #[derive(Debug, Clone, Args)]
 pub struct DeliveryArgs {
+    /// Club speed at impact (mph, the face centre's speed; 2.3-223 mph = 1-100 m/s).
     #[arg(long, default_value_t = 100.0)]
     pub club_speed_mph: f64,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Attack angle (deg, up +).
+    #[arg(long, default_value_t = 0.0)]
     pub attack_angle_deg: f64,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Club path (deg, right of the target +).
+    #[arg(long, default_value_t = 0.0)]
     pub club_path_deg: f64,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Face angle (deg, open/right +).
+    #[arg(long, default_value_t = 0.0)]
     pub face_angle_deg: f64,
-    #[arg(long, allow_hyphen_values = true)]
+    /// Dynamic loft (deg); default: the club's static loft.
+    #[arg(long)]
     pub dynamic_loft_deg: Option<f64>,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Impact location from the face centre toward the toe (mm, toe +).
+    #[arg(long, default_value_t = 0.0)]
     pub impact_h_mm: f64,
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    /// Impact location from the face centre up the face (mm, up +).
+    #[arg(long, default_value_t = 0.0)]
     pub impact_v_mm: f64,
 }
 

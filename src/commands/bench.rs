@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args;
 
 #[derive(Debug, Args)]
@@ -20,16 +20,21 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     let mut stages = impactd::stages::all_stages();
     if let Some(f) = &args.filter {
         stages.retain(|s| s.name.contains(f.as_str()));
+        if stages.is_empty() {
+            let names: Vec<String> = impactd::stages::all_stages().into_iter().map(|s| s.name).collect();
+            bail!("--filter {f}: no stage's name contains it (stages: {})", names.join(", "));
+        }
     }
     let mut results = Vec::new();
-    let mut err = std::io::stderr().lock();
-    for stage in &mut stages {
+    let mut progress = super::progress::Progress::new(stages.len() as u64, "stages");
+    for (i, stage) in stages.iter_mut().enumerate() {
         if !args.json {
-            let _ = write!(err, "timing {} ...\r", stage.name);
+            progress.set(i as u64, Some(&stage.name));
         }
         let ns = impactd::stages::time_stage(stage, 15, 40);
         results.push(serde_json::json!({ "name": stage.name, "ns_per_op": ns }));
     }
+    progress.finish();
     let mut out = std::io::stdout().lock();
     if args.json {
         writeln!(out, "{}", serde_json::json!({ "stages": results }))?;

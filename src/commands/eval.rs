@@ -69,6 +69,9 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
     if !(args.rate >= 60.0 && args.rate <= 10_000.0) {
         bail!("--rate must be within 60 and 10000 Hz, got {}", args.rate);
     }
+    if args.shots == 0 {
+        bail!("--shots must be at least 1");
+    }
     if args.noise_mm < 0.0 || args.noise_deg < 0.0 || args.jitter_us < 0.0 || !(0.0..1.0).contains(&args.drop) {
         bail!("noise, jitter and drop probability must not be negative (drop below 1)");
     }
@@ -98,16 +101,9 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
             PathArg::DoublePendulum => impactd::swing::SwingPath::DoublePendulum,
         },
     };
-    let mut err = std::io::stderr().lock();
-    let step = (args.shots / 20).max(1);
-    let report = impactd::eval::run(&config, |done| {
-        if done % step == 0 || done == args.shots {
-            let _ = write!(err, "\r{done}/{} swings", args.shots);
-            if done == args.shots {
-                let _ = writeln!(err);
-            }
-        }
-    });
+    let mut progress = super::progress::Progress::new(args.shots as u64, "swings");
+    let report = impactd::eval::run(&config, |done| progress.set(done as u64, None));
+    progress.finish();
     let mut out = std::io::stdout().lock();
     if args.json {
         writeln!(out, "{}", serde_json::to_string(&report)?)?;

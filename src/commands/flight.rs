@@ -1,5 +1,5 @@
-//! `impactd flight`: JSONL launches in (the fields `impactd predict` writes), JSONL trajectories out, with the
-//! bounce and roll; or, with `--coefficients`, the drag and lift coefficients the flight uses.
+//! `impactd flight`: JSONL launches in (the fields `impactd predict` writes), each answered with its own fields
+//! and its trajectory's, with the bounce and roll; or, with `--coefficients`, the drag and lift coefficients the flight uses.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,6 +26,7 @@ pub struct FlightArgs {
     /// Also output the path, sampled every this many seconds.
     #[arg(long)]
     pub points_s: Option<f64>,
+    /// Read launches from this file instead of stdin.
     #[arg(long, short)]
     pub input: Option<PathBuf>,
 }
@@ -47,7 +48,7 @@ pub fn run(args: &FlightArgs) -> Result<ExitCode> {
         input,
         std::io::stdout().lock(),
         std::io::stderr().lock(),
-        |l: impactd::wire::FlightInput| l.to_launch().map(|launch| flight.fly(&launch, every)),
+        |line: serde_json::Map<String, serde_json::Value>| super::flight_lines::with_flight(line, &flight, every),
     )?;
     Ok(exit_code(tally))
 }

@@ -1,4 +1,5 @@
-//! `impactd info`: channels, counts, duration and shots of a recording.
+//! `impactd info`: dates, duration, compression, channels with counts and rates, shots, and whether a recording
+//! was recovered.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -8,6 +9,7 @@ use clap::Args;
 
 #[derive(Debug, Args)]
 pub struct InfoArgs {
+    /// An MCAP recording (`impactd run --record`, `replay -o`, `recover -o`).
     pub file: PathBuf,
 }
 

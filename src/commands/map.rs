@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::plot::MapMetric;
 
@@ -11,10 +11,13 @@ use super::args::{load_club, model_name, one_model, write_output, DeliveryArgs};
 
 #[derive(Debug, Args)]
 pub struct MapArgs {
+    /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
+    /// Impact model (`impact::registry`).
     #[arg(long, default_value = "adjusted", value_parser = model_name)]
     pub model: String,
+    /// The number shown in colour.
     #[arg(long, value_enum, default_value = "ball-speed")]
     pub metric: MapMetric,
     #[command(flatten)]
@@ -25,6 +28,7 @@ pub struct MapArgs {
     /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
     #[arg(long)]
     pub soil: Option<String>,
+    /// The SVG file to write.
     #[arg(short = 'o', long = "output", default_value = "map.svg")]
     pub output: PathBuf,
 }
@@ -36,6 +40,9 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     let mut loaded = load_club(&args.club)?;
     super::args::set_soil(&mut loaded, args.soil.as_deref(), &args.model)?;
     let club = loaded.club.clone();
+    // An impossible delivery (a speed outside 1-100 m/s, a non-finite angle) is an error, not a blank map.
+    let equipment = impactd::impact::Equipment::new(club.clone());
+    impactd::predict::state_of(&args.delivery.input(), &club, &equipment).context("the delivery")?;
     let model = one_model(&args.model, &loaded, impactd::impact::impulse::DEFAULT_COR)?;
     let heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells);
     write_output(&args.output, &heat.svg(760.0, 520.0))?;

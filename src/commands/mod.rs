@@ -4,17 +4,19 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod args;
 mod bench;
 mod eval;
 mod flight;
 mod flight_fit;
+mod flight_lines;
 mod map;
 mod plot;
 mod plot_ground;
 mod predict;
+mod progress;
 mod schemas;
 
 #[cfg(feature = "daemon")]
@@ -97,6 +99,34 @@ pub fn init_logging(cli: &Cli) {
         .init();
 }
 
+/// Parses the process's arguments. Every command accepts negative numbers as values (`--cor -0.2`,
+/// `--attack-angle-deg -5`), as the field's tools do; clap's own errors exit 2 with usage.
+pub fn parse() -> Cli {
+    let matches = allow_negative_numbers(Cli::command()).get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
+fn allow_negative_numbers(cmd: clap::Command) -> clap::Command {
+    cmd.allow_negative_numbers(true).mut_subcommands(allow_negative_numbers)
+}
+
+/// An error and its causes on one line, each cause once: a cause whose text the line already holds (an error
+/// that prints its source in its own message) is not repeated.
+pub fn error_text(err: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in err.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text += ": ";
+        }
+        text += &part;
+    }
+    text
+}
+
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
@@ -126,4 +156,54 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 /// Whether `err` comes from writing to a reader that went away (`impactd flight | head`).
 pub fn is_broken_pipe(err: &anyhow::Error) -> bool {
     err.chain().any(|e| e.downcast_ref::<std::io::Error>().is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression: "No such file or directory (os error 2): No such file or directory (os error 2)" - an error
+    /// that prints its source, shown with its chain, said the cause twice.
+    #[test]
+    fn each_cause_is_printed_once() {
+        #[derive(Debug, thiserror::Error)]
+        #[error("reading x.mcap: {source}")]
+        struct Reading {
+            source: std::io::Error,
+        }
+        let io = std::io::Error::from(std::io::ErrorKind::NotFound);
+        let err = anyhow::Error::new(Reading { source: io }).context("replay");
+        let text = error_text(&err);
+        assert_eq!(text.matches("not found").count(), 1, "{text}");
+        assert!(text.starts_with("replay: reading x.mcap: "), "{text}");
+    }
+
+    /// Every argument of every command has a help text (its default is shown beside it by clap).
+    #[test]
+    fn every_argument_has_help() {
+        fn walk(cmd: &clap::Command, path: &str, missing: &mut Vec<String>) {
+            for arg in cmd.get_arguments() {
+                let id = arg.get_id().as_str();
+                if id != "help" && id != "version" && arg.get_help().is_none() {
+                    missing.push(format!("{path} {id}"));
+                }
+            }
+            for sub in cmd.get_subcommands() {
+                walk(sub, &format!("{path} {}", sub.get_name()), missing);
+            }
+        }
+        let cmd = Cli::command();
+        cmd.clone().debug_assert();
+        let mut missing = Vec::new();
+        walk(&cmd, "impactd", &mut missing);
+        assert!(missing.is_empty(), "arguments without help: {missing:?}");
+    }
+
+    #[test]
+    fn negative_numbers_are_values() {
+        let m = allow_negative_numbers(Cli::command())
+            .try_get_matches_from(["impactd", "predict", "--cor", "-0.2"])
+            .map(|m| Cli::from_arg_matches(&m));
+        assert!(matches!(m, Ok(Ok(Cli { command: Command::Predict(ref a) })) if a.cor == -0.2), "{m:?}");
+    }
 }

@@ -26,6 +26,7 @@ pub enum PlotCommand {
 
 #[derive(Debug, Args)]
 pub struct ForcesArgs {
+    /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// A model resolved in time (continuous, ...).
@@ -45,8 +46,10 @@ pub struct TrajectoryArgs {
     /// Firmness of the fairway the ball bounces and rolls on: 0 soft, 0.5 Penner's fairway, 1 firm.
     #[arg(long, default_value_t = 0.5)]
     pub firmness: f64,
+    /// Read launches from this file instead of stdin.
     #[arg(long, short)]
     pub input: Option<PathBuf>,
+    /// Output SVG file.
     #[arg(short = 'o', long = "output", default_value = "trajectory.svg")]
     pub output: PathBuf,
 }
@@ -97,7 +100,9 @@ fn forces(args: &ForcesArgs) -> Result<ExitCode> {
         anyhow::bail!("--model {} is not resolved in time: it has no forces to plot", args.model);
     };
     let r = r?;
-    let chart = impactd::plot::forces_chart(&club.name, input.club_speed_mph, &r);
+    let mut chart = impactd::plot::forces_chart(&club.name, input.club_speed_mph, &r);
+    chart.title =
+        format!("{} ({})\n{}", chart.title, args.model, impactd::plot::delivery_title(&input, club.loft_deg()));
     write_output(&args.output, &chart.svg(900.0, 520.0))?;
     Ok(ExitCode::SUCCESS)
 }
@@ -118,6 +123,17 @@ fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
     if flights.is_empty() {
         bail!("no launches read");
     }
-    write_output(&args.output, &impactd::plot::trajectories_svg(&flights))?;
+    let c = &args.conditions;
+    let conditions = format!(
+        "wind {:.1} m/s toward {:.0}° (0 tailwind, 90 to the right), {:.1} °C, humidity {:.0} %, altitude {:.0} m, {}firmness {:.2}",
+        c.wind_mps,
+        c.wind_dir_deg,
+        c.temp_c,
+        c.humidity,
+        c.altitude_m,
+        c.pressure_hpa.map_or(String::new(), |p| format!("{p:.0} hPa, ")),
+        args.firmness
+    );
+    write_output(&args.output, &impactd::plot::trajectories_figure(&flights, Some(&conditions)))?;
     Ok(ExitCode::SUCCESS)
 }

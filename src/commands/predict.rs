@@ -7,7 +7,7 @@ use anyhow::{bail, Result};
 use clap::Args;
 use impactd::predict::Predictor;
 
-use super::args::{exit_code, load_club, model_name, one_model, open_input, resolved_in_time};
+use super::args::{exit_code, load_club, model_name, one_model, open_input, resolved_in_time, ConditionArgs};
 
 #[derive(Debug, Args)]
 pub struct PredictArgs {
@@ -29,6 +29,14 @@ pub struct PredictArgs {
     /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
     #[arg(long)]
     pub soil: Option<String>,
+    /// Also fly each ball: add carry, total, apex, offline, hang time and land angle to each line.
+    #[arg(long)]
+    pub flight: bool,
+    /// With --flight: firmness of the fairway (0 soft, 0.5 Penner's fairway, 1 firm).
+    #[arg(long, default_value_t = 0.5, requires = "flight")]
+    pub firmness: f64,
+    #[command(flatten)]
+    pub conditions: ConditionArgs,
 }
 
 pub fn run(args: &PredictArgs) -> Result<ExitCode> {
@@ -43,7 +51,12 @@ pub fn run(args: &PredictArgs) -> Result<ExitCode> {
     let model = one_model(&args.model, &loaded, args.cor)?;
     let predictor = if args.trace { Predictor::Traced(model.as_ref()) } else { Predictor::Plain(model.as_ref()) };
     let input = open_input(args.input.as_deref())?;
-    let tally =
-        impactd::predict::run(&loaded.club, predictor, input, std::io::stdout().lock(), std::io::stderr().lock())?;
+    let (out, err) = (std::io::stdout().lock(), std::io::stderr().lock());
+    let tally = if args.flight {
+        let lines = super::flight_lines::FlightLines::new(out, args.conditions.flight(args.firmness)?);
+        impactd::predict::run(&loaded.club, predictor, input, lines, err)?
+    } else {
+        impactd::predict::run(&loaded.club, predictor, input, out, err)?
+    };
     Ok(exit_code(tally))
 }

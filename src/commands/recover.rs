@@ -8,14 +8,16 @@ use clap::Args;
 
 #[derive(Debug, Args)]
 pub struct RecoverArgs {
+    /// The damaged or cut-off MCAP recording (read only).
     pub file: PathBuf,
+    /// The new, finished MCAP file (it records that it was recovered, and from what).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
 }
 
 pub fn run(args: &RecoverArgs) -> Result<ExitCode> {
-    if args.file == args.output {
-        bail!("the output must be a new file");
+    if args.file == args.output || super::replay::same_file(&args.file, &args.output) {
+        bail!("-o {}: that is the input; the output must be a new file", args.output.display());
     }
     let r = impactd::daemon::recover::recover(&args.file, &args.output)?;
     if r.complete {

@@ -1,15 +1,18 @@
-//! `impactd replay`: the daemon's pipelines over a recording (MCAP) or a JSONL file of samples.
+//! `impactd replay`: the daemon's pipelines over a recording (MCAP) or a JSONL file of samples, like rosbag2's
+//! `play`: a pace (`--rate`), a part (`--rig`, `--start-offset`, `--duration`), `--loop`, and what goes out on
+//! zenoh (`--publish` the predictions, `--publish-samples` the raw samples so a recording drives another daemon).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args;
-use impactd::daemon::replay::{self, ReplayOptions};
+use impactd::daemon::replay::{self, Publish, ReplayInput, ReplayOptions, ReplayReport};
 use impactd::pipeline::Event;
 
-use super::args::ZenohArgs;
+use super::args::{model_name, ZenohArgs};
 use super::run::runtime;
 
 #[derive(Debug, Args)]
@@ -19,13 +22,36 @@ pub struct ReplayArgs {
     /// Configuration; default: the one stored in the recording, else one rig per rig name found.
     #[arg(short = 'c', long = "config")]
     pub config: Option<PathBuf>,
+    /// Every rig's club (preset or .toml file) instead of the configured one; a JSONL file has none stored.
+    #[arg(long)]
+    pub club: Option<String>,
+    /// Every rig's impact model instead of the configured one. A model other than the recorded one is a
+    /// comparison: it is reported, not failed.
+    #[arg(long, value_parser = model_name)]
+    pub model: Option<String>,
     /// Replay at this multiple of real time (default: as fast as possible).
     #[arg(long)]
     pub rate: Option<f64>,
+    /// Replay only these rigs (comma-separated).
+    #[arg(long, value_delimiter = ',')]
+    pub rig: Vec<String>,
+    /// Skip this much capture time at the start (s).
+    #[arg(long, default_value_t = 0.0)]
+    pub start_offset: f64,
+    /// Replay only this much capture time from the start (after --start-offset) (s).
+    #[arg(long)]
+    pub duration: Option<f64>,
+    /// Replay again and again until interrupted (Ctrl-C).
+    #[arg(long = "loop", conflicts_with = "output")]
+    pub repeat: bool,
     /// Publish the predictions on zenoh as the daemon would.
     #[arg(long)]
     pub publish: bool,
-    /// Record the replay to a new MCAP file.
+    /// Publish the recorded clubhead samples on `mocap/<rig>/clubhead`, paced by --rate, so another daemon
+    /// predicts from them live.
+    #[arg(long)]
+    pub publish_samples: bool,
+    /// Record the replay to a new MCAP file: samples, impacts, launches and status, as `impactd run` records.
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
     #[command(flatten)]
@@ -33,7 +59,19 @@ pub struct ReplayArgs {
 }
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
-    let input = replay::load(&args.file)?;
+    if let Some(out) = &args.output {
+        if same_file(&args.file, out) {
+            bail!("-o {}: that is the input; a replay never writes over its recording", out.display());
+        }
+    }
+    if !(args.start_offset.is_finite() && args.start_offset >= 0.0) {
+        bail!("--start-offset must be a non-negative number of seconds, got {}", args.start_offset);
+    }
+    if args.duration.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+        bail!("--duration must be a positive number of seconds");
+    }
+    let started = Instant::now();
+    let mut input = replay::load(&args.file)?;
     for d in &input.damage {
         eprintln!("{}: damaged: {d}", args.file.display());
     }
@@ -43,60 +81,184 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         }
         eprintln!("{} lines skipped: not clubhead samples", input.skipped_lines.len());
     }
-    let (config, setups) = replay::resolve_config(&input, args.config.as_deref())?;
-    let options = ReplayOptions { rate: args.rate, output: args.output.clone() };
+    let partial = select(&mut input, args)?;
+    let (mut config, mut setups) = replay::resolve_config(&input, args.config.as_deref())?;
+    let recorded: Vec<(String, String)> = config.rigs.iter().map(|r| (r.club.clone(), r.model.clone())).collect();
+    if args.club.is_some() || args.model.is_some() {
+        for rig in &mut config.rigs {
+            rig.club = args.club.clone().unwrap_or_else(|| rig.club.clone());
+            rig.model = args.model.clone().unwrap_or_else(|| rig.model.clone());
+        }
+        setups = config.setups()?;
+    } else if input.config_toml.is_none() && args.config.is_none() {
+        let (club, model) = recorded.first().cloned().unwrap_or_default();
+        eprintln!(
+            "{}: no configuration stored: replaying with club {club} and model {model} (set --club, --model or -c)",
+            args.file.display()
+        );
+    }
+    let changed = config.rigs.iter().zip(&recorded).any(|(r, (club, model))| &r.club != club || &r.model != model);
+    let publish = match (args.publish, args.publish_samples) {
+        (true, true) => Some(Publish::Both),
+        (true, false) => Some(Publish::Predictions),
+        (false, true) => Some(Publish::Samples),
+        (false, false) => None,
+    };
+    let options = ReplayOptions { rate: args.rate, output: args.output.clone(), publish: publish.unwrap_or_default() };
+    let load_s = started.elapsed().as_secs_f64();
     let rt = runtime()?;
     rt.block_on(async {
-        let session =
-            if args.publish { Some(args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?) } else { None };
+        let session = match publish {
+            Some(_) => Some(args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?),
+            None => None,
+        };
         let mut out = std::io::stdout().lock();
-        let report = replay::run(&input, &config, setups, session.as_ref(), &options, |e, bytes| match e {
-            Event::Launch(_) => {
-                let _ = writeln!(out, "{}", String::from_utf8_lossy(bytes));
+        let mut report;
+        loop {
+            report = replay::run(&input, &config, setups.clone(), session.as_ref(), &options, |e, bytes| match e {
+                Event::Launch(_) => {
+                    let _ = writeln!(out, "{}", String::from_utf8_lossy(bytes));
+                }
+                Event::Failed { shot, frame, reason, .. } => {
+                    eprintln!("shot {shot} (frame {frame}): no prediction: {reason}")
+                }
+                _ => {}
+            })
+            .await?;
+            if !args.repeat {
+                break;
             }
-            Event::Failed { shot, frame, reason, .. } => {
-                eprintln!("shot {shot} (frame {frame}): no prediction: {reason}")
-            }
-            _ => {}
-        })
-        .await?;
+        }
         if let Some(s) = session {
             let _ = s.close().await;
         }
-        let stats = &report.stats;
-        eprintln!(
-            "replayed {} samples in {:.3} s ({:.2} million samples/s): {} predictions, {} failed{}",
-            stats.samples,
-            report.elapsed_s,
-            stats.samples as f64 / report.elapsed_s.max(1e-9) / 1e6,
-            stats.predictions,
-            stats.failed,
-            if stats.unknown_rig > 0 {
-                format!(", {} samples for unconfigured rigs", stats.unknown_rig)
-            } else {
-                String::new()
-            }
-        );
-        if report.damaged {
-            eprintln!(
-                "the recording is damaged: {} predictions over its readable part, {} equal to the {} recorded \
-                 predictions that could be read; not a reproduction",
-                report.produced, report.reproduced, report.recorded
-            );
-            return Ok(ExitCode::from(3));
-        }
-        if report.recorded > 0 {
-            eprintln!(
-                "{} of {} recorded predictions reproduced byte for byte{}",
-                report.reproduced,
-                report.recorded,
-                if report.produced != report.recorded {
-                    format!(" ({} produced)", report.produced)
-                } else {
-                    String::new()
-                }
-            );
-        }
-        Ok(if report.reproduces_recording() { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        print_throughput(&report, load_s);
+        Ok(verdict(&report, changed.then(|| describe(&config, &recorded)), partial))
     })
+}
+
+/// Keeps the samples of the chosen rigs and capture times; whether anything was left out.
+fn select(input: &mut ReplayInput, args: &ReplayArgs) -> Result<bool> {
+    let before = input.samples.len();
+    if !args.rig.is_empty() {
+        let mut rigs: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
+        rigs.sort_by(|a, b| impactd::daemon::info::natural_cmp(a, b));
+        rigs.dedup();
+        if let Some(missing) = args.rig.iter().find(|r| !rigs.contains(r)) {
+            bail!("--rig {missing}: no samples of that rig (rigs: {})", rigs.join(", "));
+        }
+        input.samples.retain(|s| args.rig.contains(&s.rig));
+    }
+    if let Some(t0) = input.samples.iter().map(|s| s.t_ns).min() {
+        let from = t0.saturating_add((args.start_offset * 1e9) as u64);
+        let to = args.duration.map_or(u64::MAX, |d| from.saturating_add((d * 1e9) as u64));
+        input.samples.retain(|s| (from..to).contains(&s.t_ns));
+        if input.samples.is_empty() {
+            bail!("--start-offset/--duration leave no samples");
+        }
+    }
+    Ok(input.samples.len() != before)
+}
+
+/// The configured rigs' club and model against the recorded ones, for people.
+fn describe(config: &impactd::daemon::DaemonConfig, recorded: &[(String, String)]) -> String {
+    let parts: Vec<String> = config
+        .rigs
+        .iter()
+        .zip(recorded)
+        .map(|(r, (club, model))| format!("{}: {} {} (recorded: {club} {model})", r.name, r.club, r.model))
+        .collect();
+    parts.join(", ")
+}
+
+fn print_throughput(report: &ReplayReport, load_s: f64) {
+    let stats = &report.stats;
+    let total_s = (load_s + report.elapsed_s).max(1e-9);
+    eprintln!(
+        "replayed {} samples in {:.3} s ({:.3} s loading and parsing, {:.3} s through the pipelines): {:.2} million \
+         samples/s including loading; {} predictions, {} failed{}",
+        stats.samples,
+        total_s,
+        load_s,
+        report.elapsed_s,
+        stats.samples as f64 / total_s / 1e6,
+        stats.predictions,
+        stats.failed,
+        if stats.unknown_rig > 0 {
+            format!(", {} samples for unconfigured rigs", stats.unknown_rig)
+        } else {
+            String::new()
+        }
+    );
+}
+
+/// Exit 0 for a reproduction, a comparison or a partial replay; 1 when a whole replay of the recorded
+/// configuration differs; 3 for a damaged recording.
+fn verdict(report: &ReplayReport, comparison: Option<String>, partial: bool) -> ExitCode {
+    if report.damaged {
+        eprintln!(
+            "the recording is damaged: {} predictions over its readable part, {} equal to the {} recorded \
+             predictions that could be read; not a reproduction",
+            report.produced, report.reproduced, report.recorded
+        );
+        return ExitCode::from(3);
+    }
+    if report.recorded == 0 {
+        return ExitCode::SUCCESS;
+    }
+    let same = format!(
+        "{} of {} recorded predictions reproduced byte for byte{}",
+        report.reproduced,
+        report.recorded,
+        if report.produced != report.recorded { format!(" ({} produced)", report.produced) } else { String::new() }
+    );
+    if let Some(what) = comparison {
+        eprintln!("comparison, not a reproduction: {what}; {same}");
+        return ExitCode::SUCCESS;
+    }
+    if partial {
+        eprintln!("part of the recording replayed (--rig, --start-offset or --duration): {same}");
+        return ExitCode::SUCCESS;
+    }
+    eprintln!("{same}");
+    if report.reproduces_recording() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}
+
+/// Whether `a` and `b` name the same file (same canonical path, or the same inode through a hard link).
+pub(super) fn same_file(a: &Path, b: &Path) -> bool {
+    if let (Ok(ca), Ok(cb)) = (a.canonicalize(), b.canonicalize()) {
+        if ca == cb {
+            return true;
+        }
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_hard_link_and_a_dotted_path_are_the_same_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.mcap");
+        std::fs::write(&a, b"x").unwrap();
+        let link = dir.path().join("b.mcap");
+        std::fs::hard_link(&a, &link).unwrap();
+        assert!(same_file(&a, &dir.path().join(".").join("a.mcap")));
+        assert!(same_file(&a, &link));
+        assert!(!same_file(&a, &dir.path().join("new.mcap")));
+    }
 }

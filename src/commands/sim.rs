@@ -20,6 +20,7 @@ pub struct SimArgs {
     /// Shots per rig (0: until stopped).
     #[arg(long, default_value_t = 5)]
     pub shots: u64,
+    /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// Capture rate (Hz).
@@ -28,10 +29,13 @@ pub struct SimArgs {
     /// Seconds between shots.
     #[arg(long, default_value_t = 1.5)]
     pub interval: f64,
+    /// Random seed of the swings and the noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Gaussian position noise per axis (mm).
     #[arg(long, default_value_t = 0.2)]
     pub noise_mm: f64,
+    /// Gaussian orientation noise per axis (deg).
     #[arg(long, default_value_t = 0.1)]
     pub noise_deg: f64,
     #[command(flatten)]

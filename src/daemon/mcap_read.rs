@@ -79,6 +79,8 @@ pub struct Scan {
     /// Messages per channel the summary's statistics record counts (when the summary was read).
     pub statistics: Option<BTreeMap<u16, u64>>,
     pub chunks: Vec<ChunkSpan>,
+    /// Chunks read whole per compression (`zstd`, `lz4`, "" for none).
+    pub compression: BTreeMap<String, u64>,
     pub damage: Vec<Damage>,
     /// The footer and the closing magic were read: the file was finished.
     pub finished: bool,
@@ -246,7 +248,10 @@ impl Scan {
             Rec::Chunk(c) => {
                 let span = (pos as u64, (next - pos) as u64);
                 match unpack(&c).and_then(|records| self.chunk_records(&records)) {
-                    Ok(messages) => self.chunks.push(ChunkSpan { offset: span.0, bytes: span.1, messages }),
+                    Ok(messages) => {
+                        self.chunks.push(ChunkSpan { offset: span.0, bytes: span.1, messages });
+                        *self.compression.entry(c.compression.clone()).or_default() += 1;
+                    }
                     Err(reason) => self.damage.push(Damage {
                         offset: span.0,
                         bytes: span.1,

@@ -103,6 +103,9 @@ fn losses(s: &Scan, file_bytes: u64) -> Vec<Loss> {
     out
 }
 
+/// The metadata record a recovered file carries: `from`, `recovered_at` (UTC), `input_complete`, `messages`.
+pub const RECOVERED_METADATA: &str = "recovered";
+
 /// Copies every readable message and metadata record of `input` into a new, finished MCAP file at `output`.
 pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
     let bytes = std::fs::read(input)
@@ -166,6 +169,17 @@ pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
         .map_err(|e| mcap_err(output, e))?;
         *kept.entry(m.channel_id).or_default() += 1;
     }
+    // Say so in the file: `impactd info` reports a recovered recording and what it was recovered from.
+    let mut note = BTreeMap::new();
+    note.insert("from".to_string(), input.display().to_string());
+    note.insert(
+        "recovered_at".to_string(),
+        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+    );
+    note.insert("input_complete".to_string(), s.intact().to_string());
+    note.insert("messages".to_string(), s.messages.len().to_string());
+    w.write_metadata(&mcap::records::Metadata { name: RECOVERED_METADATA.into(), metadata: note })
+        .map_err(|e| mcap_err(output, e))?;
     w.finish().map_err(|e| mcap_err(output, e))?;
     let topic = |id: u16| s.channels.get(&id).map(|c| c.topic.clone()).unwrap_or_else(|| format!("channel {id}"));
     let mut channels: BTreeMap<String, ChannelTally> = BTreeMap::new();

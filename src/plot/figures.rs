@@ -2,7 +2,7 @@
 //! forces through one impact (`impactd plot forces`), side and top views of flights (`impactd plot trajectory`),
 //! and a ball on a rigid plate under Maw's model (`impactd plot maw-plate`, seed Figure 3.4).
 
-use super::{Heatmap, LineChart, Series, PALETTE};
+use super::{Extras, Heatmap, LineChart, Mark, Series, PALETTE};
 use crate::equipment::ClubSpec;
 use crate::flight::{Flight, LaunchState, Trajectory};
 use crate::impact::continuous::law::maw::MawParams;
@@ -102,7 +102,7 @@ pub fn forces_chart(club_name: &str, club_speed_mph: f64, r: &ContinuousResult) 
     };
     LineChart {
         title: format!(
-            "{} at {:.0} mph: contact {:.0} us, peak {:.1} kN; ball {:.1} mph, {:.0} rpm",
+            "{} at {:.0} mph: contact {:.0} µs, peak {:.1} kN; ball {:.1} mph, {:.0} rpm",
             club_name,
             club_speed_mph,
             r.contact_time_s * 1e6,
@@ -110,7 +110,7 @@ pub fn forces_chart(club_name: &str, club_speed_mph: f64, r: &ContinuousResult) 
             m.ball_speed_mph,
             m.total_spin_rpm
         ),
-        x_label: "time from first contact (us)".into(),
+        x_label: "time from first contact (µs)".into(),
         y_label: "force on the ball (N)".into(),
         y2_label: Some("ball spin (rpm)".into()),
         series: vec![
@@ -151,7 +151,7 @@ pub fn maw_plate_chart(params: &MawParams, speed_mps: f64, incidence_deg: f64) -
     }
     LineChart {
         title,
-        x_label: "time from first contact (us)".into(),
+        x_label: "time from first contact (µs)".into(),
         y_label: "force on the ball (N)".into(),
         y2_label: Some("ball spin (rpm)".into()),
         series,
@@ -159,14 +159,36 @@ pub fn maw_plate_chart(params: &MawParams, speed_mps: f64, incidence_deg: f64) -
     }
 }
 
-/// Side and top views of flights (sampled with their `points`), one above the other, as one SVG.
+/// Side and top views of flights (sampled with their `points`), as one SVG.
 pub fn trajectories_svg(flights: &[Trajectory]) -> String {
+    trajectories_figure(flights, None)
+}
+
+/// The delivery of a picture's title, in TrackMan's names.
+pub fn delivery_title(d: &DeliveryInput, static_loft_deg: f64) -> String {
+    format!(
+        "club {:.0} mph, attack {:+.1}°, path {:+.1}°, face {:+.1}°, dynamic loft {:.1}°, impact {:+.0} mm toe / {:+.0} mm up",
+        d.club_speed_mph,
+        d.attack_angle_deg,
+        d.club_path_deg,
+        d.face_angle_deg,
+        d.dynamic_loft_deg.unwrap_or(static_loft_deg),
+        d.impact_h_mm,
+        d.impact_v_mm
+    )
+}
+
+/// The side view (downrange to the right, height up) above a true top view as TrackMan draws it: downrange up
+/// the page, right of the target to the right, to the same scale both ways. Each shot's landing is marked with
+/// its carry; `conditions` (wind, temperature, altitude, firmness) is printed under the titles.
+pub fn trajectories_figure(flights: &[Trajectory], conditions: Option<&str>) -> String {
     let mut side = Vec::new();
     let mut top = Vec::new();
+    let (mut side_marks, mut top_marks) = (Vec::new(), Vec::new());
     for (k, t) in flights.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let name = format!(
-            "shot {}: carry {:.0} yd, total {:.0} yd, apex {:.0} yd, {:+.0} yd",
+            "shot {}: carry {:.0} yd, total {:.0} yd, apex {:.0} yd, offline {:+.0} yd (right +)",
             k + 1,
             t.carry_yd,
             t.total_yd,
@@ -179,12 +201,20 @@ pub fn trajectories_svg(flights: &[Trajectory]) -> String {
             color,
             right_axis: false,
         });
+        // World frame: x downrange, z right of the target line. On the page: right is +z, up is +x.
         top.push(Series {
             name,
-            points: t.points.iter().map(|p| (m_to_yd(p[1]), m_to_yd(p[3]))).collect(),
+            points: t.points.iter().map(|p| (m_to_yd(p[3]), m_to_yd(p[1]))).collect(),
             color,
             right_axis: false,
         });
+        // Landing: the first sampled point back on the ground after the apex.
+        let apex = t.points.iter().enumerate().fold((0, f64::MIN), |a, (i, p)| if p[2] > a.1 { (i, p[2]) } else { a });
+        if let Some(land) = t.points.iter().skip(apex.0).find(|p| p[2] <= 1e-3) {
+            let label = Some(format!("{:.0} yd", t.carry_yd));
+            side_marks.push(Mark { x: m_to_yd(land[1]), y: m_to_yd(land[2]), color, label: label.clone() });
+            top_marks.push(Mark { x: m_to_yd(land[3]), y: m_to_yd(land[1]), color, label });
+        }
     }
     let side = LineChart {
         title: "side view".into(),
@@ -195,18 +225,19 @@ pub fn trajectories_svg(flights: &[Trajectory]) -> String {
         equal_axes: false,
     };
     let top = LineChart {
-        title: "top view (right +)".into(),
-        x_label: "downrange (yd)".into(),
-        y_label: "offline (yd)".into(),
+        title: "top view (downrange up, right of the target to the right)".into(),
+        x_label: "offline (yd, right +)".into(),
+        y_label: "downrange (yd)".into(),
         y2_label: None,
         series: top,
-        equal_axes: false,
+        equal_axes: true,
     };
-    let (w, h) = (900.0, 380.0);
+    let w = 900.0;
+    let (h1, h2) = (side.total_height(380.0), top.total_height(640.0));
+    let side = side.svg_with(w, 380.0, &Extras { marks: &side_marks, note: conditions });
+    let top = top.svg_with(w, 640.0, &Extras { marks: &top_marks, note: conditions });
     format!(
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><g>{}</g><g transform="translate(0,{h})">{}</g></svg>"#,
-        2.0 * h,
-        side.svg(w, h),
-        top.svg(w, h)
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><g>{side}</g><g transform="translate(0,{h1})">{top}</g></svg>"#,
+        h1 + h2
     )
 }

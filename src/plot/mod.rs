@@ -4,29 +4,13 @@
 use std::fmt::Write;
 
 mod figures;
-pub use figures::{face_map, forces_chart, maw_plate_chart, trajectories_svg, MapMetric};
 mod ground;
+mod line;
+pub use figures::{
+    delivery_title, face_map, forces_chart, maw_plate_chart, trajectories_figure, trajectories_svg, MapMetric,
+};
 pub use ground::{ground_svg, GroundPlotError};
-
-/// One line of a chart.
-pub struct Series {
-    pub name: String,
-    pub points: Vec<(f64, f64)>,
-    pub color: &'static str,
-    /// Draw on the right-hand axis.
-    pub right_axis: bool,
-}
-
-/// A line chart.
-pub struct LineChart {
-    pub title: String,
-    pub x_label: String,
-    pub y_label: String,
-    pub y2_label: Option<String>,
-    pub series: Vec<Series>,
-    /// Keep x and y to the same scale (trajectories).
-    pub equal_axes: bool,
-}
+pub use line::{Extras, LineChart, Mark, Series};
 
 /// Colours for successive series.
 pub const PALETTE: [&str; 8] = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"];
@@ -63,141 +47,6 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
-}
-
-impl LineChart {
-    /// The chart as an SVG document of the given size (px).
-    pub fn svg(&self, width: f64, height: f64) -> String {
-        let (ml, mr, mt, mb) = (70.0, if self.y2_label.is_some() { 70.0 } else { 20.0 }, 40.0, 50.0);
-        let (pw, ph) = (width - ml - mr, height - mt - mb);
-        let (x0, x1) = range(self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
-        let left = |right: bool| self.series.iter().filter(move |s| s.right_axis == right);
-        let (mut y0, mut y1) = range(left(false).flat_map(|s| s.points.iter().map(|p| p.1)));
-        let (y20, y21) = range(left(true).flat_map(|s| s.points.iter().map(|p| p.1)));
-        let (mut x0, mut x1) = (x0, x1);
-        if self.equal_axes {
-            let sx = (x1 - x0) / pw;
-            let sy = (y1 - y0) / ph;
-            if sx > sy {
-                let mid = 0.5 * (y0 + y1);
-                y0 = mid - 0.5 * sx * ph;
-                y1 = mid + 0.5 * sx * ph;
-            } else {
-                let mid = 0.5 * (x0 + x1);
-                x0 = mid - 0.5 * sy * pw;
-                x1 = mid + 0.5 * sy * pw;
-            }
-        }
-        let pad = |lo: f64, hi: f64| (lo - 0.04 * (hi - lo), hi + 0.04 * (hi - lo));
-        let ((y0, y1), (y20, y21)) = (pad(y0, y1), pad(y20, y21));
-        let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
-        let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
-        let sy2 = |y: f64| mt + ph - (y - y20) / (y21 - y20) * ph;
-        let mut out = String::new();
-        let _ = write!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">"#
-        );
-        let _ = write!(out, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        let _ = write!(
-            out,
-            r#"<text x="{}" y="24" font-size="15" text-anchor="middle">{}</text>"#,
-            width / 2.0,
-            escape(&self.title)
-        );
-        // Grid and ticks.
-        let xs = nice_step(x1 - x0, 8.0);
-        let mut x = (x0 / xs).ceil() * xs;
-        while x <= x1 + 1e-9 {
-            let px = sx(x);
-            let _ =
-                write!(out, r##"<line x1="{px:.1}" y1="{mt}" x2="{px:.1}" y2="{:.1}" stroke="#e5e5e5"/>"##, mt + ph);
-            let _ = write!(
-                out,
-                r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-                mt + ph + 16.0,
-                fmt_tick(x, xs)
-            );
-            x += xs;
-        }
-        let ys = nice_step(y1 - y0, 6.0);
-        let mut y = (y0 / ys).ceil() * ys;
-        while y <= y1 + 1e-9 {
-            let py = sy(y);
-            let _ =
-                write!(out, r##"<line x1="{ml}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#e5e5e5"/>"##, ml + pw);
-            let _ = write!(
-                out,
-                r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
-                ml - 6.0,
-                py + 4.0,
-                fmt_tick(y, ys)
-            );
-            y += ys;
-        }
-        if self.y2_label.is_some() {
-            let ys2 = nice_step(y21 - y20, 6.0);
-            let mut y = (y20 / ys2).ceil() * ys2;
-            while y <= y21 + 1e-9 {
-                let _ = write!(
-                    out,
-                    r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
-                    ml + pw + 6.0,
-                    sy2(y) + 4.0,
-                    fmt_tick(y, ys2)
-                );
-                y += ys2;
-            }
-        }
-        if y0 < 0.0 && y1 > 0.0 {
-            let _ = write!(
-                out,
-                r##"<line x1="{ml}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#999"/>"##,
-                sy(0.0),
-                ml + pw,
-                sy(0.0)
-            );
-        }
-        let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
-        axis_labels(&mut out, (ml, mt, pw, ph), height, &self.x_label, &self.y_label);
-        if let Some(l) = &self.y2_label {
-            let _ = write!(
-                out,
-                r#"<text transform="translate({:.1},{:.1}) rotate(90)" text-anchor="middle">{}</text>"#,
-                width - 14.0,
-                mt + ph / 2.0,
-                escape(l)
-            );
-        }
-        for (i, s) in self.series.iter().enumerate() {
-            let pts: Vec<String> = s
-                .points
-                .iter()
-                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), if s.right_axis { sy2(y) } else { sy(y) }))
-                .collect();
-            let dash = if s.right_axis { r#" stroke-dasharray="6,3""# } else { "" };
-            let _ = write!(
-                out,
-                r#"<polyline fill="none" stroke="{}" stroke-width="1.8"{dash} points="{}"/>"#,
-                s.color,
-                pts.join(" ")
-            );
-            let ly = mt + 14.0 + 16.0 * i as f64;
-            let _ = write!(
-                out,
-                r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="2"{dash}/>"#,
-                ml + 10.0,
-                ly - 4.0,
-                ml + 30.0,
-                ly - 4.0,
-                s.color
-            );
-            let _ = write!(out, r#"<text x="{:.1}" y="{ly:.1}">{}</text>"#, ml + 36.0, escape(&s.name));
-        }
-        out.push_str("</svg>\n");
-        out
-    }
 }
 
 /// The x label under the plot area and the y label beside it; `area` is (left, top, width, height).

@@ -8,7 +8,9 @@ use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
 /// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
-/// any model runs, and the launch is mirrored back.
+/// any model runs, and the launch is mirrored back. Every angle and vector in and out is in the world frame
+/// (x toward the target, y up, z right of the target line seen from behind the ball) for either hand: a
+/// left-hander's `club_path_deg` > 0 and `launch_direction_deg` > 0 are right of the target, as for anyone.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Handedness {
@@ -130,7 +132,12 @@ pub struct PredictOutput {
     pub smash_factor: Real,
     pub spin_loft_deg: Real,
     pub face_to_path_deg: Real,
+    /// The ball's velocity (m/s) in the world frame: x toward the target, y up, z right of the target line seen
+    /// from behind the ball. The same frame for left- and right-handed golfers (a left-hander's shot is mirrored
+    /// back into it), so a ball starting right of the target has z > 0 whoever hit it.
     pub ball_velocity_mps: [Real; 3],
+    /// The ball's spin (rad/s) in the world frame of `ball_velocity_mps`, for either hand; backspin points
+    /// along -z for a ball flying toward +x.
     pub ball_spin_radps: [Real; 3],
 }
 

@@ -14,7 +14,7 @@ mod verdict;
 
 pub(crate) use load::read_file;
 pub use load::{is_mcap, load, ReplayInput};
-pub use session::{resolve_config, run, ReplayOptions, ReplayReport};
+pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport};
 pub use verdict::Verdict;
 
 /// What a replay did.

@@ -21,6 +21,21 @@ pub struct ReplayOptions {
     pub rate: Option<f64>,
     /// Record the replay to this new MCAP file.
     pub output: Option<PathBuf>,
+    /// With a `session`: what the replay puts on zenoh.
+    pub publish: Publish,
+}
+
+/// What a replay with a zenoh session publishes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Publish {
+    /// Impacts, launches and status on the daemon's keys, as the daemon would (`--publish`).
+    #[default]
+    Predictions,
+    /// Each clubhead sample on `mocap/<rig>/clubhead`, paced like the replay, so a recording drives another
+    /// daemon live (`--publish-samples`).
+    Samples,
+    /// Both.
+    Both,
 }
 
 /// What a replay did, and whether it reproduced the recorded predictions.
@@ -123,14 +138,32 @@ pub async fn run(
         let pipeline = Pipeline::new(setup);
         let name = pipeline.setup.name.clone();
         let publishers = match session {
-            Some(s) => Some(RigPublishers::declare(s, &name).await?),
-            None => None,
+            Some(s) if options.publish != Publish::Samples => Some(RigPublishers::declare(s, &name).await?),
+            _ => None,
         };
         let sinks = RigSinks::new(&pipeline, publishers, handle.clone());
         rigs.insert(
             name,
             ReplayRig { pipeline, sinks, latency: LatencyWindow::new(1024), first_t_ns: None, next_status_ns: 0 },
         );
+    }
+    let mut sample_publishers = BTreeMap::new();
+    if let (Some(s), Publish::Samples | Publish::Both) = (session, options.publish) {
+        for name in rigs.keys() {
+            let publisher = s
+                .declare_publisher(crate::wire::keys::clubhead(name))
+                .encoding(crate::wire::MessageType::ClubheadSample.encoding())
+                .await
+                .map_err(DaemonError::zenoh)?;
+            // Give a daemon that serves the rig a moment to be found, so the first shot is not put into the void.
+            let deadline = Instant::now() + Duration::from_secs(3);
+            while Instant::now() < deadline
+                && !publisher.matching_status().await.map_err(DaemonError::zenoh)?.matching()
+            {
+                tokio::time::sleep(Duration::from_millis(20)).await;
+            }
+            sample_publishers.insert(name.clone(), publisher);
+        }
     }
     let period_ns = (config.status_period_s * 1e9) as u64;
     let (start, mut first_t) = (Instant::now(), None);
@@ -147,6 +180,9 @@ pub async fn run(
             if let Some(wait) = due.checked_sub(start.elapsed()) {
                 std::thread::sleep(wait);
             }
+        }
+        if let Some(publisher) = sample_publishers.get(&msg.rig) {
+            publisher.put(serde_json::to_vec(msg).unwrap_or_default()).await.map_err(DaemonError::zenoh)?;
         }
         let log_time_ns = wall_ns();
         let sample = msg.to_sample();

@@ -1,0 +1,73 @@
+//! The flight added to launch lines: `impactd flight` answers each launch with the launch's own fields followed
+//! by the trajectory's (`carry_yd`, `total_yd`, `apex_m`, `offline_yd`, ...), and `impactd predict --flight`
+//! adds the same fields to each prediction, so `predict --flight` and `predict | flight` print the same lines.
+
+use std::io::Write;
+
+use impactd::flight::Flight;
+use impactd::wire::FlightInput;
+use serde_json::{Map, Value};
+
+/// A launch line (`impactd predict`'s fields) with its flight's fields added; an error names the field.
+pub fn with_flight(mut line: Map<String, Value>, flight: &Flight, every_s: f64) -> Result<Map<String, Value>, String> {
+    let input: FlightInput = serde_json::from_value(Value::Object(line.clone())).map_err(|e| e.to_string())?;
+    let launch = input.to_launch().map_err(|e| e.to_string())?;
+    match serde_json::to_value(flight.fly(&launch, every_s)).map_err(|e| e.to_string())? {
+        Value::Object(fields) => line.extend(fields),
+        other => return Err(format!("a trajectory serialized as {other}")),
+    }
+    Ok(line)
+}
+
+/// A writer of JSON lines that adds the flight to each launch line written through it (`predict --flight`).
+/// Error lines (`{"line", "error"}`) pass unchanged; a launch the flight refuses keeps its fields and gains
+/// `flight_error`.
+pub struct FlightLines<W: Write> {
+    out: W,
+    flight: Flight,
+    pending: Vec<u8>,
+}
+
+impl<W: Write> FlightLines<W> {
+    pub fn new(out: W, flight: Flight) -> Self {
+        FlightLines { out, flight, pending: Vec::new() }
+    }
+
+    fn line(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        let text = match serde_json::from_slice::<Map<String, Value>>(bytes) {
+            Ok(map) if !map.contains_key("error") => {
+                let answered = match with_flight(map.clone(), &self.flight, 0.0) {
+                    Ok(m) => m,
+                    Err(reason) => {
+                        let mut m = map;
+                        m.insert("flight_error".into(), Value::String(reason));
+                        m
+                    }
+                };
+                serde_json::to_vec(&answered).map_err(std::io::Error::other)?
+            }
+            _ => bytes.to_vec(),
+        };
+        self.out.write_all(&text)?;
+        self.out.write_all(b"\n")
+    }
+}
+
+impl<W: Write> Write for FlightLines<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.pending.extend_from_slice(buf);
+        while let Some(end) = self.pending.iter().position(|&b| b == b'\n') {
+            let line: Vec<u8> = self.pending.drain(..=end).collect();
+            self.line(&line[..end])?;
+        }
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        if !self.pending.is_empty() {
+            let line = std::mem::take(&mut self.pending);
+            self.line(&line)?;
+        }
+        self.out.flush()
+    }
+}
