@@ -16,7 +16,7 @@ use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
 mod measured;
-pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
+pub use measured::{ComparisonMessage, ComparisonStatus, LaunchFields, MeasuredClubData, MeasuredLaunch};
 
 /// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
 /// any model runs, and the launch is mirrored back.
@@ -450,6 +450,9 @@ pub struct StatusMessage {
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).
     pub recorder_dropped: u64,
+    /// Measured launches and their pairing with predictions (absent until the first measurement).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub comparison: Option<ComparisonStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).
