@@ -30,7 +30,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut last = std::time::Instant::now();
     let (report, _) = run(&space, &club, &Default::default(), &shots, &options, &mut |phase, p| {
         if last.elapsed().as_secs_f64() > 10.0 {
-            eprintln!("{phase} {} {}/{} best {:.5} ({} evaluations)", p.stage, p.step, p.steps, p.best_cost, p.evaluations);
+            eprintln!(
+                "{phase} {} {}/{} best {:.5} ({} evaluations)",
+                p.stage, p.step, p.steps, p.best_cost, p.evaluations
+            );
             last = std::time::Instant::now();
         }
     })?;

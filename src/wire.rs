@@ -450,7 +450,7 @@ pub struct StatusMessage {
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).
     pub recorder_dropped: u64,
-    /// Measured launches and their pairing with predictions (absent until the first measurement).
+    /// Measured launches received on `lm/<rig>/launch` and their pairing with predictions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub comparison: Option<ComparisonStatus>,
 }

@@ -25,8 +25,8 @@ fn fit(model: &str, truth: &[f64], seed: u64) -> FitReport {
     let shots = resolve(&lines, &Equipment::new(club.clone())).unwrap();
     // The fit starts from the preset (Table 3.3 / 3.4), not from the truth.
     assert_ne!(space.get(&club), truth);
-    let (report, fitted) = run(&space, &club, &Default::default(), &shots, &FitOptions::default(), &mut |_, _| {})
-        .unwrap();
+    let (report, fitted) =
+        run(&space, &club, &Default::default(), &shots, &FitOptions::default(), &mut |_, _| {}).unwrap();
     assert_eq!(space.get(&fitted).len(), truth.len());
     report
 }
@@ -36,7 +36,12 @@ fn assert_held_out_mae_is_the_noise(report: &FitReport) {
     let cv = report.cv.as_ref().unwrap();
     for (stats, sigma) in cv.after.iter().zip(LmNoise::default().as_array()) {
         let ratio = stats.mae / normal_mae(sigma);
-        assert!((ratio - 1.0).abs() <= 0.10, "{}: held-out MAE {:.4} is {ratio:.3} x the noise's", stats.field, stats.mae);
+        assert!(
+            (ratio - 1.0).abs() <= 0.10,
+            "{}: held-out MAE {:.4} is {ratio:.3} x the noise's",
+            stats.field,
+            stats.mae
+        );
     }
     assert!(cv.cost_after < cv.cost_before, "{cv:?}");
 }

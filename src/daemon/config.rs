@@ -18,6 +18,8 @@
 //! [rig.club_from_body]          # the tracked body's pose in the club frame; default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
+//! [rig.launch_monitor]          # measured launches on lm/<rig>/launch, compared on golf/<rig>/comparison
+//! pair_window_s = [0.05, 5.0]   # a measurement pairs with the shot it follows by this delay (s)
 //! ```
 
 use std::path::Path;
@@ -65,6 +67,36 @@ pub struct RigConfig {
     /// Add the ball flight (carry, apex, landing, offline; calm air at sea level) to each prediction.
     #[serde(default = "default_true")]
     pub flight: bool,
+    /// `[rig.launch_monitor]`: pairing measured launches with predictions.
+    #[serde(default)]
+    pub launch_monitor: LaunchMonitorConfig,
+}
+
+/// `[rig.launch_monitor]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LaunchMonitorConfig {
+    /// The delays (s) from a predicted impact to a measurement that pair them: `[min, max]`.
+    #[serde(default = "default_pair_window")]
+    pub pair_window_s: [f64; 2],
+}
+
+fn default_pair_window() -> [f64; 2] {
+    let w = crate::identify::pairing::PairWindow::default();
+    [w.min_s, w.max_s]
+}
+
+impl Default for LaunchMonitorConfig {
+    fn default() -> Self {
+        LaunchMonitorConfig { pair_window_s: default_pair_window() }
+    }
+}
+
+impl LaunchMonitorConfig {
+    /// The pairing window.
+    pub fn window(&self) -> crate::identify::pairing::PairWindow {
+        crate::identify::pairing::PairWindow { min_s: self.pair_window_s[0], max_s: self.pair_window_s[1] }
+    }
 }
 
 fn default_true() -> bool {
@@ -128,6 +160,7 @@ impl Default for DaemonConfig {
                 world_from_lab: None,
                 club_from_body: None,
                 flight: true,
+                launch_monitor: LaunchMonitorConfig::default(),
             }],
         }
     }
@@ -181,6 +214,13 @@ impl DaemonConfig {
                         format!("`{}` is not arc, arc@MS, poly, poly@..., poly:... or linear2", r.estimator),
                     )
                 })?;
+                let [lo, hi] = r.launch_monitor.pair_window_s;
+                if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= 600.0) {
+                    return Err(invalid(
+                        f("launch_monitor.pair_window_s"),
+                        "must be [min, max] with 0 <= min < max <= 600 s",
+                    ));
+                }
                 if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
                     return Err(invalid(f("ball_position_m"), "must be finite and within 50 m"));
                 }
@@ -226,6 +266,8 @@ mod tests {
             .contains("rig[0].world_from_lab.rotation_xyzw"));
         assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
         assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.launch_monitor]\npair_window_s = [5.0, 1.0]")
+            .contains("rig[0].launch_monitor.pair_window_s"));
         let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
         assert_eq!(c.rigs[0].estimator, "arc");
         assert_eq!(r[0].club.name, "iron7");

@@ -5,6 +5,11 @@
 //! never blocks zenoh). A worker parses and validates the sample, runs the pipeline, and publishes the impact and
 //! the launch at once; `latency_us` is the time from the callback receiving the revealing frame to the launch
 //! being handed to zenoh. Status goes out once per `status_period_s`.
+//!
+//! Measured launches (`lm/<rig>/launch`) go through the same queue to the same worker, which pairs them with
+//! its predictions ([`crate::identify::pairing`]) and publishes each pair on `golf/<rig>/comparison` as soon as
+//! the later of the two arrives; `latency_us` of a comparison is the time from the callback receiving that
+//! message to the comparison being handed to zenoh.
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -19,8 +24,11 @@ use zenoh::Wait;
 use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
 use super::stats::{LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
+use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, StatusMessage};
+
+mod measured;
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -41,6 +49,8 @@ pub struct RunSummary {
 }
 
 struct Incoming {
+    /// A measured launch (`lm/<rig>/launch`) rather than a clubhead sample.
+    measured: bool,
     received: Instant,
     log_time_ns: u64,
     payload: Vec<u8>,
@@ -72,6 +82,7 @@ pub async fn run(
     let mut workers = Vec::new();
     let mut tokens = Vec::new();
     let mut queryables = Vec::new();
+    let mut measured_subscribers = Vec::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
         let impact = session
@@ -87,6 +98,11 @@ pub async fn run(
         let status = session
             .declare_publisher(keys::status(&name))
             .encoding(wire::encoding("StatusMessage"))
+            .await
+            .map_err(DaemonError::zenoh)?;
+        let comparison = session
+            .declare_publisher(keys::comparison(&name))
+            .encoding(wire::encoding("ComparisonMessage"))
             .await
             .map_err(DaemonError::zenoh)?;
         tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
@@ -108,7 +124,26 @@ pub async fn run(
         let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
-        senders.insert(name.clone(), (tx, queue_dropped.clone()));
+        senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
+        let measured_dropped = queue_dropped.clone();
+        measured_subscribers.push(
+            session
+                .declare_subscriber(keys::measured_launch(&name))
+                .callback(move |sample| {
+                    let incoming = Incoming {
+                        measured: true,
+                        received: Instant::now(),
+                        log_time_ns: wall_ns(),
+                        payload: sample.payload().to_bytes().into_owned(),
+                        encoding: sample.encoding().to_string(),
+                    };
+                    if tx.try_send(incoming).is_err() {
+                        measured_dropped.fetch_add(1, Ordering::Relaxed);
+                    }
+                })
+                .await
+                .map_err(DaemonError::zenoh)?,
+        );
         let worker = Worker {
             rig: Arc::from(setup.name.as_str()),
             keys: RigKeys::new(&setup.name),
@@ -116,6 +151,8 @@ pub async fn run(
             impact,
             launch,
             status,
+            comparison,
+            pairer: Pairer::new(&name, rig_config.launch_monitor.window()),
             recorder: handle.clone(),
             queue_dropped,
             latency: LatencyWindow::new(1024),
@@ -150,6 +187,7 @@ pub async fn run(
                 return;
             };
             let incoming = Incoming {
+                measured: false,
                 received,
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),
@@ -164,6 +202,9 @@ pub async fn run(
     shutdown.await;
     tracing::info!("shutting down");
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
+    for s in measured_subscribers {
+        s.undeclare().await.map_err(DaemonError::zenoh)?;
+    }
     drop(queryables);
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
@@ -186,6 +227,9 @@ struct RigKeys {
     impact: String,
     launch: String,
     status: String,
+    measured: String,
+    measured_rejected: String,
+    comparison: String,
 }
 
 impl RigKeys {
@@ -196,6 +240,9 @@ impl RigKeys {
             impact: keys::impact(rig),
             launch: keys::launch(rig),
             status: keys::status(rig),
+            measured: keys::measured_launch(rig),
+            measured_rejected: format!("{}/rejected", keys::measured_launch(rig)),
+            comparison: keys::comparison(rig),
         }
     }
 }
@@ -208,6 +255,8 @@ struct Worker {
     impact: zenoh::pubsub::Publisher<'static>,
     launch: zenoh::pubsub::Publisher<'static>,
     status: zenoh::pubsub::Publisher<'static>,
+    comparison: zenoh::pubsub::Publisher<'static>,
+    pairer: Pairer,
     recorder: RecorderHandle,
     queue_dropped: Arc<AtomicU64>,
     latency: LatencyWindow,
@@ -236,6 +285,7 @@ impl Worker {
                 Err(RecvTimeoutError::Disconnected) => break,
             }
             if Instant::now() >= next_status {
+                self.pairer.expire(wall_ns());
                 self.publish_status();
                 next_status += period;
             }
@@ -262,6 +312,9 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
+        if incoming.measured {
+            return self.on_measured(incoming);
+        }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
@@ -343,6 +396,9 @@ impl Worker {
                 );
                 let now = wall_ns();
                 self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
+                for c in self.pairer.on_prediction(&l) {
+                    self.publish_comparison(c, received);
+                }
                 self.recorder.send(Record::Flush);
             }
             Event::Failed { shot, frame, reason, .. } => {
@@ -374,6 +430,7 @@ impl Worker {
             latency_p50_us: self.latency.quantile(0.5),
             latency_p99_us: self.latency.quantile(0.99),
             recorder_dropped: self.recorder.dropped(),
+            comparison: Some(self.pairer.status()),
         };
         let data = serde_json::to_vec(&status).unwrap_or_default();
         if let Err(e) = self.status.put(data.clone()).wait() {

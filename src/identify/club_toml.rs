@@ -44,21 +44,20 @@ struct File {
 pub fn to_toml(club: &ClubSpec, comment: &str) -> Result<String, IdentifyError> {
     let (bulge, roll) = match club.face.shape {
         FaceShape::Plane => (None, None),
-        FaceShape::Torus { bulge_radius_m, roll_radius_m } => (
-            bulge_radius_m.is_finite().then_some(bulge_radius_m),
-            roll_radius_m.is_finite().then_some(roll_radius_m),
-        ),
+        FaceShape::Torus { bulge_radius_m, roll_radius_m } => {
+            (bulge_radius_m.is_finite().then_some(bulge_radius_m), roll_radius_m.is_finite().then_some(roll_radius_m))
+        }
     };
     let i = &club.inertia_kg_m2;
     let file = File {
         name: club.name.clone(),
         mass_kg: club.mass_kg,
         cg_to_face_center_m: club.face.center_m.into(),
-        inertia_kg_m2: [[i[(0, 0)], i[(0, 1)], i[(0, 2)]], [i[(1, 0)], i[(1, 1)], i[(1, 2)]], [
-            i[(2, 0)],
-            i[(2, 1)],
-            i[(2, 2)],
-        ]],
+        inertia_kg_m2: [
+            [i[(0, 0)], i[(0, 1)], i[(0, 2)]],
+            [i[(1, 0)], i[(1, 1)], i[(1, 2)]],
+            [i[(2, 0)], i[(2, 1)], i[(2, 2)]],
+        ],
         loft_deg: club.face.loft_rad.to_degrees(),
         bulge_radius_m: bulge,
         roll_radius_m: roll,

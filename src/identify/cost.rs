@@ -47,9 +47,10 @@ pub fn predict_all(model: &dyn ImpactModel, equipment: &Equipment, shots: &[Shot
         .par_iter()
         .with_min_len(8)
         .map(|shot| {
-            model.predict(&shot.state, equipment).ok().map(|launch| {
-                fields_of(&LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps))
-            })
+            model
+                .predict(&shot.state, equipment)
+                .ok()
+                .map(|launch| fields_of(&LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps)))
         })
         .collect()
 }

@@ -154,9 +154,8 @@ pub fn run(
     if shots.is_empty() {
         return Err(IdentifyError::NoShots("fit"));
     }
-    let display = |values: &[Real]| -> Vec<Real> {
-        space.defs.iter().zip(values).map(|(d, v)| v * d.display_factor).collect()
-    };
+    let display =
+        |values: &[Real]| -> Vec<Real> { space.defs.iter().zip(values).map(|(d, v)| v * d.display_factor).collect() };
     let mut cv = None;
     let cv_started = std::time::Instant::now();
     if options.folds >= 2 {

@@ -188,8 +188,7 @@ pub fn nelder_mead(
         if costs[d] - costs[0] <= options.f_tolerance * costs[0].abs().max(1e-12) && size <= options.x_tolerance {
             break;
         }
-        let centroid: Vec<Real> =
-            (0..d).map(|k| simplex[..d].iter().map(|x| x[k]).sum::<Real>() / n).collect();
+        let centroid: Vec<Real> = (0..d).map(|k| simplex[..d].iter().map(|x| x[k]).sum::<Real>() / n).collect();
         let along = |t: Real| clamp((0..d).map(|k| centroid[k] + t * (simplex[d][k] - centroid[k])).collect());
         let reflected = along(-alpha);
         let fr = f(&reflected);

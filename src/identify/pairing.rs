@@ -159,6 +159,12 @@ impl Pairer {
         Ok(predictions.iter().map(|p| self.compare(p, measured)).collect())
     }
 
+    /// A measurement that could not even be read (counted under `key`).
+    pub fn reject(&mut self, key: &str) {
+        self.status.measured += 1;
+        *self.status.rejected.entry(key.to_string()).or_default() += 1;
+    }
+
     fn check(&self, m: &MeasuredLaunch) -> Result<(), MeasuredError> {
         if m.rig != self.rig {
             return Err(MeasuredError::WrongRig { got: m.rig.clone(), expected: self.rig.clone() });

@@ -163,7 +163,13 @@ mod tests {
         };
         let noisy = generate(&spec).unwrap();
         assert_eq!(generate(&spec).unwrap(), noisy);
-        spec.noise = LmNoise { ball_speed_mph: 0.0, launch_angle_deg: 0.0, launch_direction_deg: 0.0, backspin_rpm: 0.0, sidespin_rpm: 0.0 };
+        spec.noise = LmNoise {
+            ball_speed_mph: 0.0,
+            launch_angle_deg: 0.0,
+            launch_direction_deg: 0.0,
+            backspin_rpm: 0.0,
+            sidespin_rpm: 0.0,
+        };
         let clean = generate(&spec).unwrap();
         let sigma = LmNoise::default().as_array();
         for i in 0..5 {

@@ -1,0 +1,65 @@
+//! A rig worker's measured launches: recorded, paired with the rig's predictions, and each comparison
+//! published on `golf/<rig>/comparison` at once.
+
+use std::time::Instant;
+
+use zenoh::Wait;
+
+use super::{Incoming, Worker};
+use crate::daemon::recorder::Record;
+use crate::daemon::wall_ns;
+use crate::wire::{self, ComparisonMessage, MeasuredLaunch};
+
+impl Worker {
+    /// A measured launch: recorded, paired, and each comparison published at once.
+    pub(super) fn on_measured(&mut self, incoming: Incoming) {
+        let parsed = if incoming.payload.len() > wire::MAX_PAYLOAD_BYTES {
+            Err(("oversized", format!("{} bytes is over {}", incoming.payload.len(), wire::MAX_PAYLOAD_BYTES)))
+        } else {
+            serde_json::from_slice::<MeasuredLaunch>(&incoming.payload)
+                .map_err(|e| ("not_measured_launch", e.to_string()))
+        };
+        let measured = match parsed {
+            Ok(m) => m,
+            Err((key, reason)) => {
+                self.pairer.reject(key);
+                self.warn(key, || format!("rejected measured launch: {reason}"));
+                let keep = &incoming.payload[..incoming.payload.len().min(wire::MAX_PAYLOAD_BYTES)];
+                let data = serde_json::to_vec(&wire::RejectedInput {
+                    reason,
+                    bytes: incoming.payload.len(),
+                    payload: String::from_utf8_lossy(keep).into_owned(),
+                })
+                .unwrap_or_default();
+                let t = incoming.log_time_ns;
+                self.record(&self.keys.measured_rejected, "RejectedInput", t, t, data);
+                return;
+            }
+        };
+        self.record(&self.keys.measured, "MeasuredLaunch", incoming.log_time_ns, measured.t_ns, incoming.payload);
+        match self.pairer.on_measured(&measured) {
+            Ok(comparisons) => {
+                for c in comparisons {
+                    self.publish_comparison(c, incoming.received);
+                }
+            }
+            Err(e) => self.warn(e.key(), || format!("measured launch not paired: {e}")),
+        }
+        self.recorder.send(Record::Flush);
+    }
+
+    pub(super) fn publish_comparison(&mut self, mut c: ComparisonMessage, received: Instant) {
+        c.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
+        let data = serde_json::to_vec(&c).unwrap_or_default();
+        if let Err(e) = self.comparison.put(data.clone()).wait() {
+            tracing::error!("rig {}: publishing a comparison: {e}", self.rig);
+        }
+        tracing::info!(
+            "rig {} shot {} ({}) vs {}: ball speed {:+.1} mph, launch {:+.1} deg, direction {:+.1} deg, backspin {:+.0} rpm, sidespin {:+.0} rpm",
+            self.rig, c.shot, c.model, c.device, c.residual.ball_speed_mph, c.residual.launch_angle_deg,
+            c.residual.launch_direction_deg, c.residual.backspin_rpm, c.residual.sidespin_rpm
+        );
+        let now = wall_ns();
+        self.record(&self.keys.comparison, "ComparisonMessage", now, now, data);
+    }
+}
