@@ -2,27 +2,27 @@
 //! shots made with parameters the fit does not know, plus the noise of `LmNoise::default()` (0.5 mph, 0.2 deg
 //! launch, 0.3 deg direction, 150 rpm per spin component).
 
-use impactd::equipment::ClubSpec;
+use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
 use impactd::identify::cost::normal_mae;
 use impactd::identify::dataset::resolve;
 use impactd::identify::fit::{run, FitOptions, FitReport};
 use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::{FitModel, ParamSet, ParamSpace};
+use impactd::identify::{FitModel, ParamSpace};
 use impactd::impact::Equipment;
 
 fn fit(model: &str, truth: &[f64], seed: u64) -> FitReport {
     let space = ParamSpace::new(FitModel::parse(model).unwrap(), &[]).unwrap();
-    let club = ClubSpec::driver();
+    let club = LoadedClub { club: ClubSpec::driver(), sections: ModelSections::default() };
     let spec = SynthSpec {
         club: space.club_with(&club, truth),
-        model: space.model,
+        model: model.to_string(),
         shots: 500,
         noise: LmNoise::default(),
         ranges: DeliveryRanges::DRIVER,
         seed,
     };
     let lines = generate(&spec).unwrap();
-    let shots = resolve(&lines, &Equipment::new(club.clone())).unwrap();
+    let shots = resolve(&lines, &Equipment::new(club.club.clone())).unwrap();
     // The fit starts from the preset (Table 3.3 / 3.4), not from the truth.
     assert_ne!(space.get(&club), truth);
     let (report, fitted) =

@@ -1,25 +1,12 @@
-//! A club written as the TOML that [`ClubSpec::from_toml_str`] reads back (the fitted parameters in their
-//! `[adjusted]`, `[slip]` and `[continuous]` sections), so `predict` and `run` accept a fitted club.
+//! A club written as the club file [`crate::equipment::load_club`] reads back, with its model sections
+//! (`[adjusted]`, `[slip]`, `[continuous]`, ...), so `predict --club` and `run` accept a fitted club.
 
 use serde::Serialize;
 
 use super::IdentifyError;
-use crate::equipment::ClubSpec;
+use crate::equipment::LoadedClub;
 use crate::face::FaceShape;
-use crate::impact::continuous::TwoLayerParams;
 use crate::math::Real;
-
-#[derive(Serialize)]
-struct Adjusted {
-    delta_mass_kg: Real,
-    ball_cg_shift_m: [Real; 3],
-}
-
-#[derive(Serialize)]
-struct Slip {
-    e_y: Real,
-    e_z: Real,
-}
 
 #[derive(Serialize)]
 struct File {
@@ -35,13 +22,14 @@ struct File {
     shaft_mass_kg: Real,
     face_half_width_m: Real,
     face_half_height_m: Real,
-    adjusted: Adjusted,
-    slip: Slip,
-    continuous: TwoLayerParams,
+    /// The model sections (`[adjusted]`, `[continuous]`, ...), each as its model reads it.
+    #[serde(flatten)]
+    sections: std::collections::BTreeMap<String, toml::Table>,
 }
 
 /// The club file of `club`, headed by `comment` (each line prefixed with `# `).
-pub fn to_toml(club: &ClubSpec, comment: &str) -> Result<String, IdentifyError> {
+pub fn to_toml(loaded: &LoadedClub, comment: &str) -> Result<String, IdentifyError> {
+    let club = &loaded.club;
     let (bulge, roll) = match club.face.shape {
         FaceShape::Plane => (None, None),
         FaceShape::Torus { bulge_radius_m, roll_radius_m } => {
@@ -64,12 +52,11 @@ pub fn to_toml(club: &ClubSpec, comment: &str) -> Result<String, IdentifyError> 
         shaft_mass_kg: club.shaft_mass_kg,
         face_half_width_m: club.face_half_width_m,
         face_half_height_m: club.face_half_height_m,
-        adjusted: Adjusted {
-            delta_mass_kg: club.impulse.adjusted_delta_mass_kg,
-            ball_cg_shift_m: club.impulse.adjusted_ball_cg_shift_m.into(),
-        },
-        slip: Slip { e_y: club.impulse.slip_e_y, e_z: club.impulse.slip_e_z },
-        continuous: club.continuous,
+        sections: loaded
+            .sections
+            .names()
+            .filter_map(|n| loaded.sections.get(n).map(|t| (n.to_string(), t.clone())))
+            .collect(),
     };
     let body = toml::to_string(&file).map_err(|e| IdentifyError::Write(e.to_string()))?;
     let mut out: String = comment.lines().map(|l| format!("# {l}\n")).collect();
@@ -80,20 +67,24 @@ pub fn to_toml(club: &ClubSpec, comment: &str) -> Result<String, IdentifyError> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::equipment::{ClubFile, ClubSpec, ModelSections};
 
     #[test]
     fn presets_round_trip_through_the_club_file() {
-        for mut club in [ClubSpec::driver(), ClubSpec::iron7()] {
-            club.impulse.adjusted_delta_mass_kg = 0.0071;
-            club.continuous.mu = 0.41;
-            let text = to_toml(&club, "fitted\nby eq. 3.13").unwrap();
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let mut sections = ModelSections::default();
+            let mut slip = toml::Table::new();
+            slip.insert("e_y".into(), 0.0071.into());
+            slip.insert("e_z".into(), (-0.02).into());
+            sections.insert("slip", slip.clone());
+            let loaded = LoadedClub { club: club.clone(), sections };
+            let text = to_toml(&loaded, "fitted\nby eq. 3.13").unwrap();
             assert!(text.starts_with("# fitted\n# by eq. 3.13\n"));
-            let back = ClubSpec::from_toml_str(&text).unwrap();
-            assert_eq!(back.impulse, club.impulse);
-            assert_eq!(back.continuous, club.continuous);
-            assert_eq!(back.face.shape, club.face.shape);
-            assert!((back.face.loft_rad - club.face.loft_rad).abs() < 1e-12);
-            assert!((back.inertia_kg_m2 - club.inertia_kg_m2).norm() < 1e-15);
+            let back = ClubFile::parse(&text).unwrap();
+            assert_eq!(back.sections.get("slip"), Some(&slip));
+            assert_eq!(back.club.face.shape, club.face.shape);
+            assert!((back.club.face.loft_rad - club.face.loft_rad).abs() < 1e-12);
+            assert!((back.club.inertia_kg_m2 - club.inertia_kg_m2).norm() < 1e-15);
         }
     }
 }

@@ -30,13 +30,18 @@ pub struct CostScales(pub [Real; 5]);
 impl CostScales {
     /// `mean(|x_exp,i|)` over the shots (1 for a field whose mean is 0, so the cost stays finite).
     pub fn of(shots: &[Shot]) -> Self {
+        Self::of_measured(&shots.iter().map(|s| s.measured).collect::<Vec<_>>())
+    }
+
+    /// The same over measured fields.
+    pub fn of_measured(measured: &[[Real; 5]]) -> Self {
         let mut s = [0.0; 5];
-        for shot in shots {
-            for (acc, x) in s.iter_mut().zip(shot.measured) {
+        for m in measured {
+            for (acc, x) in s.iter_mut().zip(m) {
                 *acc += x.abs();
             }
         }
-        let n = shots.len().max(1) as Real;
+        let n = measured.len().max(1) as Real;
         CostScales(s.map(|v| if v > 0.0 { v / n } else { 1.0 }))
     }
 }
@@ -57,13 +62,22 @@ pub fn predict_all(model: &dyn ImpactModel, equipment: &Equipment, shots: &[Shot
 
 /// Eq. 3.13 for predictions against their shots.
 pub fn cost(predictions: &[Option<[Real; 5]>], shots: &[Shot], scales: &CostScales) -> Real {
-    let n = shots.len().max(1) as Real;
+    cost_of(predictions, shots.iter().map(|s| &s.measured), scales)
+}
+
+/// Eq. 3.13 for predictions against measured fields.
+pub fn cost_of<'a>(
+    predictions: &[Option<[Real; 5]>],
+    measured: impl ExactSizeIterator<Item = &'a [Real; 5]>,
+    scales: &CostScales,
+) -> Real {
+    let n = measured.len().max(1) as Real;
     let mut c = 0.0;
-    for (p, shot) in predictions.iter().zip(shots) {
+    for (p, m) in predictions.iter().zip(measured) {
         match p {
             Some(x) => {
                 for i in 0..5 {
-                    c += (x[i] - shot.measured[i]).abs() / scales.0[i];
+                    c += (x[i] - m[i]).abs() / scales.0[i];
                 }
             }
             None => c += 5.0 * FAILED_PENALTY,
@@ -104,11 +118,16 @@ pub struct ModelTable {
 
 /// Per-field statistics of predictions against shots.
 pub fn field_stats(predictions: &[Option<[Real; 5]>], shots: &[Shot]) -> Vec<FieldStats> {
-    let scales = CostScales::of(shots);
+    field_stats_of(predictions, &shots.iter().map(|s| s.measured).collect::<Vec<_>>())
+}
+
+/// Per-field statistics of predictions against measured fields.
+pub fn field_stats_of(predictions: &[Option<[Real; 5]>], measured: &[[Real; 5]]) -> Vec<FieldStats> {
+    let scales = CostScales::of_measured(measured);
     (0..5)
         .map(|i| {
             let errors: Vec<Real> =
-                predictions.iter().zip(shots).filter_map(|(p, s)| p.map(|x| x[i] - s.measured[i])).collect();
+                predictions.iter().zip(measured).filter_map(|(p, m)| p.map(|x| x[i] - m[i])).collect();
             let n = errors.len().max(1) as Real;
             let mae = errors.iter().map(|e| e.abs()).sum::<Real>() / n;
             let var = errors.iter().map(|e| (e.abs() - mae).powi(2)).sum::<Real>() / n;
@@ -139,6 +158,18 @@ pub fn model_table(name: &str, model: &dyn ImpactModel, equipment: &Equipment, s
         fields: field_stats(&predictions, shots),
         cost: cost(&predictions, shots, &CostScales::of(shots)),
         time_per_shot_us: elapsed_us / shots.len().max(1) as Real,
+    }
+}
+
+/// A table of recorded predictions against their measurements (no model run; no time per shot).
+pub fn recorded_table(name: &str, predictions: &[Option<[Real; 5]>], measured: &[[Real; 5]]) -> ModelTable {
+    ModelTable {
+        model: name.to_string(),
+        shots: measured.len(),
+        failed: predictions.iter().filter(|p| p.is_none()).count(),
+        fields: field_stats_of(predictions, measured),
+        cost: cost_of(predictions, measured.iter(), &CostScales::of_measured(measured)),
+        time_per_shot_us: 0.0,
     }
 }
 

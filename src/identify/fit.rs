@@ -7,9 +7,9 @@ use serde::{Deserialize, Serialize};
 use super::cost::{cost, field_stats, predict_all, CostScales, FieldStats};
 use super::dataset::Shot;
 use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
-use super::params::{ParamSet, ParamSpace};
+use super::params::ParamSpace;
 use super::IdentifyError;
-use crate::equipment::{BallSpec, ClubSpec};
+use crate::equipment::{BallSpec, LoadedClub};
 use crate::impact::Equipment;
 use crate::math::Real;
 use crate::rng::Rng;
@@ -25,11 +25,13 @@ pub struct FitOptions {
     pub generations: usize,
     /// Nelder-Mead evaluations.
     pub local_evaluations: usize,
+    /// Shots the global stage evaluates (a seeded subsample; `None`: all); the local stage uses all.
+    pub global_shots: Option<usize>,
 }
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { seed: 1, folds: 5, population: None, generations: 100, local_evaluations: 400 }
+        FitOptions { seed: 1, folds: 5, population: None, generations: 100, local_evaluations: 400, global_shots: None }
     }
 }
 
@@ -88,7 +90,7 @@ pub struct Fitted {
 /// Minimises eq. 3.13 over `shots` for the parameters of `space`, starting from `club`'s values.
 pub fn fit_once(
     space: &ParamSpace,
-    club: &ClubSpec,
+    club: &LoadedClub,
     ball: &BallSpec,
     shots: &[Shot],
     options: &FitOptions,
@@ -97,12 +99,20 @@ pub fn fit_once(
     if shots.is_empty() {
         return Err(IdentifyError::NoShots("fit"));
     }
-    let model = space.model.model();
-    let scales = CostScales::of(shots);
-    let mut objective = |u: &[Real]| {
-        let equipment = Equipment { club: space.club_with(club, &space.from_unit(u)), ball: *ball };
-        cost(&predict_all(model.as_ref(), &equipment, shots), shots, &scales)
+    let objective_on = |u: &[Real], shots: &[Shot], scales: &CostScales| {
+        let candidate = space.club_with(club, &space.from_unit(u));
+        evaluate(space, &candidate, ball, shots).map_or(Real::INFINITY, |p| cost(&p, shots, scales))
     };
+    let subsample: Vec<Shot> = match options.global_shots {
+        Some(n) if n < shots.len() => {
+            let fold = fold_of_each(shots.len(), shots.len(), options.seed);
+            shots.iter().zip(fold).filter(|(_, f)| *f < n).map(|(s, _)| *s).collect()
+        }
+        _ => shots.to_vec(),
+    };
+    let (sub_scales, scales) = (CostScales::of(&subsample), CostScales::of(shots));
+    let mut global_objective = |u: &[Real]| objective_on(u, &subsample, &sub_scales);
+    let mut objective = |u: &[Real]| objective_on(u, shots, &scales);
     let d = space.defs.len();
     let mut de = DeOptions::for_dimension(d, options.seed);
     de.generations = options.generations;
@@ -110,21 +120,28 @@ pub fn fit_once(
         de.population = p;
     }
     let start = space.to_unit(&space.get(club));
-    let global = differential_evolution(&mut objective, d, Some(&start), &de, progress);
+    let global = differential_evolution(&mut global_objective, d, Some(&start), &de, progress);
+    let global_cost = objective(&global.x);
     let nm = NmOptions { max_evaluations: options.local_evaluations, ..Default::default() };
     let local = nelder_mead(&mut objective, &global.x, &nm, progress);
-    let best = if local.cost <= global.cost { local.x } else { global.x };
+    let best = if local.cost <= global_cost { local.x } else { global.x };
     Ok(Fitted {
         values: space.from_unit(&best),
-        cost: local.cost.min(global.cost),
-        evaluations: global.evaluations + local.evaluations,
+        cost: local.cost.min(global_cost),
+        evaluations: global.evaluations + local.evaluations + 1,
     })
 }
 
-/// Eq. 3.13 and the predictions of `club` on `shots`.
-fn evaluate(space: &ParamSpace, club: &ClubSpec, ball: &BallSpec, shots: &[Shot]) -> Vec<Option<[Real; 5]>> {
-    let equipment = Equipment { club: club.clone(), ball: *ball };
-    predict_all(space.model.model().as_ref(), &equipment, shots)
+/// The predictions of the model with `club`'s parameters on `shots` (an error: parameters the model refuses).
+pub fn evaluate(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
+    let model = space.model.build(club, ball)?;
+    let equipment = Equipment { club: club.club.clone(), ball: *ball };
+    Ok(predict_all(model.as_ref(), &equipment, shots))
 }
 
 /// The fold of each shot: a seeded shuffle dealt round-robin into `k` folds.
@@ -145,12 +162,12 @@ pub fn fold_of_each(n: usize, k: usize, seed: u64) -> Vec<usize> {
 /// (`"fold 2/5"`, `"all shots"`) with each report.
 pub fn run(
     space: &ParamSpace,
-    club: &ClubSpec,
+    club: &LoadedClub,
     ball: &BallSpec,
     shots: &[Shot],
     options: &FitOptions,
     progress: &mut dyn FnMut(&str, Progress),
-) -> Result<(FitReport, ClubSpec), IdentifyError> {
+) -> Result<(FitReport, LoadedClub), IdentifyError> {
     if shots.is_empty() {
         return Err(IdentifyError::NoShots("fit"));
     }
@@ -164,7 +181,7 @@ pub fn run(
             return Err(IdentifyError::TooFewShots(k));
         }
         let fold = fold_of_each(shots.len(), k, options.seed);
-        let before = evaluate(space, club, ball, shots);
+        let before = evaluate(space, club, ball, shots)?;
         let mut after = vec![None; shots.len()];
         let mut fold_values = Vec::new();
         for f in 0..k {
@@ -175,7 +192,7 @@ pub fn run(
             let fitted_club = space.club_with(club, &fitted.values);
             let held: Vec<usize> = (0..shots.len()).filter(|&i| fold[i] == f).collect();
             let held_shots: Vec<Shot> = held.iter().map(|&i| shots[i]).collect();
-            for (i, p) in held.iter().zip(evaluate(space, &fitted_club, ball, &held_shots)) {
+            for (i, p) in held.iter().zip(evaluate(space, &fitted_club, ball, &held_shots)?) {
                 after[*i] = p;
             }
         }
@@ -194,7 +211,7 @@ pub fn run(
     let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
     let fit_seconds = started.elapsed().as_secs_f64();
     let scales = CostScales::of(shots);
-    let cost_before = cost(&evaluate(space, club, ball, shots), shots, &scales);
+    let cost_before = cost(&evaluate(space, club, ball, shots)?, shots, &scales);
     let start = display(&space.get(club));
     let fitted_display = display(&fitted.values);
     let params = space
@@ -211,8 +228,8 @@ pub fn run(
         })
         .collect();
     let report = FitReport {
-        model: space.model.name().to_string(),
-        club: club.name.clone(),
+        model: space.model.name.to_string(),
+        club: club.club.name.clone(),
         shots: shots.len(),
         seed: options.seed,
         params,

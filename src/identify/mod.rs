@@ -35,14 +35,14 @@ pub mod synth;
 pub use cost::{CostScales, FieldStats, ModelTable, FIELDS};
 pub use dataset::{DatasetLine, Shot};
 pub use fit::{FitOptions, FitReport};
-pub use params::{FitModel, ParamDef, ParamSet, ParamSpace};
+pub use params::{FitModel, ParamDef, ParamSpace, FIT_MODELS};
 
 /// Errors of the identification layer.
 #[derive(Debug, thiserror::Error)]
 pub enum IdentifyError {
     #[error("line {line}: {reason}")]
     Line { line: usize, reason: String },
-    #[error("unknown model `{0}` (expected standard, adjusted, slip or continuous)")]
+    #[error("no parameter set for model `{0}` (fit: adjusted, slip or continuous)")]
     UnknownModel(String),
     #[error("model `{model}` has no parameter `{name}` (it has: {known})")]
     UnknownParam { model: String, name: String, known: String },
@@ -54,6 +54,8 @@ pub enum IdentifyError {
     TooFewShots(usize),
     #[error(transparent)]
     Impact(#[from] crate::impact::ImpactError),
+    #[error(transparent)]
+    Equipment(#[from] crate::equipment::EquipmentError),
     #[error("writing the club file: {0}")]
     Write(String),
 }

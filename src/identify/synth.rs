@@ -10,9 +10,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::dataset::{fields_of, launch_fields, DatasetLine};
-use super::params::FitModel;
 use super::IdentifyError;
-use crate::equipment::ClubSpec;
+use crate::equipment::{BallSpec, ClubSpec, LoadedClub};
+use crate::impact::registry::{self, BuildOptions};
 use crate::impact::{Equipment, LaunchMetrics};
 use crate::math::Real;
 use crate::rng::Rng;
@@ -110,9 +110,10 @@ impl DeliveryRanges {
 /// What to generate.
 #[derive(Debug, Clone)]
 pub struct SynthSpec {
-    /// The club with the true parameters set.
-    pub club: ClubSpec,
-    pub model: FitModel,
+    /// The club with the true parameters in its sections.
+    pub club: LoadedClub,
+    /// The registry's name of the model that launches the balls.
+    pub model: String,
     pub shots: usize,
     pub noise: LmNoise,
     pub ranges: DeliveryRanges,
@@ -121,8 +122,9 @@ pub struct SynthSpec {
 
 /// Deliveries through the model, each measured with noise. Deterministic for a seed.
 pub fn generate(spec: &SynthSpec) -> Result<Vec<DatasetLine>, IdentifyError> {
-    let equipment = Equipment::new(spec.club.clone());
-    let model = spec.model.model();
+    let equipment = Equipment::new(spec.club.club.clone());
+    let model =
+        registry::build_one(&spec.model, &spec.club, &BuildOptions { ball: BallSpec::SEED, ..Default::default() })?;
     let mut rng = Rng::new(spec.seed);
     let sigma = spec.noise.as_array();
     let mut out = Vec::with_capacity(spec.shots);
@@ -148,14 +150,15 @@ pub fn generate(spec: &SynthSpec) -> Result<Vec<DatasetLine>, IdentifyError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::equipment::ModelSections;
     use crate::identify::dataset::{fields_of_launch, resolve};
 
     #[test]
     fn noise_has_the_documented_spread_and_the_generator_repeats() {
         // Zero noise reproduces the model; the noise gives residual SDs near 0.5 mph ... 150 rpm.
         let mut spec = SynthSpec {
-            club: ClubSpec::driver(),
-            model: FitModel::parse("adjusted").unwrap(),
+            club: LoadedClub { club: ClubSpec::driver(), sections: ModelSections::default() },
+            model: "adjusted".into(),
             shots: 2000,
             noise: LmNoise::default(),
             ranges: DeliveryRanges::DRIVER,
