@@ -57,6 +57,7 @@ pub mod equipment;
 pub mod eval;
 pub mod face;
 pub mod flight;
+pub mod identify;
 pub mod impact;
 pub mod integrate;
 pub mod jsonl;

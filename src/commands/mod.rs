@@ -8,7 +8,9 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod args;
 mod bench;
+mod compare;
 mod eval;
+mod fit;
 mod flight;
 mod flight_fit;
 mod flight_lines;
@@ -18,6 +20,7 @@ mod plot_ground;
 mod predict;
 mod progress;
 mod schemas;
+mod synth;
 
 #[cfg(feature = "daemon")]
 mod demo;
@@ -58,6 +61,12 @@ pub enum Command {
     /// Pictures (SVG).
     #[command(subcommand)]
     Plot(plot::PlotCommand),
+    /// Each model's accuracy against measured launches (the seed's Tables 3.2-3.7).
+    Compare(compare::CompareArgs),
+    /// Identify a model's parameters from measured launches (eq. 3.13) and write the fitted club file.
+    Fit(fit::FitArgs),
+    /// A synthetic dataset of measured launches (known parameters plus launch-monitor noise).
+    Synth(synth::SynthArgs),
     /// Write the JSON Schemas of every message type.
     Schemas(schemas::SchemasArgs),
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
@@ -137,6 +146,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::FlightFit(args) => flight_fit::run(&args),
         Command::Map(args) => map::run(&args),
         Command::Plot(command) => plot::run(&command),
+        Command::Compare(args) => compare::run(&args),
+        Command::Fit(args) => fit::run(&args),
+        Command::Synth(args) => synth::run(&args),
         Command::Schemas(args) => schemas::run(&args),
         #[cfg(feature = "daemon")]
         Command::Run(args) => run::run(&args),

@@ -25,6 +25,7 @@
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"
+//! pair_window_s = [0.05, 5.0]   # a measurement pairs with the prediction it follows by this delay (s)
 //! ```
 
 use std::path::Path;

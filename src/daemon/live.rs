@@ -8,6 +8,11 @@
 //!
 //! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
 //! listener ([`super::open_connect`]) and the Foxglove live view ([`super::foxglove_live`]).
+//!
+//! Measured launches (`lm/<rig>/launch`, from the Open Connect listener or any publisher) go through the same
+//! queue to the same worker, which records them, pairs them with its predictions ([`crate::identify::pairing`])
+//! and publishes each pair on `golf/<rig>/comparison` as soon as the later of the two arrives; `latency_us` of a
+//! comparison is the time from the callback receiving that message to the comparison being handed to zenoh.
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -25,8 +30,11 @@ use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummar
 use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use super::stats::{Budget, LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
+use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
+
+mod measured;
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -62,6 +70,8 @@ pub struct RunSummary {
 }
 
 struct Incoming {
+    /// A measured launch (`lm/<rig>/launch`) rather than a clubhead sample.
+    measured: bool,
     received: Instant,
     log_time_ns: u64,
     payload: Vec<u8>,
@@ -94,6 +104,7 @@ pub async fn run(
     let mut workers = Vec::new();
     let mut tokens = Vec::new();
     let mut queryables = Vec::new();
+    let mut measured_subscribers = Vec::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
         let publishers = RigPublishers::declare(session, &name).await?;
@@ -118,7 +129,9 @@ pub async fn run(
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
-        senders.insert(name.clone(), (tx, queue_dropped.clone()));
+        senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
+        measured_subscribers.push(measured::subscribe(session, &name, tx, queue_dropped.clone()).await?);
+        let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
             rig: Arc::from(name.as_str()),
@@ -132,6 +145,7 @@ pub async fn run(
             unknown: unknown.clone(),
             simulator,
             launch_monitor,
+            pairer: Pairer::new(&name, window),
         };
         workers.push(
             std::thread::Builder::new()
@@ -178,6 +192,7 @@ pub async fn run(
                 return;
             };
             let incoming = Incoming {
+                measured: false,
                 received,
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),
@@ -192,6 +207,9 @@ pub async fn run(
     shutdown.await;
     tracing::info!("shutting down");
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
+    for s in measured_subscribers {
+        s.undeclare().await.map_err(DaemonError::zenoh)?;
+    }
     drop(queryables);
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
@@ -235,6 +253,8 @@ struct Worker {
     unknown: Arc<AtomicU64>,
     simulator: Option<SimulatorClient>,
     launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
+    /// Measured launches waiting for their prediction and predictions waiting for their measurement.
+    pairer: Pairer,
 }
 
 /// What a rig's worker leaves behind.
@@ -261,7 +281,7 @@ impl Worker {
             let wait = next_status.saturating_duration_since(Instant::now());
             match rx.recv_timeout(wait) {
                 Ok(incoming) => self.on_incoming(incoming),
-                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Timeout) => self.pairer.expire(wall_ns()),
                 Err(RecvTimeoutError::Disconnected) => break,
             }
             if Instant::now() >= next_status {
@@ -291,6 +311,9 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
+        if incoming.measured {
+            return self.on_measured(incoming);
+        }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
@@ -344,6 +367,9 @@ impl Worker {
                 if let Some(simulator) = &mut self.simulator {
                     simulator.offer(&l);
                 }
+                for c in self.pairer.on_prediction(&l) {
+                    self.publish_comparison(c, received);
+                }
                 tracing::info!(
                     "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
                     l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
@@ -371,6 +397,7 @@ impl Worker {
         let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
         status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
         status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
+        status.comparison = Some(self.pairer.status());
         self.sinks.status(&status);
         status
     }

@@ -13,7 +13,8 @@ use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;
 use crate::pipeline::{Counts, Pipeline};
 use crate::wire::{
-    keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, Message, MessageType, RejectedInput, StatusMessage,
+    keys, ClubheadSampleMsg, ComparisonMessage, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType,
+    RejectedInput, StatusMessage,
 };
 
 /// A rig's key expressions, built once.
@@ -23,6 +24,9 @@ struct RigKeys {
     impact: String,
     launch: String,
     status: String,
+    measured: String,
+    measured_rejected: String,
+    comparison: String,
 }
 
 impl RigKeys {
@@ -33,6 +37,9 @@ impl RigKeys {
             impact: keys::impact(rig),
             launch: keys::launch(rig),
             status: keys::status(rig),
+            measured: keys::measured_launch(rig),
+            measured_rejected: format!("{}/rejected", keys::measured_launch(rig)),
+            comparison: keys::comparison(rig),
         }
     }
 }
@@ -42,6 +49,7 @@ pub struct RigPublishers {
     impact: zenoh::pubsub::Publisher<'static>,
     launch: zenoh::pubsub::Publisher<'static>,
     status: zenoh::pubsub::Publisher<'static>,
+    comparison: zenoh::pubsub::Publisher<'static>,
 }
 
 impl RigPublishers {
@@ -57,6 +65,7 @@ impl RigPublishers {
             impact: one::<ImpactMessage>(session, keys::impact(rig)).await?,
             launch: one::<LaunchPrediction>(session, keys::launch(rig)).await?,
             status: one::<StatusMessage>(session, keys::status(rig)).await?,
+            comparison: one::<ComparisonMessage>(session, keys::comparison(rig)).await?,
         })
     }
 }
@@ -178,6 +187,25 @@ impl RigSinks {
         self.publish(|p| &p.status, "status", &data);
         self.record::<StatusMessage>(&self.keys.status, status.t_ns, status.t_ns, data);
     }
+
+    /// Records a measured launch's payload as it arrived on `lm/<rig>/launch` (whatever its source).
+    pub fn measured(&self, log_time_ns: u64, t_ns: u64, payload: Vec<u8>) {
+        self.record::<MeasuredLaunch>(&self.keys.measured, log_time_ns, t_ns, payload);
+    }
+
+    /// Records a measured-launch payload that could not be used, beside the reason.
+    pub fn measured_rejected(&self, log_time_ns: u64, rejected: &RejectedInput) {
+        let data = serde_json::to_vec(rejected).unwrap_or_default();
+        self.record::<RejectedInput>(&self.keys.measured_rejected, log_time_ns, log_time_ns, data);
+    }
+
+    /// Publishes and records a comparison of a prediction with its measurement, and closes the chunk.
+    pub fn comparison(&self, c: &ComparisonMessage, now_ns: u64) {
+        let data = serde_json::to_vec(c).unwrap_or_default();
+        self.publish(|p| &p.comparison, "comparison", &data);
+        self.record::<ComparisonMessage>(&self.keys.comparison, now_ns, now_ns, data);
+        self.recorder.send(Record::Flush);
+    }
 }
 
 /// What a rig's status reports besides its pipeline's counts.
@@ -221,6 +249,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         recorder_error: s.recorder_error,
         simulator: None,
         launch_monitor: None,
+        comparison: None,
     }
 }
 

@@ -105,4 +105,28 @@ pub struct ComparisonMessage {
     pub predicted: LaunchFields,
     pub measured: LaunchFields,
     pub residual: LaunchFields,
+    /// Seconds from impact to the measurement (`(measured_t_ns - t_impact_ns) / 1e9`).
+    #[serde(default)]
+    pub delay_s: Real,
+    /// Time from the later of the pair arriving to this comparison being published (us), measured live.
+    #[serde(default)]
+    pub latency_us: Real,
+}
+
+/// The pairing's health in a rig's status: how many shots were paired, how many found no partner, and the
+/// running mean absolute error per field of each model.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ComparisonStatus {
+    /// Measured launches received (good or bad).
+    pub measured: u64,
+    /// Measured launches that could not be used (not JSON, wrong rig, no spin), by reason.
+    pub rejected: std::collections::BTreeMap<String, u64>,
+    /// Shots paired with a measurement.
+    pub paired: u64,
+    /// Predicted shots no measurement arrived for within the window.
+    pub unpaired_predictions: u64,
+    /// Measurements no prediction matched within the window.
+    pub unpaired_measured: u64,
+    /// Running mean absolute error per field, per model (over every paired shot since start).
+    pub mae: std::collections::BTreeMap<String, LaunchFields>,
 }

@@ -202,6 +202,9 @@ pub struct StatusMessage {
     /// The Open Connect listener taking this rig's measured shots, when configured.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub launch_monitor: Option<super::LaunchMonitorStatus>,
+    /// Measured launches received on `lm/<rig>/launch` and their pairing with predictions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub comparison: Option<super::ComparisonStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

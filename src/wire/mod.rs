@@ -19,7 +19,7 @@ pub use bridge::{
 };
 pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
 pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
-pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
+pub use measured::{ComparisonMessage, ComparisonStatus, LaunchFields, MeasuredClubData, MeasuredLaunch};
 pub use messages::{
     ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,
     TruthMessage,

@@ -39,7 +39,6 @@ struct Shared {
     publisher: zenoh::pubsub::Publisher<'static>,
     recorder: RecorderHandle,
     status: Arc<Mutex<LaunchMonitorStatus>>,
-    measured_key: String,
     traffic_key: String,
     /// The last shot number published per device.
     last_shot: Mutex<HashMap<String, u64>>,
@@ -67,7 +66,6 @@ impl LaunchMonitorListener {
             publisher,
             recorder,
             status: status.clone(),
-            measured_key: keys::measured_launch(rig),
             traffic_key: keys::launch_monitor_traffic(rig),
             last_shot: Mutex::new(HashMap::new()),
         });
@@ -231,14 +229,8 @@ impl Shared {
             self.update(|s| s.duplicates += 1);
             return Some(Reply::new(200, format!("Shot {} already received", message.shot_number)));
         }
+        // Recorded by the rig's worker, which records every measured launch on the key, whatever its source.
         let data = serde_json::to_vec(&measured).unwrap_or_default();
-        self.recorder.send(Record::Message {
-            key: self.measured_key.clone(),
-            message_type: MeasuredLaunch::TYPE,
-            log_time_ns: t_ns,
-            publish_time_ns: t_ns,
-            data: data.clone(),
-        });
         if let Err(e) = self.publisher.put(data).await {
             return self.reject(peer, "publish", format!("shot {} not published: {e}", message.shot_number));
         }

@@ -83,6 +83,10 @@ pub struct LaunchMonitorConfig {
     /// Listen for Open Connect v1 clients here, `IP:PORT` (e.g. `127.0.0.1:921`).
     #[serde(default)]
     pub open_connect_listen: Option<String>,
+    /// The delays (s) from a predicted impact to a measurement that pair them: `[min, max]`; default
+    /// `[0.05, 5.0]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pair_window_s: Option<[f64; 2]>,
 }
 
 /// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
@@ -140,6 +144,20 @@ impl LaunchMonitorConfig {
                 Err(("open_connect_listen", format!("`{a}` is not IP:PORT")))
             }
             _ => Ok(()),
+        }?;
+        match self.pair_window_s {
+            Some([lo, hi]) if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= 600.0) => {
+                Err(("pair_window_s", "must be [min, max] with 0 <= min < max <= 600 s".into()))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The pairing window of measured launches with predictions.
+    pub fn pair_window(&self) -> crate::identify::pairing::PairWindow {
+        match self.pair_window_s {
+            Some([min_s, max_s]) => crate::identify::pairing::PairWindow { min_s, max_s },
+            None => crate::identify::pairing::PairWindow::default(),
         }
     }
 }

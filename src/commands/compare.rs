@@ -1,0 +1,188 @@
+//! `impactd compare FILE... [--models LIST] [--club C] [--json]`: each model's accuracy against measured
+//! launches, in the layout of the seed's Tables 3.2-3.7 (measured mean; MAE and STD, absolute and as % of the
+//! mean, per field per model; eq. 3.13 cost; time per shot).
+//!
+//! A FILE is a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
+//! recording, without `--models`, the predictions it holds paired live with measurements (its comparisons) are
+//! tabled as recorded; with `--models`, each model is run again on the recorded deliveries.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use impactd::equipment::BallSpec;
+use impactd::identify::cost::model_table;
+#[cfg(feature = "daemon")]
+use impactd::identify::cost::recorded_table;
+#[cfg(feature = "daemon")]
+use impactd::identify::dataset::fields_of_launch;
+use impactd::identify::dataset::{parse_jsonl, resolve};
+use impactd::identify::{DatasetLine, ModelTable, FIELDS};
+use impactd::impact::registry::{self, BuildOptions};
+use impactd::impact::Equipment;
+
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// JSONL datasets or MCAP recordings.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// The models to run, comma-separated (default for a dataset: standard,adjusted,slip,continuous; for a
+    /// recording: its recorded predictions).
+    #[arg(long)]
+    pub models: Option<String>,
+    /// Club preset or club file (default: the recording's club, else driver).
+    #[arg(long)]
+    pub club: Option<String>,
+    /// One JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The shots of the files: dataset lines, the recordings' comparisons, and the club a recording names.
+pub struct Loaded {
+    pub lines: Vec<DatasetLine>,
+    #[cfg(feature = "daemon")]
+    pub comparisons: Vec<impactd::wire::ComparisonMessage>,
+    pub recording_club: Option<String>,
+    /// Whether any file was a recording.
+    #[cfg_attr(not(feature = "daemon"), allow(dead_code))]
+    pub any_recording: bool,
+}
+
+fn is_mcap(path: &Path) -> Result<bool> {
+    use std::io::Read;
+    let mut magic = [0u8; 8];
+    let mut f = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let n = f.read(&mut magic).with_context(|| format!("reading {}", path.display()))?;
+    Ok(n == 8 && magic.starts_with(b"\x89MCAP"))
+}
+
+/// Reads every file.
+pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
+    let mut loaded = Loaded {
+        lines: Vec::new(),
+        #[cfg(feature = "daemon")]
+        comparisons: Vec::new(),
+        recording_club: None,
+        any_recording: false,
+    };
+    for path in files {
+        if is_mcap(path)? {
+            #[cfg(feature = "daemon")]
+            {
+                let r = impactd::daemon::recorded_shots::read(path)?;
+                for d in &r.damage {
+                    eprintln!("{}: {d}", path.display());
+                }
+                loaded.lines.extend(r.lines);
+                loaded.comparisons.extend(r.comparisons);
+                if loaded.recording_club.is_none() {
+                    loaded.recording_club = r.club;
+                }
+                loaded.any_recording = true;
+            }
+            #[cfg(not(feature = "daemon"))]
+            bail!("{}: reading recordings needs the daemon feature", path.display());
+        } else {
+            let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+            loaded.lines.extend(parse_jsonl(&text).with_context(|| path.display().to_string())?);
+        }
+    }
+    Ok(loaded)
+}
+
+/// The club of `--club`, else the recording's (when it loads), else the driver.
+pub fn club_spec(arg: Option<&str>, loaded: &Loaded) -> String {
+    match (arg, &loaded.recording_club) {
+        (Some(c), _) => c.to_string(),
+        (None, Some(c)) if impactd::equipment::load_club(c).is_ok() => c.clone(),
+        _ => "driver".into(),
+    }
+}
+
+pub fn run(args: &CompareArgs) -> Result<ExitCode> {
+    let loaded = load_files(&args.files)?;
+    let club_name = club_spec(args.club.as_deref(), &loaded);
+    let club = super::args::load_club(&club_name)?;
+    let mut tables: Vec<ModelTable> = Vec::new();
+    #[cfg(feature = "daemon")]
+    if args.models.is_none() && loaded.any_recording {
+        let mut models: Vec<String> = loaded.comparisons.iter().map(|c| c.model.clone()).collect();
+        models.dedup();
+        models.sort();
+        models.dedup();
+        for m in models {
+            let (pred, meas): (Vec<_>, Vec<_>) = loaded
+                .comparisons
+                .iter()
+                .filter(|c| c.model == m)
+                .map(|c| (Some(fields_of_launch(&c.predicted)), fields_of_launch(&c.measured)))
+                .unzip();
+            tables.push(recorded_table(&format!("{m} (recorded)"), &pred, &meas));
+        }
+    }
+    if tables.is_empty() {
+        if loaded.lines.is_empty() {
+            bail!("no measured shots in the files");
+        }
+        let ball = BallSpec::SEED;
+        let equipment = Equipment { club: club.club.clone(), ball };
+        let shots = resolve(&loaded.lines, &equipment)?;
+        let models = args.models.clone().unwrap_or_else(|| "standard,adjusted,slip,continuous".into());
+        for name in models.split(',').map(str::trim) {
+            let model = registry::build_one(name, &club, &BuildOptions { ball, ..Default::default() })?;
+            tables.push(model_table(name, model.as_ref(), &equipment, &shots));
+        }
+    }
+    if args.json {
+        let out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        print!("{}", render(&club_name, &tables));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The seed's table layout: one row per field, a column group (MAE, STD, each with % of the mean) per model.
+pub fn render(club: &str, tables: &[ModelTable]) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let shots = tables.first().map_or(0, |t| t.shots);
+    let _ = writeln!(s, "club {club}, {shots} shots (MAE and STD of |predicted - measured|; % of the measured mean)");
+    let _ = write!(s, "{:<16} {:>9}", "field", "measured");
+    for t in tables {
+        let _ = write!(s, " | {:^31}", t.model);
+    }
+    let _ = writeln!(s);
+    let _ = write!(s, "{:<16} {:>9}", "", "mean");
+    for _ in tables {
+        let _ = write!(s, " | {:>8} {:>6} {:>8} {:>6}", "MAE", "%", "STD", "%");
+    }
+    let _ = writeln!(s);
+    for (i, (_, label)) in FIELDS.iter().enumerate() {
+        let mean = tables.first().map_or(0.0, |t| t.fields[i].measured_mean);
+        let _ = write!(s, "{label:<16} {mean:>9.2}");
+        for t in tables {
+            let f = &t.fields[i];
+            let _ = write!(s, " | {:>8.2} {:>6.1} {:>8.2} {:>6.1}", f.mae, f.mae_pct, f.std, f.std_pct);
+        }
+        let _ = writeln!(s);
+    }
+    let _ = write!(s, "{:<26}", "eq. 3.13 cost");
+    for t in tables {
+        let _ = write!(s, " | {:>31.4}", t.cost);
+    }
+    let _ = writeln!(s);
+    let _ = write!(s, "{:<26}", "time per shot (us)");
+    for t in tables {
+        let _ = write!(s, " | {:>31.1}", t.time_per_shot_us);
+    }
+    let _ = writeln!(s);
+    let _ = write!(s, "{:<26}", "failed shots");
+    for t in tables {
+        let _ = write!(s, " | {:>31}", t.failed);
+    }
+    let _ = writeln!(s);
+    s
+}

@@ -1,0 +1,83 @@
+//! A rig worker's measured launches: taken from `lm/<rig>/launch` into the rig's queue, recorded, paired with the
+//! rig's predictions, and each comparison published on `golf/<rig>/comparison` at once.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::SyncSender;
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::{Incoming, Worker};
+use crate::daemon::{wall_ns, DaemonError};
+use crate::wire::{self, keys, ComparisonMessage, MeasuredLaunch};
+
+/// Subscribes to `lm/<rig>/launch`; each payload joins the rig's queue (a full queue is counted in `dropped`).
+pub(super) async fn subscribe(
+    session: &zenoh::Session,
+    rig: &str,
+    tx: SyncSender<Incoming>,
+    dropped: Arc<AtomicU64>,
+) -> Result<zenoh::pubsub::Subscriber<()>, DaemonError> {
+    session
+        .declare_subscriber(keys::measured_launch(rig))
+        .callback(move |sample| {
+            let incoming = Incoming {
+                measured: true,
+                received: Instant::now(),
+                log_time_ns: wall_ns(),
+                payload: sample.payload().to_bytes().into_owned(),
+                encoding: sample.encoding().to_string(),
+            };
+            if tx.try_send(incoming).is_err() {
+                dropped.fetch_add(1, Ordering::Relaxed);
+            }
+        })
+        .await
+        .map_err(DaemonError::zenoh)
+}
+
+impl Worker {
+    /// A measured launch: recorded, paired, and each comparison published at once.
+    pub(super) fn on_measured(&mut self, incoming: Incoming) {
+        let parsed = if incoming.payload.len() > wire::MAX_PAYLOAD_BYTES {
+            Err(("oversized", format!("{} bytes is over {}", incoming.payload.len(), wire::MAX_PAYLOAD_BYTES)))
+        } else {
+            serde_json::from_slice::<MeasuredLaunch>(&incoming.payload)
+                .map_err(|e| ("not_measured_launch", e.to_string()))
+        };
+        let measured = match parsed {
+            Ok(m) => m,
+            Err((key, reason)) => {
+                self.pairer.reject(key);
+                self.warn(key, || format!("rejected measured launch: {reason}"));
+                let keep = &incoming.payload[..incoming.payload.len().min(wire::MAX_PAYLOAD_BYTES)];
+                let rejected = wire::RejectedInput {
+                    reason,
+                    bytes: incoming.payload.len(),
+                    payload: String::from_utf8_lossy(keep).into_owned(),
+                };
+                self.sinks.measured_rejected(incoming.log_time_ns, &rejected);
+                return;
+            }
+        };
+        self.sinks.measured(incoming.log_time_ns, measured.t_ns, incoming.payload);
+        match self.pairer.on_measured(&measured) {
+            Ok(comparisons) => {
+                for c in comparisons {
+                    self.publish_comparison(c, incoming.received);
+                }
+            }
+            Err(e) => self.warn(e.key(), || format!("measured launch not paired: {e}")),
+        }
+    }
+
+    /// Publishes and records a comparison; its latency is measured from `received`.
+    pub(super) fn publish_comparison(&mut self, mut c: ComparisonMessage, received: Instant) {
+        c.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
+        self.sinks.comparison(&c, wall_ns());
+        tracing::info!(
+            "rig {} shot {} ({}) vs {}: ball speed {:+.1} mph, launch {:+.1} deg, direction {:+.1} deg, backspin {:+.0} rpm, sidespin {:+.0} rpm ({:.0} us)",
+            self.rig, c.shot, c.model, c.device, c.residual.ball_speed_mph, c.residual.launch_angle_deg,
+            c.residual.launch_direction_deg, c.residual.backspin_rpm, c.residual.sidespin_rpm, c.latency_us
+        );
+    }
+}

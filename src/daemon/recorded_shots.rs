@@ -1,0 +1,79 @@
+//! The measured shots of a recording: each comparison on `golf/<rig>/comparison` (a prediction paired live with
+//! a launch monitor's measurement) and the delivery of its prediction on `golf/<rig>/launch`, as the JSONL
+//! dataset lines `compare` and `fit` read.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::DaemonError;
+use crate::identify::DatasetLine;
+use crate::wire::{ComparisonMessage, DeliveryInput, LaunchPrediction};
+
+/// What a recording holds of measured shots.
+#[derive(Debug, Default)]
+pub struct RecordedShots {
+    /// One line per measured shot (the delivery of its prediction, the measurement), in shot order.
+    pub lines: Vec<DatasetLine>,
+    /// Every recorded comparison, in recording order.
+    pub comparisons: Vec<ComparisonMessage>,
+    /// The club the predictions were made with (the first prediction's).
+    pub club: Option<String>,
+    /// What could not be read.
+    pub damage: Vec<String>,
+}
+
+/// The delivery numbers of a prediction as `predict`'s input (right-handed world, as the rig predicts).
+pub fn delivery_input(p: &LaunchPrediction) -> DeliveryInput {
+    let d = &p.delivery;
+    DeliveryInput {
+        club_speed_mph: d.club_speed_mph,
+        attack_angle_deg: d.attack_angle_deg,
+        club_path_deg: d.club_path_deg,
+        face_angle_deg: d.face_angle_deg,
+        dynamic_loft_deg: Some(d.dynamic_loft_deg),
+        impact_h_mm: d.impact_h_mm,
+        impact_v_mm: d.impact_v_mm,
+        club_angular_velocity_radps: Some(d.club_angular_velocity_radps),
+        handedness: None,
+    }
+}
+
+/// Reads the comparisons and predictions of an MCAP recording.
+pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
+    let bytes =
+        std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
+    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
+    let mut out = RecordedShots { damage: scan.problems(), ..Default::default() };
+    let mut predictions: BTreeMap<(String, u64), LaunchPrediction> = BTreeMap::new();
+    for m in &scan.messages {
+        let Some(channel) = scan.channels.get(&m.channel_id) else { continue };
+        let topic = channel.topic.as_str();
+        if !topic.starts_with("/golf/") {
+            continue;
+        }
+        if topic.ends_with("/comparison") {
+            if let Ok(c) = serde_json::from_slice::<ComparisonMessage>(&m.data) {
+                out.comparisons.push(c);
+            }
+        } else if topic.ends_with("/launch") {
+            if let Ok(p) = serde_json::from_slice::<LaunchPrediction>(&m.data) {
+                out.club.get_or_insert_with(|| p.club.clone());
+                predictions.entry((p.rig.clone(), p.shot)).or_insert(p);
+            }
+        }
+    }
+    let mut seen = BTreeMap::new();
+    for c in &out.comparisons {
+        let key = (c.rig.clone(), c.shot);
+        if seen.contains_key(&key) {
+            continue;
+        }
+        if let Some(p) = predictions.get(&key) {
+            let mut measured = c.measured.clone();
+            measured.carry_yd = None;
+            seen.insert(key, DatasetLine { delivery: delivery_input(p), measured });
+        }
+    }
+    out.lines = seen.into_values().collect();
+    Ok(out)
+}

@@ -1,0 +1,261 @@
+//! The seed's identification procedure (section 3.1.3): a global search of the parameters' bounds, then a local
+//! refinement of the best point, minimising eq. 3.13 over the shots; and k-fold cross-validation of the mean
+//! absolute errors before and after.
+
+use serde::{Deserialize, Serialize};
+
+use super::cost::{cost, field_stats, predict_all, CostScales, FieldStats};
+use super::dataset::Shot;
+use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
+use super::params::ParamSpace;
+use super::IdentifyError;
+use crate::equipment::{BallSpec, LoadedClub};
+use crate::impact::Equipment;
+use crate::math::Real;
+use crate::rng::Rng;
+
+/// How to fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitOptions {
+    pub seed: u64,
+    /// Cross-validation folds (0 or 1: none).
+    pub folds: usize,
+    /// Differential evolution population (default: 10 per parameter, at least 20) and generations.
+    pub population: Option<usize>,
+    pub generations: usize,
+    /// Nelder-Mead evaluations.
+    pub local_evaluations: usize,
+    /// Shots the global stage evaluates (a seeded subsample; `None`: all); the local stage uses all.
+    pub global_shots: Option<usize>,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions { seed: 1, folds: 5, population: None, generations: 100, local_evaluations: 400, global_shots: None }
+    }
+}
+
+/// One fitted parameter, in its display unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamReport {
+    pub name: String,
+    pub unit: String,
+    pub start: Real,
+    pub fitted: Real,
+    pub lo: Real,
+    pub hi: Real,
+}
+
+/// The cross-validated errors: every shot predicted by the parameters fitted without its fold.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CvReport {
+    pub folds: usize,
+    /// With the club's starting parameters.
+    pub before: Vec<FieldStats>,
+    pub cost_before: Real,
+    /// With each fold's fitted parameters, on the held-out fold.
+    pub after: Vec<FieldStats>,
+    pub cost_after: Real,
+    /// The fitted values (display units) of each fold, in parameter order.
+    pub fold_values: Vec<Vec<Real>>,
+}
+
+/// What `fit` did.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FitReport {
+    pub model: String,
+    pub club: String,
+    pub shots: usize,
+    pub seed: u64,
+    pub params: Vec<ParamReport>,
+    /// Eq. 3.13 on all shots with the starting and the fitted parameters.
+    pub cost_before: Real,
+    pub cost: Real,
+    pub evaluations: usize,
+    /// Wall time of the fit on all shots (s), and of the cross-validation.
+    pub fit_seconds: Real,
+    pub cv_seconds: Real,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cv: Option<CvReport>,
+}
+
+/// One fit's result: SI values, the cost and the evaluations spent.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fitted {
+    pub values: Vec<Real>,
+    pub cost: Real,
+    pub evaluations: usize,
+}
+
+/// Minimises eq. 3.13 over `shots` for the parameters of `space`, starting from `club`'s values.
+pub fn fit_once(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+    options: &FitOptions,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Fitted, IdentifyError> {
+    if shots.is_empty() {
+        return Err(IdentifyError::NoShots("fit"));
+    }
+    let objective_on = |u: &[Real], shots: &[Shot], scales: &CostScales| {
+        let candidate = space.club_with(club, &space.from_unit(u));
+        evaluate(space, &candidate, ball, shots).map_or(Real::INFINITY, |p| cost(&p, shots, scales))
+    };
+    let subsample: Vec<Shot> = match options.global_shots {
+        Some(n) if n < shots.len() => {
+            let fold = fold_of_each(shots.len(), shots.len(), options.seed);
+            shots.iter().zip(fold).filter(|(_, f)| *f < n).map(|(s, _)| *s).collect()
+        }
+        _ => shots.to_vec(),
+    };
+    let (sub_scales, scales) = (CostScales::of(&subsample), CostScales::of(shots));
+    let mut global_objective = |u: &[Real]| objective_on(u, &subsample, &sub_scales);
+    let mut objective = |u: &[Real]| objective_on(u, shots, &scales);
+    let d = space.defs.len();
+    let mut de = DeOptions::for_dimension(d, options.seed);
+    de.generations = options.generations;
+    if let Some(p) = options.population {
+        de.population = p;
+    }
+    let start = space.to_unit(&space.get(club));
+    let global = differential_evolution(&mut global_objective, d, Some(&start), &de, progress);
+    let global_cost = objective(&global.x);
+    let nm = NmOptions { max_evaluations: options.local_evaluations, ..Default::default() };
+    let local = nelder_mead(&mut objective, &global.x, &nm, progress);
+    let best = if local.cost <= global_cost { local.x } else { global.x };
+    Ok(Fitted {
+        values: space.from_unit(&best),
+        cost: local.cost.min(global_cost),
+        evaluations: global.evaluations + local.evaluations + 1,
+    })
+}
+
+/// The predictions of the model with `club`'s parameters on `shots` (an error: parameters the model refuses).
+pub fn evaluate(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
+    let model = space.model.build(club, ball)?;
+    let equipment = Equipment { club: club.club.clone(), ball: *ball };
+    Ok(predict_all(model.as_ref(), &equipment, shots))
+}
+
+/// The fold of each shot: a seeded shuffle dealt round-robin into `k` folds.
+pub fn fold_of_each(n: usize, k: usize, seed: u64) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    let mut rng = Rng::new(seed ^ 0x5EED_F01D);
+    for i in (1..n).rev() {
+        order.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
+    }
+    let mut fold = vec![0; n];
+    for (position, &shot) in order.iter().enumerate() {
+        fold[shot] = position % k;
+    }
+    fold
+}
+
+/// Fits on all shots and, with `options.folds >= 2`, cross-validates. `progress` receives a phase label
+/// (`"fold 2/5"`, `"all shots"`) with each report.
+pub fn run(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+    options: &FitOptions,
+    progress: &mut dyn FnMut(&str, Progress),
+) -> Result<(FitReport, LoadedClub), IdentifyError> {
+    if shots.is_empty() {
+        return Err(IdentifyError::NoShots("fit"));
+    }
+    let display =
+        |values: &[Real]| -> Vec<Real> { space.defs.iter().zip(values).map(|(d, v)| v * d.display_factor).collect() };
+    let mut cv = None;
+    let cv_started = std::time::Instant::now();
+    if options.folds >= 2 {
+        let k = options.folds;
+        if shots.len() < k {
+            return Err(IdentifyError::TooFewShots(k));
+        }
+        let fold = fold_of_each(shots.len(), k, options.seed);
+        let before = evaluate(space, club, ball, shots)?;
+        let mut after = vec![None; shots.len()];
+        let mut fold_values = Vec::new();
+        for f in 0..k {
+            let train: Vec<Shot> = shots.iter().zip(&fold).filter(|(_, &g)| g != f).map(|(s, _)| *s).collect();
+            let label = format!("fold {}/{k}", f + 1);
+            let fitted = fit_once(space, club, ball, &train, options, &mut |p| progress(&label, p))?;
+            fold_values.push(display(&fitted.values));
+            let fitted_club = space.club_with(club, &fitted.values);
+            let held: Vec<usize> = (0..shots.len()).filter(|&i| fold[i] == f).collect();
+            let held_shots: Vec<Shot> = held.iter().map(|&i| shots[i]).collect();
+            for (i, p) in held.iter().zip(evaluate(space, &fitted_club, ball, &held_shots)?) {
+                after[*i] = p;
+            }
+        }
+        let scales = CostScales::of(shots);
+        cv = Some(CvReport {
+            folds: k,
+            cost_before: cost(&before, shots, &scales),
+            before: field_stats(&before, shots),
+            cost_after: cost(&after, shots, &scales),
+            after: field_stats(&after, shots),
+            fold_values,
+        });
+    }
+    let cv_seconds = cv_started.elapsed().as_secs_f64();
+    let started = std::time::Instant::now();
+    let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
+    let fit_seconds = started.elapsed().as_secs_f64();
+    let scales = CostScales::of(shots);
+    let cost_before = cost(&evaluate(space, club, ball, shots)?, shots, &scales);
+    let start = display(&space.get(club));
+    let fitted_display = display(&fitted.values);
+    let params = space
+        .defs
+        .iter()
+        .enumerate()
+        .map(|(i, d)| ParamReport {
+            name: d.name.to_string(),
+            unit: d.unit.to_string(),
+            start: start[i],
+            fitted: fitted_display[i],
+            lo: d.lo * d.display_factor,
+            hi: d.hi * d.display_factor,
+        })
+        .collect();
+    let report = FitReport {
+        model: space.model.name.to_string(),
+        club: club.club.name.clone(),
+        shots: shots.len(),
+        seed: options.seed,
+        params,
+        cost_before,
+        cost: fitted.cost,
+        evaluations: fitted.evaluations,
+        fit_seconds,
+        cv_seconds,
+        cv,
+    };
+    Ok((report, space.club_with(club, &fitted.values)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folds_are_balanced_and_seeded() {
+        let f = fold_of_each(103, 5, 9);
+        let mut sizes = [0; 5];
+        for g in &f {
+            sizes[*g] += 1;
+        }
+        assert_eq!(sizes, [21, 21, 21, 20, 20]);
+        assert_eq!(fold_of_each(103, 5, 9), f);
+        assert_ne!(fold_of_each(103, 5, 10), f);
+    }
+}
