@@ -407,7 +407,7 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
             (Model::Continuous(m), true) => {
                 let r = m.simulate(&state, &equipment, 10).map_err(|e| describe(&e, &d))?;
                 Ok(Answer::Traced(TracedOutput {
-                    output: PredictOutput::new(&r.launch, &metrics, hand),
+                    output: PredictOutput::new(&r.launch, &metrics, hand, &equipment),
                     contact_time_us: r.contact_time_s * 1e6,
                     peak_normal_force_n: r.peak_normal_force_n,
                     trace: r.trace,
@@ -415,7 +415,7 @@ fn predict(args: &PredictArgs) -> Result<ExitCode> {
             }
             _ => {
                 let launch = model.as_dyn().predict(&state, &equipment).map_err(|e| describe(&e, &d))?;
-                Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand)))
+                Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand, &equipment)))
             }
         }
     })?;

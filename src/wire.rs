@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::kinematics::{ClubheadSample, Quality};
 
-use crate::impact::{Delivery, DeliveryMetrics, ImpactError, Launch, LaunchMetrics};
+use crate::impact::{Delivery, DeliveryMetrics, Equipment, ImpactError, Launch, LaunchMetrics};
 use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
@@ -175,11 +175,14 @@ pub struct PredictOutput {
     pub face_to_path_deg: Real,
     pub ball_velocity_mps: [Real; 3],
     pub ball_spin_radps: [Real; 3],
+    /// Sanity flags (`impact::sanity`): empty for a shot a golfer could hit.
+    #[serde(default)]
+    pub warnings: Vec<crate::impact::LaunchWarning>,
 }
 
 impl PredictOutput {
-    /// Builds the answer, mirroring back into the golfer's world for a left-hander.
-    pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness) -> Self {
+    /// Builds the answer with its sanity flags, mirroring back into the golfer's world for a left-hander.
+    pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness, equipment: &Equipment) -> Self {
         let (v, w) = match handedness {
             Handedness::Right => (launch.ball_velocity_mps, launch.ball_spin_radps),
             Handedness::Left => {
@@ -188,8 +191,10 @@ impl PredictOutput {
         };
         let metrics = LaunchMetrics::from_ball(&v, &w);
         let sign = if handedness == Handedness::Left { -1.0 } else { 1.0 };
+        let smash_factor = metrics.ball_speed_mps / delivery.club_speed_mps;
         PredictOutput {
-            smash_factor: metrics.ball_speed_mps / delivery.club_speed_mps,
+            warnings: crate::impact::sanity::warnings(&metrics, smash_factor, equipment),
+            smash_factor,
             launch: metrics,
             spin_loft_deg: delivery.spin_loft_deg,
             face_to_path_deg: sign * delivery.face_to_path_deg,
@@ -446,6 +451,9 @@ pub struct StatusMessage {
     pub predictions: u64,
     /// Impacts without a prediction, by reason.
     pub failed: BTreeMap<String, u64>,
+    /// Predictions that raised each sanity flag (`impact::sanity`), by flag.
+    #[serde(default)]
+    pub flagged: BTreeMap<String, u64>,
     pub latency_p50_us: f64,
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).

@@ -371,6 +371,7 @@ impl Worker {
             shots: c.shots,
             predictions: c.predictions,
             failed: c.failed.clone(),
+            flagged: c.flagged.clone(),
             latency_p50_us: self.latency.quantile(0.5),
             latency_p99_us: self.latency.quantile(0.99),
             recorder_dropped: self.recorder.dropped(),

@@ -175,7 +175,7 @@ impl SimRig {
                     t_impact_ns: t_impact,
                     club: self.club.name.clone(),
                     delivery,
-                    launch: PredictOutput::new(&l, &delivery, Default::default()),
+                    launch: PredictOutput::new(&l, &delivery, Default::default(), &self.equipment),
                 }
             })
         } else {
