@@ -24,6 +24,7 @@ pub const SPIN_AXIS_LIMIT_DEG: Real = 45.0;
 )]
 #[serde(rename_all = "snake_case")]
 pub enum LaunchWarning {
+    #[serde(rename = "spin_axis_beyond_45_deg")]
     SpinAxisBeyond45Deg,
     NegativeBackspin,
     SmashOutOfRange,
@@ -98,5 +99,9 @@ mod tests {
         assert!(warnings(&metrics(0.0, -500.0), 1.45, &eq).contains(&LaunchWarning::NegativeBackspin));
         assert_eq!(warnings(&metrics(0.0, 2500.0), 1.52, &eq), vec![LaunchWarning::SmashOutOfRange]);
         assert_eq!(warnings(&metrics(0.0, 2500.0), 0.7, &eq), vec![LaunchWarning::SmashOutOfRange]);
+        // The wire names are the status counts' names.
+        for w in [LaunchWarning::SpinAxisBeyond45Deg, LaunchWarning::NegativeBackspin, LaunchWarning::SmashOutOfRange] {
+            assert_eq!(serde_json::to_string(&w).unwrap(), format!("\"{}\"", w.as_str()));
+        }
     }
 }
