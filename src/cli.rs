@@ -724,9 +724,10 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
     let model = Model::new(args.model, crate::impact::impulse::DEFAULT_COR);
     let flight = crate::flight::Flight::default();
     let n = args.cells;
-    let (hw, hh) = (club.face_half_width_m * 1e3, club.face_half_height_m * 1e3);
-    let xs: Vec<f64> = (0..n).map(|i| -hw + 2.0 * hw * i as f64 / (n - 1) as f64).collect();
-    let ys: Vec<f64> = (0..n).map(|j| -hh + 2.0 * hh * j as f64 / (n - 1) as f64).collect();
+    // The grid spans the face's outline; cells off the face stay blank.
+    let (h0, h1, v0, v1) = club.face_outline.bounds_mm();
+    let xs: Vec<f64> = (0..n).map(|i| h0 + (h1 - h0) * i as f64 / (n - 1) as f64).collect();
+    let ys: Vec<f64> = (0..n).map(|j| v0 + (v1 - v0) * j as f64 / (n - 1) as f64).collect();
     let mut values = vec![vec![f64::NAN; n]; n];
     for (j, v) in ys.iter().enumerate() {
         for (i, h) in xs.iter().enumerate() {
@@ -766,6 +767,11 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
         MapMetric::Carry => "carry (yd)",
         MapMetric::Offline => "offline (yd, right +)",
     };
+    if values.iter().flatten().all(|v| !v.is_finite()) {
+        bail!("no impact location on the face gives a prediction for this delivery (check the club speed and angles)");
+    }
+    // The CG seen along the face normal: its offset from the face centre in the face's (h, v) coordinates.
+    let cg_mm = [-club.face.center_m.z * 1e3, -club.face.center_m.dot(&club.face.u0()) * 1e3];
     let heat = crate::plot::Heatmap {
         title: format!("{} {}: {} at {:.0} mph", club.name, model.as_dyn().name(), label, args.delivery.club_speed_mph),
         x_label: "impact location toward the toe (mm)".into(),
@@ -774,6 +780,8 @@ fn map(args: &MapArgs) -> Result<ExitCode> {
         xs,
         ys,
         values,
+        outline: club.face_outline.vertices_mm.clone(),
+        markers: vec![("face centre".into(), [0.0, 0.0]), ("CG".into(), cg_mm)],
     };
     std::fs::write(&args.output, heat.svg(760.0, 520.0))
         .with_context(|| format!("writing {}", args.output.display()))?;
