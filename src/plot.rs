@@ -288,8 +288,9 @@ impl Heatmap {
         };
         let px = |p: &[f64; 2]| (ml + to_px(&self.xs, nx, pw, p[0]), mt + ph - to_px(&self.ys, ny, ph, p[1]));
         if !self.outline.is_empty() {
-            let pts: Vec<String> = self.outline.iter().map(|p| px(p)).map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
-            let _ = write!(out, r##"<polygon points="{}" fill="none" stroke="#111" stroke-width="2"/>"##, pts.join(" "));
+            let pts: Vec<String> = self.outline.iter().map(px).map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+            let _ =
+                write!(out, r##"<polygon points="{}" fill="none" stroke="#111" stroke-width="2"/>"##, pts.join(" "));
         }
         for (name, p) in &self.markers {
             let (x, y) = px(p);

@@ -23,9 +23,7 @@ pub struct Stage {
 pub fn delivery_spread(club: &ClubSpec) -> Vec<Delivery> {
     let eq = Equipment::new(club.clone());
     let mut rng = Rng::new(0x1F2E_3D4C);
-    (0..64)
-        .filter_map(|_| Swing::new(&SwingSpec::golfer(club, &mut rng), &eq).ok().map(|s| s.delivery))
-        .collect()
+    (0..64).filter_map(|_| Swing::new(&SwingSpec::golfer(club, &mut rng), &eq).ok().map(|s| s.delivery)).collect()
 }
 
 /// Impact states for the spread.

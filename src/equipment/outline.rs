@@ -72,10 +72,11 @@ impl FaceOutline {
 
     /// The smallest box holding the outline: (h min, h max, v min, v max), mm.
     pub fn bounds_mm(&self) -> (Real, Real, Real, Real) {
-        self.vertices_mm.iter().fold(
-            (Real::INFINITY, Real::NEG_INFINITY, Real::INFINITY, Real::NEG_INFINITY),
-            |(a, b, c, d), [h, v]| (a.min(*h), b.max(*h), c.min(*v), d.max(*v)),
-        )
+        self.vertices_mm
+            .iter()
+            .fold((Real::INFINITY, Real::NEG_INFINITY, Real::INFINITY, Real::NEG_INFINITY), |(a, b, c, d), [h, v]| {
+                (a.min(*h), b.max(*h), c.min(*v), d.max(*v))
+            })
     }
 
     /// Checks that the outline is a polygon of finite vertices around the face centre.

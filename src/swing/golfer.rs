@@ -106,12 +106,7 @@ impl GolferProfile {
     /// amateur 74 mph (the tour's 7-iron-to-driver speed ratio applied to 93.4 mph), shallower and with more
     /// loft delivered.
     pub const IRON: GolferProfile = GolferProfile {
-        tour: Player {
-            club_speed_mph: 90.0,
-            attack_angle_deg: -4.3,
-            spin_loft_over_static_deg: 1.0,
-            impact_v_mm: 0.0,
-        },
+        tour: Player { club_speed_mph: 90.0, attack_angle_deg: -4.3, spin_loft_over_static_deg: 1.0, impact_v_mm: 0.0 },
         amateur: Player {
             club_speed_mph: 74.4,
             attack_angle_deg: -2.5,
@@ -154,8 +149,10 @@ impl GolferProfile {
         let u = rng.unit();
         let lerp = |a: Real, t: Real| a + (t - a) * u;
         let (am, tour, sa, st) = (&self.amateur, &self.tour, &self.amateur_spread, &self.tour_spread);
-        let speed_mph = lerp(am.club_speed_mph, tour.club_speed_mph) * (1.0 + lerp(sa.club_speed, st.club_speed) * clipped(rng));
-        let attack = lerp(am.attack_angle_deg, tour.attack_angle_deg) + lerp(sa.attack_angle_deg, st.attack_angle_deg) * clipped(rng);
+        let speed_mph =
+            lerp(am.club_speed_mph, tour.club_speed_mph) * (1.0 + lerp(sa.club_speed, st.club_speed) * clipped(rng));
+        let attack = lerp(am.attack_angle_deg, tour.attack_angle_deg)
+            + lerp(sa.attack_angle_deg, st.attack_angle_deg) * clipped(rng);
         let spin_loft = club.loft_deg()
             + lerp(am.spin_loft_over_static_deg, tour.spin_loft_over_static_deg)
             + lerp(sa.spin_loft_deg, st.spin_loft_deg) * clipped(rng);
