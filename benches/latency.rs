@@ -3,6 +3,8 @@
 //! frame that reveals the impact to it receiving the prediction, and the daemon's own `latency_us` (callback to
 //! publish). Prints p50/p99/max. `cargo bench --bench latency [-- SHOTS]`.
 
+#![allow(clippy::unwrap_used)]
+
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

@@ -1,5 +1,7 @@
 //! Criterion benchmarks of the stages `impactd bench` reports (see `impactd::stages`).
 
+#![allow(clippy::unwrap_used)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn stages(c: &mut Criterion) {

@@ -1,6 +1,8 @@
 //! Runs one `impactd bench` stage a fixed number of times (for instruction-count profilers).
 //! Usage: `stage_loop NAME [N]`.
 
+#![allow(clippy::unwrap_used)]
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let name = args.next().expect("usage: stage_loop NAME [N]");

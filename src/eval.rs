@@ -4,9 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::equipment::ClubSpec;
-use crate::impact::{
-    DeliveryMetrics, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant, LaunchMetrics,
-};
+use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpactState, LaunchMetrics};
 use crate::kinematics::{Calibration, DetectorConfig, EstimatorSpec, ImpactDetector, Track, TrackLimits};
 use crate::math::Real;
 use crate::rng::Rng;
@@ -16,6 +14,8 @@ use crate::swing::{sample, Sampling, Swing, SwingSpec};
 #[derive(Debug, Clone)]
 pub struct EvalConfig {
     pub club: ClubSpec,
+    /// The model whose launch errors are reported (from `impact::registry`; the adjusted model by default).
+    pub launch_model: std::sync::Arc<dyn ImpactModel>,
     pub rate_hz: Real,
     pub shots: usize,
     pub noise_mm: Real,
@@ -108,9 +108,9 @@ struct Acc {
 impl Acc {
     fn add(&mut self, e: &[Real; 13]) {
         self.n += 1;
-        for i in 0..13 {
-            self.sums[i] += e[i] * e[i];
-            self.maxes[i] = self.maxes[i].max(e[i].abs());
+        for ((sum, max), e) in self.sums.iter_mut().zip(self.maxes.iter_mut()).zip(e) {
+            *sum += e * e;
+            *max = max.max(e.abs());
         }
     }
     fn errors(&self) -> Errors {
@@ -136,8 +136,8 @@ impl Acc {
     }
 }
 
-fn launch(state: &ImpactState, eq: &Equipment) -> Option<LaunchMetrics> {
-    let l = ImpulseModel::new(ImpulseVariant::Adjusted).predict(state, eq).ok()?;
+fn launch(model: &dyn ImpactModel, state: &ImpactState, eq: &Equipment) -> Option<LaunchMetrics> {
+    let l = model.predict(state, eq).ok()?;
     Some(LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps))
 }
 
@@ -176,14 +176,14 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
             }
         }
         let truth = DeliveryMetrics::from_state(&swing.truth, &config.club);
-        let truth_launch = launch(&swing.truth, &eq);
+        let truth_launch = launch(config.launch_model.as_ref(), &swing.truth, &eq);
         for (i, _) in config.estimators.iter().enumerate() {
             let reason = match detections.as_ref().map(|d| &d[i].result) {
                 None => Some("not_detected".to_string()),
                 Some(Err(e)) => Some(e.key().to_string()),
                 Some(Ok(est)) => {
                     let m = DeliveryMetrics::from_state(&est.state, &config.club);
-                    match (launch(&est.state, &eq), truth_launch) {
+                    match (launch(config.launch_model.as_ref(), &est.state, &eq), truth_launch) {
                         (Some(l), Some(t)) => {
                             accs[i].add(&[
                                 100.0 * (m.club_speed_mps - truth.club_speed_mps) / truth.club_speed_mps,

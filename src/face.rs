@@ -110,7 +110,7 @@ impl Face {
                     // rho = R_bulge - R_roll (1 - cos psi)
                     let rho = bulge_radius_m - v_arc;
                     let s = h_m / rho;
-                    if !(rho > 0.0) || s.abs() >= 1.0 {
+                    if rho.is_nan() || rho <= 0.0 || s.abs() >= 1.0 {
                         return Err(outside());
                     }
                     let c = (1.0 - s * s).sqrt();

@@ -29,22 +29,26 @@ pub enum JsonlError {
     Write(#[source] std::io::Error),
 }
 
-/// The error message for a line that is not a valid `T`, naming the field where serde can.
-pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, String> {
-    serde_json::from_str(line).map_err(|e| {
-        let msg = e.to_string();
-        match e.classify() {
-            serde_json::error::Category::Syntax | serde_json::error::Category::Eof => {
-                format!("not valid JSON: {msg}")
-            }
-            _ => msg,
-        }
+/// Why a line is not a valid message; the message names the field where serde can.
+#[derive(Debug, thiserror::Error)]
+pub enum ParseError {
+    #[error("not valid JSON: {0}")]
+    Syntax(serde_json::Error),
+    #[error("{0}")]
+    Data(serde_json::Error),
+}
+
+/// Parses one line as a `T`.
+pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, ParseError> {
+    serde_json::from_str(line).map_err(|e| match e.classify() {
+        serde_json::error::Category::Syntax | serde_json::error::Category::Eof => ParseError::Syntax(e),
+        _ => ParseError::Data(e),
     })
 }
 
 /// Runs `answer` over every non-blank line of `input`, writing one JSON line per input line to `out` and one
 /// message per bad line to `err` (`<tool>: line N: <reason>`).
-pub fn process<I, O, F>(
+pub fn process<I, O, E, F>(
     tool: &str,
     input: impl BufRead,
     mut out: impl Write,
@@ -54,16 +58,26 @@ pub fn process<I, O, F>(
 where
     I: DeserializeOwned,
     O: Serialize,
-    F: FnMut(I) -> Result<O, String>,
+    E: std::fmt::Display,
+    F: FnMut(I) -> Result<O, E>,
 {
     let mut tally = Tally::default();
-    for (i, line) in input.lines().enumerate() {
-        let line = line.map_err(JsonlError::Read)?;
-        if line.trim().is_empty() {
-            continue;
+    let mut input = input;
+    let mut buf = Vec::new();
+    for n in 1.. {
+        buf.clear();
+        if input.read_until(b'\n', &mut buf).map_err(JsonlError::Read)? == 0 {
+            break;
         }
-        let n = i + 1;
-        let result = parse_line::<I>(&line).and_then(&mut answer);
+        // A line that is not UTF-8 is answered like any other bad line.
+        let result = match std::str::from_utf8(&buf) {
+            Ok(line) if line.trim().is_empty() => continue,
+            Ok(line) => match parse_line::<I>(line) {
+                Ok(i) => answer(i).map_err(|e| e.to_string()),
+                Err(e) => Err(e.to_string()),
+            },
+            Err(e) => Err(format!("not UTF-8 text: {e}")),
+        };
         let text = match result {
             Ok(o) => {
                 tally.answered += 1;

@@ -48,9 +48,9 @@
 //! # }
 //! ```
 
-pub mod cli;
-#[cfg(feature = "daemon")]
-pub mod cli_daemon;
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
+pub mod capped;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;
@@ -58,11 +58,13 @@ pub mod eval;
 pub mod face;
 pub mod flight;
 pub mod impact;
+pub mod integrate;
 pub mod jsonl;
 pub mod kinematics;
 pub mod math;
 pub mod pipeline;
 pub mod plot;
+pub mod predict;
 pub mod rng;
 pub mod stages;
 pub mod swing;

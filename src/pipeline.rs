@@ -4,54 +4,22 @@
 use std::collections::BTreeMap;
 
 use crate::equipment::ClubSpec;
-use crate::impact::{ContinuousModel, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use std::sync::Arc;
+
+use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
 use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput};
 
-/// Which model(s) predict a rig's shots.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ModelChoice {
-    Impulse(ImpulseModel),
-    Continuous(ContinuousModel),
-    /// The impulse-momentum prediction at once, the continuous one when it is ready, each labelled.
-    Both(ImpulseModel, ContinuousModel),
-}
-
-impl ModelChoice {
-    /// `standard`, `adjusted`, `slip`, `continuous` or `both` (adjusted then continuous), with the impulse
-    /// models' COR.
-    pub fn parse(name: &str, cor: f64) -> Option<Self> {
-        match name {
-            "continuous" => Some(ModelChoice::Continuous(ContinuousModel::default())),
-            "both" => Some(ModelChoice::Both(
-                ImpulseModel::new(ImpulseVariant::Adjusted).with_cor(cor),
-                ContinuousModel::default(),
-            )),
-            other => ImpulseVariant::parse(other).map(|v| ModelChoice::Impulse(ImpulseModel::new(v).with_cor(cor))),
-        }
-    }
-
-    pub const NAMES: &'static str = "standard, adjusted, slip, continuous or both";
-
-    /// The models in the order their predictions are published.
-    pub fn models(&self) -> Vec<&dyn ImpactModel> {
-        match self {
-            ModelChoice::Impulse(m) => vec![m],
-            ModelChoice::Continuous(m) => vec![m],
-            ModelChoice::Both(a, b) => vec![a, b],
-        }
-    }
-}
-
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
 pub struct RigSetup {
     pub name: String,
     pub club: ClubSpec,
-    pub model: ModelChoice,
+    /// The models, in the order their predictions are published (built by `impact::registry`).
+    pub models: Vec<Arc<dyn ImpactModel>>,
     pub estimator: EstimatorSpec,
     pub calibration: Calibration,
     pub detector: DetectorConfig,
@@ -67,7 +35,7 @@ impl RigSetup {
         RigSetup {
             name: name.to_string(),
             club,
-            model: ModelChoice::Impulse(ImpulseModel::new(ImpulseVariant::Adjusted)),
+            models: vec![Arc::new(ImpulseModel::new(ImpulseVariant::Adjusted))],
             estimator: EstimatorSpec::arc(),
             calibration: Calibration::default(),
             detector: DetectorConfig::default(),
@@ -98,6 +66,8 @@ pub struct Counts {
     pub accepted: u64,
     pub occluded: u64,
     pub dropped: u64,
+    /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
+    pub resets: u64,
     pub rejected: BTreeMap<String, u64>,
     pub shots: u64,
     pub predictions: u64,
@@ -138,7 +108,9 @@ impl Pipeline {
     /// model has run).
     pub fn on_sample_with(&mut self, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
         self.counts.samples += 1;
-        match self.track.push(sample) {
+        let pushed = self.track.push(sample);
+        self.counts.resets = self.track.counts.resets;
+        match pushed {
             Err(reason) => {
                 *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
                 out(Event::Rejected { frame: sample.frame, reason });
@@ -184,8 +156,8 @@ impl Pipeline {
             delivery,
             quality: est.quality,
         }));
-        let model = self.setup.model;
-        for m in model.models() {
+        for i in 0..self.setup.models.len() {
+            let m = Arc::clone(&self.setup.models[i]);
             match m.predict(&est.state, &self.equipment) {
                 Ok(launch) => {
                     self.counts.predictions += 1;

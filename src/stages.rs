@@ -3,8 +3,11 @@
 
 use std::time::Instant;
 
-use crate::equipment::ClubSpec;
-use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
+use std::sync::Arc;
+
+use crate::equipment::{ClubSpec, LoadedClub, ModelSections};
+use crate::impact::registry::{self, BuildOptions};
+use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState};
 use crate::kinematics::estimate::estimate;
 use crate::kinematics::{Calibration, ClubPose, EstimatorSpec, Scene, Track, TrackLimits};
 use crate::math::Vector3;
@@ -32,7 +35,7 @@ pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
 }
 
 /// One prediction of `model` per operation on the club's spread of impact states.
-fn model_stage(name: String, model: impl ImpactModel + 'static, club: ClubSpec) -> Stage {
+fn model_stage(name: String, model: Arc<dyn ImpactModel>, club: ClubSpec) -> Stage {
     let eq = Equipment::new(club);
     let states = state_spread(&eq);
     Stage {
@@ -44,25 +47,45 @@ fn model_stage(name: String, model: impl ImpactModel + 'static, club: ClubSpec) 
     }
 }
 
-/// The impulse-momentum stages: `impulse/<variant>/<club>`, one prediction per operation.
-pub fn impulse_stages() -> Vec<Stage> {
-    ImpulseVariant::ALL
-        .into_iter()
-        .flat_map(|variant| {
-            [ClubSpec::driver(), ClubSpec::iron7()].map(|club| {
-                model_stage(format!("impulse/{}/{}", variant.as_str(), club.name), ImpulseModel::new(variant), club)
-            })
-        })
-        .collect()
+/// Every registered model on both presets: `<model name>/<club>` (`impulse/adjusted/driver`,
+/// `continuous/two_layer/iron7`, ...), one prediction per operation.
+pub fn model_stages() -> Vec<Stage> {
+    let mut stages = Vec::new();
+    for entry in registry::MODELS {
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let loaded = LoadedClub { club, sections: ModelSections::default() };
+            if let Ok(model) = registry::build_one(entry.name, &loaded, &BuildOptions::default()) {
+                stages.push(model_stage(format!("{}/{}", model.name(), loaded.club.name), model, loaded.club));
+            }
+        }
+    }
+    stages
 }
 
-/// The continuous two-layer model: `continuous/two_layer/<club>`, one prediction per operation.
-pub fn continuous_stages() -> Vec<Stage> {
-    [ClubSpec::driver(), ClubSpec::iron7()]
-        .map(|club| {
-            model_stage(format!("continuous/two_layer/{}", club.name), crate::impact::ContinuousModel::default(), club)
-        })
-        .into()
+/// The iron-plus-ground model on firm soil, a fat strike (15 mm up the face: the sole meets the ground 2.9 ms
+/// before the ball): `ground/firm/iron7_fat`, one prediction (to the ball's release) per operation.
+pub fn ground_stages() -> Vec<Stage> {
+    use crate::equipment::soil::SoilSpec;
+    use crate::impact::continuous::iron_ground::GroundModel;
+    let eq = Equipment::new(ClubSpec::iron7());
+    let plane = 60f64.to_radians();
+    let fat = Delivery {
+        club_speed_mps: 90.0 * crate::units::MPS_PER_MPH,
+        attack_angle_rad: (-4.3f64).to_radians(),
+        club_path_rad: 0.0,
+        face_angle_rad: 0.0,
+        dynamic_loft_rad: 25f64.to_radians(),
+        impact_h_m: 0.0,
+        impact_v_m: 0.015,
+        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
+    };
+    let (Ok(model), Ok(state)) = (GroundModel::new(SoilSpec::firm()).prepare(&eq), fat.to_state(&eq)) else {
+        return Vec::new();
+    };
+    vec![Stage {
+        name: "ground/firm/iron7_fat".into(),
+        run: Box::new(move |_| model.predict(&state, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)),
+    }]
 }
 
 /// Pre-impact frames of 32 noisy synthetic swings at 720 Hz (0.2 mm, 0.1 deg), with their revealing times.
@@ -160,7 +183,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
     out
 }
 
-/// One ball flight per operation: `flight/trajectory`, over the TrackMan table's launches.
+/// One ball flight with its bounce and roll per operation: `flight/trajectory`, over the TrackMan table's launches.
 pub fn flight_stages() -> Vec<Stage> {
     let rows = crate::flight::fit::parse_table(crate::flight::fit::TRACKMAN_CSV).unwrap_or_default();
     let launches: Vec<crate::flight::LaunchState> = rows
@@ -184,8 +207,8 @@ pub fn flight_stages() -> Vec<Stage> {
 
 /// Every stage `impactd bench` times.
 pub fn all_stages() -> Vec<Stage> {
-    let mut stages = impulse_stages();
-    stages.extend(continuous_stages());
+    let mut stages = model_stages();
+    stages.extend(ground_stages());
     stages.extend(extrapolation_stages());
     stages.extend(flight_stages());
     stages.extend(pipeline_stages());

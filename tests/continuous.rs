@@ -1,7 +1,11 @@
 //! The continuous two-layer model (seed section 3.2.1, Table 3.5): conservation, dissipation, contact time and
 //! peak force, convergence, and its agreement with the adjusted impulse-momentum model where it holds.
 
-use impactd::equipment::ClubSpec;
+#![allow(clippy::unwrap_used)]
+
+use impactd::equipment::{BallSpec, ClubFile, ClubSpec};
+use impactd::impact::continuous::TwoLayerParams;
+use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::{ContinuousModel, Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
 use impactd::math::Vector3;
 use impactd::rng::Rng;
@@ -23,15 +27,22 @@ fn clubs() -> [(ClubSpec, f64, f64); 2] {
     [(ClubSpec::driver(), 13.0, -1.3), (ClubSpec::iron7(), 25.0, -4.3)]
 }
 
-/// The presets and the one-cycle clubs of `clubs/`, for the checks every parameter set must pass.
-fn all_clubs() -> [(ClubSpec, f64, f64); 4] {
-    let file = |text: &str| ClubSpec::from_toml_str(text).unwrap();
-    let [a, b] = clubs();
+/// The presets and the one-cycle clubs of `clubs/`, each with the model its file's `[continuous]` section
+/// gives, for the checks every parameter set must pass.
+fn all_clubs() -> [(ClubSpec, ContinuousModel, f64, f64); 4] {
+    let file = |text: &str| {
+        let loaded = ClubFile::parse(text).unwrap();
+        let params = TwoLayerParams::from_sections(&loaded.sections, &BallSpec::SEED).unwrap();
+        (loaded.club, ContinuousModel { params, ..ContinuousModel::default() })
+    };
+    let [(a, la, aa), (b, lb, ab)] = clubs();
+    let (c, mc) = file(include_str!("../clubs/driver-one-cycle.toml"));
+    let (d, md) = file(include_str!("../clubs/iron7-one-cycle.toml"));
     [
-        a,
-        b,
-        (file(include_str!("../clubs/driver-one-cycle.toml")), 13.0, -1.3),
-        (file(include_str!("../clubs/iron7-one-cycle.toml")), 25.0, -4.3),
+        (a, ContinuousModel::default(), la, aa),
+        (b, ContinuousModel::default(), lb, ab),
+        (c, mc, 13.0, -1.3),
+        (d, md, 25.0, -4.3),
     ]
 }
 
@@ -42,7 +53,7 @@ fn all_clubs() -> [(ClubSpec, f64, f64); 4] {
 #[test]
 fn momentum_conserved_and_energy_never_increases() {
     let mut rng = Rng::new(17);
-    for (club, loft, attack) in all_clubs() {
+    for (club, model, loft, attack) in all_clubs() {
         let eq = Equipment::new(club.clone());
         for _ in 0..12 {
             let d = Delivery {
@@ -60,7 +71,7 @@ fn momentum_conserved_and_energy_never_increases() {
                 ..delivery(40.0, attack, loft)
             };
             let state = d.to_state(&eq).unwrap();
-            let r = ContinuousModel::default().simulate(&state, &eq, 1).unwrap();
+            let r = model.simulate(&state, &eq, 1).unwrap();
             let (l0, a0) = r.momentum_before;
             let (l1, a1) = r.momentum_after;
             assert!((l1 - l0).norm() <= 1e-9 * l0.norm(), "{} linear {:e}", club.name, (l1 - l0).norm() / l0.norm());
@@ -99,11 +110,11 @@ fn driver_contact_time_and_peak_force() {
 /// clubs).
 #[test]
 fn the_integration_converges() {
-    for (club, loft, attack) in all_clubs() {
+    for (club, model, loft, attack) in all_clubs() {
         let eq = Equipment::new(club.clone());
         let state =
             Delivery { impact_h_m: 0.01, impact_v_m: 0.004, ..delivery(45.0, attack, loft) }.to_state(&eq).unwrap();
-        let run = |step_s: f64| ContinuousModel { step_s, ..ContinuousModel::default() }.predict(&state, &eq).unwrap();
+        let run = |step_s: f64| ContinuousModel { step_s, ..model }.predict(&state, &eq).unwrap();
         let (a, b) = (run(ContinuousModel::default().step_s), run(ContinuousModel::default().step_s / 2.0));
         let dv = (a.ball_velocity_mps.norm() - b.ball_velocity_mps.norm()).abs() / b.ball_velocity_mps.norm();
         let dw = (a.ball_spin_radps - b.ball_spin_radps).norm() / b.ball_spin_radps.norm();
@@ -161,11 +172,13 @@ fn one_cycle_ball_agrees_with_the_adjusted_model_and_reverses() {
         (include_str!("../clubs/iron7-one-cycle.toml"), 25.0, -4.3),
     ];
     for (text, loft, attack) in files {
-        let club = ClubSpec::from_toml_str(text).unwrap();
+        let loaded = ClubFile::parse(text).unwrap();
+        let club = loaded.club.clone();
+        let model = registry::build_one("continuous", &loaded, &BuildOptions::default()).unwrap();
         let eq = Equipment::new(club.clone());
         for speed in [35.0, 40.0, 45.0, 50.0, 55.0] {
             let state = delivery(speed, attack, loft).to_state(&eq).unwrap();
-            let r = ContinuousModel::default().simulate(&state, &eq, 1).unwrap();
+            let r = model.trace(&state, &eq, 1).unwrap().unwrap();
             let i = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&state, &eq).unwrap();
             let (c, i) = (
                 LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps),

@@ -1,6 +1,8 @@
 //! The daemon for real, in one process over loopback zenoh (peer mode, multicast scouting off): a synthetic rig
 //! publishes, the daemon predicts and records, subscribers listen; the recording is read back by an independent
 //! reader (Python's `mcap`), replayed byte for byte, and salvaged after `kill -9`.
+
+#![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
 use std::collections::HashMap;
@@ -54,7 +56,7 @@ async fn start_daemon(config: &str, record: Option<&Path>) -> Daemon {
     let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
     let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let options = RunOptions { record: record.map(Path::to_path_buf) };
+    let options = RunOptions { record: record.map(Path::to_path_buf), ..Default::default() };
     let task = tokio::spawn(async move {
         let summary = impactd::daemon::run(config, setups, &session, options, async {
             let _ = stopped.await;
@@ -428,4 +430,67 @@ async fn sigterm_closes_the_recording() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Channels of a recording: topic -> (schema name, message count), read with the `mcap` crate.
+fn channels(path: &Path) -> std::collections::BTreeMap<String, (String, u64)> {
+    let bytes = std::fs::read(path).unwrap();
+    let mut out = std::collections::BTreeMap::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        let schema = m.channel.schema.as_ref().map(|s| s.name.clone()).unwrap_or_default();
+        out.entry(m.channel.topic.clone()).or_insert((schema, 0)).1 += 1;
+    }
+    out
+}
+
+/// `impactd replay --publish -o` writes through the daemon's sinks: it publishes impact, launch and status on the
+/// daemon's keys, and its recording has every topic of the live recording with the same schema, the same samples,
+/// impacts and launches, and the launches byte for byte.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn replay_publishes_and_records_what_run_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let live = dir.path().join("live.mcap");
+    let shots = 2;
+    let daemon =
+        start_daemon("status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n", Some(&live)).await;
+    let rig = client(&daemon.endpoint).await;
+    run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 5), std::future::pending()).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(700)).await;
+    daemon.stop().await;
+    rig.close().await.unwrap();
+
+    // The replay publishes on a session that also subscribes to the daemon's keys.
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let session = ZenohArgs::loopback(vec![endpoint], vec![]).open().await.unwrap();
+    let (impacts, _s1) = collect::<serde_json::Value>(&session, &keys::impact("bay1"));
+    let (launches, _s2) = collect::<LaunchPrediction>(&session, &keys::launch("bay1"));
+    let (statuses, _s3) = collect::<StatusMessage>(&session, &keys::status("bay1"));
+    let input = replay::load(&live).unwrap();
+    let (config, setups) = replay::resolve_config(&input, None).unwrap();
+    let replayed = dir.path().join("replayed.mcap");
+    let options = replay::ReplayOptions { rate: None, output: Some(replayed.clone()) };
+    let report = replay::run(&input, &config, setups, Some(&session), &options, |_, _| {}).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    session.close().await.unwrap();
+    assert!(report.reproduces_recording(), "{report:?}");
+    assert_eq!(report.produced, shots as usize);
+    assert_eq!(impacts.lock().unwrap().len(), shots as usize);
+    assert_eq!(launches.lock().unwrap().len(), shots as usize);
+    let statuses = statuses.lock().unwrap();
+    assert!(statuses.last().is_some_and(|s| s.predictions == shots && s.shots == shots), "{statuses:?}");
+
+    let (a, b) = (channels(&live), channels(&replayed));
+    for (topic, (schema, n)) in &a {
+        let (replay_schema, replay_n) =
+            b.get(topic).unwrap_or_else(|| panic!("{topic} missing from the replay: {b:?}"));
+        assert_eq!(schema, replay_schema, "{topic}");
+        if !topic.ends_with("/status") {
+            assert_eq!(n, replay_n, "{topic}");
+        }
+    }
+    for topic in ["/mocap/bay1/clubhead", "/golf/bay1/impact", "/golf/bay1/launch", "/golf/bay1/status"] {
+        assert!(b.contains_key(topic), "{topic} missing from the replay: {b:?}");
+    }
+    assert_eq!(replay::load(&replayed).unwrap().recorded_launches, input.recorded_launches);
 }

@@ -1,7 +1,12 @@
-//! Ball flight: closed forms, symmetry, the landing's accuracy, and the fit to the TrackMan tour averages.
+//! Ball flight: closed forms, symmetry, the landing's accuracy, the aerodynamic coefficients against published
+//! measurements, the fit to the TrackMan tour averages and its cross-validation, slower players' drives against
+//! TrackMan's model, and bounce and roll.
 
-use impactd::flight::{fit, Aero, Conditions, Flight};
-use impactd::units::mph_to_mps;
+#![allow(clippy::unwrap_used)]
+
+use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
+use impactd::flight::{cv, fit, Aero, Conditions, Flight, Ground};
+use impactd::units::{mph_to_mps, rpm_to_radps};
 
 /// Closed form: with no drag and no lift the ball flies the vacuum parabola: range v² sin 2θ / g, apex
 /// v² sin² θ / (2g), time 2 v sin θ / g, landing at the launch angle and speed.
@@ -78,62 +83,146 @@ fn thinner_air_and_a_tailwind_carry_further() {
     assert!(cross.offline_m > 3.0, "a left-to-right wind moves the ball right");
 }
 
-/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED` (the issue's target): every club
-/// within carry 3 yd, apex 2 yd and land angle 2 deg, the largest error 0.97 of its target (README lists them).
-#[test]
-fn every_club_is_within_the_trackman_targets() {
-    let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
-    assert_eq!(rows.len(), 12);
-    let mut within = 0;
-    for r in &rows {
-        let (carry, apex, land) = fit::predict(&Aero::FITTED, r);
-        let (dc, da, dl) =
-            ((carry - r.carry_yd).abs(), (apex - r.max_height_yd).abs(), (land - r.land_angle_deg).abs());
-        assert!(
-            dc <= 3.0 && da <= 2.0 && dl <= 2.0,
-            "{}: carry {carry:.1} ({}), apex {apex:.1} ({}), land {land:.1} ({})",
-            r.club,
-            r.carry_yd,
-            r.max_height_yd,
-            r.land_angle_deg
-        );
-        if dc <= 3.0 && da <= 2.0 && dl <= 2.0 {
-            within += 1;
-        }
-    }
-    assert_eq!(within, 12);
-    assert!(fit::worst(&Aero::FITTED, &rows) < 0.975);
+/// Model coefficients at sea level (the fit's air) for airspeed `v` and spin `rpm`, with the spin ratio.
+fn model(v: f64, rpm: f64) -> (f64, f64, f64) {
+    let f = Flight::default();
+    let c = f.conditions;
+    let r = f.ball.radius_m;
+    let re = impactd::flight::aero::reynolds(v, 2.0 * r, c.density_kg_m3(), c.viscosity_pa_s());
+    let s = r * rpm_to_radps(rpm) / v;
+    let (d, l) = Aero::FITTED.coefficients(re, s);
+    (d, l, s)
 }
 
-/// The fit is reproducible: from `fit::START`, `impactd flight-fit` (3000 Nelder-Mead iterations per run, then the
-/// minimax stage) lands on the coefficients in `Aero::FITTED`.
+/// Over 20-90 m/s and 1,000-11,000 rpm the fitted drag and lift stay within the published measurements: between
+/// the lower and the higher of Bearman and Harvey's wind tunnel and Lyu et al.'s free flight at the same airspeed
+/// and spin (each held at the edge of what it measured), widened by the ball-to-ball spread Lyu et al. report
+/// (under 0.05 above Re 10⁵, over 0.1 below, here 0.05 and 0.10).
+#[test]
+fn drag_and_lift_stay_within_the_published_measurements() {
+    for v in (20..=90).step_by(5).map(f64::from) {
+        for rpm in (1000..=11000).step_by(500).map(f64::from) {
+            let (drag, lift, s) = model(v, rpm);
+            let (lyu_d, lyu_l) = lyu(v, s);
+            let (bh_d, bh_l) = (bearman_harvey(&BH_CD, v, rpm), bearman_harvey(&BH_CL, v, rpm));
+            let tol = if v * 0.043 / 1.48e-5 >= 1e5 { 0.05 } else { 0.10 };
+            let (d_lo, d_hi) = (bh_d.min(lyu_d) - tol, bh_d.max(lyu_d) + tol);
+            let (l_lo, l_hi) = (bh_l.min(lyu_l) - tol, bh_l.max(lyu_l) + tol);
+            assert!(
+                (d_lo..=d_hi).contains(&drag),
+                "C_D {drag:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {d_lo:.3}-{d_hi:.3}"
+            );
+            assert!(
+                (l_lo..=l_hi).contains(&lift),
+                "C_L {lift:.3} at {v} m/s, {rpm} rpm (S {s:.2}): {l_lo:.3}-{l_hi:.3}"
+            );
+        }
+    }
+}
+
+/// Above the drag crisis the drag at a fixed spin ratio does not rise with airspeed more than the strictest
+/// source, Bearman and Harvey's wind tunnel, shows between 40 and 88 m/s (Lyu et al.'s free-flight fit rises
+/// far more, 0.19 to 0.40): the model's rise is at most theirs.
+#[test]
+fn drag_above_the_crisis_rises_no_more_than_measured() {
+    let r = 0.0213;
+    for s in [0.12, 0.15, 0.18] {
+        let rpm = |v: f64| impactd::units::radps_to_rpm(s * v / r);
+        let bh_rise = bearman_harvey(&BH_CD, 88.1, rpm(88.1)) - bearman_harvey(&BH_CD, 40.0, rpm(40.0));
+        let (lo, _, _) = model(40.0, rpm(40.0));
+        let (hi, _, _) = model(88.1, rpm(88.1));
+        assert!(hi - lo <= bh_rise.max(0.0) + 1e-9, "S {s}: model {:+.3}, Bearman and Harvey {bh_rise:+.3}", hi - lo);
+    }
+}
+
+/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`. Within the measured ranges the
+/// table cannot be met to issue 19's 4 yd, 3 yd, 3 deg: the driver and the 3-wood (275 and 243 yd from nearly the
+/// same launch) pull opposite ways, and the best bounded fit leaves every club within 5.7 yd, 4.3 yd and 4.3 deg,
+/// the largest error 1.41 of those targets (`impactd flight-fit`; `docs/flight.md` lists every club).
+#[test]
+fn every_club_is_near_the_trackman_table() {
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
+    assert_eq!(rows.len(), 12);
+    for c in cv::club_errors(&Aero::FITTED, &rows) {
+        assert!(c.within(5.7, 4.3, 4.3), "{c:?}");
+    }
+    assert!(fit::worst(&Aero::FITTED, &rows) < 1.41);
+}
+
+/// The fit is reproducible: from `fit::START` and the table, `impactd flight-fit` lands on `Aero::FITTED`.
 #[test]
 fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
     let (mut runs, mut minimax) = (0, 0);
-    let result = fit::fit(&rows, &fit::START, 3000, |step| match step {
+    let result = fit::fit(&rows, &fit::START, fit::ITERATIONS, |step| match step {
         fit::Step::Run(..) => runs += 1,
         fit::Step::Minimax(..) => minimax += 1,
     });
-    let aero = result.aero;
-    let f = Aero::FITTED;
-    let pairs = [
-        (aero.c_d0, f.c_d0),
-        (aero.c_ds, f.c_ds),
-        (aero.c_dq, f.c_dq),
-        (aero.c_dc, f.c_dc),
-        (aero.c_dv, f.c_dv),
-        (aero.c_lv, f.c_lv),
-        (aero.v_crisis_mps, f.v_crisis_mps),
-        (aero.v_width_mps, f.v_width_mps),
-        (aero.c_l1, f.c_l1),
-        (aero.c_l2, f.c_l2),
-        (aero.spin_tau_s, f.spin_tau_s),
-    ];
-    for (got, shipped) in pairs {
-        assert!((got - shipped).abs() <= 1e-6 * shipped.abs(), "{got} vs {shipped}");
+    let bounds = impactd::flight::aero::BOUNDS;
+    for ((got, shipped), (lo, hi)) in result.aero.to_array().iter().zip(Aero::FITTED.to_array()).zip(bounds) {
+        assert!((got - shipped).abs() <= 1e-6 * (hi - lo), "{got} vs {shipped}");
     }
-    assert!((result.worst - fit::worst(&f, &rows)).abs() < 1e-9 && runs >= 2 && minimax >= 2);
-    // The minimax stage lowers the largest error the sum of squares leaves.
-    assert!(result.worst < 0.975);
+    assert!((result.worst - fit::worst(&Aero::FITTED, &rows)).abs() < 1e-6 && runs >= 1 && minimax >= 1);
+}
+
+/// Leave-one-club-out: each club predicted by a fit to the other eleven. Measured: carry within 6.2 %, apex
+/// within 3.0 yd, land angle within 5.6 deg, the driver the worst (issue 19 asks 5 %, 4 yd, 4 deg; the driver,
+/// the table's only club at its speed and spin ratio, is an extrapolation for the other eleven).
+#[test]
+fn leave_one_club_out_errors() {
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
+    let v = cv::leave_one_out(&rows, fit::ITERATIONS, |_| {});
+    assert_eq!(v.holdouts.len(), 12);
+    assert!(v.max_carry_error_pct <= 6.2, "{v:?}");
+    assert!(v.max_apex_error_yd <= 3.0, "{v:?}");
+    assert!(v.max_land_angle_error_deg <= 5.6, "{v:?}");
+    // Without the driver every other club is within 4 % and 3 yd.
+    for h in v.holdouts.iter().filter(|h| h.club != "driver") {
+        assert!(h.carry_error_pct.abs() <= 4.0 && h.apex_error_yd.abs() <= 3.0, "{h:?}");
+    }
+}
+
+/// Slower players' drives against TrackMan's own trajectory model: Andrew Rice's chart made with TrackMan
+/// ("Optimal Driver Numbers": no wind, flat, normal ground, sea level, premium ball, +5 deg attack, 1900-2200
+/// rpm) gives at 85, 90 and 95 mph of club speed 126, 133 and 140 mph of ball speed at 14.6, 14.2 and 13.7 deg,
+/// carrying 193, 209 and 225 yd and totalling 242, 256 and 271 yd. The model carries within 5 % across the
+/// stated spin range, and on Penner's fairway (firmness 0.5) totals within 5 %.
+#[test]
+fn slower_drives_agree_with_trackman() {
+    let f = Flight::default();
+    for (ball_mph, launch, carry, total) in
+        [(126.0, 14.6, 193.0, 242.0), (133.0, 14.2, 209.0, 256.0), (140.0, 13.7, 225.0, 271.0)]
+    {
+        for spin in [1900.0, 2050.0, 2200.0] {
+            let t = f.fly_metrics(mph_to_mps(ball_mph), launch, 0.0, spin, 0.0);
+            assert!((t.carry_yd / carry - 1.0).abs() <= 0.05, "{ball_mph} mph, {spin} rpm: carry {:.1}", t.carry_yd);
+            assert!((t.total_yd / total - 1.0).abs() <= 0.05, "{ball_mph} mph, {spin} rpm: total {:.1}", t.total_yd);
+        }
+    }
+}
+
+/// Bounce and roll: the total is the carry plus the run along the line of travel; a firmer fairway runs further;
+/// a tour driver (2686 rpm, landing at about 40 deg) runs 15-40 yd on Penner's fairway (tour totals are 20-25 yd
+/// past the 275 yd carry); a pitching wedge (9304 rpm, landing at 51 deg) stops within 3 yd.
+#[test]
+fn bounce_and_roll() {
+    let fly = |firmness: f64, mph: f64, launch: f64, spin: f64| {
+        Flight { ground: Ground { firmness }, ..Flight::default() }.fly_metrics(mph_to_mps(mph), launch, 0.0, spin, 0.0)
+    };
+    let mut last = -1.0;
+    for firmness in [0.0, 0.25, 0.5, 0.75, 1.0] {
+        let t = fly(firmness, 167.0, 10.9, 2686.0);
+        assert!((t.total_m - (t.carry_m + t.roll_m)).abs() < 1e-9);
+        assert!(t.roll_m > last, "firmness {firmness}: roll {}", t.roll_m);
+        last = t.roll_m;
+    }
+    let driver = fly(0.5, 167.0, 10.9, 2686.0);
+    assert!((15.0..=40.0).contains(&driver.roll_yd), "driver roll {:.1} yd", driver.roll_yd);
+    let wedge = fly(0.5, 102.0, 24.2, 9304.0);
+    assert!(wedge.roll_yd.abs() <= 3.0, "wedge roll {:.1} yd", wedge.roll_yd);
+    // The sampled path runs on past the landing to rest, on the ground.
+    let path = Flight::default().fly(&impactd::flight::LaunchState::from_metrics(70.0, 12.0, 0.0, 2500.0, 0.0), 0.05);
+    let last_point = path.points.last().unwrap();
+    assert!((last_point[1].hypot(last_point[3]) - path.total_m).abs() < 1e-6 && last_point[2] == 0.0);
+    assert!(path.points.iter().all(|p| p[2] >= 0.0));
 }

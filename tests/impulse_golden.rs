@@ -1,6 +1,8 @@
 //! The exact cases of `tests/data/im-golden.jsonl` (copied from the project's reference data): every launch
 //! number of every preset case matches to 1e-6 relative, angles to 1e-5 deg and spins to 0.01 rpm.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::ClubSpec;
 use impactd::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use impactd::wire::{DeliveryInput, Handedness, PredictOutput};

@@ -1,8 +1,10 @@
 //! Physical laws the impulse-momentum family must obey (seed section 3.1), checked over a seeded spread of
 //! deliveries on both preset clubs and all three variants.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::ClubSpec;
-use impactd::impact::impulse::{solve, ContactProblem};
+use impactd::impact::impulse::{solve, ContactProblem, ImpulseTuning};
 use impactd::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
 use impactd::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Matrix3, Vector3};
 use impactd::rng::Rng;
@@ -353,8 +355,9 @@ fn symmetric_club_mirrored_delivery() {
     club.inertia_inv_kg_m2 = club.inertia_kg_m2.try_inverse().unwrap();
     let mut rng = Rng::new(5);
     for variant in [ImpulseVariant::Standard, ImpulseVariant::Adjusted] {
-        let mut tuned = club.clone();
-        tuned.impulse.adjusted_ball_cg_shift_m.z = 0.0; // a heel-ward shift is itself handed
+        let tuned = club.clone();
+        let mut tuning = ImpulseTuning::seed_for(&club);
+        tuning.adjusted_ball_cg_shift_m.z = 0.0; // a heel-ward shift is itself handed
         for _ in 0..50 {
             let d = random_delivery(&mut rng, &tuned);
             let w = d.club_angular_velocity_radps;
@@ -366,7 +369,7 @@ fn symmetric_club_mirrored_delivery() {
                 ..d
             };
             let eq = Equipment::new(tuned.clone());
-            let model = ImpulseModel::new(variant);
+            let model = ImpulseModel::new(variant).with_tuning(tuning);
             let a = model.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
             let b = model.predict(&dm.to_state(&eq).unwrap(), &eq).unwrap();
             assert!(rel(mirror_z(&a.ball_velocity_mps), b.ball_velocity_mps) < 1e-12);

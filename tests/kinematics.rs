@@ -1,9 +1,11 @@
 //! Impact-state estimation from motion-capture frames: the accuracy targets on synthetic swings with exact truth,
 //! and the track's and detector's handling of bad, missing and misleading frames.
 
+#![allow(clippy::unwrap_used)]
+
 use impactd::equipment::ClubSpec;
 use impactd::eval::{run, EstimatorReport, EvalConfig, EvalReport};
-use impactd::impact::Equipment;
+use impactd::impact::{Equipment, ImpulseModel, ImpulseVariant};
 use impactd::kinematics::estimate::estimate;
 use impactd::kinematics::track::Accepted;
 use impactd::kinematics::*;
@@ -19,6 +21,7 @@ fn eval_on(path: SwingPath, club: ClubSpec, shots: usize, noise_mm: f64, noise_d
     run(
         &EvalConfig {
             club,
+            launch_model: std::sync::Arc::new(ImpulseModel::new(ImpulseVariant::Adjusted)),
             rate_hz: 720.0,
             shots,
             noise_mm,

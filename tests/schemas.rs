@@ -1,6 +1,8 @@
 //! Every message type's JSON Schema in `schemas/` matches the Rust types. Regenerate with
 //! `cargo run -- schemas -o schemas` (or run this test with UPDATE_SCHEMAS=1) after changing a type.
 
+#![allow(clippy::unwrap_used)]
+
 #[test]
 fn schemas_match_the_types() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("schemas");

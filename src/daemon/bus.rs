@@ -1,4 +1,9 @@
 //! Opening a zenoh session from zenoh's usual flags.
+//!
+//! Secure by default: with no zenoh configuration file and no endpoints given, a serving daemon listens on
+//! loopback only ([`DEFAULT_ENDPOINT`]) and every other command connects there, with multicast scouting off.
+//! Only a configuration file or the flags (`-l tcp/0.0.0.0:7447`, `--multicast-scouting`) open it to a network.
+//! Client mode retries its router with backoff instead of giving up when the router is not up yet.
 
 use super::DaemonError;
 
@@ -17,45 +22,114 @@ pub struct ZenohArgs {
     /// Endpoints to listen on (e.g. tcp/0.0.0.0:7447); repeatable.
     #[arg(short = 'l', long = "listen")]
     pub listen: Vec<String>,
-    /// Disable multicast scouting (discovery then needs --connect or a router).
-    #[arg(long = "no-multicast-scouting")]
+    /// Disable multicast scouting (the default unless a zenoh configuration file or --multicast-scouting says
+    /// otherwise).
+    #[arg(long = "no-multicast-scouting", conflicts_with = "multicast_scouting")]
     pub no_multicast_scouting: bool,
+    /// Enable multicast scouting: peers on the network find each other (and this process) by themselves.
+    #[arg(long = "multicast-scouting")]
+    pub multicast_scouting: bool,
+}
+
+/// The loopback endpoint a daemon listens on, and other commands connect to, when nothing else is said.
+pub const DEFAULT_ENDPOINT: &str = "tcp/127.0.0.1:7447";
+
+/// What a process does on the bus when no endpoint is given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// Listens on [`DEFAULT_ENDPOINT`] (the daemon).
+    Serve,
+    /// Connects to [`DEFAULT_ENDPOINT`] (sim, replay --publish).
+    Join,
 }
 
 impl ZenohArgs {
     /// Loopback only: peer mode, no multicast, listening or connecting on the given endpoints.
     pub fn loopback(listen: Vec<String>, connect: Vec<String>) -> Self {
-        ZenohArgs { zenoh_config: None, mode: Some("peer".into()), connect, listen, no_multicast_scouting: true }
+        ZenohArgs {
+            zenoh_config: None,
+            mode: Some("peer".into()),
+            connect,
+            listen,
+            no_multicast_scouting: true,
+            multicast_scouting: false,
+        }
     }
 
-    /// The zenoh configuration these flags describe.
+    /// The zenoh configuration these flags describe, for a process serving the daemon.
     pub fn config(&self) -> Result<zenoh::Config, DaemonError> {
+        self.config_for(Role::Serve)
+    }
+
+    /// The zenoh configuration these flags describe, with the secure defaults of `role`.
+    pub fn config_for(&self, role: Role) -> Result<zenoh::Config, DaemonError> {
         let mut c = match &self.zenoh_config {
-            Some(path) => zenoh::Config::from_file(path).map_err(DaemonError::zenoh)?,
+            Some(path) => {
+                let text = crate::capped::read_to_string(path, super::config::MAX_CONFIG_BYTES)
+                    .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
+                zenoh::Config::from_json5(&text).map_err(DaemonError::zenoh)?
+            }
             None => zenoh::Config::default(),
         };
         let json = |v: &[String]| serde_json::to_string(v).unwrap_or_else(|_| "[]".into());
         if let Some(mode) = &self.mode {
             if mode != "peer" && mode != "client" && mode != "router" {
-                return Err(DaemonError::Zenoh(format!("--mode must be peer, client or router, got {mode}")));
+                return Err(DaemonError::BadMode(mode.clone()));
             }
             c.insert_json5("mode", &format!("\"{mode}\"")).map_err(DaemonError::zenoh)?;
         }
-        if !self.connect.is_empty() {
-            c.insert_json5("connect/endpoints", &json(&self.connect)).map_err(DaemonError::zenoh)?;
+        let own_file = self.zenoh_config.is_some();
+        let client = self.mode.as_deref() == Some("client");
+        let mut listen = self.listen.clone();
+        let mut connect = self.connect.clone();
+        if !own_file && listen.is_empty() && connect.is_empty() {
+            match role {
+                Role::Serve if !client => listen.push(DEFAULT_ENDPOINT.into()),
+                _ => connect.push(DEFAULT_ENDPOINT.into()),
+            }
         }
-        if !self.listen.is_empty() {
-            c.insert_json5("listen/endpoints", &json(&self.listen)).map_err(DaemonError::zenoh)?;
+        if !own_file && listen.is_empty() && !client {
+            // zenoh's own default listens on every interface: a peer that only connects listens on loopback.
+            listen.push("tcp/127.0.0.1:0".into());
         }
-        if self.no_multicast_scouting {
+        if !connect.is_empty() {
+            c.insert_json5("connect/endpoints", &json(&connect)).map_err(DaemonError::zenoh)?;
+        }
+        if !listen.is_empty() {
+            c.insert_json5("listen/endpoints", &json(&listen)).map_err(DaemonError::zenoh)?;
+        }
+        if self.no_multicast_scouting || (!own_file && !self.multicast_scouting) {
             c.insert_json5("scouting/multicast/enabled", "false").map_err(DaemonError::zenoh)?;
+        } else if self.multicast_scouting {
+            c.insert_json5("scouting/multicast/enabled", "true").map_err(DaemonError::zenoh)?;
         }
         Ok(c)
     }
 
-    /// Opens a session.
+    /// Opens a session as the daemon would.
     pub async fn open(&self) -> Result<zenoh::Session, DaemonError> {
-        zenoh::open(self.config()?).await.map_err(DaemonError::zenoh)
+        self.open_as(Role::Serve).await
+    }
+
+    /// Opens a session; in client mode, retries the router with backoff (0.25 s doubling to 8 s, for about two
+    /// minutes) while it is not up yet.
+    pub async fn open_as(&self, role: Role) -> Result<zenoh::Session, DaemonError> {
+        let config = self.config_for(role)?;
+        let client = self.mode.as_deref() == Some("client");
+        let mut wait = std::time::Duration::from_millis(250);
+        let mut waited = std::time::Duration::ZERO;
+        loop {
+            match zenoh::open(config.clone()).await {
+                Ok(s) => return Ok(s),
+                Err(e) if client && waited < std::time::Duration::from_secs(120) => {
+                    tracing::warn!("zenoh router not reachable ({e}); retrying in {:.2} s", wait.as_secs_f64());
+                    tokio::time::sleep(wait).await;
+                    waited += wait;
+                    wait = (wait * 2).min(std::time::Duration::from_secs(8));
+                }
+                Err(e) => return Err(DaemonError::zenoh(e)),
+            }
+        }
     }
 }
 

@@ -18,16 +18,23 @@
 //! [rig.club_from_body]          # the tracked body's pose in the club frame; default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
+//! [rig.simulator]               # send each shot to a golf simulator over Open Connect v1 (GSPro, OpenGolfSim)
+//! open_connect = "127.0.0.1:921"
+//! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
+//! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
+//! open_connect_listen = "127.0.0.1:921"
 //! ```
 
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::open_connect::{LaunchMonitorConfig, SimulatorConfig};
 use super::DaemonError;
+use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
-use crate::pipeline::{ModelChoice, RigSetup};
+use crate::pipeline::RigSetup;
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -65,6 +72,10 @@ pub struct RigConfig {
     /// Add the ball flight (carry, apex, landing, offline; calm air at sea level) to each prediction.
     #[serde(default = "default_true")]
     pub flight: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulator: Option<SimulatorConfig>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub launch_monitor: Option<LaunchMonitorConfig>,
 }
 
 fn default_true() -> bool {
@@ -128,15 +139,20 @@ impl Default for DaemonConfig {
                 world_from_lab: None,
                 club_from_body: None,
                 flight: true,
+                simulator: None,
+                launch_monitor: None,
             }],
         }
     }
 }
 
+/// The largest configuration file (impactd's or zenoh's) read.
+pub const MAX_CONFIG_BYTES: u64 = crate::capped::MAX_INPUT_FILE_BYTES;
+
 impl DaemonConfig {
     /// Reads and validates a file.
     pub fn load(path: &Path) -> Result<(Self, Vec<RigSetup>), DaemonError> {
-        let text = std::fs::read_to_string(path)
+        let text = crate::capped::read_to_string(path, MAX_CONFIG_BYTES)
             .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
         Self::parse(&text)
     }
@@ -147,6 +163,17 @@ impl DaemonConfig {
             toml::from_str(text).map_err(|e| DaemonError::ConfigSyntax(e.message().to_string()))?;
         let rigs = config.setups()?;
         Ok((config, rigs))
+    }
+
+    /// Sends every rig that has no simulator of its own to the Open Connect simulator at `address`
+    /// (`--open-connect ADDR`).
+    pub fn set_default_open_connect(&mut self, address: &str) {
+        for r in &mut self.rigs {
+            let sim = r.simulator.get_or_insert_with(SimulatorConfig::default);
+            if sim.open_connect.is_none() {
+                sim.open_connect = Some(address.to_string());
+            }
+        }
     }
 
     /// The pipelines' setups, validating every field.
@@ -169,18 +196,25 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let club = crate::cli::load_club(&r.club).map_err(|e| invalid(f("club"), format!("{e:#}")))?;
+                let club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
-                let model = ModelChoice::parse(&r.model, r.cor)
-                    .ok_or_else(|| invalid(f("model"), format!("`{}` is not {}", r.model, ModelChoice::NAMES)))?;
+                let options = BuildOptions { cor: r.cor, ..BuildOptions::default() };
+                let models =
+                    registry::build(&r.model, &club, &options).map_err(|e| invalid(f("model"), e.to_string()))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
                         format!("`{}` is not arc, arc@MS, poly, poly@..., poly:... or linear2", r.estimator),
                     )
                 })?;
+                if let Some(Err((field, reason))) = r.simulator.as_ref().map(SimulatorConfig::check) {
+                    return Err(invalid(f(&format!("simulator.{field}")), reason));
+                }
+                if let Some(Err((field, reason))) = r.launch_monitor.as_ref().map(LaunchMonitorConfig::check) {
+                    return Err(invalid(f(&format!("launch_monitor.{field}")), reason));
+                }
                 if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
                     return Err(invalid(f("ball_position_m"), "must be finite and within 50 m"));
                 }
@@ -196,8 +230,8 @@ impl DaemonConfig {
                         .transpose()?
                         .unwrap_or_default(),
                 };
-                let mut setup = RigSetup::new(&r.name, club);
-                setup.model = model;
+                let mut setup = RigSetup::new(&r.name, club.club);
+                setup.models = models;
                 if !r.flight {
                     setup.flight = None;
                 }
@@ -226,6 +260,20 @@ mod tests {
             .contains("rig[0].world_from_lab.rotation_xyzw"));
         assert!(err("[[rig]]\nname = \"a\"\nestimator = \"magic\"").contains("rig[0].estimator"));
         assert!(err("status_period_s = 0.0\n[[rig]]\nname = \"a\"").contains("status_period_s"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nopen_connect = \"gspro\"")
+            .contains("rig[0].simulator.open_connect"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nmax_shot_age_s = -1.0")
+            .contains("rig[0].simulator.max_shot_age_s"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.launch_monitor]\nopen_connect_listen = \"localhost\"")
+            .contains("rig[0].launch_monitor.open_connect_listen"));
+        let (mut c, _) = DaemonConfig::parse(
+            "[[rig]]\nname = \"a\"\n[rig.simulator]\nopen_connect = \"10.0.0.2:921\"\n[[rig]]\nname = \"b\"",
+        )
+        .unwrap();
+        c.set_default_open_connect("127.0.0.1:921");
+        let sims: Vec<_> = c.rigs.iter().map(|r| r.simulator.as_ref().unwrap().open_connect.clone().unwrap()).collect();
+        assert_eq!(sims, ["10.0.0.2:921", "127.0.0.1:921"]);
+        assert_eq!(c.rigs[1].simulator.as_ref().unwrap().max_shot_age_s, 5.0);
         let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
         assert_eq!(c.rigs[0].estimator, "arc");
         assert_eq!(r[0].club.name, "iron7");

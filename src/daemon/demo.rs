@@ -18,6 +18,8 @@ pub struct DemoOptions {
     pub sim: SimOptions,
     pub record: Option<PathBuf>,
     pub json: bool,
+    /// Serve the Foxglove live view on this `HOST:PORT`.
+    pub foxglove: Option<String>,
 }
 
 /// One readable line for a prediction, with the truth when known.
@@ -57,7 +59,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let count = Arc::new(std::sync::atomic::AtomicU64::new(0));
     let truths_cb = truths.clone();
     let _truth_sub = rig_session
-        .declare_subscriber("sim/*/truth")
+        .declare_subscriber(crate::wire::keys::TRUTH_ALL)
         .callback(move |s| {
             if let Ok(t) = serde_json::from_slice::<TruthMessage>(&s.payload().to_bytes()) {
                 if let Ok(mut m) = truths_cb.lock() {
@@ -69,7 +71,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         .map_err(DaemonError::zenoh)?;
     let (json, notify, count_cb, truths_cb) = (options.json, predicted.clone(), count.clone(), truths.clone());
     let _launch_sub = rig_session
-        .declare_subscriber("golf/*/launch")
+        .declare_subscriber(crate::wire::keys::LAUNCH_ALL)
         .callback(move |s| {
             let bytes = s.payload().to_bytes();
             if json {
@@ -89,11 +91,13 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let (stop_daemon, daemon_stopped) = tokio::sync::oneshot::channel::<()>();
     let config = options.config.clone();
     let record = options.record.clone();
+    let foxglove = options.foxglove.clone();
     let daemon = tokio::spawn(async move {
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let r = super::run(config, setups, &daemon_session, RunOptions { record }, shutdown).await;
+        let options = RunOptions { record, overwrite: true, foxglove };
+        let r = super::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });
@@ -124,7 +128,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let _ = stop_sim_tx.send(());
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon.await.map_err(|e| DaemonError::Input(e.to_string()))??;
+    let summary = daemon.await.map_err(|e| DaemonError::Task(e.to_string()))??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

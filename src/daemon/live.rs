@@ -5,6 +5,9 @@
 //! never blocks zenoh). A worker parses and validates the sample, runs the pipeline, and publishes the impact and
 //! the launch at once; `latency_us` is the time from the callback receiving the revealing frame to the launch
 //! being handed to zenoh. Status goes out once per `status_period_s`.
+//!
+//! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
+//! listener ([`super::open_connect`]) and the Foxglove live view ([`super::foxglove_live`]).
 
 use std::collections::{BTreeMap, HashMap};
 use std::future::Future;
@@ -16,11 +19,14 @@ use std::time::{Duration, Instant};
 
 use zenoh::Wait;
 
-use super::recorder::{Record, Recorder, RecorderHandle, RecorderSummary};
-use super::stats::{LatencyWindow, RateLimiter};
+use super::foxglove_live::FoxgloveServer;
+use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
+use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
+use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
+use super::stats::{Budget, LatencyWindow, RateLimiter};
 use super::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
-use crate::wire::{self, keys, StatusMessage};
+use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -30,7 +36,19 @@ pub const RIG_QUEUE: usize = 1 << 14;
 pub struct RunOptions {
     /// Record every message to this MCAP file.
     pub record: Option<PathBuf>,
+    /// Replace an existing recording (otherwise an existing file stops the start).
+    pub overwrite: bool,
+    /// Serve the Foxglove live view on this `HOST:PORT`.
+    pub foxglove: Option<String>,
 }
+
+/// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
+/// counted, not stored.
+pub const REJECTED_RECORDS_PER_S: u32 = 20;
+/// Bytes of rejected payloads recorded per rig per second.
+pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
+/// The most of one rejected payload that is kept.
+pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 
 /// What a run did, per rig.
 #[derive(Debug, Clone, Default)]
@@ -38,6 +56,9 @@ pub struct RunSummary {
     pub rigs: BTreeMap<String, Counts>,
     pub unknown_rig_samples: u64,
     pub recorder: Option<RecorderSummary>,
+    /// Each rig's Open Connect client and listener at the end, for rigs that have them.
+    pub simulators: BTreeMap<String, SimulatorStatus>,
+    pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
 }
 
 struct Incoming {
@@ -45,16 +66,6 @@ struct Incoming {
     log_time_ns: u64,
     payload: Vec<u8>,
     encoding: String,
-}
-
-/// The `session` metadata of a recording: versions and the configuration.
-pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
-    let mut m = BTreeMap::new();
-    m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
-    m.insert("wire_version".into(), wire::WIRE_VERSION.to_string());
-    m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
-    m.insert("start_ns".into(), wall_ns().to_string());
-    m
 }
 
 /// Runs the daemon on `session` until `shutdown` completes.
@@ -65,8 +76,19 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
-    let recorder = options.record.as_deref().map(|p| Recorder::create(p, session_metadata(&config))).transpose()?;
-    let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
+    let recorder = options
+        .record
+        .as_deref()
+        .map(|p| Recorder::create(p, session_metadata(&config), options.overwrite))
+        .transpose()?;
+    let unknown = Arc::new(AtomicU64::new(0));
+    let foxglove = match &options.foxglove {
+        Some(address) => Some(FoxgloveServer::start(address, &config).await?),
+        None => None,
+    };
+    let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
+    let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
+    let mut listeners = Vec::new();
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
@@ -74,21 +96,7 @@ pub async fn run(
     let mut queryables = Vec::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
-        let impact = session
-            .declare_publisher(keys::impact(&name))
-            .encoding(wire::encoding("ImpactMessage"))
-            .await
-            .map_err(DaemonError::zenoh)?;
-        let launch = session
-            .declare_publisher(keys::launch(&name))
-            .encoding(wire::encoding("LaunchPrediction"))
-            .await
-            .map_err(DaemonError::zenoh)?;
-        let status = session
-            .declare_publisher(keys::status(&name))
-            .encoding(wire::encoding("StatusMessage"))
-            .await
-            .map_err(DaemonError::zenoh)?;
+        let publishers = RigPublishers::declare(session, &name).await?;
         tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
         let config_json = serde_json::to_vec(rig_config).unwrap_or_default();
         let config_key = keys::config(&name);
@@ -105,24 +113,25 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
-        let setup_ball = (setup.detector.ball_position_m.into(), setup.detector.ball_radius_m);
+        let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
+        let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
+        listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx, queue_dropped.clone()));
+        let pipeline = Pipeline::new(setup);
         let worker = Worker {
-            rig: Arc::from(setup.name.as_str()),
-            keys: RigKeys::new(&setup.name),
-            pipeline: Some(Pipeline::new(setup)),
-            impact,
-            launch,
-            status,
-            recorder: handle.clone(),
+            rig: Arc::from(name.as_str()),
+            sinks: RigSinks::new(&pipeline, Some(publishers), handle.clone()),
+            pipeline: Some(pipeline),
             queue_dropped,
             latency: LatencyWindow::new(1024),
             limiter: RateLimiter::new(Duration::from_secs(1)),
             started: Instant::now(),
-            ball_position_m: setup_ball.0,
-            ball_radius_m: setup_ball.1,
+            budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
+            unknown: unknown.clone(),
+            simulator,
+            launch_monitor,
         };
         workers.push(
             std::thread::Builder::new()
@@ -132,9 +141,10 @@ pub async fn run(
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
-    let unknown = Arc::new(AtomicU64::new(0));
     let unknown_cb = unknown.clone();
     let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
+    let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
+    let unknown_recorder = handle.clone();
     let routes = senders;
     let subscriber = session
         .declare_subscriber(keys::CLUBHEAD_ALL)
@@ -146,6 +156,24 @@ pub async fn run(
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow(key)) {
                     tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
+                }
+                // Recorded within the same budget as a rig's rejected payloads.
+                let payload = sample.payload().to_bytes();
+                let keep = payload.len().min(REJECTED_KEEP_BYTES);
+                if unknown_recorder.enabled() && unknown_budget.lock().is_ok_and(|mut b| b.allow(keep)) {
+                    let rejected = wire::RejectedInput {
+                        reason: format!("no configured rig serves `{key}`"),
+                        bytes: payload.len(),
+                        payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
+                    };
+                    let now = wall_ns();
+                    unknown_recorder.send(super::recorder::Record::Message {
+                        key: keys::UNKNOWN_RIG_REJECTED.to_string(),
+                        message_type: <wire::RejectedInput as wire::Message>::TYPE,
+                        log_time_ns: now,
+                        publish_time_ns: now,
+                        data: serde_json::to_vec(&rejected).unwrap_or_default(),
+                    });
                 }
                 return;
             };
@@ -168,10 +196,23 @@ pub async fn run(
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
     for w in workers {
-        if let Ok((name, counts)) = w.join() {
-            summary.rigs.insert(name, counts);
+        if let Ok(end) = w.join() {
+            if let Some(task) = end.simulator_task {
+                SimulatorClient::finish(task).await;
+            }
+            if let Some(s) = end.simulator {
+                summary.simulators.insert(end.rig.clone(), s);
+            }
+            if let Some(l) = end.launch_monitor {
+                summary.launch_monitors.insert(end.rig.clone(), l);
+            }
+            summary.rigs.insert(end.rig, end.counts);
         }
     }
+    for l in listeners {
+        l.stop().await;
+    }
+    drop(foxglove);
     drop(handle);
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
@@ -179,42 +220,30 @@ pub async fn run(
     Ok(summary)
 }
 
-/// A rig's key expressions, built once.
-struct RigKeys {
-    clubhead: String,
-    rejected: String,
-    impact: String,
-    launch: String,
-    status: String,
-}
-
-impl RigKeys {
-    fn new(rig: &str) -> Self {
-        RigKeys {
-            clubhead: keys::clubhead(rig),
-            rejected: format!("{}/rejected", keys::clubhead(rig)),
-            impact: keys::impact(rig),
-            launch: keys::launch(rig),
-            status: keys::status(rig),
-        }
-    }
-}
-
 struct Worker {
     rig: Arc<str>,
-    keys: RigKeys,
+    sinks: RigSinks,
     /// The rig's pipeline; taken out while it runs a sample, so its events can be published as they come.
     pipeline: Option<Pipeline>,
-    impact: zenoh::pubsub::Publisher<'static>,
-    launch: zenoh::pubsub::Publisher<'static>,
-    status: zenoh::pubsub::Publisher<'static>,
-    recorder: RecorderHandle,
     queue_dropped: Arc<AtomicU64>,
     latency: LatencyWindow,
     limiter: RateLimiter,
     started: Instant,
-    ball_position_m: [f64; 3],
-    ball_radius_m: f64,
+    /// The recording budget for this rig's rejected payloads.
+    budget: Budget,
+    /// Samples for unknown rigs, over all of them (shown in every rig's status).
+    unknown: Arc<AtomicU64>,
+    simulator: Option<SimulatorClient>,
+    launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
+}
+
+/// What a rig's worker leaves behind.
+struct WorkerEnd {
+    rig: String,
+    counts: Counts,
+    simulator: Option<SimulatorStatus>,
+    simulator_task: Option<tokio::task::JoinHandle<()>>,
+    launch_monitor: Option<LaunchMonitorStatus>,
 }
 
 impl Worker {
@@ -226,7 +255,7 @@ impl Worker {
         self.pipeline.as_mut().expect("the pipeline is in place between samples")
     }
 
-    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> (String, Counts) {
+    fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
         let mut next_status = Instant::now() + period;
         loop {
             let wait = next_status.saturating_duration_since(Instant::now());
@@ -240,8 +269,14 @@ impl Worker {
                 next_status += period;
             }
         }
-        self.publish_status();
-        (self.rig.to_string(), self.p().counts.clone())
+        let status = self.publish_status();
+        WorkerEnd {
+            rig: self.rig.to_string(),
+            counts: self.p().counts.clone(),
+            simulator: status.simulator,
+            simulator_task: self.simulator.take().map(SimulatorClient::close),
+            launch_monitor: status.launch_monitor,
+        }
     }
 
     fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
@@ -255,12 +290,6 @@ impl Worker {
         }
     }
 
-    fn record(&self, key: &str, type_name: &'static str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
-        if self.recorder.enabled() {
-            self.recorder.send(Record::Message { key: key.to_string(), type_name, log_time_ns, publish_time_ns, data });
-        }
-    }
-
     fn on_incoming(&mut self, incoming: Incoming) {
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
@@ -270,20 +299,23 @@ impl Worker {
                 self.p_mut().counts.samples += 1;
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
-                // Nothing is lost: the raw payload goes to the recording beside the reason.
-                let keep = &incoming.payload[..bytes.min(wire::MAX_PAYLOAD_BYTES)];
-                let data = serde_json::to_vec(&wire::RejectedInput {
+                // The raw payload goes to the recording beside the reason, within the budget; beyond it the
+                // payload is counted (status `rejected_not_recorded`), so a flood cannot fill the disk.
+                let keep = &incoming.payload[..bytes.min(REJECTED_KEEP_BYTES)];
+                if !self.sinks.recorder().enabled() || !self.budget.allow(keep.len()) {
+                    return;
+                }
+                let rejected = wire::RejectedInput {
                     reason: e.to_string(),
                     bytes,
                     payload: String::from_utf8_lossy(keep).into_owned(),
-                })
-                .unwrap_or_default();
-                self.record(&self.keys.rejected, "RejectedInput", incoming.log_time_ns, incoming.log_time_ns, data);
+                };
+                self.sinks.rejected(incoming.log_time_ns, &rejected);
                 return;
             }
         };
         let sample = msg.to_sample();
-        self.record(&self.keys.clubhead, "ClubheadSample", incoming.log_time_ns, msg.t_ns, incoming.payload);
+        self.sinks.sample(incoming.log_time_ns, msg.t_ns, incoming.payload);
         let mut any_event = false;
         let received = incoming.received;
         let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
@@ -292,16 +324,9 @@ impl Worker {
             self.on_event(&rig, event, received);
         });
         self.pipeline = Some(pipeline);
-        if self.recorder.enabled() && !sample.occluded && !any_event {
-            if let Some(q) = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01) {
-                let lab = crate::math::Isometry3::from_parts(sample.position_m.into(), q);
-                let world_from_club = self.p().setup.calibration.world_from_club(&lab);
-                self.recorder.send(Record::ClubPose {
-                    rig: rig.to_string(),
-                    t_ns: sample.t_ns,
-                    log_time_ns: incoming.log_time_ns,
-                    world_from_club,
-                });
+        if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
+            if let Some(world_from_club) = sinks::world_from_club(self.p(), &sample) {
+                self.sinks.club_pose(sample.t_ns, incoming.log_time_ns, world_from_club);
             }
         }
     }
@@ -311,75 +336,42 @@ impl Worker {
             Event::Rejected { frame, reason } => {
                 self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
             }
-            Event::Impact(m) => {
-                let data = serde_json::to_vec(&m).unwrap_or_default();
-                if let Err(e) = self.impact.put(data.clone()).wait() {
-                    tracing::error!("rig {rig}: publishing the impact: {e}");
-                }
-                let now = wall_ns();
-                self.record(&self.keys.impact, "ImpactMessage", now, now, data);
-                if self.recorder.enabled() {
-                    self.recorder.send(Record::ImpactScene {
-                        rig: rig.to_string(),
-                        t_ns: m.t_impact_ns,
-                        log_time_ns: now,
-                        ball_position_m: self.ball_position_m,
-                        ball_radius_m: self.ball_radius_m,
-                        club: m.state,
-                    });
-                }
-            }
+            Event::Impact(m) => self.sinks.impact(&m, wall_ns()),
             Event::Launch(mut l) => {
                 l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
-                let data = serde_json::to_vec(&l).unwrap_or_default();
-                if let Err(e) = self.launch.put(data.clone()).wait() {
-                    tracing::error!("rig {rig}: publishing the launch: {e}");
-                }
+                self.sinks.launch(&l, wall_ns());
                 self.latency.push(l.latency_us);
+                if let Some(simulator) = &mut self.simulator {
+                    simulator.offer(&l);
+                }
                 tracing::info!(
                     "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
                     l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
                     l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
                 );
-                let now = wall_ns();
-                self.record(&self.keys.launch, "LaunchPrediction", now, now, data);
-                self.recorder.send(Record::Flush);
             }
             Event::Failed { shot, frame, reason, .. } => {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
-                self.recorder.send(Record::Flush);
+                self.sinks.failed();
             }
         }
     }
 
-    fn publish_status(&mut self) {
-        let c = &self.p().counts;
-        let mut rejected = c.rejected.clone();
-        let queue = self.queue_dropped.load(Ordering::Relaxed);
-        if queue > 0 {
-            rejected.insert("queue_full".into(), queue);
-        }
-        let status = StatusMessage {
-            rig: self.rig.to_string(),
-            t_ns: wall_ns(),
+    fn publish_status(&mut self) -> wire::StatusMessage {
+        let inputs = StatusInputs {
+            counts: &self.p().counts,
+            queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
+            latency: &self.latency,
             uptime_s: self.started.elapsed().as_secs_f64(),
-            samples: c.samples + queue,
-            accepted: c.accepted,
-            occluded: c.occluded,
-            dropped: c.dropped,
-            rejected,
-            shots: c.shots,
-            predictions: c.predictions,
-            failed: c.failed.clone(),
-            flagged: c.flagged.clone(),
-            latency_p50_us: self.latency.quantile(0.5),
-            latency_p99_us: self.latency.quantile(0.99),
-            recorder_dropped: self.recorder.dropped(),
+            t_ns: wall_ns(),
+            unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
+            rejected_not_recorded: self.budget.refused,
+            recorder_error: self.sinks.recorder().error(),
         };
-        let data = serde_json::to_vec(&status).unwrap_or_default();
-        if let Err(e) = self.status.put(data.clone()).wait() {
-            tracing::warn!("publishing status: {e}");
-        }
-        self.record(&self.keys.status, "StatusMessage", status.t_ns, status.t_ns, data);
+        let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
+        status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
+        status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
+        self.sinks.status(&status);
+        status
     }
 }

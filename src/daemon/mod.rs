@@ -1,13 +1,21 @@
-//! The daemon and its tools: zenoh in and out, MCAP recording, replay, a synthetic rig. The only code that
-//! touches tokio, zenoh or mcap.
+//! The daemon and its tools: zenoh in and out, MCAP recording, replay, a synthetic rig, Open Connect to golf
+//! simulators and from launch monitors, the Foxglove live view. The only code that touches tokio, zenoh or mcap.
 
 pub mod bus;
 pub mod config;
 pub mod demo;
+pub mod foxglove;
+pub mod foxglove_live;
+pub mod info;
 pub mod live;
+pub mod mcap_read;
+mod mcap_records;
+pub mod open_connect;
 pub mod recorder;
+pub mod recover;
 pub mod replay;
 pub mod sim;
+pub mod sinks;
 pub mod stats;
 
 pub use config::DaemonConfig;
@@ -26,12 +34,24 @@ pub enum DaemonError {
         #[source]
         source: std::io::Error,
     },
+    #[error("--mode must be peer, client or router, got {0}")]
+    BadMode(String),
     #[error("zenoh: {0}")]
     Zenoh(String),
     #[error("recording {path}: {reason}")]
     Mcap { path: String, reason: String },
-    #[error("{0}")]
-    Input(String),
+    #[error("{path} is not an MCAP file")]
+    NotMcap { path: String },
+    #[error("{path}: {reason}")]
+    Unreadable { path: String, reason: String },
+    #[error("{path} line {line}: {reason}")]
+    BadSampleLine { path: String, line: usize, reason: String },
+    #[error("rig name `{0}` must be letters, digits, _ or -")]
+    BadRigName(String),
+    #[error("{option} {reason}")]
+    BadOption { option: &'static str, reason: &'static str },
+    #[error("a daemon task failed: {0}")]
+    Task(String),
 }
 
 impl DaemonError {

@@ -196,16 +196,16 @@ pub async fn run_sim(
     let mut threads = Vec::new();
     for (i, name) in options.rigs.iter().enumerate() {
         if !keys::valid_rig_name(name) {
-            return Err(DaemonError::Input(format!("rig name `{name}` must be letters, digits, _ or -")));
+            return Err(DaemonError::BadRigName(name.clone()));
         }
         let samples = session
             .declare_publisher(keys::clubhead(name))
-            .encoding(wire::encoding("ClubheadSample"))
+            .encoding(wire::MessageType::ClubheadSample.encoding())
             .await
             .map_err(DaemonError::zenoh)?;
         let truth_pub = session
             .declare_publisher(keys::truth(name))
-            .encoding(wire::encoding("TruthMessage"))
+            .encoding(wire::MessageType::TruthMessage.encoding())
             .await
             .map_err(DaemonError::zenoh)?;
         if options.wait_for_subscriber_s > 0.0 {

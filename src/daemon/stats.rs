@@ -86,3 +86,40 @@ mod tests {
         assert_eq!(w.quantile(1.0), 1000.0);
     }
 }
+
+/// A recording budget: at most `max_records` records and `max_bytes` bytes per second; beyond it payloads are
+/// counted, not stored (so a flood cannot fill the disk).
+#[derive(Debug, Clone)]
+pub struct Budget {
+    max_records: u32,
+    max_bytes: usize,
+    window: Instant,
+    records: u32,
+    bytes: usize,
+    /// Payloads refused over the budget's life.
+    pub refused: u64,
+}
+
+impl Budget {
+    pub fn new(max_records: u32, max_bytes: usize) -> Self {
+        Budget { max_records, max_bytes, window: Instant::now(), records: 0, bytes: 0, refused: 0 }
+    }
+
+    /// Whether a record of `bytes` may be stored now; counts the refusal when not.
+    pub fn allow(&mut self, bytes: usize) -> bool {
+        let now = Instant::now();
+        if now.duration_since(self.window) >= Duration::from_secs(1) {
+            self.window = now;
+            self.records = 0;
+            self.bytes = 0;
+        }
+        if self.records < self.max_records && self.bytes + bytes <= self.max_bytes {
+            self.records += 1;
+            self.bytes += bytes;
+            true
+        } else {
+            self.refused += 1;
+            false
+        }
+    }
+}

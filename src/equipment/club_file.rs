@@ -8,20 +8,20 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, face_outline_mm, [adjusted], [slip],
-//! # [continuous]
+//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, face_outline_mm
 //! # a polygon of impact locations [h toe +, v up +] in mm:
 //! # face_outline_mm = [[-33.0, -17.0], [30.0, -19.0], [38.0, 0.0], [20.0, 27.0], [-33.0, 14.0]]
+//! # and any model's section, read by that model: [adjusted], [slip], [continuous], ...
 //! ```
 //!
-//! Without `face_outline_mm` the outline is the rectangle of `face_half_width_m` and `face_half_height_m` when
-//! either is given, else the preset outline of the face shape ([`FaceOutline`](super::FaceOutline)).
-//!
+//! Every table in the file is a model's section; the rest are the club's physical fields.
 //! `clubs/` holds example files: the seed's driver and 7-iron with the continuous model's one-cycle ball.
+
+use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
-use super::{g_cm2_to_kg_m2, ClubSpec, EquipmentError, ImpulseTuning};
+use super::{g_cm2_to_kg_m2, ClubSpec, EquipmentError};
 use crate::face::{Face, FaceShape};
 use crate::math::{Real, Vector3};
 
@@ -43,27 +43,35 @@ pub struct ClubFile {
     pub face_half_height_m: Option<Real>,
     /// The face's outline as a polygon of impact locations `[h, v]` (mm).
     pub face_outline_mm: Option<Vec<[Real; 2]>>,
-    pub adjusted: Option<AdjustedFile>,
-    pub slip: Option<SlipFile>,
-    /// `[continuous]`: the two-layer model's parameters (Table 3.5); default the driver's for a curved face, the
-    /// 7-iron's for a flat one.
-    pub continuous: Option<crate::impact::continuous::TwoLayerParams>,
 }
 
-/// `[adjusted]`: the Danaei parameters (Table 3.3).
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AdjustedFile {
-    pub delta_mass_kg: Real,
-    pub ball_cg_shift_m: [Real; 3],
+/// The model sections of a club file (`[adjusted]`, `[continuous]`, ...), each a TOML table that its model reads
+/// and validates. Presets have none: every model then uses the seed's values for the club.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ModelSections(BTreeMap<String, toml::Table>);
+
+impl ModelSections {
+    /// The section named `name`, if the file has one.
+    pub fn get(&self, name: &str) -> Option<&toml::Table> {
+        self.0.get(name)
+    }
+
+    /// The names of the sections present.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.0.keys().map(String::as_str)
+    }
+
+    /// Adds or replaces a section (a fitted parameter set, a test's variation).
+    pub fn insert(&mut self, name: &str, table: toml::Table) {
+        self.0.insert(name.to_string(), table);
+    }
 }
 
-/// `[slip]`: the Cross and Dewhurst tangential restitution (Table 3.4).
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SlipFile {
-    pub e_y: Real,
-    pub e_z: Real,
+/// A club as loaded from a preset or a file: the physical club and the file's model sections.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadedClub {
+    pub club: ClubSpec,
+    pub sections: ModelSections,
 }
 
 fn invalid(field: &'static str, reason: impl Into<String>) -> EquipmentError {
@@ -79,8 +87,24 @@ fn finite(field: &'static str, v: Real) -> Result<Real, EquipmentError> {
 }
 
 impl ClubFile {
-    /// Validates the fields and builds the club. Variant parameters not given default to the seed's driver
-    /// values for a curved face and the 7-iron's for a flat one.
+    /// Parses a club file's text: its tables become [`ModelSections`], the rest must be the club's fields
+    /// (unknown fields are errors that name them).
+    pub fn parse(text: &str) -> Result<LoadedClub, EquipmentError> {
+        let mut table: toml::Table =
+            toml::from_str(text).map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        let section_names: Vec<String> = table.iter().filter(|(_, v)| v.is_table()).map(|(k, _)| k.clone()).collect();
+        let mut sections = ModelSections::default();
+        for name in section_names {
+            if let Some(toml::Value::Table(t)) = table.remove(&name) {
+                sections.insert(&name, t);
+            }
+        }
+        let file = ClubFile::deserialize(toml::Value::Table(table))
+            .map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        Ok(LoadedClub { club: file.into_spec()?, sections })
+    }
+
+    /// Validates the fields and builds the club.
     pub fn into_spec(self) -> Result<ClubSpec, EquipmentError> {
         let mass_kg = finite("mass_kg", self.mass_kg)?;
         if mass_kg <= 0.0 {
@@ -151,34 +175,6 @@ impl ClubFile {
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
-        let mut impulse = if shape.is_curved() { ImpulseTuning::DRIVER } else { ImpulseTuning::IRON7 };
-        if let Some(a) = self.adjusted {
-            let dm = finite("adjusted.delta_mass_kg", a.delta_mass_kg)?;
-            if dm < 0.0 || dm > mass_kg {
-                return Err(invalid("adjusted.delta_mass_kg", "must be within 0 and the head mass"));
-            }
-            impulse.adjusted_delta_mass_kg = dm;
-            for i in 0..3 {
-                impulse.adjusted_ball_cg_shift_m[i] = finite("adjusted.ball_cg_shift_m", a.ball_cg_shift_m[i])?;
-            }
-        }
-        if let Some(s) = self.slip {
-            for (name, e) in [("slip.e_y", s.e_y), ("slip.e_z", s.e_z)] {
-                if !(-1.0..=1.0).contains(&finite(name, e)?) {
-                    return Err(invalid(name, "must be within -1 and 1"));
-                }
-            }
-            impulse.slip_e_y = s.e_y;
-            impulse.slip_e_z = s.e_z;
-        }
-        let continuous = match self.continuous {
-            Some(c) => {
-                c.validate(&crate::equipment::BallSpec::SEED).map_err(|reason| invalid("continuous", reason))?;
-                c
-            }
-            None if shape.is_curved() => crate::impact::continuous::TwoLayerParams::DRIVER,
-            None => crate::impact::continuous::TwoLayerParams::IRON7,
-        };
         let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {
             name: self.name.unwrap_or_else(|| "custom".to_string()),
@@ -190,8 +186,6 @@ impl ClubFile {
             face_half_height_m,
             face_outline,
             shaft_mass_kg,
-            impulse,
-            continuous,
         })
     }
 }
@@ -220,7 +214,11 @@ mod tests {
         assert_eq!(club.name, "seed driver");
         assert_eq!(club.face, preset.face);
         assert_eq!(club.inertia_kg_m2, preset.inertia_kg_m2);
-        assert_eq!(club.impulse, preset.impulse);
+        assert_eq!(club.shaft_mass_kg, preset.shaft_mass_kg);
+        assert_eq!(
+            (club.face_half_width_m, club.face_half_height_m),
+            (preset.face_half_width_m, preset.face_half_height_m)
+        );
     }
 
     fn err_of(text: &str) -> String {
@@ -244,17 +242,20 @@ mod tests {
     }
 
     #[test]
-    fn a_flat_face_by_default_uses_the_iron_tuning() {
-        let text = DRIVER.replace("bulge_radius_m = 0.305", "").replace("roll_radius_m = 0.305", "");
-        let club = ClubSpec::from_toml_str(&text).unwrap();
-        assert_eq!(club.face.shape, crate::face::FaceShape::Plane);
-        assert_eq!(club.impulse, ImpulseTuning::IRON7);
+    fn tables_are_model_sections_and_the_rest_is_the_club() {
+        let text = format!("{DRIVER}\n[adjusted]\ndelta_mass_kg = 0.003\nball_cg_shift_m = [0.0, 0.0, 0.0]\n");
+        let loaded = ClubFile::parse(&text).unwrap();
+        assert_eq!(loaded.club, ClubSpec::from_toml_str(DRIVER).unwrap());
+        assert_eq!(loaded.sections.names().collect::<Vec<_>>(), ["adjusted"]);
+        let adjusted = loaded.sections.get("adjusted").unwrap();
+        assert_eq!(adjusted["delta_mass_kg"].as_float(), Some(0.003));
     }
 
     /// The outline: given as a polygon, defaulted to the half-width rectangle, or to the preset's; an outline
     /// that misses the face centre is refused by name.
     #[test]
     fn the_face_outline_loads_and_defaults() {
+        use crate::equipment::FaceOutline;
         let poly = format!("{DRIVER}\nface_outline_mm = [[-20.0, -10.0], [20.0, -10.0], [0.0, 15.0]]");
         let club = ClubSpec::from_toml_str(&poly).unwrap();
         assert!(club.on_face(0.0, 0.0) && !club.on_face(0.019, 0.012));

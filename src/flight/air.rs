@@ -31,24 +31,27 @@ impl Default for Conditions {
     }
 }
 
+/// A condition out of its range, named.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConditionsError {
+    #[error("`{field}` must be within {min} and {max}, got {value}")]
+    OutOfRange { field: &'static str, value: Real, min: Real, max: Real },
+}
+
 impl Conditions {
     /// Checks the numbers, naming a bad one.
-    pub fn validate(&self) -> Result<(), String> {
-        let checks: [(&str, Real, Real, Real); 5] = [
+    pub fn validate(&self) -> Result<(), ConditionsError> {
+        let checks: [(&'static str, Real, Real, Real); 5] = [
             ("temperature_c", self.temperature_c, -40.0, 55.0),
             ("humidity", self.humidity, 0.0, 1.0),
             ("altitude_m", self.altitude_m, -500.0, 5000.0),
             ("wind_mps", self.wind_mps, 0.0, 40.0),
             ("wind_dir_deg", self.wind_dir_deg, -360.0, 360.0),
         ];
-        for (name, v, lo, hi) in checks {
-            if !(v.is_finite() && (lo..=hi).contains(&v)) {
-                return Err(format!("`{name}` must be within {lo} and {hi}, got {v}"));
-            }
-        }
-        if let Some(p) = self.pressure_hpa {
-            if !(p.is_finite() && (500.0..=1100.0).contains(&p)) {
-                return Err(format!("`pressure_hpa` must be within 500 and 1100, got {p}"));
+        let pressure = self.pressure_hpa.map(|p| ("pressure_hpa", p, 500.0, 1100.0));
+        for (field, value, min, max) in checks.into_iter().chain(pressure) {
+            if !(value.is_finite() && (min..=max).contains(&value)) {
+                return Err(ConditionsError::OutOfRange { field, value, min, max });
             }
         }
         Ok(())

@@ -9,6 +9,7 @@ pub mod continuous;
 mod delivery;
 pub mod impulse;
 mod launch;
+pub mod registry;
 pub mod sanity;
 
 pub use continuous::ContinuousModel;
@@ -38,9 +39,15 @@ pub enum ImpactError {
     Singular,
     #[error("{model} did not converge: {reason}")]
     NotConverged { model: &'static str, reason: String },
+    #[error("model parameter `{field}` {reason}")]
+    InvalidParameter { field: String, reason: String },
+    #[error("unknown model '{name}' (expected {expected})")]
+    UnknownModel { name: String, expected: String },
+    #[error("the club file's section [{section}] belongs to no model (known sections: {known})")]
+    UnknownSection { section: String, known: String },
 }
 
-/// The club and the ball a model needs.
+/// The club and the ball a model needs (physical data only; a model carries its own parameters).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Equipment {
     pub club: ClubSpec,
@@ -113,9 +120,19 @@ pub struct Launch {
 }
 
 /// A model of the club-ball collision. Choosing a model is configuration: every model implements this.
-pub trait ImpactModel: Send + Sync {
+pub trait ImpactModel: Send + Sync + std::fmt::Debug {
     /// A short name for logs and messages (`impulse/adjusted`).
     fn name(&self) -> &'static str;
     /// Predicts the launch from the state at first contact.
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError>;
+    /// A model resolved in time runs with a trace point every `every` steps; an instantaneous model has no trace
+    /// (`None`).
+    fn trace(
+        &self,
+        _state: &ImpactState,
+        _equipment: &Equipment,
+        _every: usize,
+    ) -> Option<Result<continuous::ContinuousResult, ImpactError>> {
+        None
+    }
 }

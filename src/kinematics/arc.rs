@@ -109,7 +109,7 @@ impl ArcFit {
         let def = a.cholesky()?.solve(&b);
         let (cx, cy) = (-0.5 * def[0], -0.5 * def[1]);
         let r2 = cx * cx + cy * cy - def[2];
-        if !(r2 > 0.0) {
+        if r2.is_nan() || r2 <= 0.0 {
             return None;
         }
 

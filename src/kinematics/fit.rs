@@ -59,6 +59,8 @@ fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3;
     }
 }
 
+// The normal equations and their Cholesky factor read as the textbook's indexed sums.
+#[allow(clippy::needless_range_loop)]
 fn poly_fit_sized<const M: usize>(
     tau: &[Real],
     values: &[Vector3],
@@ -87,7 +89,7 @@ fn poly_fit_sized<const M: usize>(
                 s -= l[i][k] * l[j][k];
             }
             if i == j {
-                if !(s > 1e-300) {
+                if s.is_nan() || s <= 1e-300 {
                     return None;
                 }
                 l[i][i] = s.sqrt();

@@ -8,6 +8,7 @@ pub mod estimate;
 pub mod fit;
 pub mod sample;
 pub mod so3;
+mod spec;
 pub mod track;
 
 pub use detect::{Detection, DetectorConfig, ImpactDetector};

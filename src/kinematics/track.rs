@@ -1,4 +1,12 @@
 //! A per-rig track: validates samples in arrival order, keeps the recent history, counts what it rejects.
+//!
+//! Capture times order the stream; frame numbers only count dropped frames. A sample far ahead of (or behind)
+//! the current time base is held as a candidate, never adopted as "now": the next sample on the current base
+//! discards it, and only `resync_frames` consecutive samples that agree with each other on a new base (a
+//! publisher that restarted its clock, a long pause) move the track onto it, counted as a reset. Frame numbers
+//! that go back or leap while time goes on (a restarted or wrapping counter, a hostile number) resynchronise
+//! the frame count, also counted as a reset, without adding implausible drops. So one hostile sample costs at
+//! most the swing it lands in.
 
 use std::collections::VecDeque;
 
@@ -20,6 +28,10 @@ pub enum Reject {
     Backwards { frame: u64, back_ns: u64 },
     #[error("implausible jump: {speed_mps:.0} m/s since the previous frame")]
     Jump { speed_mps: Real },
+    #[error("frame {frame} is {ahead_ns} ns ahead of the rig's time base (held as an outlier)")]
+    Outlier { frame: u64, ahead_ns: u64 },
+    #[error("frame {frame} is on a new time base; waiting for it to be confirmed")]
+    Resyncing { frame: u64 },
 }
 
 impl Reject {
@@ -32,6 +44,8 @@ impl Reject {
             Reject::Duplicate { .. } => "duplicate",
             Reject::Backwards { .. } => "backwards",
             Reject::Jump { .. } => "jump",
+            Reject::Outlier { .. } => "outlier",
+            Reject::Resyncing { .. } => "resyncing",
         }
     }
 }
@@ -49,6 +63,13 @@ pub struct TrackLimits {
     pub quaternion_tolerance: Real,
     /// After this long without a frame, the history restarts (s).
     pub reset_gap_s: Real,
+    /// A sample further ahead of the newest than this is held as an outlier until confirmed (s).
+    pub max_ahead_s: Real,
+    /// Consecutive samples on a new time base that move the track onto it.
+    pub resync_frames: u32,
+    /// The highest frame rate frame numbers are believed at: a larger jump in frame numbers than this rate
+    /// explains is a new frame count, not dropped frames (Hz).
+    pub max_rate_hz: Real,
 }
 
 impl Default for TrackLimits {
@@ -59,6 +80,9 @@ impl Default for TrackLimits {
             max_distance_m: 50.0,
             quaternion_tolerance: 0.01,
             reset_gap_s: 0.25,
+            max_ahead_s: 5.0,
+            resync_frames: 3,
+            max_rate_hz: 20_000.0,
         }
     }
 }
@@ -79,6 +103,8 @@ pub struct TrackCounts {
     pub occluded: u64,
     pub dropped: u64,
     pub rejected: u64,
+    /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
+    pub resets: u64,
 }
 
 /// The recent accepted poses of one rig's clubhead.
@@ -88,6 +114,8 @@ pub struct Track {
     calibration: Calibration,
     poses: VecDeque<ClubPose>,
     last_frame: Option<(u64, u64)>,
+    /// A sample off the current time base, and how many consecutive samples agree with it.
+    candidate: Option<(u64, u32)>,
     pub counts: TrackCounts,
 }
 
@@ -98,6 +126,7 @@ impl Track {
             calibration,
             poses: VecDeque::with_capacity(limits.history + 1),
             last_frame: None,
+            candidate: None,
             counts: TrackCounts::default(),
         }
     }
@@ -111,16 +140,55 @@ impl Track {
         r
     }
 
-    fn check(&mut self, s: &ClubheadSample) -> Result<Accepted, Reject> {
-        if let Some((frame, t_ns)) = self.last_frame {
-            if s.t_ns == t_ns || s.frame == frame {
-                return Err(Reject::Duplicate { frame: s.frame, t_ns: s.t_ns });
+    /// Where a sample stands against the time base: `Ok(dropped frames before it)` when it belongs to it.
+    fn order(&mut self, s: &ClubheadSample) -> Result<u64, Reject> {
+        let Some((frame, t_ns)) = self.last_frame else { return Ok(0) };
+        if s.t_ns == t_ns {
+            return Err(Reject::Duplicate { frame: s.frame, t_ns: s.t_ns });
+        }
+        let ahead_ns = s.t_ns.wrapping_sub(t_ns);
+        let on_base = s.t_ns > t_ns && (ahead_ns as Real) * 1e-9 <= self.limits.max_ahead_s;
+        if !on_base {
+            // Off the base: a candidate for a new one, confirmed only by consecutive samples that follow it.
+            let follows = self
+                .candidate
+                .is_some_and(|(t0, _)| s.t_ns > t0 && ((s.t_ns - t0) as Real) * 1e-9 <= self.limits.reset_gap_s);
+            let n = if follows { self.candidate.map_or(1, |(_, n)| n + 1) } else { 1 };
+            self.candidate = Some((s.t_ns, n));
+            if n < self.limits.resync_frames.max(1) {
+                return Err(if n > 1 {
+                    Reject::Resyncing { frame: s.frame }
+                } else if s.t_ns > t_ns {
+                    Reject::Outlier { frame: s.frame, ahead_ns }
+                } else {
+                    Reject::Backwards { frame: s.frame, back_ns: t_ns - s.t_ns }
+                });
             }
-            if s.t_ns < t_ns || s.frame < frame {
-                return Err(Reject::Backwards { frame: s.frame, back_ns: t_ns.saturating_sub(s.t_ns) });
+            self.resync();
+            return Ok(0);
+        }
+        self.candidate = None;
+        // Frame numbers: a gap the elapsed time explains is dropped frames; anything else a new count.
+        let explained = (ahead_ns as Real) * 1e-9 * self.limits.max_rate_hz + 1.0;
+        match s.frame.checked_sub(frame) {
+            Some(gap) if gap >= 1 && (gap as Real) <= explained => Ok(gap - 1),
+            _ => {
+                self.counts.resets += 1;
+                Ok(0)
             }
         }
-        let dropped_before = self.last_frame.map(|(f, _)| s.frame.saturating_sub(f + 1)).unwrap_or(0);
+    }
+
+    /// Moves onto a new time base: the history is dropped, the reset counted.
+    fn resync(&mut self) {
+        self.candidate = None;
+        self.last_frame = None;
+        self.poses.clear();
+        self.counts.resets += 1;
+    }
+
+    fn check(&mut self, s: &ClubheadSample) -> Result<Accepted, Reject> {
+        let dropped_before = self.order(s)?;
         if s.occluded {
             self.last_frame = Some((s.frame, s.t_ns));
             self.counts.occluded += 1;

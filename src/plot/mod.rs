@@ -3,6 +3,9 @@
 
 use std::fmt::Write;
 
+mod figures;
+pub use figures::{face_map, forces_chart, trajectories_svg, MapMetric};
+
 /// One line of a chart.
 pub struct Series {
     pub name: String,

@@ -27,6 +27,11 @@
 //! The adjusted variant adds `Δm` to `m_c` (not to the inertia) and moves the ball's CG by `Δ` (impact frame),
 //! so `r_b = −R n − F Δ`. The COR is a constant (default 0.83, the rules limit, seed-tables `[cor]`).
 
+mod tuning;
+
+pub(crate) use tuning::section;
+pub use tuning::ImpulseTuning;
+
 use super::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
 use crate::math::{skew, Matrix3, Real, Vector3};
 
@@ -71,16 +76,23 @@ pub struct ImpulseParams {
     pub e_z: Real,
 }
 
-/// An impulse-momentum model: a variant and a COR.
+/// An impulse-momentum model: a variant, a COR and the variant's parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpulseModel {
     pub variant: ImpulseVariant,
     pub cor: Real,
+    /// The adjusted and slip parameters; `None` uses the seed's for the club ([`ImpulseTuning::seed_for`]).
+    pub tuning: Option<ImpulseTuning>,
 }
 
 impl ImpulseModel {
     pub fn new(variant: ImpulseVariant) -> Self {
-        ImpulseModel { variant, cor: DEFAULT_COR }
+        ImpulseModel { variant, cor: DEFAULT_COR, tuning: None }
+    }
+
+    pub fn with_tuning(mut self, tuning: ImpulseTuning) -> Self {
+        self.tuning = Some(tuning);
+        self
     }
 
     pub fn with_cor(mut self, cor: Real) -> Self {
@@ -90,7 +102,7 @@ impl ImpulseModel {
 
     /// The parameters of this variant for `equipment`'s club.
     pub fn params(&self, equipment: &Equipment) -> ImpulseParams {
-        let t = &equipment.club.impulse;
+        let t = self.tuning.unwrap_or_else(|| ImpulseTuning::seed_for(&equipment.club));
         let mut p =
             ImpulseParams { cor: self.cor, delta_mass_kg: 0.0, ball_cg_shift_m: Vector3::zeros(), e_y: 0.0, e_z: 0.0 };
         match self.variant {

@@ -13,6 +13,8 @@
 //! The potential energy of the elastic part `kV` is `k ∫ V dδ` over the overlap `δ`; [`overlap_energy`] gives it
 //! in closed form for the energy balance.
 
+use crate::equipment::ClubSpec;
+use crate::face::FaceShape;
 use crate::math::{Real, Vector3};
 
 /// The contact between the ball and the face, in the club frame.
@@ -46,6 +48,23 @@ fn cap(r: Real, h: Real) -> (Real, Real) {
 }
 
 impl FaceSurface {
+    /// The surface of a club's face for the contact: the plane for a flat face, the face sphere for a curved one
+    /// (a face whose bulge and roll differ is taken as a sphere of their geometric-mean radius).
+    pub fn of_club(club: &ClubSpec) -> Self {
+        let face = &club.face;
+        match face.shape {
+            FaceShape::Plane => FaceSurface::Plane { point: face.center_m, normal: face.n0() },
+            FaceShape::Torus { bulge_radius_m, roll_radius_m } => {
+                let radius_m = if bulge_radius_m.is_finite() && roll_radius_m.is_finite() {
+                    (bulge_radius_m * roll_radius_m).sqrt()
+                } else {
+                    bulge_radius_m.min(roll_radius_m)
+                };
+                FaceSurface::Sphere { centre: face.center_m - radius_m * face.n0(), radius_m }
+            }
+        }
+    }
+
     /// The overlap with a ball of radius `r` centred at `ball_m` (club frame), if any.
     #[inline]
     pub fn overlap(&self, ball_m: &Vector3, r: Real) -> Option<Overlap> {

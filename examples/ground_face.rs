@@ -1,0 +1,107 @@
+//! The iron-plus-ground model over the face (seed section 4.3, Figures 4.10-4.17), one swing, as JSON lines:
+//! each impact location with and without ground on a soil, plus a fat and a good strike on every soil.
+//! Usage: `cargo run --release --example ground_face -- [--json]`; `scripts/ground-table.py` turns the
+//! output into `docs/ground.md`.
+
+#![allow(clippy::unwrap_used)]
+
+use impactd::equipment::soil::SoilSpec;
+use impactd::equipment::ClubSpec;
+use impactd::flight::{Flight, LaunchState};
+use impactd::impact::continuous::iron_ground::{GroundModel, GroundResult, PreparedGround};
+use impactd::impact::{Delivery, Equipment, LaunchMetrics};
+use impactd::math::{Real, Vector3};
+use serde_json::json;
+
+/// The swing of tests/ground.rs: 90 mph, 4.3° down, 25° dynamic loft, 27 rad/s about a 60° plane's normal.
+fn swing(h_mm: Real, v_mm: Real) -> Delivery {
+    let plane = 60f64.to_radians();
+    Delivery {
+        club_speed_mps: 90.0 * 0.44704,
+        attack_angle_rad: (-4.3f64).to_radians(),
+        club_path_rad: 0.0,
+        face_angle_rad: 0.0,
+        dynamic_loft_rad: 25f64.to_radians(),
+        impact_h_m: h_mm * 1e-3,
+        impact_v_m: v_mm * 1e-3,
+        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
+    }
+}
+
+fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: Real) -> serde_json::Value {
+    let state = match swing(h_mm, v_mm).to_state(eq) {
+        Ok(s) => s,
+        Err(e) => return json!({ "error": e.to_string() }),
+    };
+    let r: GroundResult = match p.simulate(&state, 0) {
+        Ok(r) => r,
+        Err(e) => return json!({ "error": e.to_string() }),
+    };
+    let l = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
+    let t = flight
+        .fly(&LaunchState { velocity_mps: r.launch.ball_velocity_mps, spin_radps: r.launch.ball_spin_radps }, 0.0);
+    json!({
+        "ball_speed_mph": l.ball_speed_mph, "launch_angle_deg": l.launch_angle_deg, "launch_direction_deg": l.launch_direction_deg,
+        "backspin_rpm": l.backspin_rpm, "sidespin_rpm": l.sidespin_rpm, "carry_yd": t.carry_yd, "offline_yd": t.offline_yd,
+        "strike": r.strike, "ground_contact_before_ball_ms": r.ground_contact_before_ball_ms,
+        "club_speed_loss_mph": r.club_speed_loss_mph, "face_angle_change_deg": r.face_angle_change_deg,
+        "dynamic_loft_change_deg": r.dynamic_loft_change_deg, "divot_depth_mm": r.divot_depth_mm,
+        "divot_length_mm": r.divot_length_mm, "peak_ground_force_n": r.peak_ground_force_n,
+        "ground_contact_ms": r.ground_contact_ms, "ball_contact_us": r.ball_contact_us,
+    })
+}
+
+fn main() {
+    let eq = Equipment::new(ClubSpec::iron7());
+    let flight = Flight::default();
+    let prepare = |soil: SoilSpec, with_ground: bool| {
+        let mut m = GroundModel::new(soil);
+        m.with_ground = with_ground;
+        m.prepare(&eq).map_err(|e| e.to_string())
+    };
+    let (firm, none) = match (prepare(SoilSpec::firm(), true), prepare(SoilSpec::firm(), false)) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    for v in [-20.0, -15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0] {
+        for h in [-20.0, -10.0, 0.0, 10.0, 20.0] {
+            let line = json!({
+                "kind": "face", "soil": "firm", "h_mm": h, "v_mm": v,
+                "ground": shot(&firm, &eq, &flight, h, v), "no_ground": shot(&none, &eq, &flight, h, v),
+            });
+            println!("{line}");
+        }
+    }
+    // The leading edge's height is the one club dimension that decides which strikes are fat: a measured
+    // 7-iron's face centre sits ~20 mm up the face from the leading edge (the preset takes 12 mm).
+    for le_mm in [12.0, 20.0] {
+        let eq_le = Equipment::new(ClubSpec::iron7());
+        let make = |with_ground: bool| {
+            let mut m = GroundModel::new(SoilSpec::firm());
+            m.sole.leading_edge_below_face_centre_m = le_mm * 1e-3;
+            m.with_ground = with_ground;
+            m.prepare(&eq_le)
+        };
+        let (Ok(g), Ok(n)) = (make(true), make(false)) else { continue };
+        for v in [-15.0, -10.0, -5.0, 0.0, 5.0, 10.0] {
+            let line = json!({
+                "kind": "leading_edge", "leading_edge_below_face_centre_mm": le_mm, "h_mm": 0.0, "v_mm": v,
+                "ground": shot(&g, &eq_le, &flight, 0.0, v), "no_ground": shot(&n, &eq_le, &flight, 0.0, v),
+            });
+            println!("{line}");
+        }
+    }
+    for soil in SoilSpec::PRESETS {
+        let Ok(spec) = SoilSpec::preset(soil) else { continue };
+        let Ok(p) = prepare(spec, true) else { continue };
+        for (name, v) in [("fat", 15.0), ("good", 0.0)] {
+            println!(
+                "{}",
+                json!({ "kind": "soil", "soil": soil, "strike_at": name, "v_mm": v, "ground": shot(&p, &eq, &flight, 0.0, v) })
+            );
+        }
+    }
+}

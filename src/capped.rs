@@ -1,0 +1,32 @@
+//! Reading small input files (club, soil and configuration files) with a size cap, so a path such as
+//! `/dev/zero` or a huge file is refused instead of read until memory runs out.
+
+use std::io::Read;
+use std::path::Path;
+
+/// The largest club, soil or configuration file read (bytes).
+pub const MAX_INPUT_FILE_BYTES: u64 = 1 << 20;
+
+/// The file's text, refused with `InvalidData` when it holds more than `max_bytes` bytes.
+pub fn read_to_string(path: &Path, max_bytes: u64) -> std::io::Result<String> {
+    let mut text = String::new();
+    std::fs::File::open(path)?.take(max_bytes + 1).read_to_string(&mut text)?;
+    if text.len() as u64 > max_bytes {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("larger than the {max_bytes}-byte limit of an input file"),
+        ));
+    }
+    Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn dev_zero_is_refused() {
+        if std::path::Path::new("/dev/zero").exists() {
+            let e = super::read_to_string("/dev/zero".as_ref(), 1024).unwrap_err();
+            assert!(e.to_string().contains("1024-byte limit") || e.kind() == std::io::ErrorKind::InvalidData);
+        }
+    }
+}

@@ -1,0 +1,148 @@
+//! Argument groups shared by several commands: the flight conditions, a delivery given by flags, the impact
+//! model's name and zenoh's usual flags ([`ZenohArgs`]: `--zenoh-config`, `-m/--mode`, `-e/--connect`,
+//! `-l/--listen`, `--no-multicast-scouting`).
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+#[cfg(feature = "daemon")]
+pub use impactd::daemon::bus::ZenohArgs;
+use std::sync::Arc;
+
+use impactd::equipment::LoadedClub;
+use impactd::impact::registry::{self, BuildOptions};
+use impactd::impact::ImpactModel;
+use impactd::wire::DeliveryInput;
+
+/// Where and in what air the ball flies.
+#[derive(Debug, Clone, Args)]
+pub struct ConditionArgs {
+    #[arg(long, default_value_t = 22.5, allow_hyphen_values = true)]
+    pub temp_c: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub altitude_m: f64,
+    /// Relative humidity, 0-1.
+    #[arg(long, default_value_t = 0.5)]
+    pub humidity: f64,
+    /// Station pressure (hPa); default: the standard atmosphere at the altitude.
+    #[arg(long)]
+    pub pressure_hpa: Option<f64>,
+    #[arg(long, default_value_t = 0.0)]
+    pub wind_mps: f64,
+    /// The direction the wind blows toward (deg from the target line, right +): 0 tailwind, 180 headwind.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub wind_dir_deg: f64,
+}
+
+impl ConditionArgs {
+    pub fn conditions(&self) -> Result<impactd::flight::Conditions> {
+        let c = impactd::flight::Conditions {
+            temperature_c: self.temp_c,
+            pressure_hpa: self.pressure_hpa,
+            humidity: self.humidity,
+            altitude_m: self.altitude_m,
+            wind_mps: self.wind_mps,
+            wind_dir_deg: self.wind_dir_deg,
+        };
+        c.validate().context("conditions")?;
+        Ok(c)
+    }
+
+    /// The flight model in these conditions, bouncing and rolling on turf of the given firmness.
+    pub fn flight(&self, firmness: f64) -> Result<impactd::flight::Flight> {
+        let ground = impactd::flight::Ground { firmness };
+        ground.validate().context("--firmness")?;
+        Ok(impactd::flight::Flight { conditions: self.conditions()?, ground, ..Default::default() })
+    }
+}
+
+/// A model name from the registry (`impact::registry`): one model, a group (`both`) or a comma-separated list.
+pub fn model_name(name: &str) -> std::result::Result<String, String> {
+    let known = |n: &str| registry::entry(n).is_some();
+    if registry::GROUPS.iter().any(|g| g.0 == name) || name.split(',').all(|n| known(n.trim())) {
+        Ok(name.to_string())
+    } else {
+        Err(format!("unknown model '{name}' (expected {})", registry::names()))
+    }
+}
+
+/// The single model a command runs, from the registry, with the club file's parameters.
+pub fn one_model(name: &str, club: &LoadedClub, cor: f64) -> Result<Arc<dyn ImpactModel>> {
+    let options = BuildOptions { cor, ..BuildOptions::default() };
+    Ok(registry::build_one(name, club, &options)?)
+}
+
+/// Whether a model is resolved in time (has a trace of forces).
+pub fn resolved_in_time(name: &str) -> bool {
+    registry::entry(name).is_some_and(|e| e.resolved_in_time)
+}
+
+/// A delivery given with flags (TrackMan names; unset numbers are 0, the loft the club's).
+#[derive(Debug, Clone, Args)]
+pub struct DeliveryArgs {
+    #[arg(long, default_value_t = 100.0)]
+    pub club_speed_mph: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub attack_angle_deg: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub club_path_deg: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub face_angle_deg: f64,
+    #[arg(long, allow_hyphen_values = true)]
+    pub dynamic_loft_deg: Option<f64>,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub impact_h_mm: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub impact_v_mm: f64,
+}
+
+impl DeliveryArgs {
+    pub fn input(&self) -> DeliveryInput {
+        DeliveryInput {
+            club_speed_mph: self.club_speed_mph,
+            attack_angle_deg: self.attack_angle_deg,
+            club_path_deg: self.club_path_deg,
+            face_angle_deg: self.face_angle_deg,
+            dynamic_loft_deg: self.dynamic_loft_deg,
+            impact_h_mm: self.impact_h_mm,
+            impact_v_mm: self.impact_v_mm,
+            club_angular_velocity_radps: None,
+            handedness: None,
+        }
+    }
+}
+
+/// A club preset by name or a club file by path.
+pub fn load_club(spec: &str) -> Result<LoadedClub> {
+    Ok(impactd::equipment::load_club(spec)?)
+}
+
+/// The file at `path`, else stdin, by lines.
+pub fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
+    Ok(match path {
+        Some(p) => {
+            Box::new(BufReader::new(std::fs::File::open(p).with_context(|| format!("opening input {}", p.display()))?))
+        }
+        None => Box::new(BufReader::new(std::io::stdin())),
+    })
+}
+
+/// Exit 1 when any line was rejected.
+pub fn exit_code(tally: impactd::jsonl::Tally) -> ExitCode {
+    if tally.rejected > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Writes `text` to `path` and says so on stderr.
+pub fn write_output(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}

@@ -1,0 +1,146 @@
+//! `impactd eval`: evaluations against synthetic truth.
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, Subcommand, ValueEnum};
+
+use super::args::load_club;
+
+#[derive(Debug, Subcommand)]
+pub enum EvalCommand {
+    /// Synthetic swings through every impact-state estimator: errors of the delivery and of the launch.
+    Extrapolation(ExtrapolationArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ExtrapolationArgs {
+    /// Club preset or club file.
+    #[arg(long, default_value = "driver")]
+    pub club: String,
+    /// Capture rate (Hz).
+    #[arg(long, default_value_t = 720.0)]
+    pub rate: f64,
+    /// Number of swings.
+    #[arg(long, default_value_t = 1000)]
+    pub shots: usize,
+    /// Gaussian position noise per axis (mm).
+    #[arg(long, default_value_t = 0.2)]
+    pub noise_mm: f64,
+    /// Gaussian orientation noise per axis (deg).
+    #[arg(long, default_value_t = 0.1)]
+    pub noise_deg: f64,
+    /// Gaussian timestamp jitter (us).
+    #[arg(long, default_value_t = 0.0)]
+    pub jitter_us: f64,
+    /// Probability that a frame is dropped.
+    #[arg(long, default_value_t = 0.0)]
+    pub drop: f64,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Estimators to compare (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "linear2,poly,arc")]
+    pub estimators: Vec<String>,
+    /// Shape of the swings' path before impact: an arc (the `arc` estimator's own model) or a double pendulum
+    /// (arm and club, the wrist uncocking).
+    #[arg(long, value_enum, default_value_t = PathArg::Arc)]
+    pub path: PathArg,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `--path` of `impactd eval extrapolation`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PathArg {
+    Arc,
+    DoublePendulum,
+}
+
+pub fn run(command: &EvalCommand) -> Result<ExitCode> {
+    match command {
+        EvalCommand::Extrapolation(args) => extrapolation(args),
+    }
+}
+
+fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
+    if !(args.rate >= 60.0 && args.rate <= 10_000.0) {
+        bail!("--rate must be within 60 and 10000 Hz, got {}", args.rate);
+    }
+    if args.noise_mm < 0.0 || args.noise_deg < 0.0 || args.jitter_us < 0.0 || !(0.0..1.0).contains(&args.drop) {
+        bail!("noise, jitter and drop probability must not be negative (drop below 1)");
+    }
+    let estimators = args
+        .estimators
+        .iter()
+        .map(|n| {
+            impactd::kinematics::EstimatorSpec::by_name(n).with_context(|| {
+                format!("unknown estimator '{n}' (known: {})", impactd::kinematics::EstimatorSpec::NAMES.join(", "))
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let loaded = load_club(&args.club)?;
+    let config = impactd::eval::EvalConfig {
+        launch_model: super::args::one_model("adjusted", &loaded, impactd::impact::impulse::DEFAULT_COR)?,
+        club: loaded.club.clone(),
+        rate_hz: args.rate,
+        shots: args.shots,
+        noise_mm: args.noise_mm,
+        noise_deg: args.noise_deg,
+        jitter_us: args.jitter_us,
+        drop_probability: args.drop,
+        seed: args.seed,
+        estimators,
+        path: match args.path {
+            PathArg::Arc => impactd::swing::SwingPath::Arc,
+            PathArg::DoublePendulum => impactd::swing::SwingPath::DoublePendulum,
+        },
+    };
+    let mut err = std::io::stderr().lock();
+    let step = (args.shots / 20).max(1);
+    let report = impactd::eval::run(&config, |done| {
+        if done % step == 0 || done == args.shots {
+            let _ = write!(err, "\r{done}/{} swings", args.shots);
+            if done == args.shots {
+                let _ = writeln!(err);
+            }
+        }
+    });
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string(&report)?)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    writeln!(
+        out,
+        "{} at {} Hz, {} swings on {} paths, noise {} mm / {} deg, seed {}",
+        report.club,
+        report.rate_hz,
+        report.shots,
+        report.path.name(),
+        report.noise_mm,
+        report.noise_deg,
+        report.seed
+    )?;
+    write!(out, "{:<22}", "error (est - truth)")?;
+    for e in &report.estimators {
+        write!(out, " {:>21}", format!("{} rms / max", e.name))?;
+    }
+    writeln!(out)?;
+    for (k, key) in report.estimators[0].errors.entries().iter().map(|(k, _)| *k).enumerate() {
+        write!(out, "{key:<22}")?;
+        for e in &report.estimators {
+            let s = e.errors.entries()[k].1;
+            write!(out, " {:>10} / {:>8}", format!("{:.4}", s.rms), format!("{:.3}", s.max))?;
+        }
+        writeln!(out)?;
+    }
+    for e in &report.estimators {
+        if !e.refused.is_empty() {
+            writeln!(out, "{}: {} estimated, refused {:?}", e.name, e.shots, e.refused)?;
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

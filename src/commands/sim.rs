@@ -1,0 +1,71 @@
+//! `impactd sim`: a synthetic rig publishing clubhead samples at real rate, with the truth of each shot.
+
+use std::process::ExitCode;
+
+use anyhow::{bail, Result};
+use clap::Args;
+use impactd::daemon::sim::{run_sim, SimOptions};
+
+use super::args::{load_club, ZenohArgs};
+use super::run::{runtime, shutdown_signal};
+
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    /// Rig names (repeatable); default rig1, or rig1..rigN with --rigs.
+    #[arg(long = "rig")]
+    pub rig: Vec<String>,
+    /// Number of rigs named rig1..rigN.
+    #[arg(long)]
+    pub rigs: Option<usize>,
+    /// Shots per rig (0: until stopped).
+    #[arg(long, default_value_t = 5)]
+    pub shots: u64,
+    #[arg(long, default_value = "driver")]
+    pub club: String,
+    /// Capture rate (Hz).
+    #[arg(long, default_value_t = 720.0)]
+    pub rate: f64,
+    /// Seconds between shots.
+    #[arg(long, default_value_t = 1.5)]
+    pub interval: f64,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    #[arg(long, default_value_t = 0.2)]
+    pub noise_mm: f64,
+    #[arg(long, default_value_t = 0.1)]
+    pub noise_deg: f64,
+    #[command(flatten)]
+    pub zenoh: ZenohArgs,
+}
+
+pub fn run(args: &SimArgs) -> Result<ExitCode> {
+    let mut rigs = args.rig.clone();
+    if let Some(n) = args.rigs {
+        rigs.extend((1..=n).map(|i| format!("rig{i}")));
+    }
+    if rigs.is_empty() {
+        rigs.push("rig1".into());
+    }
+    if !(60.0..=10_000.0).contains(&args.rate) || args.interval < 0.2 {
+        bail!("--rate must be within 60 and 10000 Hz and --interval at least 0.2 s");
+    }
+    let options = SimOptions {
+        rigs,
+        club: load_club(&args.club)?.club,
+        shots: args.shots,
+        rate_hz: args.rate,
+        interval_s: args.interval,
+        seed: args.seed,
+        noise_mm: args.noise_mm,
+        noise_deg: args.noise_deg,
+        wait_for_subscriber_s: 10.0,
+    };
+    let rt = runtime()?;
+    rt.block_on(async {
+        let session = args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
+        let s = run_sim(&session, options, shutdown_signal()).await?;
+        let _ = session.close().await;
+        eprintln!("sent {} samples, {} shots", s.samples, s.shots);
+        Ok(ExitCode::SUCCESS)
+    })
+}

@@ -1,0 +1,145 @@
+//! Open Connect v1, both ways: a client per rig that sends each shot's first prediction to a golf simulator
+//! (GSPro, OpenGolfSim, ...), and a listener per rig that takes measured shots from a launch monitor's connector
+//! as a simulator would and publishes them as `MeasuredLaunch`.
+//!
+//! The protocol (GSPro's "Open Connect v1" page): TCP, the simulator listens (port 921), JSON objects with no
+//! delimiter between them both ways, no authentication. [`codec`] holds the messages, [`splitter`] cuts the
+//! byte stream into objects, [`client`] and [`listener`] run the two ends on the daemon's tokio runtime.
+
+pub mod client;
+pub mod codec;
+pub mod listener;
+pub mod splitter;
+
+use serde::{Deserialize, Serialize};
+
+pub use client::{SimulatorClient, SimulatorOptions};
+pub use listener::LaunchMonitorListener;
+
+/// Largest Open Connect message kept (bytes); a shot is about 600.
+pub const MAX_MESSAGE_BYTES: usize = 64 * 1024;
+
+/// Errors of the Open Connect layer.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenConnectError {
+    /// A prediction that must not reach a simulator.
+    #[error("shot {shot} not sent: {reason}")]
+    Refused { shot: u64, reason: String },
+    /// A received message that is not a usable shot.
+    #[error("{0}")]
+    Invalid(String),
+    #[error("{what} {address}: {source}")]
+    Io {
+        what: &'static str,
+        address: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// `[rig.simulator]`: where to send the rig's shots.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimulatorConfig {
+    /// The simulator's Open Connect address, `HOST:PORT` (GSPro listens on 921).
+    #[serde(default)]
+    pub open_connect: Option<String>,
+    /// A shot older than this when the connection comes back is dropped and counted, never sent late.
+    #[serde(default = "default_max_shot_age_s")]
+    pub max_shot_age_s: f64,
+    /// Heartbeat period while idle.
+    #[serde(default = "default_heartbeat_s")]
+    pub heartbeat_s: f64,
+    /// `DeviceID` in every message.
+    #[serde(default = "default_device_id")]
+    pub device_id: String,
+}
+
+fn default_max_shot_age_s() -> f64 {
+    5.0
+}
+fn default_heartbeat_s() -> f64 {
+    2.0
+}
+fn default_device_id() -> String {
+    format!("impactd {}", env!("CARGO_PKG_VERSION"))
+}
+
+impl Default for SimulatorConfig {
+    fn default() -> Self {
+        SimulatorConfig {
+            open_connect: None,
+            max_shot_age_s: default_max_shot_age_s(),
+            heartbeat_s: default_heartbeat_s(),
+            device_id: default_device_id(),
+        }
+    }
+}
+
+/// `[rig.launch_monitor]`: where launch monitor connectors reach the rig.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LaunchMonitorConfig {
+    /// Listen for Open Connect v1 clients here, `IP:PORT` (e.g. `127.0.0.1:921`).
+    #[serde(default)]
+    pub open_connect_listen: Option<String>,
+}
+
+/// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
+pub async fn start_rig(
+    rig: &crate::daemon::config::RigConfig,
+    session: &zenoh::Session,
+    recorder: &crate::daemon::recorder::RecorderHandle,
+) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
+    let simulator = rig
+        .simulator
+        .as_ref()
+        .and_then(|c| SimulatorOptions::from_config(&rig.name, c))
+        .map(|o| SimulatorClient::spawn(o, recorder.clone()));
+    let listener = match rig.launch_monitor.as_ref().and_then(|l| l.open_connect_listen.as_ref()) {
+        Some(address) => Some(LaunchMonitorListener::start(&rig.name, address, session, recorder.clone()).await?),
+        None => None,
+    };
+    Ok((simulator, listener))
+}
+
+/// Whether `address` reads as `HOST:PORT`.
+pub fn valid_host_port(address: &str) -> bool {
+    match address.rsplit_once(':') {
+        Some((host, port)) => !host.is_empty() && !host.contains(char::is_whitespace) && port.parse::<u16>().is_ok(),
+        None => false,
+    }
+}
+
+impl SimulatorConfig {
+    /// Checks every field; the error names the field (relative to `[rig.simulator]`) and the reason.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        if let Some(a) = &self.open_connect {
+            if !valid_host_port(a) {
+                return Err(("open_connect", format!("`{a}` is not HOST:PORT")));
+            }
+        }
+        if !(self.max_shot_age_s > 0.0 && self.max_shot_age_s <= 600.0) {
+            return Err(("max_shot_age_s", "must be within 0 and 600 s".into()));
+        }
+        if !(self.heartbeat_s >= 0.1 && self.heartbeat_s <= 60.0) {
+            return Err(("heartbeat_s", "must be within 0.1 and 60 s".into()));
+        }
+        if self.device_id.is_empty() || self.device_id.len() > 64 {
+            return Err(("device_id", "must be 1 to 64 characters".into()));
+        }
+        Ok(())
+    }
+}
+
+impl LaunchMonitorConfig {
+    /// Checks every field; the error names the field (relative to `[rig.launch_monitor]`) and the reason.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        match &self.open_connect_listen {
+            Some(a) if a.parse::<std::net::SocketAddr>().is_err() => {
+                Err(("open_connect_listen", format!("`{a}` is not IP:PORT")))
+            }
+            _ => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,212 @@
+//! A whole replay as `impactd replay` runs it: the configuration, the pace, publishing and recording the
+//! predictions, and the comparison with the recorded ones.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use super::{recorded_latency, ReplayInput, ReplayStats};
+use crate::daemon::config::RigConfig;
+use crate::daemon::recorder::session_metadata;
+use crate::daemon::recorder::{Recorder, RecorderHandle};
+use crate::daemon::sinks::{self, RigPublishers, RigSinks, StatusInputs};
+use crate::daemon::stats::LatencyWindow;
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::pipeline::{Event, Pipeline, RigSetup};
+
+/// How to replay.
+#[derive(Debug, Clone, Default)]
+pub struct ReplayOptions {
+    /// Replay at this multiple of real time (`None`: as fast as possible).
+    pub rate: Option<f64>,
+    /// Record the replay to this new MCAP file.
+    pub output: Option<PathBuf>,
+}
+
+/// What a replay did, and whether it reproduced the recorded predictions.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReplayReport {
+    pub stats: ReplayStats,
+    pub elapsed_s: f64,
+    /// Predictions made.
+    pub produced: usize,
+    /// Predictions in the recording.
+    pub recorded: usize,
+    /// Predictions identical, byte for byte, to the recorded one at the same place.
+    pub reproduced: usize,
+    /// Part of the recording could not be read: nothing is claimed reproduced.
+    pub damaged: bool,
+}
+
+impl ReplayReport {
+    /// Whether every recorded prediction was reproduced byte for byte (true when none was recorded).
+    pub fn reproduces_recording(&self) -> bool {
+        !self.damaged && (self.recorded == 0 || (self.reproduced == self.recorded && self.produced == self.recorded))
+    }
+}
+
+/// The configuration of a replay: the file at `path`, else the one stored in the recording, else the default
+/// with one rig per rig name found in the samples.
+pub fn resolve_config(input: &ReplayInput, path: Option<&Path>) -> Result<(DaemonConfig, Vec<RigSetup>), DaemonError> {
+    match (path, &input.config_toml) {
+        (Some(p), _) => DaemonConfig::load(p),
+        (None, Some(text)) => DaemonConfig::parse(text).map_err(|e| match e {
+            DaemonError::ConfigSyntax(reason) => {
+                DaemonError::ConfigSyntax(format!("the configuration stored in the recording: {reason}"))
+            }
+            other => other,
+        }),
+        (None, None) => {
+            let mut config = DaemonConfig::default();
+            let mut names: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
+            names.sort();
+            names.dedup();
+            if !names.is_empty() {
+                let template = config.rigs[0].clone();
+                config.rigs = names.into_iter().map(|name| RigConfig { name, ..template.clone() }).collect();
+            }
+            let s = config.setups()?;
+            Ok((config, s))
+        }
+    }
+}
+
+/// One rig of a replay: its pipeline, its sinks and what its status reports.
+struct ReplayRig {
+    pipeline: Pipeline,
+    sinks: RigSinks,
+    latency: LatencyWindow,
+    first_t_ns: Option<u64>,
+    next_status_ns: u64,
+}
+
+impl ReplayRig {
+    fn publish_status(&self, t_ns: u64) {
+        let inputs = StatusInputs {
+            counts: &self.pipeline.counts,
+            queue_dropped: 0,
+            latency: &self.latency,
+            uptime_s: t_ns.saturating_sub(self.first_t_ns.unwrap_or(t_ns)) as f64 * 1e-9,
+            t_ns: wall_ns(),
+            unknown_rig_samples: 0,
+            rejected_not_recorded: 0,
+            recorder_error: self.sinks.recorder().error(),
+        };
+        let status = sinks::status_message(&self.pipeline.setup.name, inputs, self.sinks.recorder().dropped());
+        self.sinks.status(&status);
+    }
+}
+
+/// Replays `input` through the pipelines of `setups` as the daemon would run them: every rig writes through the
+/// daemon's sinks ([`RigSinks`]), so with a `session` the replay publishes impacts, launches and status on the
+/// daemon's keys, and with `options.output` it records what `impactd run` records (samples, impacts, launches,
+/// status, Foxglove poses and scenes). Status goes out once per `status_period_s` of capture time and once at the
+/// end. `on_event` sees every event (launches with their latency filled in, and their bytes).
+pub async fn run(
+    input: &ReplayInput,
+    config: &DaemonConfig,
+    setups: Vec<RigSetup>,
+    session: Option<&zenoh::Session>,
+    options: &ReplayOptions,
+    mut on_event: impl FnMut(&Event, &[u8]),
+) -> Result<ReplayReport, DaemonError> {
+    if let Some(r) = options.rate {
+        if r.is_nan() || r <= 0.0 {
+            return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
+        }
+    }
+    let recorder =
+        options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config), true)).transpose()?;
+    let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
+    let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
+    for setup in setups {
+        let pipeline = Pipeline::new(setup);
+        let name = pipeline.setup.name.clone();
+        let publishers = match session {
+            Some(s) => Some(RigPublishers::declare(s, &name).await?),
+            None => None,
+        };
+        let sinks = RigSinks::new(&pipeline, publishers, handle.clone());
+        rigs.insert(
+            name,
+            ReplayRig { pipeline, sinks, latency: LatencyWindow::new(1024), first_t_ns: None, next_status_ns: 0 },
+        );
+    }
+    let period_ns = (config.status_period_s * 1e9) as u64;
+    let (start, mut first_t) = (Instant::now(), None);
+    let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
+    for msg in &input.samples {
+        stats.samples += 1;
+        let Some(rig) = rigs.get_mut(&msg.rig) else {
+            stats.unknown_rig += 1;
+            continue;
+        };
+        if let Some(r) = options.rate {
+            let t0 = *first_t.get_or_insert(msg.t_ns);
+            let due = Duration::from_secs_f64(msg.t_ns.saturating_sub(t0) as f64 * 1e-9 / r);
+            if let Some(wait) = due.checked_sub(start.elapsed()) {
+                std::thread::sleep(wait);
+            }
+        }
+        let log_time_ns = wall_ns();
+        let sample = msg.to_sample();
+        if handle.enabled() {
+            rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(msg).unwrap_or_default());
+        }
+        events.clear();
+        rig.pipeline.on_sample(&sample, &mut events);
+        for e in events.iter_mut() {
+            match e {
+                Event::Launch(l) => {
+                    l.latency_us = recorded_latency(input, l);
+                    stats.predictions += 1;
+                    rig.latency.push(l.latency_us);
+                    let bytes = rig.sinks.launch(l, wall_ns());
+                    on_event(e, &bytes);
+                    produced.push(bytes);
+                }
+                Event::Impact(m) => {
+                    rig.sinks.impact(m, wall_ns());
+                    on_event(e, &[]);
+                }
+                Event::Failed { .. } => {
+                    stats.failed += 1;
+                    rig.sinks.failed();
+                    on_event(e, &[]);
+                }
+                Event::Rejected { .. } => on_event(e, &[]),
+            }
+        }
+        if handle.enabled() && events.is_empty() && !sample.occluded {
+            if let Some(world_from_club) = sinks::world_from_club(&rig.pipeline, &sample) {
+                rig.sinks.club_pose(sample.t_ns, log_time_ns, world_from_club);
+            }
+        }
+        let t0 = *rig.first_t_ns.get_or_insert(msg.t_ns);
+        if rig.next_status_ns == 0 {
+            rig.next_status_ns = t0.saturating_add(period_ns);
+        }
+        if msg.t_ns >= rig.next_status_ns {
+            rig.publish_status(msg.t_ns);
+            rig.next_status_ns = rig.next_status_ns.saturating_add(period_ns);
+        }
+    }
+    for rig in rigs.values() {
+        rig.publish_status(input.samples.iter().rev().find(|m| m.rig == rig.pipeline.setup.name).map_or(0, |m| m.t_ns));
+    }
+    // The writer finishes once every sink's handle is gone.
+    drop(rigs);
+    drop(handle);
+    if let Some(r) = recorder {
+        r.finish()?;
+    }
+    let reproduced = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
+    Ok(ReplayReport {
+        stats,
+        elapsed_s: start.elapsed().as_secs_f64(),
+        produced: produced.len(),
+        recorded: input.recorded_launches.len(),
+        reproduced,
+        damaged: !input.damage.is_empty(),
+    })
+}

@@ -1,0 +1,233 @@
+//! Where one rig's messages go: its zenoh publishers (when publishing) and the recording (when recording). The
+//! live daemon and `impactd replay --publish -o` both write through [`RigSinks`], so a replay publishes and
+//! records what the daemon does, on the same keys with the same schemas.
+
+use std::collections::BTreeMap;
+
+use zenoh::Wait;
+
+use super::recorder::{Record, RecorderHandle};
+use super::stats::LatencyWindow;
+use super::DaemonError;
+use crate::kinematics::ClubheadSample;
+use crate::math::Isometry3;
+use crate::pipeline::{Counts, Pipeline};
+use crate::wire::{
+    keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, Message, MessageType, RejectedInput, StatusMessage,
+};
+
+/// A rig's key expressions, built once.
+struct RigKeys {
+    clubhead: String,
+    rejected: String,
+    impact: String,
+    launch: String,
+    status: String,
+}
+
+impl RigKeys {
+    fn new(rig: &str) -> Self {
+        RigKeys {
+            clubhead: keys::clubhead(rig),
+            rejected: keys::rejected(rig),
+            impact: keys::impact(rig),
+            launch: keys::launch(rig),
+            status: keys::status(rig),
+        }
+    }
+}
+
+/// The zenoh publishers of one rig's outputs.
+pub struct RigPublishers {
+    impact: zenoh::pubsub::Publisher<'static>,
+    launch: zenoh::pubsub::Publisher<'static>,
+    status: zenoh::pubsub::Publisher<'static>,
+}
+
+impl RigPublishers {
+    /// Declares the publishers of `golf/<rig>/impact`, `.../launch` and `.../status` with their encodings.
+    pub async fn declare(session: &zenoh::Session, rig: &str) -> Result<Self, DaemonError> {
+        async fn one<M: Message>(
+            session: &zenoh::Session,
+            key: String,
+        ) -> Result<zenoh::pubsub::Publisher<'static>, DaemonError> {
+            session.declare_publisher(key).encoding(M::TYPE.encoding()).await.map_err(DaemonError::zenoh)
+        }
+        Ok(RigPublishers {
+            impact: one::<ImpactMessage>(session, keys::impact(rig)).await?,
+            launch: one::<LaunchPrediction>(session, keys::launch(rig)).await?,
+            status: one::<StatusMessage>(session, keys::status(rig)).await?,
+        })
+    }
+}
+
+/// One rig's outputs: zenoh (when `publishers` is given) and the recording (when the recorder is enabled).
+pub struct RigSinks {
+    rig: String,
+    keys: RigKeys,
+    publishers: Option<RigPublishers>,
+    recorder: RecorderHandle,
+    ball_position_m: [f64; 3],
+    ball_radius_m: f64,
+    /// The rig's flight model, for the predicted flight's line (Foxglove).
+    flight: Option<crate::flight::Flight>,
+}
+
+impl RigSinks {
+    /// The sinks of the rig of `pipeline` (its ball position and radius go into the impact scene, its flight
+    /// model draws the predicted flight).
+    pub fn new(pipeline: &Pipeline, publishers: Option<RigPublishers>, recorder: RecorderHandle) -> Self {
+        let setup = &pipeline.setup;
+        RigSinks {
+            rig: setup.name.clone(),
+            keys: RigKeys::new(&setup.name),
+            publishers,
+            recorder,
+            ball_position_m: setup.detector.ball_position_m.into(),
+            ball_radius_m: setup.detector.ball_radius_m,
+            flight: setup.flight,
+        }
+    }
+
+    pub fn recorder(&self) -> &RecorderHandle {
+        &self.recorder
+    }
+
+    fn record<M: Message>(&self, key: &str, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8>) {
+        if self.recorder.enabled() {
+            let message_type: MessageType = M::TYPE;
+            self.recorder.send(Record::Message {
+                key: key.to_string(),
+                message_type,
+                log_time_ns,
+                publish_time_ns,
+                data,
+            });
+        }
+    }
+
+    fn publish(
+        &self,
+        publisher: impl Fn(&RigPublishers) -> &zenoh::pubsub::Publisher<'static>,
+        what: &str,
+        data: &[u8],
+    ) {
+        if let Some(p) = &self.publishers {
+            if let Err(e) = publisher(p).put(data.to_vec()).wait() {
+                tracing::error!("rig {}: publishing the {what}: {e}", self.rig);
+            }
+        }
+    }
+
+    /// Records an accepted sample's payload as it arrived.
+    pub fn sample(&self, log_time_ns: u64, t_ns: u64, payload: Vec<u8>) {
+        self.record::<ClubheadSampleMsg>(&self.keys.clubhead, log_time_ns, t_ns, payload);
+    }
+
+    /// Records a payload that was not a usable sample, beside the reason (nothing is lost).
+    pub fn rejected(&self, log_time_ns: u64, rejected: &RejectedInput) {
+        let data = serde_json::to_vec(rejected).unwrap_or_default();
+        self.record::<RejectedInput>(&self.keys.rejected, log_time_ns, log_time_ns, data);
+    }
+
+    /// Records the club's pose in the world at a sample (for Foxglove).
+    pub fn club_pose(&self, t_ns: u64, log_time_ns: u64, world_from_club: Isometry3) {
+        if self.recorder.enabled() {
+            self.recorder.send(Record::ClubPose { rig: self.rig.clone(), t_ns, log_time_ns, world_from_club });
+        }
+    }
+
+    /// Publishes and records an impact, and records the scene of ball and club.
+    pub fn impact(&self, m: &ImpactMessage, now_ns: u64) {
+        let data = serde_json::to_vec(m).unwrap_or_default();
+        self.publish(|p| &p.impact, "impact", &data);
+        self.record::<ImpactMessage>(&self.keys.impact, now_ns, now_ns, data);
+        if self.recorder.enabled() {
+            self.recorder.send(Record::ImpactScene {
+                rig: self.rig.clone(),
+                t_ns: m.t_impact_ns,
+                log_time_ns: now_ns,
+                ball_position_m: self.ball_position_m,
+                ball_radius_m: self.ball_radius_m,
+                club: m.state,
+            });
+        }
+    }
+
+    /// Publishes and records a prediction and the line of its flight (flown by the recorder or the live view,
+    /// off the prediction path), and closes the recording's chunk (a shot is never half-written).
+    pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
+        let data = serde_json::to_vec(l).unwrap_or_default();
+        self.publish(|p| &p.launch, "launch", &data);
+        self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
+        if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
+            self.recorder.send(super::foxglove::flight_record(l, flight, now_ns));
+        }
+        self.recorder.send(Record::Flush);
+        data
+    }
+
+    /// An impact without a prediction: closes the recording's chunk.
+    pub fn failed(&self) {
+        self.recorder.send(Record::Flush);
+    }
+
+    /// Publishes and records a status.
+    pub fn status(&self, status: &StatusMessage) {
+        let data = serde_json::to_vec(status).unwrap_or_default();
+        self.publish(|p| &p.status, "status", &data);
+        self.record::<StatusMessage>(&self.keys.status, status.t_ns, status.t_ns, data);
+    }
+}
+
+/// What a rig's status reports besides its pipeline's counts.
+pub struct StatusInputs<'a> {
+    pub counts: &'a Counts,
+    /// Samples dropped before the pipeline (a full queue).
+    pub queue_dropped: u64,
+    pub latency: &'a LatencyWindow,
+    pub uptime_s: f64,
+    pub t_ns: u64,
+    pub unknown_rig_samples: u64,
+    pub rejected_not_recorded: u64,
+    pub recorder_error: Option<String>,
+}
+
+/// A rig's status message.
+pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> StatusMessage {
+    let c = s.counts;
+    let mut rejected: BTreeMap<String, u64> = c.rejected.clone();
+    if s.queue_dropped > 0 {
+        rejected.insert("queue_full".into(), s.queue_dropped);
+    }
+    StatusMessage {
+        rig: rig.to_string(),
+        t_ns: s.t_ns,
+        uptime_s: s.uptime_s,
+        samples: c.samples + s.queue_dropped,
+        accepted: c.accepted,
+        occluded: c.occluded,
+        dropped: c.dropped,
+        resets: c.resets,
+        rejected,
+        shots: c.shots,
+        predictions: c.predictions,
+        failed: c.failed.clone(),
+        flagged: c.flagged.clone(),
+        latency_p50_us: s.latency.quantile(0.5),
+        latency_p99_us: s.latency.quantile(0.99),
+        recorder_dropped,
+        unknown_rig_samples: s.unknown_rig_samples,
+        rejected_not_recorded: s.rejected_not_recorded,
+        recorder_error: s.recorder_error,
+        simulator: None,
+        launch_monitor: None,
+    }
+}
+
+/// The club in the world at a sample, if its orientation is usable.
+pub fn world_from_club(pipeline: &Pipeline, sample: &ClubheadSample) -> Option<Isometry3> {
+    let q = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01)?;
+    let lab = Isometry3::from_parts(sample.position_m.into(), q);
+    Some(pipeline.setup.calibration.world_from_club(&lab))
+}

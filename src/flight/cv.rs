@@ -1,0 +1,94 @@
+//! Leave-one-club-out cross-validation of the fit ([`super::fit`]): for each club of the table, the coefficients
+//! are fitted from [`super::fit::START`] to the other eleven and the left-out club is predicted with them. The
+//! errors measure how the fit generalises to a launch it has not seen, not how well it interpolates its own data.
+
+use super::fit::{self, TourAverage};
+use crate::math::Real;
+
+/// One club of the table against the model.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ClubError {
+    pub club: String,
+    pub carry_yd: Real,
+    pub carry_error_yd: Real,
+    pub apex_yd: Real,
+    pub apex_error_yd: Real,
+    pub land_angle_deg: Real,
+    pub land_angle_error_deg: Real,
+}
+
+impl ClubError {
+    /// Whether carry, apex and land angle are all within the given errors.
+    pub fn within(&self, carry_yd: Real, apex_yd: Real, land_deg: Real) -> bool {
+        self.carry_error_yd.abs() <= carry_yd
+            && self.apex_error_yd.abs() <= apex_yd
+            && self.land_angle_error_deg.abs() <= land_deg
+    }
+}
+
+/// Every club's predicted carry, apex and land angle with `aero`, and the errors against the table.
+pub fn club_errors(aero: &super::Aero, rows: &[TourAverage]) -> Vec<ClubError> {
+    rows.iter()
+        .map(|r| {
+            let (carry, apex, land) = fit::predict(aero, r);
+            ClubError {
+                club: r.club.clone(),
+                carry_yd: carry,
+                carry_error_yd: carry - r.carry_yd,
+                apex_yd: apex,
+                apex_error_yd: apex - r.max_height_yd,
+                land_angle_deg: land,
+                land_angle_error_deg: land - r.land_angle_deg,
+            }
+        })
+        .collect()
+}
+
+/// One left-out club: what the table says and what the fit without it predicts.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Holdout {
+    pub club: String,
+    pub carry_yd: Real,
+    pub predicted_carry_yd: Real,
+    /// `100 (predicted − measured) / measured`.
+    pub carry_error_pct: Real,
+    pub apex_error_yd: Real,
+    pub land_angle_error_deg: Real,
+}
+
+/// The cross-validation: every club left out once, and the largest errors.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CrossValidation {
+    pub holdouts: Vec<Holdout>,
+    pub max_carry_error_pct: Real,
+    pub max_apex_error_yd: Real,
+    pub max_land_angle_error_deg: Real,
+}
+
+/// Leaves each club out in turn, fitting the rest with `iterations` Nelder-Mead iterations per restart (as
+/// [`fit::fit`]); `progress` hears each club as it is done.
+pub fn leave_one_out(rows: &[TourAverage], iterations: usize, mut progress: impl FnMut(&Holdout)) -> CrossValidation {
+    let mut holdouts = Vec::with_capacity(rows.len());
+    for (i, held) in rows.iter().enumerate() {
+        let rest: Vec<TourAverage> = rows.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| r.clone()).collect();
+        let fitted = fit::fit(&rest, &fit::START, iterations, |_| {});
+        let (carry, apex, land) = fit::predict(&fitted.aero, held);
+        let h = Holdout {
+            club: held.club.clone(),
+            carry_yd: held.carry_yd,
+            predicted_carry_yd: carry,
+            carry_error_pct: 100.0 * (carry - held.carry_yd) / held.carry_yd,
+            apex_error_yd: apex - held.max_height_yd,
+            land_angle_error_deg: land - held.land_angle_deg,
+        };
+        progress(&h);
+        holdouts.push(h);
+    }
+    let max = |f: fn(&Holdout) -> Real| holdouts.iter().map(|h| f(h).abs()).fold(0.0, Real::max);
+    CrossValidation {
+        max_carry_error_pct: max(|h| h.carry_error_pct),
+        max_apex_error_yd: max(|h| h.apex_error_yd),
+        max_land_angle_error_deg: max(|h| h.land_angle_error_deg),
+        holdouts,
+    }
+}

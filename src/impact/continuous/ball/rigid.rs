@@ -1,0 +1,95 @@
+//! A rigid ball: one sphere of the ball's mass and inertia (the contact laws of seed sections 3.2.2-3.2.3 act on
+//! it directly).
+
+use super::{rk4_mean, BallPart};
+use crate::equipment::BallSpec;
+use crate::math::{Real, Vector3};
+
+/// A rigid sphere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidBall {
+    pub mass_kg: Real,
+    pub radius_m: Real,
+    pub inertia_kg_m2: Real,
+}
+
+impl RigidBall {
+    pub fn new(ball: &BallSpec) -> Self {
+        RigidBall { mass_kg: ball.mass_kg, radius_m: ball.radius_m, inertia_kg_m2: ball.inertia_kg_m2 }
+    }
+}
+
+/// Centre position and velocity and spin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidBallState {
+    pub p: Vector3,
+    pub v: Vector3,
+    pub w: Vector3,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct RigidBallRate {
+    v: Vector3,
+    a: Vector3,
+    alpha: Vector3,
+}
+
+impl BallPart for RigidBall {
+    type State = RigidBallState;
+    type Rate = RigidBallRate;
+
+    fn mass_kg(&self) -> Real {
+        self.mass_kg
+    }
+
+    fn radius_m(&self) -> Real {
+        self.radius_m
+    }
+
+    fn at_rest(&self, centre_m: Vector3) -> RigidBallState {
+        RigidBallState { p: centre_m, v: Vector3::zeros(), w: Vector3::zeros() }
+    }
+
+    #[inline]
+    fn centre(s: &RigidBallState) -> (Vector3, Vector3) {
+        (s.p, s.v)
+    }
+
+    #[inline]
+    fn surface_spin(s: &RigidBallState) -> Vector3 {
+        s.w
+    }
+
+    fn spin(&self, s: &RigidBallState) -> Vector3 {
+        s.w
+    }
+
+    #[inline]
+    fn rate(&self, s: &RigidBallState, force_n: Vector3, r_m: Vector3) -> RigidBallRate {
+        RigidBallRate { v: s.v, a: force_n / self.mass_kg, alpha: r_m.cross(&force_n) / self.inertia_kg_m2 }
+    }
+
+    #[inline]
+    fn advance(s: &RigidBallState, r: &RigidBallRate, h: Real) -> RigidBallState {
+        RigidBallState { p: s.p + r.v * h, v: s.v + r.a * h, w: s.w + r.alpha * h }
+    }
+
+    #[inline]
+    fn advance_rk4(s: &RigidBallState, k: [&RigidBallRate; 4], h: Real) -> RigidBallState {
+        let [k1, k2, k3, k4] = k;
+        let mean = RigidBallRate {
+            v: rk4_mean(k1.v, k2.v, k3.v, k4.v),
+            a: rk4_mean(k1.a, k2.a, k3.a, k4.a),
+            alpha: rk4_mean(k1.alpha, k2.alpha, k3.alpha, k4.alpha),
+        };
+        Self::advance(s, &mean, h)
+    }
+
+    fn momentum(&self, s: &RigidBallState) -> (Vector3, Vector3) {
+        (self.mass_kg * s.v, self.mass_kg * s.p.cross(&s.v) + self.inertia_kg_m2 * s.w)
+    }
+
+    fn energy_j(&self, s: &RigidBallState) -> Real {
+        0.5 * self.mass_kg * s.v.norm_squared() + 0.5 * self.inertia_kg_m2 * s.w.norm_squared()
+    }
+}

@@ -1,0 +1,145 @@
+//! The two-layer ball (seed section 3.2.1, Table 3.5; McNally et al.): a core and a cover of uniform density
+//! (cover thickness `t`) sharing translation; their relative rotation `θ` is resisted by a 3D rotary
+//! spring-damper, torque `k_ball θ + c_ball (ω_cover − ω_core)`. The contact acts on the cover.
+
+use super::{rk4_mean, BallPart};
+use crate::equipment::BallSpec;
+use crate::math::{Real, Vector3};
+
+/// The two-layer ball's split of mass and inertia (uniform density) and its core-cover coupling.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoLayerBall {
+    pub mass_kg: Real,
+    pub radius_m: Real,
+    pub core_inertia_kg_m2: Real,
+    pub cover_inertia_kg_m2: Real,
+    /// Rotary spring between core and cover (N m/rad).
+    pub k_ball_nm_per_rad: Real,
+    /// Rotary damper between core and cover (N m s/rad).
+    pub c_ball_nms_per_rad: Real,
+}
+
+impl TwoLayerBall {
+    /// Core of radius `R − t` and cover shell, of one density, with the ball's total inertia split in proportion
+    /// to `r⁵` (a uniform sphere's inertia is `(8/15) π ρ r⁵`); the total is the ball's given inertia.
+    pub fn new(ball: &BallSpec, cover_thickness_m: Real, k_ball_nm_per_rad: Real, c_ball_nms_per_rad: Real) -> Self {
+        let r_core = ball.radius_m - cover_thickness_m;
+        let core_fraction = (r_core / ball.radius_m).powi(5);
+        TwoLayerBall {
+            mass_kg: ball.mass_kg,
+            radius_m: ball.radius_m,
+            core_inertia_kg_m2: ball.inertia_kg_m2 * core_fraction,
+            cover_inertia_kg_m2: ball.inertia_kg_m2 * (1.0 - core_fraction),
+            k_ball_nm_per_rad,
+            c_ball_nms_per_rad,
+        }
+    }
+}
+
+/// Centre position and velocity, core and cover spins and their relative rotation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoLayerBallState {
+    pub p: Vector3,
+    pub v: Vector3,
+    pub w_core: Vector3,
+    pub w_cover: Vector3,
+    pub theta: Vector3,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct TwoLayerBallRate {
+    v: Vector3,
+    a: Vector3,
+    alpha_core: Vector3,
+    alpha_cover: Vector3,
+    theta_dot: Vector3,
+}
+
+impl BallPart for TwoLayerBall {
+    type State = TwoLayerBallState;
+    type Rate = TwoLayerBallRate;
+
+    fn mass_kg(&self) -> Real {
+        self.mass_kg
+    }
+
+    fn radius_m(&self) -> Real {
+        self.radius_m
+    }
+
+    fn at_rest(&self, centre_m: Vector3) -> TwoLayerBallState {
+        TwoLayerBallState {
+            p: centre_m,
+            v: Vector3::zeros(),
+            w_core: Vector3::zeros(),
+            w_cover: Vector3::zeros(),
+            theta: Vector3::zeros(),
+        }
+    }
+
+    #[inline]
+    fn centre(s: &TwoLayerBallState) -> (Vector3, Vector3) {
+        (s.p, s.v)
+    }
+
+    #[inline]
+    fn surface_spin(s: &TwoLayerBallState) -> Vector3 {
+        s.w_cover
+    }
+
+    fn spin(&self, s: &TwoLayerBallState) -> Vector3 {
+        (self.core_inertia_kg_m2 * s.w_core + self.cover_inertia_kg_m2 * s.w_cover)
+            / (self.core_inertia_kg_m2 + self.cover_inertia_kg_m2)
+    }
+
+    #[inline]
+    fn rate(&self, s: &TwoLayerBallState, force_n: Vector3, r_m: Vector3) -> TwoLayerBallRate {
+        let w_rel = s.w_cover - s.w_core;
+        let spring = self.k_ball_nm_per_rad * s.theta + self.c_ball_nms_per_rad * w_rel;
+        TwoLayerBallRate {
+            v: s.v,
+            a: force_n / self.mass_kg,
+            alpha_core: spring / self.core_inertia_kg_m2,
+            alpha_cover: (r_m.cross(&force_n) - spring) / self.cover_inertia_kg_m2,
+            theta_dot: w_rel,
+        }
+    }
+
+    #[inline]
+    fn advance(s: &TwoLayerBallState, r: &TwoLayerBallRate, h: Real) -> TwoLayerBallState {
+        TwoLayerBallState {
+            p: s.p + r.v * h,
+            v: s.v + r.a * h,
+            w_core: s.w_core + r.alpha_core * h,
+            w_cover: s.w_cover + r.alpha_cover * h,
+            theta: s.theta + r.theta_dot * h,
+        }
+    }
+
+    #[inline]
+    fn advance_rk4(s: &TwoLayerBallState, k: [&TwoLayerBallRate; 4], h: Real) -> TwoLayerBallState {
+        let [k1, k2, k3, k4] = k;
+        let mean = TwoLayerBallRate {
+            v: rk4_mean(k1.v, k2.v, k3.v, k4.v),
+            a: rk4_mean(k1.a, k2.a, k3.a, k4.a),
+            alpha_core: rk4_mean(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
+            alpha_cover: rk4_mean(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
+            theta_dot: rk4_mean(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
+        };
+        Self::advance(s, &mean, h)
+    }
+
+    fn momentum(&self, s: &TwoLayerBallState) -> (Vector3, Vector3) {
+        (
+            self.mass_kg * s.v,
+            self.mass_kg * s.p.cross(&s.v) + self.core_inertia_kg_m2 * s.w_core + self.cover_inertia_kg_m2 * s.w_cover,
+        )
+    }
+
+    fn energy_j(&self, s: &TwoLayerBallState) -> Real {
+        0.5 * self.mass_kg * s.v.norm_squared()
+            + 0.5 * self.core_inertia_kg_m2 * s.w_core.norm_squared()
+            + 0.5 * self.cover_inertia_kg_m2 * s.w_cover.norm_squared()
+            + 0.5 * self.k_ball_nm_per_rad * s.theta.norm_squared()
+    }
+}

@@ -1,0 +1,250 @@
+//! The iron-plus-ground system's equations of motion: the two-layer ball (seed 3.2.1, eq. 3.14-3.15, reused as
+//! is), the head on the flexible shaft (section 4.1) riding on the grip's undisturbed motion, and the ground's
+//! forces on the head (section 4.2, eq. 4.3-4.13).
+//!
+//! The head's pose is the rigid club's undisturbed pose (the grip's constant twist) plus the shaft's elastic
+//! offset. The elastic motion is computed in the club's frame at the start, which does not turn with the swing
+//! (a few tenths of a radian during the ground contact): the shaft's modes are those of the club at its initial
+//! attitude. With that, the club's linear momentum is the rigid club's plus the modes', and it changes exactly
+//! by the impulses of the ball, the ground and the grip (the clamp's reaction plus the force the rigid swing
+//! needs).
+
+use crate::impact::continuous::ball::TwoLayerBall;
+use crate::impact::continuous::club::Head as BodyMotion;
+use crate::impact::continuous::ground::{GroundForces, SoilGround};
+use crate::impact::continuous::law::volumetric::Volumetric;
+use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
+use crate::impact::continuous::shaft::grip::ConstantTwist;
+use crate::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
+use crate::impact::continuous::surface::FaceSurface;
+use crate::impact::continuous::{ContactForces, TwoLayerParams};
+use crate::math::{Isometry3, Real, Rotation3, Translation3, UnitQuaternion, Vector3};
+
+/// The integrated state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct State {
+    /// Time from the ball's first contact on the undisturbed swing (s).
+    pub t_s: Real,
+    pub shaft: ModalState,
+    pub p_b: Vector3,
+    pub v_b: Vector3,
+    pub w_core: Vector3,
+    pub w_cover: Vector3,
+    pub theta: Vector3,
+    /// Impulses on the club (N s, world): from the ball, the ground and the grip.
+    pub j_ball: Vector3,
+    pub j_ground: Vector3,
+    pub j_grip: Vector3,
+}
+
+/// Time derivatives.
+#[derive(Debug, Clone, Copy)]
+pub struct Rates {
+    pub eta_ddot: ModalVec,
+    pub a_b: Vector3,
+    pub alpha_core: Vector3,
+    pub alpha_cover: Vector3,
+    /// Forces on the club (world).
+    pub f_ball: Vector3,
+    pub f_ground: Vector3,
+    pub f_grip: Vector3,
+}
+
+/// One evaluation: the rates and what acted.
+#[derive(Debug, Clone, Copy)]
+pub struct Eval {
+    pub rates: Rates,
+    pub ball: Option<ContactForces>,
+    pub ground: GroundForces,
+    pub head: BodyMotion,
+}
+
+/// Everything fixed during a run.
+pub struct System<'a> {
+    pub params: TwoLayerParams,
+    pub ball: TwoLayerBall,
+    pub surface: FaceSurface,
+    pub modal: &'a ModalClub,
+    pub ground: &'a SoilGround,
+    pub motion: ConstantTwist,
+    /// The club frame at the start (world from club), in which the elastic motion is computed.
+    pub elastic_frame: Rotation3,
+    pub head_mass_kg: Real,
+    pub shaft_mass_kg: Real,
+    /// The undeformed shaft's CG, club frame (m).
+    pub shaft_cg_m: Vector3,
+}
+
+impl System<'_> {
+    /// The head's pose and velocity.
+    pub fn head(&self, s: &State) -> BodyMotion {
+        self.head_and_rigid(s).0
+    }
+
+    /// The head's pose and velocity, and the rigid club's.
+    fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
+        let (rotation, position_m, velocity_mps) = self.motion.at(s.t_s);
+        let rigid = BodyMotion {
+            position_m,
+            world_from_club: rotation,
+            velocity_mps,
+            angular_velocity_radps: self.motion.angular_velocity_radps,
+        };
+        let o = self.modal.head_offset(&s.shaft);
+        let f = &self.elastic_frame;
+        let head = BodyMotion {
+            position_m: rigid.position_m + f * o.cg_m,
+            world_from_club: Rotation3::new(f * o.rotation_rad) * rigid.world_from_club,
+            velocity_mps: rigid.velocity_mps + f * o.cg_velocity_mps,
+            angular_velocity_radps: rigid.angular_velocity_radps + f * o.angular_velocity_radps,
+        };
+        (head, rigid)
+    }
+
+    /// The rigid swing's club momentum (N s, world) and the grip force it needs (N).
+    fn rigid_momentum_and_force(&self, rigid: &BodyMotion) -> (Vector3, Vector3) {
+        let (w, v) = (rigid.angular_velocity_radps, rigid.velocity_mps);
+        let r = rigid.world_from_club * self.shaft_cg_m;
+        let m = self.head_mass_kg + self.shaft_mass_kg;
+        (m * v + self.shaft_mass_kg * w.cross(&r), m * w.cross(&v) + self.shaft_mass_kg * w.cross(&w.cross(&r)))
+    }
+
+    /// The club's linear momentum (N s, world).
+    pub fn club_momentum(&self, s: &State) -> Vector3 {
+        let (_, rigid) = self.head_and_rigid(s);
+        self.rigid_momentum_and_force(&rigid).0 + self.elastic_frame * self.modal.momentum(&s.shaft)
+    }
+
+    /// The ground's forces on the head as it is in `s`.
+    pub fn ground_forces(&self, s: &State) -> GroundForces {
+        self.ground_forces_on(&self.head(s))
+    }
+
+    fn ground_forces_on(&self, h: &BodyMotion) -> GroundForces {
+        let pose = Isometry3::from_parts(
+            Translation3::from(h.position_m),
+            UnitQuaternion::from_rotation_matrix(&h.world_from_club),
+        );
+        self.ground.forces(&pose, &h.velocity_mps, &h.angular_velocity_radps)
+    }
+
+    /// The rates; `ground` given holds the ground's forces (sub-cycled during the ball's contact).
+    pub fn eval(&self, s: &State, ground: Option<&GroundForces>) -> Eval {
+        let (head, rigid) = self.head_and_rigid(s);
+        let ball_motion = BodyMotion {
+            position_m: s.p_b,
+            world_from_club: Rotation3::identity(),
+            velocity_mps: s.v_b,
+            angular_velocity_radps: s.w_cover,
+        };
+        let contact = two_layer_contact(&self.params, self.ball.radius_m, &self.surface, &head, &ball_motion);
+        let (f_on_ball, r_b) = contact.map_or((Vector3::zeros(), Vector3::zeros()), |(_, f, r)| (f, r));
+        let ground = ground.copied().unwrap_or_else(|| self.ground_forces_on(&head));
+        let lever = s.p_b + r_b - head.position_m;
+        let force = ground.force_n() - f_on_ball;
+        let torque = ground.torque_nm() + lever.cross(&(-f_on_ball));
+        let fi = self.elastic_frame.inverse();
+        let eta_ddot = self.modal.acceleration(&s.shaft, &(fi * force), &(fi * torque));
+        let f_grip =
+            self.elastic_frame * self.modal.grip_force(&s.shaft, &eta_ddot) + self.rigid_momentum_and_force(&rigid).1;
+        let w_rel = s.w_cover - s.w_core;
+        let spring = self.ball.k_ball_nm_per_rad * s.theta + self.ball.c_ball_nms_per_rad * w_rel;
+        Eval {
+            rates: Rates {
+                eta_ddot,
+                a_b: f_on_ball / self.ball.mass_kg,
+                alpha_core: spring / self.ball.core_inertia_kg_m2,
+                alpha_cover: (r_b.cross(&f_on_ball) - spring) / self.ball.cover_inertia_kg_m2,
+                f_ball: -f_on_ball,
+                f_ground: ground.force_n(),
+                f_grip,
+            },
+            ball: contact.map(|c| c.0),
+            ground,
+            head,
+        }
+    }
+
+    /// One classical Runge-Kutta step of `h`; with `hold_ground` the ground's forces are evaluated once, at the
+    /// step's start, and held over it.
+    pub fn step(&self, s: &State, h: Real, hold_ground: bool) -> (State, Eval) {
+        let e1 = self.eval(s, None);
+        let held = hold_ground.then_some(e1.ground);
+        let s2 = advance(s, s, &e1.rates, 0.5 * h);
+        let e2 = self.eval(&s2, held.as_ref());
+        let s3 = advance(s, &s2, &e2.rates, 0.5 * h);
+        let e3 = self.eval(&s3, held.as_ref());
+        let s4 = advance(s, &s3, &e3.rates, h);
+        let e4 = self.eval(&s4, held.as_ref());
+        let (r1, r2, r3, r4) = (&e1.rates, &e2.rates, &e3.rates, &e4.rates);
+        let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
+        let mut next = *s;
+        next.t_s = s.t_s + h;
+        next.shaft.eta +=
+            (s.shaft.eta_dot + 2.0 * s2.shaft.eta_dot + 2.0 * s3.shaft.eta_dot + s4.shaft.eta_dot) * (h / 6.0);
+        next.shaft.eta_dot += (r1.eta_ddot + 2.0 * r2.eta_ddot + 2.0 * r3.eta_ddot + r4.eta_ddot) * (h / 6.0);
+        next.p_b += c(s.v_b, s2.v_b, s3.v_b, s4.v_b);
+        next.v_b += c(r1.a_b, r2.a_b, r3.a_b, r4.a_b);
+        next.w_core += c(r1.alpha_core, r2.alpha_core, r3.alpha_core, r4.alpha_core);
+        next.w_cover += c(r1.alpha_cover, r2.alpha_cover, r3.alpha_cover, r4.alpha_cover);
+        next.theta += c(s.w_cover - s.w_core, s2.w_cover - s2.w_core, s3.w_cover - s3.w_core, s4.w_cover - s4.w_core);
+        next.j_ball += c(r1.f_ball, r2.f_ball, r3.f_ball, r4.f_ball);
+        next.j_ground += c(r1.f_ground, r2.f_ground, r3.f_ground, r4.f_ground);
+        next.j_grip += c(r1.f_grip, r2.f_grip, r3.f_grip, r4.f_grip);
+        (next, e1)
+    }
+}
+
+/// The face's contact with the two-layer ball's cover through the continuous model's law (eq. 3.14-3.15,
+/// [`Volumetric`]): the forces, the force on the ball (world) and the ball centre -> contact lever.
+fn two_layer_contact(
+    params: &TwoLayerParams,
+    ball_radius_m: Real,
+    surface: &FaceSurface,
+    club: &BodyMotion,
+    ball: &BodyMotion,
+) -> Option<(ContactForces, Vector3, Vector3)> {
+    let rot = &club.world_from_club;
+    let overlap =
+        surface.overlap(&rot.inverse_transform_vector(&(ball.position_m - club.position_m)), ball_radius_m)?;
+    let normal = rot * overlap.normal;
+    let r_club_m = rot * overlap.centroid_m;
+    let r_ball_m = club.position_m + r_club_m - ball.position_m;
+    let v_club = club.velocity_mps + club.angular_velocity_radps.cross(&r_club_m);
+    let v_ball = ball.velocity_mps + ball.angular_velocity_radps.cross(&r_ball_m);
+    let v_rel = v_ball - v_club;
+    let contact = Contact {
+        overlap,
+        normal,
+        r_club_m,
+        r_ball_m,
+        approach_mps: -v_rel.dot(&normal),
+        slip_mps: v_rel - v_rel.dot(&normal) * normal,
+    };
+    let law = Volumetric {
+        k_v_n_per_m3: params.k_v_n_per_m3,
+        d_s_per_m: params.d_s_per_m,
+        mu: params.mu,
+        v_tr_mps: params.v_tr_mps,
+    };
+    let ContactForce { normal_n, friction_n } = law.force(&contact, &());
+    Some((
+        ContactForces { normal_n, friction_n, in_contact: true, depth_m: overlap.depth_m },
+        normal_n * normal + friction_n,
+        r_ball_m,
+    ))
+}
+
+/// `base` advanced by `h` along the rates `r` evaluated at `at`.
+fn advance(base: &State, at: &State, r: &Rates, h: Real) -> State {
+    let mut s = *base;
+    s.t_s = base.t_s + h;
+    s.shaft.eta = base.shaft.eta + at.shaft.eta_dot * h;
+    s.shaft.eta_dot = base.shaft.eta_dot + r.eta_ddot * h;
+    s.p_b = base.p_b + at.v_b * h;
+    s.v_b = base.v_b + r.a_b * h;
+    s.w_core = base.w_core + r.alpha_core * h;
+    s.w_cover = base.w_cover + r.alpha_cover * h;
+    s.theta = base.theta + (at.w_cover - at.w_core) * h;
+    s
+}

@@ -1,0 +1,217 @@
+//! The iron-plus-ground model (seed chapter 4): the continuous two-layer ball (section 3.2.1, eq. 3.14-3.15) on
+//! a head carried by a flexible shaft (section 4.1, eq. 4.1-4.2) whose grip follows the swing's undisturbed
+//! motion, with the ground's reaction on the sole (eq. 4.3-4.9) and face (eq. 4.10-4.13) for a ball resting on
+//! the turf (section 4.3).
+//!
+//! A run starts just before the sole first touches the ground on the undisturbed swing (or at the ball's first
+//! contact when the ball comes first), integrates with classical Runge-Kutta at `ground_step_s` while only the
+//! ground acts and at `ball_step_s` from just before the ball's contact until it leaves (the ground's forces are
+//! then evaluated once per step and held: they change over milliseconds, the ball's over microseconds), and
+//! follows the ground contact after the ball leaves to measure the divot. Without ground (`with_ground = false`)
+//! it is the same flexible club on a teed-up ball, the seed's reference in Figures 4.11-4.17.
+
+pub mod dynamics;
+pub mod placement;
+mod run;
+
+use crate::equipment::shaft::ShaftSpec;
+use crate::equipment::soil::SoilSpec;
+use crate::equipment::sole::SoleSpec;
+use crate::impact::continuous::ground::{GroundPhase, SoilGround};
+use crate::impact::continuous::shaft::modal::ModalClub;
+use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
+use crate::impact::continuous::TwoLayerParams;
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::math::{Real, Vector3};
+
+pub use placement::Strike;
+
+/// The model's settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundModel {
+    pub soil: SoilSpec,
+    /// The club's sole and shaft (typical 7-iron values and Tables 4.1-4.2 by default).
+    pub sole: SoleSpec,
+    pub shaft: ShaftSpec,
+    pub mesh: ShaftMesh,
+    /// Shaft modes above this are dropped (Hz); infinite keeps them all.
+    pub max_mode_hz: Real,
+    /// Ball parameters; `None` uses the club's (Table 3.5).
+    pub params: Option<TwoLayerParams>,
+    /// Steps during the ball's contact and while only the ground acts (s).
+    pub ball_step_s: Real,
+    pub ground_step_s: Real,
+    /// How long to follow the ground contact after the ball leaves (s).
+    pub follow_s: Real,
+    /// `false`: the same club on a teed ball, no ground.
+    pub with_ground: bool,
+}
+
+impl GroundModel {
+    /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
+    /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
+    /// ball speed < 1e-5 and spin < 6e-4, tests/ground.rs) and 15 us outside (the highest shaft mode,
+    /// 1.5e5 rad/s, needs < 18 us).
+    pub fn new(soil: SoilSpec) -> Self {
+        GroundModel {
+            soil,
+            sole: SoleSpec::IRON7,
+            shaft: ShaftSpec::iron7(),
+            mesh: ShaftMesh { elements: 8, clamp_m: 0.0 },
+            max_mode_hz: Real::INFINITY,
+            params: None,
+            ball_step_s: 2e-6,
+            ground_step_s: 15e-6,
+            follow_s: 15e-3,
+            with_ground: true,
+        }
+    }
+
+    /// Assembles the club once (its modes), for many shots.
+    pub fn prepare(&self, equipment: &Equipment) -> Result<PreparedGround, ImpactError> {
+        let club = &equipment.club;
+        let shaft_err = |e: ShaftError| ImpactError::NotConverged { model: "ground", reason: e.to_string() };
+        let model = self.clone();
+        let flexible =
+            FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
+        let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
+        let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&model.shaft);
+        Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m })
+    }
+}
+
+/// The shaft's CG from the tip toward the butt, as a fraction of its length.
+fn shaft_cg_fraction(shaft: &ShaftSpec) -> Real {
+    let n = 400;
+    let l = shaft.length_m();
+    let h = l / n as Real;
+    let (mut m, mut mx) = (0.0, 0.0);
+    for i in 0..n {
+        let x = (i as Real + 0.5) * h;
+        let dm = shaft.mass_per_length_kg_per_m(x) * h;
+        m += dm;
+        mx += dm * (l - x); // from the tip
+    }
+    mx / (m * l)
+}
+
+/// The model with its club assembled.
+#[derive(Debug, Clone)]
+pub struct PreparedGround {
+    pub model: GroundModel,
+    pub equipment: Equipment,
+    pub modal: ModalClub,
+    /// The undeformed shaft's CG in the club frame (m).
+    pub shaft_cg_m: Vector3,
+}
+
+/// One sample of a trace: the ground's forces on the head and its face angle and loft.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+pub struct GroundTracePoint {
+    /// Time from the ball's first contact on the undisturbed swing (ms).
+    pub t_ms: Real,
+    pub sole_vertical_n: Real,
+    pub sole_horizontal_n: Real,
+    pub face_horizontal_n: Real,
+    pub ground_vertical_n: Real,
+    pub ground_horizontal_n: Real,
+    pub ball_normal_n: Real,
+    pub face_angle_deg: Real,
+    pub dynamic_loft_deg: Real,
+    pub phase: GroundPhase,
+}
+
+/// What a run gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundResult {
+    pub launch: Launch,
+    pub strike: Strike,
+    /// From the sole's first touch to the ball's first contact (ms; negative when the ball came first, `None`
+    /// without ground contact).
+    pub ground_contact_before_ball_ms: Option<Real>,
+    /// At the ball's first contact, against the undisturbed swing: face-centre speed lost (mph), face angle
+    /// (open +) and dynamic loft changes (deg).
+    pub club_speed_loss_mph: Real,
+    pub face_angle_change_deg: Real,
+    pub dynamic_loft_change_deg: Real,
+    /// Deepest sinkage of the sole (mm) and the head's horizontal travel with the leading edge below the
+    /// surface (mm).
+    pub divot_depth_mm: Real,
+    pub divot_length_mm: Real,
+    pub peak_ground_force_n: Real,
+    /// Total time in contact with the ground (ms) and with the ball (us).
+    pub ground_contact_ms: Real,
+    pub ball_contact_us: Real,
+    /// The club's linear momentum at the start and end, and the impulses of the ball, ground and grip on it
+    /// (N s, world).
+    pub club_momentum_start: Vector3,
+    pub club_momentum_end: Vector3,
+    pub ball_impulse_ns: Vector3,
+    pub ground_impulse_ns: Vector3,
+    pub grip_impulse_ns: Vector3,
+    pub steps: usize,
+    pub trace: Vec<GroundTracePoint>,
+}
+
+/// The `ground` object a prediction carries: how the club met the turf (names as on the wire).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+pub struct GroundSummary {
+    pub strike: Strike,
+    pub ground_contact_before_ball_ms: Option<Real>,
+    pub club_speed_loss_mph: Real,
+    pub face_angle_change_deg: Real,
+    pub dynamic_loft_change_deg: Real,
+    pub divot_depth_mm: Real,
+    pub divot_length_mm: Real,
+    pub peak_ground_force_n: Real,
+    pub ground_contact_ms: Real,
+    pub ball_contact_us: Real,
+}
+
+impl GroundResult {
+    /// The wire summary of the strike.
+    pub fn summary(&self) -> GroundSummary {
+        GroundSummary {
+            strike: self.strike,
+            ground_contact_before_ball_ms: self.ground_contact_before_ball_ms,
+            club_speed_loss_mph: self.club_speed_loss_mph,
+            face_angle_change_deg: self.face_angle_change_deg,
+            dynamic_loft_change_deg: self.dynamic_loft_change_deg,
+            divot_depth_mm: self.divot_depth_mm,
+            divot_length_mm: self.divot_length_mm,
+            peak_ground_force_n: self.peak_ground_force_n,
+            ground_contact_ms: self.ground_contact_ms,
+            ball_contact_us: self.ball_contact_us,
+        }
+    }
+}
+
+impl ImpactModel for PreparedGround {
+    fn name(&self) -> &'static str {
+        "ground"
+    }
+
+    fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
+        run::simulate(self, state, 0, 0.0).map(|r| r.launch)
+    }
+}
+
+impl PreparedGround {
+    /// Runs one shot, following the ground contact after the ball leaves for up to `follow_s`, recording a
+    /// trace every `trace_every` steps (0: none). [`ImpactModel::predict`] stops when the ball leaves.
+    pub fn simulate(&self, state: &ImpactState, trace_every: usize) -> Result<GroundResult, ImpactError> {
+        run::simulate(self, state, trace_every, self.model.follow_s)
+    }
+
+    /// The ground under the ball of `state` (for the placement and strike).
+    pub fn ground_for(&self, state: &ImpactState) -> Result<SoilGround, ImpactError> {
+        let ball = &self.equipment.ball;
+        let centre = placement::ball_centre_m(state, &self.equipment.club, ball)?;
+        Ok(SoilGround::new(
+            self.model.soil.clone(),
+            self.model.sole,
+            &self.equipment.club,
+            placement::ground_y_m(&centre, ball),
+        ))
+    }
+}

@@ -1,0 +1,183 @@
+//! The continuous two-layer model (seed section 3.2.1, Table 3.5; McNally et al.): the [`TwoLayerBall`] against
+//! the face through the [`Volumetric`] law (eq. 3.14-3.15), on a [`FreeHead`], no ground.
+//!
+//! Parameters: Table 3.5 per club, or the club file's `[continuous]` section.
+//!
+//! Assumptions (seed 3.2.1): the contact never reaches the face's edges; a face whose bulge and roll differ is
+//! taken as a sphere of their geometric-mean radius.
+
+use super::assembly::{Assembly, ContinuousResult, Integration};
+use super::ball::TwoLayerBall;
+use super::club::FreeHead;
+use super::ground::NoGround;
+use super::law::volumetric::Volumetric;
+use super::surface::FaceSurface;
+use crate::equipment::{BallSpec, ClubSpec, ModelSections};
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::math::Real;
+
+/// The parameters of Table 3.5 (units as in `tests/data/seed-tables.toml`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TwoLayerParams {
+    /// Volumetric stiffness `k` (N/m³).
+    pub k_v_n_per_m3: Real,
+    /// Hunt-Crossley damping `d` (s/m).
+    pub d_s_per_m: Real,
+    /// Dynamic friction coefficient.
+    pub mu: Real,
+    /// Rotary spring between core and cover (N m/rad).
+    pub k_ball_nm_per_rad: Real,
+    /// Rotary damper between core and cover (N m s/rad).
+    pub c_ball_nms_per_rad: Real,
+    /// Cover thickness (m).
+    pub cover_thickness_m: Real,
+    /// Friction transition velocity (m/s).
+    pub v_tr_mps: Real,
+}
+
+fn invalid(field: &str, reason: String) -> ImpactError {
+    ImpactError::InvalidParameter { field: format!("continuous.{field}"), reason }
+}
+
+impl TwoLayerParams {
+    /// Table 3.5, driver.
+    pub const DRIVER: TwoLayerParams = TwoLayerParams {
+        k_v_n_per_m3: 6.25e9,
+        d_s_per_m: 6.42e-3,
+        mu: 0.372,
+        k_ball_nm_per_rad: 13.5,
+        c_ball_nms_per_rad: 2.53e-3,
+        cover_thickness_m: 1.26e-3,
+        v_tr_mps: 0.936,
+    };
+    /// Table 3.5, 7-iron.
+    pub const IRON7: TwoLayerParams = TwoLayerParams {
+        k_v_n_per_m3: 6.83e9,
+        d_s_per_m: 9.26e-3,
+        mu: 0.489,
+        k_ball_nm_per_rad: 34.1,
+        c_ball_nms_per_rad: 13.2e-3,
+        cover_thickness_m: 2.55e-3,
+        v_tr_mps: 0.812,
+    };
+
+    /// Table 3.5 for a club: the driver's for a curved face, the 7-iron's for a flat one.
+    pub fn seed_for(club: &ClubSpec) -> Self {
+        if club.is_wood() {
+            Self::DRIVER
+        } else {
+            Self::IRON7
+        }
+    }
+
+    /// The club file's `[continuous]` section, validated, or `None` if it has none.
+    pub fn from_sections(sections: &ModelSections, ball: &BallSpec) -> Result<Option<Self>, ImpactError> {
+        let Some(p) = crate::impact::impulse::section::<TwoLayerParams>(sections, "continuous")? else {
+            return Ok(None);
+        };
+        p.validate(ball)?;
+        Ok(Some(p))
+    }
+
+    /// Checks every parameter, naming a bad one.
+    pub fn validate(&self, ball: &BallSpec) -> Result<(), ImpactError> {
+        let positive = [
+            ("k_v_n_per_m3", self.k_v_n_per_m3),
+            ("mu", self.mu),
+            ("k_ball_nm_per_rad", self.k_ball_nm_per_rad),
+            ("cover_thickness_m", self.cover_thickness_m),
+            ("v_tr_mps", self.v_tr_mps),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(invalid(name, format!("must be positive, got {v}")));
+            }
+        }
+        for (name, v) in [("d_s_per_m", self.d_s_per_m), ("c_ball_nms_per_rad", self.c_ball_nms_per_rad)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(invalid(name, format!("must not be negative, got {v}")));
+            }
+        }
+        if self.cover_thickness_m >= ball.radius_m {
+            return Err(invalid("cover_thickness_m", "must be less than the ball's radius".into()));
+        }
+        Ok(())
+    }
+}
+
+/// The continuous two-layer model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContinuousModel {
+    /// Parameters; `None` uses Table 3.5 for the club ([`TwoLayerParams::seed_for`]).
+    pub params: Option<TwoLayerParams>,
+    /// Integration step (s).
+    pub step_s: Real,
+    /// Give up after this long in contact (s).
+    pub max_contact_s: Real,
+}
+
+impl Default for ContinuousModel {
+    fn default() -> Self {
+        ContinuousModel { params: None, step_s: 0.6e-6, max_contact_s: 3e-3 }
+    }
+}
+
+impl ContinuousModel {
+    /// The model with a parameter set.
+    pub fn with_params(params: TwoLayerParams) -> Self {
+        ContinuousModel { params: Some(params), ..Self::default() }
+    }
+
+    /// Runs the collision, optionally recording a trace every `trace_every` steps (0: no trace).
+    pub fn simulate(
+        &self,
+        state: &ImpactState,
+        equipment: &Equipment,
+        trace_every: usize,
+    ) -> Result<ContinuousResult, ImpactError> {
+        let club = &equipment.club;
+        let params = self.params.unwrap_or_else(|| TwoLayerParams::seed_for(club));
+        params.validate(&equipment.ball)?;
+        let start = super::start::Start::new(state, equipment)?;
+        let assembly = Assembly {
+            law: Volumetric {
+                k_v_n_per_m3: params.k_v_n_per_m3,
+                d_s_per_m: params.d_s_per_m,
+                mu: params.mu,
+                v_tr_mps: params.v_tr_mps,
+            },
+            ball: TwoLayerBall::new(
+                &equipment.ball,
+                params.cover_thickness_m,
+                params.k_ball_nm_per_rad,
+                params.c_ball_nms_per_rad,
+            ),
+            club: FreeHead::new(club),
+            ground: NoGround,
+            surface: FaceSurface::of_club(club),
+        };
+        let integration =
+            Integration { step_s: self.step_s, max_contact_s: self.max_contact_s, trace_every, model: "continuous" };
+        assembly.simulate(state, start.ball_centre_m, start.slip0, &integration)
+    }
+}
+
+impl ImpactModel for ContinuousModel {
+    fn name(&self) -> &'static str {
+        "continuous/two_layer"
+    }
+
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        self.simulate(state, equipment, 0).map(|r| r.launch)
+    }
+
+    fn trace(
+        &self,
+        state: &ImpactState,
+        equipment: &Equipment,
+        every: usize,
+    ) -> Option<Result<ContinuousResult, ImpactError>> {
+        Some(self.simulate(state, equipment, every.max(1)))
+    }
+}

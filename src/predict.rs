@@ -1,0 +1,153 @@
+//! `impactd predict` as a library: JSONL deliveries in, JSONL launch conditions out, each bad line answered with
+//! an error that names the field (DESIGN.md section 4) without stopping the others.
+
+use std::io::{BufRead, Write};
+
+use serde::Serialize;
+
+use crate::equipment::ClubSpec;
+use crate::impact::continuous::TracePoint;
+use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpactState};
+use crate::jsonl::{JsonlError, Tally};
+use crate::wire::{DeliveryInput, PredictOutput};
+
+/// How each delivery is answered.
+#[derive(Clone, Copy)]
+pub enum Predictor<'a> {
+    /// The launch of a model.
+    Plain(&'a dyn ImpactModel),
+    /// A model resolved in time: its launch with the contact's course (`predict --trace`).
+    Traced(&'a dyn ImpactModel),
+}
+
+/// A `predict --trace` answer: the launch, then the contact's course.
+#[derive(Serialize)]
+struct TracedOutput {
+    #[serde(flatten)]
+    output: PredictOutput,
+    contact_time_us: f64,
+    peak_normal_force_n: f64,
+    trace: Vec<TracePoint>,
+}
+
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Answer {
+    Plain(PredictOutput),
+    Traced(TracedOutput),
+}
+
+/// A prediction error for the delivery it came from, naming the field it is about.
+#[derive(Debug, thiserror::Error)]
+pub enum DeliveryError {
+    #[error("field `club_speed_mph`: {speed_mph:.1} mph ({speed_mps:.1} m/s) is outside 1-100 m/s")]
+    Speed { speed_mph: f64, speed_mps: f64 },
+    #[error("fields `impact_h_mm`/`impact_v_mm`: {0}")]
+    Location(ImpactError),
+    #[error("field `{field}`: must be a finite number")]
+    NotFinite { field: &'static str },
+    #[error("fields `club_path_deg`/`face_angle_deg`/`dynamic_loft_deg`: {0}")]
+    Direction(ImpactError),
+    #[error("{0}")]
+    Model(ImpactError),
+    #[error("{0}")]
+    Implausible(#[from] crate::wire::OutOfBounds),
+}
+
+impl DeliveryError {
+    /// Names the field `err` is about in `input`.
+    pub fn new(err: ImpactError, input: &DeliveryInput) -> Self {
+        match err {
+            ImpactError::SpeedOutOfRange { speed_mps } => {
+                DeliveryError::Speed { speed_mph: input.club_speed_mph, speed_mps }
+            }
+            ImpactError::OffFace { .. } | ImpactError::Face(_) => DeliveryError::Location(err),
+            ImpactError::NotFinite { field } => DeliveryError::NotFinite { field },
+            ImpactError::NotApproaching => DeliveryError::Direction(err),
+            other => DeliveryError::Model(other),
+        }
+    }
+}
+
+/// The club's state at impact for a delivery read from JSON, or the reason it has none.
+pub fn state_of(input: &DeliveryInput, club: &ClubSpec, equipment: &Equipment) -> Result<ImpactState, DeliveryError> {
+    input.check_finite().map_err(|e| DeliveryError::new(e, input))?;
+    input.check_plausible()?;
+    input.to_delivery(club.loft_deg()).to_state(equipment).map_err(|e| DeliveryError::new(e, input))
+}
+
+fn answer(
+    d: &DeliveryInput,
+    club: &ClubSpec,
+    equipment: &Equipment,
+    predictor: Predictor<'_>,
+) -> Result<Answer, DeliveryError> {
+    let state = state_of(d, club, equipment)?;
+    let metrics = DeliveryMetrics::from_state(&state, club);
+    let hand = d.handedness.unwrap_or_default();
+    let err = |e| DeliveryError::new(e, d);
+    Ok(match predictor {
+        Predictor::Traced(m) => {
+            let Some(r) = m.trace(&state, equipment, 10) else {
+                let launch = m.predict(&state, equipment).map_err(err)?;
+                return Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment)));
+            };
+            let r = r.map_err(err)?;
+            Answer::Traced(TracedOutput {
+                output: PredictOutput::new(&r.launch, &metrics, hand, equipment),
+                contact_time_us: r.contact_time_s * 1e6,
+                peak_normal_force_n: r.peak_normal_force_n,
+                trace: r.trace,
+            })
+        }
+        Predictor::Plain(m) => {
+            let launch = m.predict(&state, equipment).map_err(err)?;
+            Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment))
+        }
+    })
+}
+
+/// Answers every line of `input` on `out` (`impactd predict`); a bad line is answered with its error on `out` and
+/// reported on `err`.
+pub fn run(
+    club: &ClubSpec,
+    predictor: Predictor<'_>,
+    input: impl BufRead,
+    out: impl Write,
+    err: impl Write,
+) -> Result<Tally, JsonlError> {
+    let equipment = Equipment::new(club.clone());
+    crate::jsonl::process("impactd predict", input, out, err, |d: DeliveryInput| {
+        answer(&d, club, &equipment, predictor)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::{ImpulseModel, ImpulseVariant};
+
+    /// Good lines are answered; a bad one is answered with the field it is about and does not stop the others.
+    #[test]
+    fn bad_lines_name_their_field_and_do_not_stop_the_others() {
+        let input = concat!(
+            "{\"club_speed_mph\":113,\"dynamic_loft_deg\":13,\"attack_angle_deg\":-1.3}\n",
+            "\n",
+            "{\"club_speed_mph\":500}\n",
+            "{\"impact_h_mm\":200,\"club_speed_mph\":100}\n",
+        );
+        let model = ImpulseModel::new(ImpulseVariant::Adjusted);
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let tally = run(&ClubSpec::driver(), Predictor::Plain(&model), input.as_bytes(), &mut out, &mut err).unwrap();
+        assert_eq!(tally, Tally { answered: 1, rejected: 2 });
+        let text = String::from_utf8(out).unwrap();
+        let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        // The seed's driver with the adjusted model (Tables 3.1 and 3.3), as in the crate's example: 163.96 mph.
+        assert!((lines[0]["ball_speed_mph"].as_f64().unwrap() - 163.957).abs() < 1e-3);
+        assert_eq!(lines[1]["line"], 3);
+        assert!(lines[1]["error"].as_str().unwrap().starts_with("field `club_speed_mph`"));
+        assert_eq!(lines[2]["line"], 4);
+        assert!(lines[2]["error"].as_str().unwrap().starts_with("fields `impact_h_mm`/`impact_v_mm`"));
+        assert!(String::from_utf8(err).unwrap().starts_with("impactd predict: line 3: field `club_speed_mph`"));
+    }
+}

@@ -1,0 +1,162 @@
+//! The JSONL forms of `impactd predict`: a TrackMan-style delivery in, the launch out.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::impact::{Delivery, DeliveryMetrics, Equipment, ImpactError, Launch, LaunchMetrics};
+use crate::math::{mirror_z_axial, Real, Vector3};
+use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
+
+/// Which hand the golfer plays. Left-handed deliveries are mirrored (z -> -z) into a right-handed world before
+/// any model runs, and the launch is mirrored back.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Handedness {
+    #[default]
+    Right,
+    Left,
+}
+
+/// A TrackMan-style delivery as read by `impactd predict`: flat fields with units in their names. Missing numbers
+/// default to 0, except `dynamic_loft_deg`, which defaults to the club's static loft.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DeliveryInput {
+    #[serde(default)]
+    pub club_speed_mph: Real,
+    #[serde(default)]
+    pub attack_angle_deg: Real,
+    #[serde(default)]
+    pub club_path_deg: Real,
+    #[serde(default)]
+    pub face_angle_deg: Real,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_loft_deg: Option<Real>,
+    #[serde(default)]
+    pub impact_h_mm: Real,
+    #[serde(default)]
+    pub impact_v_mm: Real,
+    /// Angular velocity of the head, rad/s, world frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_angular_velocity_radps: Option<[Real; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub handedness: Option<Handedness>,
+}
+
+/// The largest angular velocity of a clubhead `predict` accepts (rad/s): a driver's head turns at about 30-60
+/// rad/s through impact; ten times that is no swing.
+pub const MAX_CLUB_ANGULAR_VELOCITY_RADPS: Real = 500.0;
+
+/// A number of an input outside what any swing could give.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {value} is outside {min} to {max}")]
+pub struct OutOfBounds {
+    pub field: &'static str,
+    pub value: Real,
+    pub min: Real,
+    pub max: Real,
+}
+
+impl DeliveryInput {
+    /// Every angle and the angular velocity within plausible bounds (a model would answer nonsense beyond them;
+    /// club speed and impact location are checked by the models, which name them).
+    pub fn check_plausible(&self) -> Result<(), OutOfBounds> {
+        let within = |field: &'static str, value: Real, min: Real, max: Real| {
+            if (min..=max).contains(&value) {
+                Ok(())
+            } else {
+                Err(OutOfBounds { field, value, min, max })
+            }
+        };
+        within("attack_angle_deg", self.attack_angle_deg, -60.0, 60.0)?;
+        within("club_path_deg", self.club_path_deg, -60.0, 60.0)?;
+        within("face_angle_deg", self.face_angle_deg, -60.0, 60.0)?;
+        if let Some(l) = self.dynamic_loft_deg {
+            within("dynamic_loft_deg", l, -30.0, 90.0)?;
+        }
+        if let Some(w) = self.club_angular_velocity_radps {
+            let m = MAX_CLUB_ANGULAR_VELOCITY_RADPS;
+            within("club_angular_velocity_radps", Vector3::from(w).norm(), 0.0, m)?;
+        }
+        Ok(())
+    }
+
+    /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
+    /// left-handed golfer.
+    pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {
+        let w = self.club_angular_velocity_radps.map(Vector3::from).unwrap_or_else(Vector3::zeros);
+        let left = self.handedness == Some(Handedness::Left);
+        let s = if left { -1.0 } else { 1.0 };
+        Delivery {
+            club_speed_mps: mph_to_mps(self.club_speed_mph),
+            attack_angle_rad: deg_to_rad(self.attack_angle_deg),
+            club_path_rad: s * deg_to_rad(self.club_path_deg),
+            face_angle_rad: s * deg_to_rad(self.face_angle_deg),
+            dynamic_loft_rad: deg_to_rad(self.dynamic_loft_deg.unwrap_or(static_loft_deg)),
+            impact_h_m: mm_to_m(self.impact_h_mm),
+            impact_v_m: mm_to_m(self.impact_v_mm),
+            club_angular_velocity_radps: if left { mirror_z_axial(&w) } else { w },
+        }
+    }
+
+    /// The first non-finite field, named.
+    pub fn check_finite(&self) -> Result<(), ImpactError> {
+        let mut fields = vec![
+            ("club_speed_mph", self.club_speed_mph),
+            ("attack_angle_deg", self.attack_angle_deg),
+            ("club_path_deg", self.club_path_deg),
+            ("face_angle_deg", self.face_angle_deg),
+            ("impact_h_mm", self.impact_h_mm),
+            ("impact_v_mm", self.impact_v_mm),
+        ];
+        if let Some(l) = self.dynamic_loft_deg {
+            fields.push(("dynamic_loft_deg", l));
+        }
+        if let Some(w) = self.club_angular_velocity_radps {
+            fields.extend(w.iter().map(|v| ("club_angular_velocity_radps", *v)));
+        }
+        match fields.into_iter().find(|(_, v)| !v.is_finite()) {
+            Some((field, _)) => Err(ImpactError::NotFinite { field }),
+            None => Ok(()),
+        }
+    }
+}
+
+/// One answer of `impactd predict`: the launch (TrackMan names) and the delivery numbers that explain it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PredictOutput {
+    #[serde(flatten)]
+    pub launch: LaunchMetrics,
+    pub smash_factor: Real,
+    pub spin_loft_deg: Real,
+    pub face_to_path_deg: Real,
+    pub ball_velocity_mps: [Real; 3],
+    pub ball_spin_radps: [Real; 3],
+    /// Sanity flags (`impact::sanity`): empty for a shot a golfer could hit.
+    #[serde(default)]
+    pub warnings: Vec<crate::impact::LaunchWarning>,
+}
+
+impl PredictOutput {
+    /// Builds the answer with its sanity flags, mirroring back into the golfer's world for a left-hander.
+    pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness, equipment: &Equipment) -> Self {
+        let (v, w) = match handedness {
+            Handedness::Right => (launch.ball_velocity_mps, launch.ball_spin_radps),
+            Handedness::Left => {
+                (crate::math::mirror_z(&launch.ball_velocity_mps), mirror_z_axial(&launch.ball_spin_radps))
+            }
+        };
+        let metrics = LaunchMetrics::from_ball(&v, &w);
+        let sign = if handedness == Handedness::Left { -1.0 } else { 1.0 };
+        let smash_factor = metrics.ball_speed_mps / delivery.club_speed_mps;
+        PredictOutput {
+            warnings: crate::impact::sanity::warnings(&metrics, smash_factor, equipment),
+            smash_factor,
+            launch: metrics,
+            spin_loft_deg: delivery.spin_loft_deg,
+            face_to_path_deg: sign * delivery.face_to_path_deg,
+            ball_velocity_mps: [v.x, v.y, v.z],
+            ball_spin_radps: [w.x, w.y, w.z],
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! The JSONL form of `impactd flight`: a launch in (the fields `impactd predict` writes).
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::math::{Real, Vector3};
+
+/// A launch as read by `impactd flight`: the fields `impactd predict` writes. The vectors, when present, are used
+/// as they are; otherwise speed, angles and spins (backspin and sidespin, or total spin and spin axis).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FlightInput {
+    pub ball_speed_mps: Option<Real>,
+    pub ball_speed_mph: Option<Real>,
+    #[serde(default)]
+    pub launch_angle_deg: Real,
+    #[serde(default)]
+    pub launch_direction_deg: Real,
+    pub backspin_rpm: Option<Real>,
+    pub sidespin_rpm: Option<Real>,
+    pub total_spin_rpm: Option<Real>,
+    pub spin_axis_deg: Option<Real>,
+    pub smash_factor: Option<Real>,
+    pub spin_loft_deg: Option<Real>,
+    pub face_to_path_deg: Option<Real>,
+    pub ball_velocity_mps: Option<[Real; 3]>,
+    pub ball_spin_radps: Option<[Real; 3]>,
+}
+
+/// Why a line of `impactd flight` input is not a launch; each names its field.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FlightInputError {
+    #[error("field `{field}` must be finite")]
+    NotFinite { field: &'static str },
+    #[error("field `ball_velocity_mps`: speed {speed_mps:.1} m/s is outside 1-150 m/s")]
+    VelocityOutOfRange { speed_mps: Real },
+    #[error("field `ball_speed_mps` (or `ball_speed_mph`) is missing")]
+    MissingSpeed,
+    #[error("field `ball_speed_mps`: {speed_mps:.1} m/s is outside 1-150 m/s")]
+    SpeedOutOfRange { speed_mps: Real },
+    #[error("field `launch_angle_deg`: {launch_angle_deg} is outside -30 to 80 deg")]
+    LaunchAngleOutOfRange { launch_angle_deg: Real },
+    #[error("spin {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
+    SpinTooHigh { spin_rpm: Real },
+    #[error("field `ball_spin_radps`: {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
+    SpinVectorTooHigh { spin_rpm: Real },
+}
+
+/// The most spin a flight accepts: tour wedges reach about 12,000 rpm (TrackMan).
+pub const MAX_BALL_SPIN_RPM: Real = 20_000.0;
+
+impl FlightInput {
+    /// The launch state, or the reason it cannot be made.
+    pub fn to_launch(&self) -> Result<crate::flight::LaunchState, FlightInputError> {
+        let finite = |field: &'static str, v: Real| {
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(FlightInputError::NotFinite { field })
+            }
+        };
+        if let (Some(v), Some(w)) = (self.ball_velocity_mps, self.ball_spin_radps) {
+            for x in v.iter() {
+                finite("ball_velocity_mps", *x)?;
+            }
+            for x in w.iter() {
+                finite("ball_spin_radps", *x)?;
+            }
+            let speed = Vector3::from(v).norm();
+            if !(1.0..=150.0).contains(&speed) {
+                return Err(FlightInputError::VelocityOutOfRange { speed_mps: speed });
+            }
+            let spin_rpm = crate::units::radps_to_rpm(Vector3::from(w).norm());
+            if spin_rpm > MAX_BALL_SPIN_RPM {
+                return Err(FlightInputError::SpinVectorTooHigh { spin_rpm });
+            }
+            return Ok(crate::flight::LaunchState { velocity_mps: Vector3::from(v), spin_radps: Vector3::from(w) });
+        }
+        let speed = match (self.ball_speed_mps, self.ball_speed_mph) {
+            (Some(v), _) => finite("ball_speed_mps", v)?,
+            (None, Some(v)) => crate::units::mph_to_mps(finite("ball_speed_mph", v)?),
+            (None, None) => return Err(FlightInputError::MissingSpeed),
+        };
+        if !(1.0..=150.0).contains(&speed) {
+            return Err(FlightInputError::SpeedOutOfRange { speed_mps: speed });
+        }
+        let launch = finite("launch_angle_deg", self.launch_angle_deg)?;
+        if !(-30.0..=80.0).contains(&launch) {
+            return Err(FlightInputError::LaunchAngleOutOfRange { launch_angle_deg: launch });
+        }
+        let direction = finite("launch_direction_deg", self.launch_direction_deg)?;
+        let (back, side) = match (self.backspin_rpm, self.sidespin_rpm, self.total_spin_rpm, self.spin_axis_deg) {
+            (Some(b), s, _, _) => (finite("backspin_rpm", b)?, finite("sidespin_rpm", s.unwrap_or(0.0))?),
+            (None, _, Some(t), axis) => {
+                let a = finite("spin_axis_deg", axis.unwrap_or(0.0))?.to_radians();
+                let t = finite("total_spin_rpm", t)?;
+                (t * a.cos(), t * a.sin())
+            }
+            (None, s, None, _) => (0.0, finite("sidespin_rpm", s.unwrap_or(0.0))?),
+        };
+        if back.hypot(side) > MAX_BALL_SPIN_RPM {
+            return Err(FlightInputError::SpinTooHigh { spin_rpm: back.hypot(side) });
+        }
+        Ok(crate::flight::LaunchState::from_metrics(speed, launch, direction, back, side))
+    }
+}

@@ -1,0 +1,87 @@
+//! Every zenoh key expression (no leading `/`, snake_case), each with its payload (DESIGN.md section 4).
+
+/// In: [`ClubheadSampleMsg`](super::ClubheadSampleMsg) from the rig, `mocap/<rig>/clubhead`.
+pub fn clubhead(rig: &str) -> String {
+    format!("mocap/{rig}/clubhead")
+}
+/// Recorded only (never published): [`RejectedInput`](super::RejectedInput), a payload on the rig's clubhead key
+/// that was not a usable sample, beside the reason.
+pub fn rejected(rig: &str) -> String {
+    format!("mocap/{rig}/clubhead/rejected")
+}
+/// Every rig's clubhead samples.
+pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
+/// Recorded only: [`RejectedInput`](super::RejectedInput)s of samples on the keys of rigs no daemon serves.
+pub const UNKNOWN_RIG_REJECTED: &str = "impactd/unknown_rig/rejected";
+/// Every rig's predictions.
+pub const LAUNCH_ALL: &str = "golf/*/launch";
+/// Every synthetic rig's truth.
+pub const TRUTH_ALL: &str = "sim/*/truth";
+/// Out: [`ImpactMessage`](super::ImpactMessage), the estimated state at impact.
+pub fn impact(rig: &str) -> String {
+    format!("golf/{rig}/impact")
+}
+/// Out: [`LaunchPrediction`](super::LaunchPrediction).
+pub fn launch(rig: &str) -> String {
+    format!("golf/{rig}/launch")
+}
+/// Out, once a second: [`StatusMessage`](super::StatusMessage).
+pub fn status(rig: &str) -> String {
+    format!("golf/{rig}/status")
+}
+/// Liveliness token of the daemon serving a rig.
+pub fn alive(rig: &str) -> String {
+    format!("golf/{rig}/impactd/alive")
+}
+/// Queryable: the daemon's configuration for the rig (JSON, read-only).
+pub fn config(rig: &str) -> String {
+    format!("golf/{rig}/impactd/config")
+}
+/// Out of `impactd sim`: [`TruthMessage`](super::TruthMessage), what the synthetic rig really swung.
+pub fn truth(rig: &str) -> String {
+    format!("sim/{rig}/truth")
+}
+/// In: [`MeasuredLaunch`](super::MeasuredLaunch) from a launch monitor (or the Open Connect listener).
+pub fn measured_launch(rig: &str) -> String {
+    format!("lm/{rig}/launch")
+}
+/// Out: [`ComparisonMessage`](super::ComparisonMessage), a prediction paired with its measurement.
+pub fn comparison(rig: &str) -> String {
+    format!("golf/{rig}/comparison")
+}
+/// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) to and from the rig's simulator.
+pub fn simulator_traffic(rig: &str) -> String {
+    format!("golf/{rig}/simulator")
+}
+/// Recorded (MCAP only): [`OpenConnectTraffic`](super::OpenConnectTraffic) of the rig's Open Connect listener.
+pub fn launch_monitor_traffic(rig: &str) -> String {
+    format!("lm/{rig}/open_connect")
+}
+/// Recorded and in the live view: the club's pose in the world at each sample (Foxglove `PoseInFrame`).
+pub fn foxglove_club_pose(rig: &str) -> String {
+    format!("foxglove/{rig}/club_pose")
+}
+/// Recorded and in the live view: ball and club at each impact (Foxglove `SceneUpdate`).
+pub fn foxglove_impact_scene(rig: &str) -> String {
+    format!("foxglove/{rig}/impact_scene")
+}
+/// Recorded and in the live view: the predicted ball flight as a line strip (Foxglove `SceneUpdate`).
+pub fn foxglove_ball_flight(rig: &str) -> String {
+    format!("foxglove/{rig}/ball_flight")
+}
+/// The rig name of a `golf/<rig>/launch` key.
+pub fn rig_of_launch(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("golf/")?;
+    let rig = rest.strip_suffix("/launch")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
+/// The rig name of a `mocap/<rig>/clubhead` key.
+pub fn rig_of_clubhead(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("mocap/")?;
+    let rig = rest.strip_suffix("/clubhead")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
+/// Whether a rig name can stand in a key expression.
+pub fn valid_rig_name(rig: &str) -> bool {
+    !rig.is_empty() && rig.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}

@@ -1,0 +1,229 @@
+//! The messages on the bus: clubhead samples in; impacts, predictions, status and rejected inputs out; the
+//! truth of a synthetic rig.
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::PredictOutput;
+use crate::kinematics::{ClubheadSample, Quality};
+
+/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order). Only the object form is read: an array is
+/// refused with a reason, since rigs disagree on its order (`[x, y, z, w]` or `[w, x, y, z]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct QuaternionMsg {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub w: f64,
+}
+
+impl<'de> Deserialize<'de> for QuaternionMsg {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Fields {
+            x: f64,
+            y: f64,
+            z: f64,
+            w: f64,
+        }
+        struct Object;
+        impl<'de> serde::de::Visitor<'de> for Object {
+            type Value = QuaternionMsg;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a quaternion object {x, y, z, w}")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<QuaternionMsg, A::Error> {
+                let q = Fields::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(QuaternionMsg { x: q.x, y: q.y, z: q.z, w: q.w })
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<QuaternionMsg, A::Error> {
+                Err(serde::de::Error::custom(
+                    "an orientation must be an object {x, y, z, w}: an array's order ([x, y, z, w] or \
+                     [w, x, y, z]) is ambiguous",
+                ))
+            }
+        }
+        d.deserialize_any(Object)
+    }
+}
+
+impl From<crate::math::UnitQuaternion> for QuaternionMsg {
+    fn from(q: crate::math::UnitQuaternion) -> Self {
+        QuaternionMsg { x: q.i, y: q.j, z: q.k, w: q.w }
+    }
+}
+
+/// One motion-capture frame of the tracked body, lab frame, on `mocap/<rig>/clubhead`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ClubheadSampleMsg {
+    pub rig: String,
+    pub frame: u64,
+    /// Capture time on the rig's clock (ns).
+    pub t_ns: u64,
+    pub position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    #[serde(default)]
+    pub occluded: bool,
+}
+
+impl ClubheadSampleMsg {
+    pub fn to_sample(&self) -> ClubheadSample {
+        let q = &self.orientation;
+        ClubheadSample {
+            frame: self.frame,
+            t_ns: self.t_ns,
+            position_m: crate::math::Vector3::from(self.position_m),
+            orientation_xyzw: [q.x, q.y, q.z, q.w],
+            occluded: self.occluded,
+        }
+    }
+
+    pub fn from_sample(rig: &str, s: &ClubheadSample) -> Self {
+        let [x, y, z, w] = s.orientation_xyzw;
+        ClubheadSampleMsg {
+            rig: rig.to_string(),
+            frame: s.frame,
+            t_ns: s.t_ns,
+            position_m: [s.position_m.x, s.position_m.y, s.position_m.z],
+            orientation: QuaternionMsg { x, y, z, w },
+            occluded: s.occluded,
+        }
+    }
+}
+
+/// The estimated club state at impact (world frame), in an [`ImpactMessage`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactStateMsg {
+    pub cg_position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    pub cg_velocity_mps: [f64; 3],
+    pub angular_velocity_radps: [f64; 3],
+    pub impact_h_mm: f64,
+    pub impact_v_mm: f64,
+}
+
+impl From<&crate::impact::ImpactState> for ImpactStateMsg {
+    fn from(s: &crate::impact::ImpactState) -> Self {
+        let p = s.world_from_club.translation.vector;
+        let (v, w) = (s.cg_velocity_mps, s.angular_velocity_radps);
+        ImpactStateMsg {
+            cg_position_m: [p.x, p.y, p.z],
+            orientation: s.world_from_club.rotation.into(),
+            cg_velocity_mps: [v.x, v.y, v.z],
+            angular_velocity_radps: [w.x, w.y, w.z],
+            impact_h_mm: s.impact_h_m * 1e3,
+            impact_v_mm: s.impact_v_m * 1e3,
+        }
+    }
+}
+
+/// The impact as estimated from the frames, on `golf/<rig>/impact`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactMessage {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub estimator: String,
+    pub state: ImpactStateMsg,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub quality: Quality,
+}
+
+/// A predicted launch, on `golf/<rig>/launch`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct LaunchPrediction {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub model: String,
+    pub estimator: String,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub launch: PredictOutput,
+    pub frames_used: usize,
+    /// The estimate's quality score in (0, 1] (see `Quality`).
+    pub quality: f64,
+    /// Time from receiving the revealing frame to publishing this prediction (us), measured live; a replay
+    /// carries the recorded value.
+    pub latency_us: f64,
+    /// Carry, apex, landing and offline of this launch (absent when the rig's `flight = false`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flight: Option<crate::flight::Trajectory>,
+}
+
+/// Health of one rig, once a second on `golf/<rig>/status`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct StatusMessage {
+    pub rig: String,
+    /// Wall-clock time of this status (ns since the Unix epoch).
+    pub t_ns: u64,
+    pub uptime_s: f64,
+    /// Samples received for this rig (good or bad).
+    pub samples: u64,
+    pub accepted: u64,
+    pub occluded: u64,
+    /// Frames missing from the rig's frame numbering.
+    pub dropped: u64,
+    /// Time bases or frame counts the track moved onto (a publisher restart, a wrapped frame counter).
+    #[serde(default)]
+    pub resets: u64,
+    /// Samples rejected, by reason.
+    pub rejected: BTreeMap<String, u64>,
+    pub shots: u64,
+    pub predictions: u64,
+    /// Impacts without a prediction, by reason.
+    pub failed: BTreeMap<String, u64>,
+    /// Predictions that raised each sanity flag (`impact::sanity`), by flag.
+    #[serde(default)]
+    pub flagged: BTreeMap<String, u64>,
+    pub latency_p50_us: f64,
+    pub latency_p99_us: f64,
+    /// Messages the recorder could not keep up with (never silently lost: counted here).
+    pub recorder_dropped: u64,
+    /// Samples on keys of rigs this daemon does not serve (counted over all such keys).
+    #[serde(default)]
+    pub unknown_rig_samples: u64,
+    /// Rejected payloads counted but not recorded: over the per-rig recording budget.
+    #[serde(default)]
+    pub rejected_not_recorded: u64,
+    /// The recording's write error (a full disk...), once one happened: nothing is recorded after it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recorder_error: Option<String>,
+    /// The Open Connect client sending this rig's shots to a golf simulator, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulator: Option<super::SimulatorStatus>,
+    /// The Open Connect listener taking this rig's measured shots, when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub launch_monitor: Option<super::LaunchMonitorStatus>,
+}
+
+/// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RejectedInput {
+    pub reason: String,
+    pub bytes: usize,
+    /// The payload as text (invalid UTF-8 replaced), at most `MAX_PAYLOAD_BYTES`.
+    pub payload: String,
+}
+
+/// What a synthetic rig really swung, on `sim/<rig>/truth`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct TruthMessage {
+    pub rig: String,
+    pub shot: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    pub delivery: crate::impact::DeliveryMetrics,
+    /// The adjusted impulse-momentum launch of the true state.
+    pub launch: PredictOutput,
+}

@@ -1,0 +1,34 @@
+//! Messages on the wire: serde types with units in their field names, their key expressions and encodings
+//! (DESIGN.md section 4). Every key expression is built in [`keys`], with its payload documented beside it. Every
+//! message type is a [`MessageType`] (its name, encoding and JSON Schema in `schemas/`, generated from these
+//! types by [`schemas`]).
+//!
+//! This module holds the JSON forms only; it depends on no transport.
+
+mod bridge;
+mod delivery;
+mod flight;
+pub mod keys;
+mod measured;
+mod messages;
+mod sample;
+mod schema;
+
+pub use bridge::{
+    ConnectionState, LaunchMonitorStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
+};
+pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
+pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
+pub use measured::{ComparisonMessage, LaunchFields, MeasuredClubData, MeasuredLaunch};
+pub use messages::{
+    ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,
+    TruthMessage,
+};
+pub use sample::{parse_sample, InputError};
+pub use schema::{schemas, Message, MessageType};
+
+/// Version of every message type; part of the encoding `application/json;impactd.<Type>/<version>`.
+pub const WIRE_VERSION: u32 = 1;
+
+/// Largest accepted payload (bytes): a clubhead sample is about 200.
+pub const MAX_PAYLOAD_BYTES: usize = 64 * 1024;

@@ -1,0 +1,98 @@
+//! What the bridge tests share: a daemon in-process on loopback zenoh, subscribers that collect, and a
+//! recording's messages per topic (read with the `mcap` crate).
+
+#![allow(clippy::unwrap_used)]
+#![allow(dead_code)]
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
+use impactd::daemon::{DaemonConfig, RunOptions, RunSummary};
+use zenoh::Wait;
+
+pub struct Daemon {
+    pub endpoint: String,
+    stop: tokio::sync::oneshot::Sender<()>,
+    task: tokio::task::JoinHandle<RunSummary>,
+}
+
+pub async fn start_daemon(config: &str, options: RunOptions) -> Daemon {
+    let (config, setups) = DaemonConfig::parse(config).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let task = tokio::spawn(async move {
+        let summary = impactd::daemon::run(config, setups, &session, options, async {
+            let _ = stopped.await;
+        })
+        .await
+        .unwrap();
+        session.close().await.unwrap();
+        summary
+    });
+    Daemon { endpoint, stop, task }
+}
+
+impl Daemon {
+    pub async fn stop(self) -> RunSummary {
+        let _ = self.stop.send(());
+        self.task.await.unwrap()
+    }
+}
+
+pub async fn client(endpoint: &str) -> zenoh::Session {
+    ZenohArgs::loopback(vec![], vec![endpoint.to_string()]).open().await.unwrap()
+}
+
+pub type Collected<T> = Arc<Mutex<Vec<T>>>;
+
+pub fn collect<T: serde::de::DeserializeOwned + Send + 'static>(
+    session: &zenoh::Session,
+    key: &str,
+) -> (Collected<T>, zenoh::pubsub::Subscriber<()>) {
+    let out: Collected<T> = Default::default();
+    let out_cb = out.clone();
+    let sub = session
+        .declare_subscriber(key.to_string())
+        .callback(move |s| {
+            if let Ok(v) = serde_json::from_slice::<T>(&s.payload().to_bytes()) {
+                out_cb.lock().unwrap().push(v);
+            }
+        })
+        .wait()
+        .unwrap();
+    (out, sub)
+}
+
+/// Waits up to `limit` for `done`.
+pub async fn wait_until(limit: Duration, mut done: impl FnMut() -> bool) -> bool {
+    let start = std::time::Instant::now();
+    while !done() {
+        if start.elapsed() > limit {
+            return false;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    true
+}
+
+/// Every message of a recording, as JSON, by topic.
+pub fn recorded(path: &Path) -> BTreeMap<String, Vec<serde_json::Value>> {
+    let bytes = std::fs::read(path).unwrap();
+    let mut out: BTreeMap<String, Vec<serde_json::Value>> = BTreeMap::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        let v = serde_json::from_slice(&m.data).unwrap_or(serde_json::Value::Null);
+        out.entry(m.channel.topic.clone()).or_default().push(v);
+    }
+    out
+}
+
+pub fn quantile(v: &[f64], q: f64) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v[((q * v.len() as f64).ceil() as usize).clamp(1, v.len()) - 1]
+}
