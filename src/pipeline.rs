@@ -72,6 +72,8 @@ pub struct Counts {
     pub shots: u64,
     pub predictions: u64,
     pub failed: BTreeMap<String, u64>,
+    /// Predictions that raised each sanity flag (`impact::sanity`).
+    pub flagged: BTreeMap<String, u64>,
 }
 
 /// One rig's pipeline: track -> detect -> estimate -> model.
@@ -159,6 +161,10 @@ impl Pipeline {
             match m.predict(&est.state, &self.equipment) {
                 Ok(launch) => {
                     self.counts.predictions += 1;
+                    let output = PredictOutput::new(&launch, &delivery, Default::default(), &self.equipment);
+                    for w in &output.warnings {
+                        *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
+                    }
                     out(Event::Launch(LaunchPrediction {
                         rig: self.setup.name.clone(),
                         shot,
@@ -168,7 +174,7 @@ impl Pipeline {
                         model: m.name().to_string(),
                         estimator: self.setup.estimator.name.clone(),
                         delivery,
-                        launch: PredictOutput::new(&launch, &delivery, Default::default()),
+                        launch: output,
                         frames_used: est.quality.frames_used,
                         quality: est.quality.score,
                         latency_us: 0.0,

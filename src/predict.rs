@@ -115,11 +115,11 @@ fn answer(
         Predictor::Traced(m) => {
             let Some(r) = m.trace(&state, equipment, 10) else {
                 let launch = m.predict(&state, equipment).map_err(err)?;
-                return Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand)));
+                return Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment)));
             };
             let r = r.map_err(err)?;
             Answer::Traced(TracedOutput {
-                output: PredictOutput::new(&r.launch, &metrics, hand),
+                output: PredictOutput::new(&r.launch, &metrics, hand, equipment),
                 contact_time_us: r.contact_time_s * 1e6,
                 peak_normal_force_n: r.peak_normal_force_n,
                 trace: r.trace,
@@ -127,7 +127,7 @@ fn answer(
         }
         Predictor::Plain(m) => {
             let launch = m.predict(&state, equipment).map_err(err)?;
-            Answer::Plain(PredictOutput::new(&launch, &metrics, hand))
+            Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment))
         }
     })
 }

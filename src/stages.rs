@@ -21,21 +21,12 @@ pub struct Stage {
     pub run: Box<dyn FnMut(usize) -> f64>,
 }
 
-/// A fixed spread of 64 deliveries for `club` (seeded, the same on every machine).
+/// A fixed spread of 64 golfers' deliveries for `club` (seeded, the same on every machine; the club's
+/// [`GolferProfile`](crate::swing::GolferProfile) with the swing's closure rate).
 pub fn delivery_spread(club: &ClubSpec) -> Vec<Delivery> {
+    let eq = Equipment::new(club.clone());
     let mut rng = Rng::new(0x1F2E_3D4C);
-    (0..64)
-        .map(|_| Delivery {
-            club_speed_mps: rng.uniform(35.0, 52.0),
-            attack_angle_rad: rng.uniform(-5.0, 4.0).to_radians(),
-            club_path_rad: rng.uniform(-4.0, 4.0).to_radians(),
-            face_angle_rad: rng.uniform(-4.0, 4.0).to_radians(),
-            dynamic_loft_rad: (club.loft_deg() + rng.uniform(-3.0, 4.0)).to_radians(),
-            impact_h_m: rng.uniform(-0.015, 0.015),
-            impact_v_m: rng.uniform(-0.008, 0.008),
-            club_angular_velocity_radps: Vector3::new(0.0, rng.uniform(-40.0, 0.0), 0.0),
-        })
-        .collect()
+    (0..64).filter_map(|_| Swing::new(&SwingSpec::golfer(club, &mut rng), &eq).ok().map(|s| s.delivery)).collect()
 }
 
 /// Impact states for the spread.
@@ -106,7 +97,7 @@ pub fn pre_impact_spread(club: &ClubSpec) -> Vec<(Vec<ClubPose>, u64)> {
     let calibration = Calibration::default();
     let mut out = Vec::new();
     while out.len() < 32 {
-        let spec = SwingSpec::random(club, &mut rng);
+        let spec = SwingSpec::golfer(club, &mut rng);
         let Ok(swing) = Swing::new(&spec, &eq) else {
             continue;
         };
@@ -163,7 +154,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
         let mut samples = Vec::new();
         let mut frame = 1;
         for k in 0..20u64 {
-            let spec = SwingSpec::random(&club, &mut rng);
+            let spec = SwingSpec::golfer(&club, &mut rng);
             let Ok(swing) = Swing::new(&spec, &eq) else {
                 continue;
             };

@@ -22,7 +22,7 @@ fn predict(case: &Case) -> PredictOutput {
     let state = delivery.to_state(&eq).unwrap();
     let model = ImpulseModel::new(ImpulseVariant::parse(&case.model).unwrap());
     let launch = model.predict(&state, &eq).unwrap();
-    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, &club), Handedness::Right)
+    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, &club), Handedness::Right, &eq)
 }
 
 #[test]

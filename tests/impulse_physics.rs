@@ -223,7 +223,7 @@ fn launch_of(club: &ClubSpec, variant: ImpulseVariant, input: &DeliveryInput) ->
     let d = input.to_delivery(club.loft_deg());
     let state = d.to_state(&eq).unwrap();
     let launch = ImpulseModel::new(variant).predict(&state, &eq).unwrap();
-    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, club), input.handedness.unwrap_or_default())
+    PredictOutput::new(&launch, &DeliveryMetrics::from_state(&state, club), input.handedness.unwrap_or_default(), &eq)
 }
 
 fn driver_at(h_mm: f64) -> DeliveryInput {

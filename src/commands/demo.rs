@@ -71,5 +71,13 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
         args.record.display(),
         args.record.display()
     );
+    let mut flagged = std::collections::BTreeMap::<&str, u64>::new();
+    for (name, n) in summary.rigs.values().flat_map(|c| c.flagged.iter()) {
+        *flagged.entry(name.as_str()).or_default() += n;
+    }
+    if !flagged.is_empty() {
+        let list: Vec<String> = flagged.iter().map(|(k, n)| format!("{k} x{n}")).collect();
+        eprintln!("sanity flags raised: {}", list.join(", "));
+    }
     Ok(if predictions >= args.shots { ExitCode::SUCCESS } else { ExitCode::from(1) })
 }

@@ -32,6 +32,10 @@ pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
         l.rig, l.shot, l.club, m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm,
         l.delivery.club_speed_mph, l.latency_us
     );
+    if !l.launch.warnings.is_empty() {
+        let names: Vec<&str> = l.launch.warnings.iter().map(|w| w.as_str()).collect();
+        s.push_str(&format!("  WARNING {}", names.join(", ")));
+    }
     if let Some(t) = truth {
         let tm = &t.launch.launch;
         s.push_str(&format!(

@@ -107,7 +107,7 @@ impl SimRig {
     }
 
     fn make_shot(&mut self, k: u64) -> (u64, Swing, u64) {
-        let spec = SwingSpec::random(&self.club, &mut self.rng);
+        let spec = SwingSpec::golfer(&self.club, &mut self.rng);
         let swing = Swing::new(&spec, &self.equipment).ok().unwrap_or_else(|| {
             let mut s = spec;
             s.delivery = crate::impact::Delivery { impact_h_m: 0.0, impact_v_m: 0.0, ..spec.delivery };
@@ -175,7 +175,7 @@ impl SimRig {
                     t_impact_ns: t_impact,
                     club: self.club.name.clone(),
                     delivery,
-                    launch: PredictOutput::new(&l, &delivery, Default::default()),
+                    launch: PredictOutput::new(&l, &delivery, Default::default(), &self.equipment),
                 }
             })
         } else {

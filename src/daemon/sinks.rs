@@ -241,6 +241,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         shots: c.shots,
         predictions: c.predictions,
         failed: c.failed.clone(),
+        flagged: c.flagged.clone(),
         latency_p50_us: s.latency.quantile(0.5),
         latency_p99_us: s.latency.quantile(0.99),
         recorder_dropped,

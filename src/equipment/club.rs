@@ -17,9 +17,11 @@ pub struct ClubSpec {
     pub inertia_inv_kg_m2: Matrix3,
     /// Face centre, static loft and curvature.
     pub face: Face,
-    /// Half the usable face width (toe-heel) and height (m): impact locations beyond are rejected.
+    /// Half the usable face width (toe-heel) and height (m): the box the impact detector searches.
     pub face_half_width_m: Real,
     pub face_half_height_m: Real,
+    /// The face's outline: impact locations outside are rejected ([`FaceOutline`](super::FaceOutline)).
+    pub face_outline: super::FaceOutline,
     /// Shaft mass (kg), for reference (the seed's section 3.1.4).
     pub shaft_mass_kg: Real,
 }
@@ -73,6 +75,7 @@ impl ClubSpec {
             face: Face { center_m: cg_to_face_center_m, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,
+            face_outline: if shape.is_curved() { super::FaceOutline::driver() } else { super::FaceOutline::iron7() },
             shaft_mass_kg,
         }
     }
@@ -106,8 +109,8 @@ impl ClubSpec {
         self.face.shape.is_curved()
     }
 
-    /// Whether the impact location `(h, v)` (m) is on the usable face.
+    /// Whether the impact location `(h, v)` (m) is on the face (inside its outline).
     pub fn on_face(&self, h_m: Real, v_m: Real) -> bool {
-        h_m.abs() <= self.face_half_width_m && v_m.abs() <= self.face_half_height_m
+        self.face_outline.contains(h_m, v_m)
     }
 }

@@ -8,7 +8,9 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m
+//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, face_outline_mm
+//! # a polygon of impact locations [h toe +, v up +] in mm:
+//! # face_outline_mm = [[-33.0, -17.0], [30.0, -19.0], [38.0, 0.0], [20.0, 27.0], [-33.0, 14.0]]
 //! # and any model's section, read by that model: [adjusted], [slip], [continuous], ...
 //! ```
 //!
@@ -39,6 +41,8 @@ pub struct ClubFile {
     pub shaft_mass_kg: Option<Real>,
     pub face_half_width_m: Option<Real>,
     pub face_half_height_m: Option<Real>,
+    /// The face's outline as a polygon of impact locations `[h, v]` (mm).
+    pub face_outline_mm: Option<Vec<[Real; 2]>>,
 }
 
 /// The model sections of a club file (`[adjusted]`, `[continuous]`, ...), each a TOML table that its model reads
@@ -158,6 +162,15 @@ impl ClubFile {
         if face_half_height_m <= 0.0 {
             return Err(invalid("face_half_height_m", "must be positive"));
         }
+        let face_outline = match self.face_outline_mm {
+            Some(vertices_mm) => super::FaceOutline { vertices_mm },
+            None if self.face_half_width_m.is_some() || self.face_half_height_m.is_some() => {
+                super::FaceOutline::rectangle(face_half_width_m, face_half_height_m)
+            }
+            None if shape.is_curved() => super::FaceOutline::driver(),
+            None => super::FaceOutline::iron7(),
+        };
+        face_outline.validate().map_err(|reason| invalid("face_outline_mm", reason))?;
         let shaft_mass_kg = finite("shaft_mass_kg", self.shaft_mass_kg.unwrap_or(0.0))?;
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
@@ -171,6 +184,7 @@ impl ClubFile {
             face: Face { center_m: center, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,
+            face_outline,
             shaft_mass_kg,
         })
     }
@@ -235,5 +249,21 @@ mod tests {
         assert_eq!(loaded.sections.names().collect::<Vec<_>>(), ["adjusted"]);
         let adjusted = loaded.sections.get("adjusted").unwrap();
         assert_eq!(adjusted["delta_mass_kg"].as_float(), Some(0.003));
+    }
+
+    /// The outline: given as a polygon, defaulted to the half-width rectangle, or to the preset's; an outline
+    /// that misses the face centre is refused by name.
+    #[test]
+    fn the_face_outline_loads_and_defaults() {
+        use crate::equipment::FaceOutline;
+        let poly = format!("{DRIVER}\nface_outline_mm = [[-20.0, -10.0], [20.0, -10.0], [0.0, 15.0]]");
+        let club = ClubSpec::from_toml_str(&poly).unwrap();
+        assert!(club.on_face(0.0, 0.0) && !club.on_face(0.019, 0.012));
+        let rect = ClubSpec::from_toml_str(DRIVER).unwrap();
+        assert_eq!(rect.face_outline, FaceOutline::rectangle(0.050, 0.030));
+        let plain = DRIVER.lines().filter(|l| !l.contains("face_half")).collect::<Vec<_>>().join("\n");
+        assert_eq!(ClubSpec::from_toml_str(&plain).unwrap().face_outline, FaceOutline::driver());
+        let off = format!("{DRIVER}\nface_outline_mm = [[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]]");
+        assert!(err_of(&off).contains("face_outline_mm"));
     }
 }

@@ -10,6 +10,7 @@ mod ball;
 mod club;
 mod club_file;
 mod load;
+mod outline;
 pub mod shaft;
 pub mod soil;
 pub mod sole;
@@ -18,6 +19,7 @@ pub use ball::BallSpec;
 pub use club::ClubSpec;
 pub use club_file::{ClubFile, LoadedClub, ModelSections};
 pub use load::{load_club, MAX_CLUB_FILE_BYTES};
+pub use outline::FaceOutline;
 
 use crate::math::{Matrix3, Real};
 

@@ -10,11 +10,13 @@ mod delivery;
 pub mod impulse;
 mod launch;
 pub mod registry;
+pub mod sanity;
 
 pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics};
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
+pub use sanity::LaunchWarning;
 
 use crate::equipment::{BallSpec, ClubSpec};
 use crate::face::{impact_frame, FaceContact, FaceError};

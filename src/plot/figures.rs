@@ -48,9 +48,9 @@ pub fn face_map(
     let equipment = Equipment::new(club.clone());
     let flight = Flight::default();
     let n = cells.max(2);
-    let (hw, hh) = (club.face_half_width_m * 1e3, club.face_half_height_m * 1e3);
-    let xs: Vec<f64> = (0..n).map(|i| -hw + 2.0 * hw * i as f64 / (n - 1) as f64).collect();
-    let ys: Vec<f64> = (0..n).map(|j| -hh + 2.0 * hh * j as f64 / (n - 1) as f64).collect();
+    let (h0, h1, v0, v1) = club.face_outline.bounds_mm();
+    let xs: Vec<f64> = (0..n).map(|i| h0 + (h1 - h0) * i as f64 / (n - 1) as f64).collect();
+    let ys: Vec<f64> = (0..n).map(|j| v0 + (v1 - v0) * j as f64 / (n - 1) as f64).collect();
     let mut values = vec![vec![f64::NAN; n]; n];
     for (j, v) in ys.iter().enumerate() {
         for (i, h) in xs.iter().enumerate() {
@@ -87,6 +87,11 @@ pub fn face_map(
         xs,
         ys,
         values,
+        outline: club.face_outline.vertices_mm.clone(),
+        markers: vec![
+            ("face centre".into(), [0.0, 0.0]),
+            ("CG".into(), [-club.face.center_m.z * 1e3, -club.face.center_m.dot(&club.face.u0()) * 1e3]),
+        ],
     }
 }
 

@@ -82,6 +82,10 @@ pub struct Heatmap {
     pub ys: Vec<f64>,
     /// `values[j][i]` at `(xs[i], ys[j])`; NaN cells are left blank.
     pub values: Vec<Vec<f64>>,
+    /// A closed outline drawn over the cells (data units), e.g. the clubface's.
+    pub outline: Vec<[f64; 2]>,
+    /// Labelled points drawn over the cells (data units), e.g. the face centre and the CG.
+    pub markers: Vec<(String, [f64; 2])>,
 }
 
 fn viridis(t: f64) -> (u8, u8, u8) {
@@ -130,6 +134,28 @@ impl Heatmap {
             }
         }
         let _ = write!(out, r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
+        // Data coordinates -> pixels: cell i is centred on xs[i] (uniform grids).
+        let to_px = |axis: &[f64], n: usize, size: f64, v: f64| {
+            let (a, b) = (axis.first().copied().unwrap_or(0.0), axis.last().copied().unwrap_or(1.0));
+            let f = if b != a { (v - a) / (b - a) * (n as f64 - 1.0) } else { 0.0 };
+            (f + 0.5) * size / n as f64
+        };
+        let px = |p: &[f64; 2]| (ml + to_px(&self.xs, nx, pw, p[0]), mt + ph - to_px(&self.ys, ny, ph, p[1]));
+        if !self.outline.is_empty() {
+            let pts: Vec<String> = self.outline.iter().map(px).map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+            let _ =
+                write!(out, r##"<polygon points="{}" fill="none" stroke="#111" stroke-width="2"/>"##, pts.join(" "));
+        }
+        for (name, p) in &self.markers {
+            let (x, y) = px(p);
+            let _ = write!(
+                out,
+                r##"<circle cx="{x:.1}" cy="{y:.1}" r="4" fill="white" stroke="#111" stroke-width="1.5"/><text x="{:.1}" y="{:.1}" font-size="11">{}</text>"##,
+                x + 6.0,
+                y - 6.0,
+                escape(name)
+            );
+        }
         let label_every = |n: usize| (n / 6).max(1);
         for (i, x) in self.xs.iter().enumerate().step_by(label_every(nx)) {
             let _ = write!(

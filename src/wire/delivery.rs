@@ -3,7 +3,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::impact::{Delivery, DeliveryMetrics, ImpactError, Launch, LaunchMetrics};
+use crate::impact::{Delivery, DeliveryMetrics, Equipment, ImpactError, Launch, LaunchMetrics};
 use crate::math::{mirror_z_axial, Real, Vector3};
 use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 
@@ -139,11 +139,14 @@ pub struct PredictOutput {
     /// The ball's spin (rad/s) in the world frame of `ball_velocity_mps`, for either hand; backspin points
     /// along -z for a ball flying toward +x.
     pub ball_spin_radps: [Real; 3],
+    /// Sanity flags (`impact::sanity`): empty for a shot a golfer could hit.
+    #[serde(default)]
+    pub warnings: Vec<crate::impact::LaunchWarning>,
 }
 
 impl PredictOutput {
-    /// Builds the answer, mirroring back into the golfer's world for a left-hander.
-    pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness) -> Self {
+    /// Builds the answer with its sanity flags, mirroring back into the golfer's world for a left-hander.
+    pub fn new(launch: &Launch, delivery: &DeliveryMetrics, handedness: Handedness, equipment: &Equipment) -> Self {
         let (v, w) = match handedness {
             Handedness::Right => (launch.ball_velocity_mps, launch.ball_spin_radps),
             Handedness::Left => {
@@ -152,8 +155,10 @@ impl PredictOutput {
         };
         let metrics = LaunchMetrics::from_ball(&v, &w);
         let sign = if handedness == Handedness::Left { -1.0 } else { 1.0 };
+        let smash_factor = metrics.ball_speed_mps / delivery.club_speed_mps;
         PredictOutput {
-            smash_factor: metrics.ball_speed_mps / delivery.club_speed_mps,
+            warnings: crate::impact::sanity::warnings(&metrics, smash_factor, equipment),
+            smash_factor,
             launch: metrics,
             spin_loft_deg: delivery.spin_loft_deg,
             face_to_path_deg: sign * delivery.face_to_path_deg,

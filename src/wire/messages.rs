@@ -183,6 +183,9 @@ pub struct StatusMessage {
     pub predictions: u64,
     /// Impacts without a prediction, by reason.
     pub failed: BTreeMap<String, u64>,
+    /// Predictions that raised each sanity flag (`impact::sanity`), by flag.
+    #[serde(default)]
+    pub flagged: BTreeMap<String, u64>,
     pub latency_p50_us: f64,
     pub latency_p99_us: f64,
     /// Messages the recorder could not keep up with (never silently lost: counted here).

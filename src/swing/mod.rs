@@ -23,12 +23,15 @@
 //! Sampling adds a random phase against the impact instant, Gaussian position and orientation noise, timestamp
 //! jitter, dropped and occluded frames; everything is drawn from a seeded [`Rng`].
 
+pub mod golfer;
+
 use crate::equipment::ClubSpec;
 use crate::impact::{Delivery, Equipment, ImpactError, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
 use crate::kinematics::so3;
 use crate::kinematics::{Calibration, ClubPose, ClubheadSample};
 use crate::math::{Isometry3, Real, Translation3Ext, UnitQuaternion, Vector3};
 use crate::rng::Rng;
+pub use golfer::GolferProfile;
 
 /// Spread (standard deviation per world axis) of the head's angular acceleration at impact in
 /// [`SwingSpec::random`] (rad/s²; about 23,000 deg/s²).
@@ -117,15 +120,29 @@ impl SwingSpec {
             impact_v_m: rng.uniform(-hh, hh),
             club_angular_velocity_radps: Vector3::zeros(),
         };
+        Self::around(delivery, None, rng)
+    }
+
+    /// A golfer's swing for `club`: the delivery drawn from the club's [`GolferProfile`] (launch-monitor
+    /// statistics, docs/synthetic-golfers.md), the swing around it as in [`SwingSpec::random`].
+    pub fn golfer(club: &ClubSpec, rng: &mut Rng) -> SwingSpec {
+        let (delivery, plane_deg) = GolferProfile::for_club(club).draw(club, rng);
+        Self::around(delivery, Some(plane_deg), rng)
+    }
+
+    /// The swing around `delivery`: arc, plane (drawn unless given), closure rate and accelerations.
+    fn around(delivery: Delivery, plane_deg: Option<Real>, rng: &mut Rng) -> SwingSpec {
         let rand_vec = |rng: &mut Rng, scale: Real| Vector3::new(rng.normal(), rng.normal(), rng.normal()) * scale;
         // A centripetal load of 100-200 g at impact, on an arc of 1-2 m.
         let g_load = rng.uniform(100.0, 200.0);
         let arc_radius_m = (delivery.club_speed_mps.powi(2) / (g_load * 9.81)).clamp(1.0, 2.0);
+        let face_closure_degps = rng.uniform(1500.0, 3000.0);
+        let drawn_plane_deg = rng.uniform(45.0, 65.0);
         SwingSpec {
             delivery,
-            face_closure_degps: rng.uniform(1500.0, 3000.0),
+            face_closure_degps,
             arc_radius_m,
-            plane_angle_deg: rng.uniform(45.0, 65.0),
+            plane_angle_deg: plane_deg.unwrap_or(drawn_plane_deg),
             tangential_accel_mps2: rng.uniform(-100.0, 200.0),
             tangential_jerk_mps3: rng.uniform(-1.0e4, 1.0e4),
             radius_curvature_per_s2: rng.uniform(-20.0, 20.0),
