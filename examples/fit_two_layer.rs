@@ -26,7 +26,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         seed: 17,
     };
     let shots = resolve(&generate(&spec)?, &Equipment::new(club.club.clone()))?;
-    let options = FitOptions { folds: 0, population: Some(population), generations, local_evaluations: 300, seed: 1 };
+    let options = FitOptions {
+        folds: 0,
+        population: Some(population),
+        generations,
+        local_evaluations: 300,
+        seed: 1,
+        global_shots: None,
+    };
     let mut last = std::time::Instant::now();
     let (report, _) = run(&space, &club, &Default::default(), &shots, &options, &mut |phase, p| {
         if last.elapsed().as_secs_f64() > 10.0 {

@@ -106,7 +106,7 @@ fn answer(
     if let Some(r) = model.ground(&state, equipment, every) {
         let r = r.map_err(err)?;
         return Ok(Answer::Ground(GroundOutput {
-            output: PredictOutput::new(&r.launch, &metrics, hand),
+            output: PredictOutput::new(&r.launch, &metrics, hand, equipment),
             ground: r.summary(),
             trace: (every > 0).then_some(r.trace),
         }));

@@ -33,7 +33,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         model: model.into(),
         estimator: "arc".into(),
         delivery: metrics,
-        launch: PredictOutput::new(&launch, &metrics, Handedness::Right),
+        launch: PredictOutput::new(&launch, &metrics, Handedness::Right, &equipment),
         frames_used: 8,
         quality: 1.0,
         latency_us: 100.0,
