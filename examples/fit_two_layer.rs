@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used)]
 //! Identifies the two-layer model's seven parameters (Table 3.5) from 550 synthetic 7-iron shots, the size of
 //! the seed's driver set, and prints the report as JSON: the speed figure of docs/identify.md (not run in CI).
 //!

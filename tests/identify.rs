@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used)]
 //! Identification recovers known parameters from synthetic launch-monitor data (issue 17's numbers): 500 driver
 //! shots made with parameters the fit does not know, plus the noise of `LmNoise::default()` (0.5 mph, 0.2 deg
 //! launch, 0.3 deg direction, 150 rpm per spin component).

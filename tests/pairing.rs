@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used)]
 //! The live pairing of measured launches with predictions (`identify::pairing`), alone: windows, either order
 //! of arrival, two models per shot, unpaired counts and the running MAE.
 

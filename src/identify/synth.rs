@@ -175,7 +175,7 @@ mod tests {
         };
         let clean = generate(&spec).unwrap();
         let sigma = LmNoise::default().as_array();
-        for i in 0..5 {
+        for (i, sigma_i) in sigma.iter().enumerate() {
             let var = noisy
                 .iter()
                 .zip(&clean)
@@ -183,7 +183,7 @@ mod tests {
                 .sum::<Real>()
                 / noisy.len() as Real;
             // The sample SD of 2000 normals is within 5 % of sigma (its standard error is sigma / sqrt(4000)).
-            assert!((var.sqrt() / sigma[i] - 1.0).abs() < 0.05, "field {i}: {}", var.sqrt());
+            assert!((var.sqrt() / sigma_i - 1.0).abs() < 0.05, "field {i}: {}", var.sqrt());
         }
         let shots = resolve(&clean, &Equipment::new(ClubSpec::driver())).unwrap();
         assert_eq!(shots.len(), 2000);
