@@ -32,6 +32,7 @@ pub struct FitArgs {
     /// The parameters to fit, comma-separated (default: all of the model's).
     #[arg(long, value_delimiter = ',')]
     pub params: Vec<String>,
+    /// Seed of the search and of the folds (same seed, same result).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Cross-validation folds (0: none).
@@ -40,6 +41,7 @@ pub struct FitArgs {
     /// Differential evolution population (default: 10 per parameter, at least 20).
     #[arg(long)]
     pub population: Option<usize>,
+    /// Generations of the global search.
     #[arg(long, default_value_t = 100)]
     pub generations: usize,
     /// Nelder-Mead evaluations after the global search.

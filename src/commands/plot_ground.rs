@@ -21,10 +21,13 @@ pub struct GroundPlotArgs {
     /// soft, medium or firm (Table 4.3), or a soil .toml file.
     #[arg(long, default_value = "firm")]
     pub soil: String,
+    /// Club speed of both strikes (mph).
     #[arg(long, default_value_t = 90.0)]
     pub club_speed_mph: f64,
+    /// Attack angle of both strikes (deg; negative is down).
     #[arg(long, default_value_t = -4.3, allow_hyphen_values = true)]
     pub attack_angle_deg: f64,
+    /// Dynamic loft of both strikes (deg).
     #[arg(long, default_value_t = 25.0, allow_hyphen_values = true)]
     pub dynamic_loft_deg: f64,
     /// The club's turning rate about the swing plane's normal (rad/s).
@@ -36,6 +39,7 @@ pub struct GroundPlotArgs {
     /// Impact location up the face of the good strike (mm).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub good_v_mm: f64,
+    /// The SVG file to write.
     #[arg(short = 'o', long = "output", default_value = "ground.svg")]
     pub output: PathBuf,
 }

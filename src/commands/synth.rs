@@ -17,18 +17,22 @@ pub struct SynthArgs {
     /// The model that launches the balls.
     #[arg(long, default_value = "adjusted")]
     pub model: String,
+    /// Club preset or club file.
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// A parameter's true value in SI (`delta_mass=0.0073`), repeatable (`fit`'s parameter names).
     #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub set: Vec<String>,
+    /// Number of shots.
     #[arg(long, default_value_t = 500)]
     pub shots: usize,
+    /// Seed of the deliveries and the noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Launch-monitor noise: ball speed (mph), launch (deg), direction (deg), backspin (rpm), sidespin (rpm).
     #[arg(long, value_delimiter = ',', num_args = 5, default_values_t = LmNoise::default().as_array())]
     pub noise: Vec<f64>,
+    /// The JSONL file to write (standard output without it).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
