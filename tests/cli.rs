@@ -220,6 +220,14 @@ fn predict_with_flight_keeps_the_launch() {
     let plain = text(&impactd(&["predict"], delivery).stdout);
     let piped: serde_json::Value = serde_json::from_str(&text(&impactd(&["flight"], &plain).stdout)).unwrap();
     assert_eq!(piped, with);
+    // The sanity flags and the turf's summary travel with the launch: a fat 7-iron off firm turf flies too.
+    let iron = r#"{"club_speed_mph": 90, "attack_angle_deg": -4.3, "dynamic_loft_deg": 25, "impact_v_mm": 12}"#;
+    let out = impactd(&["predict", "--club", "iron7", "--model", "ground", "--soil", "firm", "--flight"], iron);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let fat: serde_json::Value = serde_json::from_str(&text(&out.stdout)).unwrap();
+    assert!(fat.get("flight_error").is_none(), "{fat}");
+    assert!(fat["carry_yd"].is_number() && fat["ground"]["strike"] == "fat", "{fat}");
+    assert!(fat["warnings"].is_array(), "{fat}");
 }
 
 /// The trajectory picture: a true top view (offline across, downrange up), the landings marked, the
