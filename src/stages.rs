@@ -35,16 +35,19 @@ pub fn state_spread(equipment: &Equipment) -> Vec<ImpactState> {
 }
 
 /// One prediction of `model` per operation on the club's spread of impact states.
-fn model_stage(name: String, model: Arc<dyn ImpactModel>, club: ClubSpec) -> Stage {
+/// `None` when the model does not apply to the club (its first prediction fails: the ground model on a driver's
+/// curved face), so no stage times an error.
+fn model_stage(name: String, model: Arc<dyn ImpactModel>, club: ClubSpec) -> Option<Stage> {
     let eq = Equipment::new(club);
     let states = state_spread(&eq);
-    Stage {
+    model.predict(states.first()?, &eq).ok()?;
+    Some(Stage {
         name,
         run: Box::new(move |i| {
             let s = &states[i % states.len()];
             model.predict(s, &eq).map(|l| l.ball_velocity_mps.x).unwrap_or(0.0)
         }),
-    }
+    })
 }
 
 /// Every registered model on both presets: `<model name>/<club>` (`impulse/adjusted/driver`,
@@ -55,7 +58,8 @@ pub fn model_stages() -> Vec<Stage> {
         for club in [ClubSpec::driver(), ClubSpec::iron7()] {
             let loaded = LoadedClub { club, sections: ModelSections::default() };
             if let Ok(model) = registry::build_one(entry.name, &loaded, &BuildOptions::default()) {
-                stages.push(model_stage(format!("{}/{}", model.name(), loaded.club.name), model, loaded.club));
+                let name = format!("{}/{}", model.name(), loaded.club.name);
+                stages.extend(model_stage(name, model, loaded.club));
             }
         }
     }

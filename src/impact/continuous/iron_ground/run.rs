@@ -38,9 +38,9 @@ pub(super) fn simulate(
     };
     let surface = FaceSurface::of_club(club);
     let FaceSurface::Plane { point: face_point, normal: face_normal } = surface else {
-        return Err(ImpactError::NotConverged {
-            model: "ground",
-            reason: "the ground model needs a flat (iron) face".into(),
+        return Err(ImpactError::InvalidParameter {
+            field: "club".into(),
+            reason: format!("must have a flat (iron) face for the ground model ({}'s is curved)", club.name),
         });
     };
     let contact = club.face.contact(state.impact_h_m, state.impact_v_m)?;
