@@ -46,6 +46,9 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     let model = one_model(&args.model, &loaded, impactd::impact::impulse::DEFAULT_COR)?;
     let mut heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells)
         .context("no impact location on the face has a prediction")?;
+    if let Some(note) = &heat.note {
+        eprintln!("warning: {note}");
+    }
     if let Some(soil) = &args.soil {
         heat.title += &format!(", soil {soil}");
     }

@@ -103,8 +103,8 @@ fn sample_point(club: &ClubSpec, (h, v): (f64, f64), (dh, dv): (f64, f64)) -> Op
 /// `metric` of `model`'s prediction over a `cells` x `cells` grid tiling the bounding box of `club`'s face
 /// outline, for `delivery` (its impact location ignored). Cells off the face are NaN (blank); a cell the outline
 /// crosses shows the value at the face's edge (see `sample_point`) and is drawn clipped to the outline. Cells
-/// the model cannot predict are NaN; when none can be predicted, the error at the face centre (or the first) is
-/// returned instead of a blank picture.
+/// the model cannot predict are NaN and counted in the picture's note; when none can be predicted, the error at
+/// the face centre (or the first) is returned instead of a blank picture.
 pub fn face_map(
     club: &ClubSpec,
     model: &dyn ImpactModel,
@@ -119,13 +119,14 @@ pub fn face_map(
     let xs: Vec<f64> = (0..n).map(|i| h0 + (i as f64 + 0.5) * dh).collect();
     let ys: Vec<f64> = (0..n).map(|j| v0 + (j as f64 + 0.5) * dv).collect();
     let mut values = vec![vec![f64::NAN; n]; n];
-    let mut first_error = None;
+    let (mut first_error, mut failed) = (None, 0);
     for (j, v) in ys.iter().enumerate() {
         for (i, h) in xs.iter().enumerate() {
             let Some(at) = sample_point(club, (*h, *v), (dh, dv)) else { continue };
             match value(metric, model, &equipment, delivery, at) {
                 Ok(x) => values[j][i] = x,
                 Err(e) => {
+                    failed += 1;
                     first_error.get_or_insert(e);
                 }
             }
@@ -156,6 +157,7 @@ pub fn face_map(
         signed: metric.signed(),
         outline: club.face_outline.vertices_mm.clone(),
         markers: vec![("face centre".into(), [0.0, 0.0]), ("CG (behind the face)".into(), cg_mm)],
+        note: first_error.map(|e| format!("{failed} cells on the face left blank: no prediction ({e})")),
     })
 }
 
@@ -176,5 +178,38 @@ mod tests {
         assert!(heat.values[10][10].is_finite());
         assert!(heat.title.contains("club 85 mph") && heat.title.contains("dynamic loft"));
         assert!(MapMetric::Offline.signed() && !MapMetric::Carry.signed());
+    }
+
+    /// A model that cannot predict the toe half of the face.
+    #[derive(Debug)]
+    struct HeelOnly(ImpulseModel);
+
+    impl ImpactModel for HeelOnly {
+        fn name(&self) -> &'static str {
+            "heel-only"
+        }
+        fn predict(
+            &self,
+            state: &crate::impact::ImpactState,
+            equipment: &Equipment,
+        ) -> Result<crate::impact::Launch, ImpactError> {
+            if state.impact_h_m > 0.0 {
+                return Err(ImpactError::Singular);
+            }
+            self.0.predict(state, equipment)
+        }
+    }
+
+    /// Cells the model cannot predict are blank and counted in the picture's note, never silently.
+    #[test]
+    fn blank_cells_are_said() {
+        let club = ClubSpec::iron7();
+        let d = DeliveryInput { club_speed_mph: 85.0, ..DeliveryInput::default() };
+        let heat =
+            face_map(&club, &HeelOnly(ImpulseModel::new(ImpulseVariant::Adjusted)), &d, MapMetric::Carry, 9).unwrap();
+        let note = heat.note.clone().unwrap();
+        assert!(note.contains("cells on the face left blank") && note.contains("singular"), "{note}");
+        assert!(heat.values[4][0].is_finite() && heat.values[4][8].is_nan());
+        assert!(heat.svg(800.0, 560.0).contains(&note));
     }
 }

@@ -26,6 +26,8 @@ pub struct Heatmap {
     pub outline: Vec<[f64; 2]>,
     /// Labelled points drawn over the cells (data units), e.g. the face centre and the CG.
     pub markers: Vec<(String, [f64; 2])>,
+    /// A line of small text under the title (e.g. why some cells are blank).
+    pub note: Option<String>,
 }
 
 const VIRIDIS: [(f64, [f64; 3]); 5] = [
@@ -111,7 +113,8 @@ impl Heatmap {
     /// The heatmap as an SVG document of the given size (px).
     pub fn svg(&self, width: f64, height: f64) -> String {
         let title_lines: Vec<&str> = self.title.lines().collect();
-        let (ml, mr, mt, mb) = (70.0, 150.0, 20.0 + 18.0 * title_lines.len().max(1) as f64, 50.0);
+        let note_px = if self.note.is_some() { 16.0 } else { 0.0 };
+        let (ml, mr, mt, mb) = (70.0, 150.0, 20.0 + 18.0 * title_lines.len().max(1) as f64 + note_px, 50.0);
         let (aw, ah) = (width - ml - mr, height - mt - mb);
         let (nx, ny) = (self.xs.len().max(2), self.ys.len().max(2));
         let dx = (self.xs.last().unwrap_or(&1.0) - self.xs.first().unwrap_or(&0.0)) / (nx - 1) as f64;
@@ -139,6 +142,15 @@ impl Heatmap {
                 22.0 + 18.0 * i as f64,
                 if i == 0 { 15 } else { 13 },
                 escape(line)
+            );
+        }
+        if let Some(note) = &self.note {
+            let _ = write!(
+                out,
+                r##"<text x="{}" y="{}" font-size="11" fill="#555" text-anchor="middle">{}</text>"##,
+                width / 2.0,
+                22.0 + 18.0 * title_lines.len() as f64,
+                escape(note)
             );
         }
         let outline: Vec<String> = self.outline.iter().map(|p| format!("{:.1},{:.1}", sx(p[0]), sy(p[1]))).collect();
