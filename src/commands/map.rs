@@ -52,6 +52,6 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     if let Some(soil) = &args.soil {
         heat.title += &format!(", soil {soil}");
     }
-    write_output(&args.output, &heat.svg(820.0, 560.0))?;
+    write_output(&args.output, &heat.svg(820.0, heat.fitted_height(820.0, 360.0, 760.0)))?;
     Ok(ExitCode::SUCCESS)
 }

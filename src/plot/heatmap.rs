@@ -110,6 +110,19 @@ impl Heatmap {
         ColourScale::of(self.values.iter().flatten().copied(), self.signed)
     }
 
+    /// The height (px) at which `svg(width, _)` fills its width: the grid's aspect plus the title and margins,
+    /// within `min..=max`.
+    pub fn fitted_height(&self, width: f64, min: f64, max: f64) -> f64 {
+        let span = |v: &[f64]| {
+            let n = v.len().max(2) as f64;
+            (v.last().unwrap_or(&1.0) - v.first().unwrap_or(&0.0)) * n / (n - 1.0)
+        };
+        let lines = self.title.lines().count().max(1) as f64;
+        let top = 20.0 + 18.0 * lines + if self.note.is_some() { 16.0 } else { 0.0 };
+        let plot_w = width - 70.0 - 150.0;
+        (top + 50.0 + plot_w * span(&self.ys) / span(&self.xs).max(1e-9)).clamp(min, max)
+    }
+
     /// The heatmap as an SVG document of the given size (px).
     pub fn svg(&self, width: f64, height: f64) -> String {
         let title_lines: Vec<&str> = self.title.lines().collect();
