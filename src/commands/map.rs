@@ -44,7 +44,14 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     let equipment = impactd::impact::Equipment::new(club.clone());
     impactd::predict::state_of(&args.delivery.input(), &club, &equipment).context("the delivery")?;
     let model = one_model(&args.model, &loaded, impactd::impact::impulse::DEFAULT_COR)?;
-    let heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells);
-    write_output(&args.output, &heat.svg(760.0, 520.0))?;
+    let mut heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells)
+        .context("no impact location on the face has a prediction")?;
+    if let Some(note) = &heat.note {
+        eprintln!("warning: {note}");
+    }
+    if let Some(soil) = &args.soil {
+        heat.title += &format!(", soil {soil}");
+    }
+    write_output(&args.output, &heat.svg(820.0, heat.fitted_height(820.0, 360.0, 760.0)))?;
     Ok(ExitCode::SUCCESS)
 }

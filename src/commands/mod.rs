@@ -31,6 +31,8 @@ mod recover;
 #[cfg(feature = "daemon")]
 mod replay;
 #[cfg(feature = "daemon")]
+mod replay_pause;
+#[cfg(feature = "daemon")]
 mod run;
 #[cfg(feature = "daemon")]
 mod sim;

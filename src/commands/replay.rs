@@ -1,15 +1,17 @@
 //! `impactd replay`: the daemon's pipelines over a recording (MCAP) or a JSONL file of samples, like rosbag2's
 //! `play`: a pace (`--rate`), a part (`--rig`, `--start-offset`, `--duration`), `--loop`, and what goes out on
-//! zenoh (`--publish` the predictions, `--publish-samples` the raw samples so a recording drives another daemon).
+//! zenoh (`--publish` the predictions, `--publish-samples` the raw samples so a recording drives another daemon),
+//! and `--pause`/`--start-paused` (space on a terminal, lines on stdin otherwise: `replay_pause`).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use impactd::daemon::replay::{self, Publish, ReplayInput, ReplayOptions, ReplayReport};
+use impactd::daemon::replay::{self, PauseControl, Publish, ReplayInput, ReplayOptions, ReplayReport};
 use impactd::pipeline::Event;
 
 use super::args::{model_name, ZenohArgs};
@@ -41,6 +43,13 @@ pub struct ReplayArgs {
     /// Replay only this much capture time from the start (after --start-offset) (s).
     #[arg(long)]
     pub duration: Option<f64>,
+    /// Control the replay from stdin: on a terminal, space or Enter pauses and resumes; otherwise lines `pause`,
+    /// `resume` or `toggle` (a paused replay resumes when stdin ends).
+    #[arg(long)]
+    pub pause: bool,
+    /// Start paused (implies --pause).
+    #[arg(long)]
+    pub start_paused: bool,
     /// Replay again and again until interrupted (Ctrl-C).
     #[arg(long = "loop", conflicts_with = "output")]
     pub repeat: bool,
@@ -104,9 +113,17 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         (false, true) => Some(Publish::Samples),
         (false, false) => None,
     };
-    let options = ReplayOptions { rate: args.rate, output: args.output.clone(), publish: publish.unwrap_or_default() };
+    let pause = (args.pause || args.start_paused).then(|| Arc::new(PauseControl::new(args.start_paused)));
+    let options = ReplayOptions {
+        rate: args.rate,
+        output: args.output.clone(),
+        publish: publish.unwrap_or_default(),
+        pause: pause.clone(),
+    };
     let load_s = started.elapsed().as_secs_f64();
     let rt = runtime()?;
+    // Restores the terminal when the replay ends.
+    let _keys = pause.map(super::replay_pause::start);
     rt.block_on(async {
         let session = match publish {
             Some(_) => Some(args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?),

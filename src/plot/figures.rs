@@ -1,99 +1,14 @@
-//! The figures the command line draws: a launch number over the clubface (`impactd map`), the continuous model's
-//! forces through one impact (`impactd plot forces`), side and top views of flights (`impactd plot trajectory`),
-//! and a ball on a rigid plate under Maw's model (`impactd plot maw-plate`, seed Figure 3.4).
+//! The figures the command line draws: the continuous model's forces through one impact (`impactd plot forces`),
+//! side and top views of flights (`impactd plot trajectory`), and a ball on a rigid plate under Maw's model
+//! (`impactd plot maw-plate`, seed Figure 3.4). The face map (`impactd map`) is in `face_map`.
 
-use super::{Extras, Heatmap, LineChart, Mark, Series, PALETTE};
-use crate::equipment::ClubSpec;
-use crate::flight::{Flight, LaunchState, Trajectory};
+use super::{Extras, LineChart, Mark, Series, PALETTE};
+use crate::flight::Trajectory;
 use crate::impact::continuous::law::maw::MawParams;
 use crate::impact::continuous::{plate, ContinuousResult, TracePoint};
-use crate::impact::{Equipment, ImpactModel, LaunchMetrics};
+use crate::impact::LaunchMetrics;
 use crate::units::{m_to_yd, radps_to_rpm};
 use crate::wire::DeliveryInput;
-
-/// What `impactd map` colours the face by.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum MapMetric {
-    BallSpeed,
-    Launch,
-    Backspin,
-    Sidespin,
-    Carry,
-    Offline,
-}
-
-impl MapMetric {
-    /// The axis label of the metric, with its unit.
-    pub fn label(self) -> &'static str {
-        match self {
-            MapMetric::BallSpeed => "ball speed (mph)",
-            MapMetric::Launch => "launch angle (deg)",
-            MapMetric::Backspin => "backspin (rpm)",
-            MapMetric::Sidespin => "sidespin (rpm, + fade)",
-            MapMetric::Carry => "carry (yd)",
-            MapMetric::Offline => "offline (yd, right +)",
-        }
-    }
-}
-
-/// `metric` of `model`'s prediction over a `cells` x `cells` grid of impact locations covering the face of `club`,
-/// for `delivery` (its impact location ignored); cells with no prediction are NaN (blank).
-pub fn face_map(
-    club: &ClubSpec,
-    model: &dyn ImpactModel,
-    delivery: &DeliveryInput,
-    metric: MapMetric,
-    cells: usize,
-) -> Heatmap {
-    let equipment = Equipment::new(club.clone());
-    let flight = Flight::default();
-    let n = cells.max(2);
-    let (h0, h1, v0, v1) = club.face_outline.bounds_mm();
-    let xs: Vec<f64> = (0..n).map(|i| h0 + (h1 - h0) * i as f64 / (n - 1) as f64).collect();
-    let ys: Vec<f64> = (0..n).map(|j| v0 + (v1 - v0) * j as f64 / (n - 1) as f64).collect();
-    let mut values = vec![vec![f64::NAN; n]; n];
-    for (j, v) in ys.iter().enumerate() {
-        for (i, h) in xs.iter().enumerate() {
-            let mut input = delivery.clone();
-            input.impact_h_mm = *h;
-            input.impact_v_mm = *v;
-            let Ok(state) = input.to_delivery(club.loft_deg()).to_state(&equipment) else { continue };
-            let Ok(launch) = model.predict(&state, &equipment) else { continue };
-            let m = LaunchMetrics::from_ball(&launch.ball_velocity_mps, &launch.ball_spin_radps);
-            values[j][i] = match metric {
-                MapMetric::BallSpeed => m.ball_speed_mph,
-                MapMetric::Launch => m.launch_angle_deg,
-                MapMetric::Backspin => m.backspin_rpm,
-                MapMetric::Sidespin => m.sidespin_rpm,
-                MapMetric::Carry | MapMetric::Offline => {
-                    let launch =
-                        LaunchState { velocity_mps: launch.ball_velocity_mps, spin_radps: launch.ball_spin_radps };
-                    let t = flight.fly(&launch, 0.0);
-                    if metric == MapMetric::Carry {
-                        t.carry_yd
-                    } else {
-                        t.offline_yd
-                    }
-                }
-            };
-        }
-    }
-    let label = metric.label();
-    Heatmap {
-        title: format!("{} {}: {} at {:.0} mph", club.name, model.name(), label, delivery.club_speed_mph),
-        x_label: "impact location toward the toe (mm)".into(),
-        y_label: "impact location up the face (mm)".into(),
-        value_label: label.into(),
-        xs,
-        ys,
-        values,
-        outline: club.face_outline.vertices_mm.clone(),
-        markers: vec![
-            ("face centre".into(), [0.0, 0.0]),
-            ("CG".into(), [-club.face.center_m.z * 1e3, -club.face.center_m.dot(&club.face.u0()) * 1e3]),
-        ],
-    }
-}
 
 /// The continuous model's normal and tangential force and the ball's and cover's spin through one impact `r` of
 /// `club_name` swung at `club_speed_mph`.
@@ -172,14 +87,22 @@ pub fn trajectories_svg(flights: &[Trajectory]) -> String {
 /// The delivery of a picture's title, in TrackMan's names.
 pub fn delivery_title(d: &DeliveryInput, static_loft_deg: f64) -> String {
     format!(
-        "club {:.0} mph, attack {:+.1}°, path {:+.1}°, face {:+.1}°, dynamic loft {:.1}°, impact {:+.0} mm toe / {:+.0} mm up",
+        "{}, impact {:+.0} mm toe / {:+.0} mm up",
+        delivery_conditions(d, static_loft_deg),
+        d.impact_h_mm,
+        d.impact_v_mm
+    )
+}
+
+/// The delivery without its impact location (a face map's, which spans the face), in TrackMan's names.
+pub fn delivery_conditions(d: &DeliveryInput, static_loft_deg: f64) -> String {
+    format!(
+        "club {:.0} mph, attack {:+.1}°, path {:+.1}°, face {:+.1}°, dynamic loft {:.1}°",
         d.club_speed_mph,
         d.attack_angle_deg,
         d.club_path_deg,
         d.face_angle_deg,
-        d.dynamic_loft_deg.unwrap_or(static_loft_deg),
-        d.impact_h_mm,
-        d.impact_v_mm
+        d.dynamic_loft_deg.unwrap_or(static_loft_deg)
     )
 }
 

@@ -9,11 +9,13 @@ use std::collections::HashMap;
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
 mod load;
+mod pause;
 mod session;
 mod verdict;
 
 pub(crate) use load::read_file;
 pub use load::{is_mcap, load, ReplayInput};
+pub use pause::PauseControl;
 pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport};
 pub use verdict::Verdict;
 

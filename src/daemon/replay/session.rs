@@ -23,6 +23,8 @@ pub struct ReplayOptions {
     pub output: Option<PathBuf>,
     /// With a `session`: what the replay puts on zenoh.
     pub publish: Publish,
+    /// A switch that pauses the replay before its next sample (`impactd replay --pause`).
+    pub pause: Option<std::sync::Arc<super::PauseControl>>,
 }
 
 /// What a replay with a zenoh session publishes.
@@ -38,7 +40,7 @@ pub enum Publish {
     Both,
 }
 
-/// What a replay did, and whether it reproduced the recorded predictions.
+/// What a replay did, and whether it reproduced the recorded predictions. `elapsed_s` leaves out time paused.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ReplayReport {
     pub stats: ReplayStats,
@@ -166,7 +168,7 @@ pub async fn run(
         }
     }
     let period_ns = (config.status_period_s * 1e9) as u64;
-    let (start, mut first_t) = (Instant::now(), None);
+    let (start, mut first_t, mut paused) = (Instant::now(), None, Duration::ZERO);
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
     for msg in &input.samples {
         stats.samples += 1;
@@ -174,10 +176,14 @@ pub async fn run(
             stats.unknown_rig += 1;
             continue;
         };
+        if let Some(p) = &options.pause {
+            paused += p.checkpoint(msg.t_ns).await;
+        }
         if let Some(r) = options.rate {
             let t0 = *first_t.get_or_insert(msg.t_ns);
             let due = Duration::from_secs_f64(msg.t_ns.saturating_sub(t0) as f64 * 1e-9 / r);
-            if let Some(wait) = due.checked_sub(start.elapsed()) {
+            // Time spent paused does not count: the pace resumes where it stopped.
+            if let Some(wait) = due.checked_sub(start.elapsed().saturating_sub(paused)) {
                 std::thread::sleep(wait);
             }
         }
@@ -239,7 +245,7 @@ pub async fn run(
     let reproduced = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
     Ok(ReplayReport {
         stats,
-        elapsed_s: start.elapsed().as_secs_f64(),
+        elapsed_s: start.elapsed().saturating_sub(paused).as_secs_f64(),
         produced: produced.len(),
         recorded: input.recorded_launches.len(),
         reproduced,
