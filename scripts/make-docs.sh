@@ -3,6 +3,7 @@
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
 #   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
+#   impactd predict [--flight]          -> docs/models-notes.md, regions gear-driver, gear-iron (scripts/gear-effect.py)
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
@@ -135,6 +136,8 @@ replace("docs/performance.md", {"bench": bench_table()})
 PY
 echo "off-centre iron table" >&2
 python3 scripts/offcentre-iron.py "$BIN"
+echo "off-centre tables of the continuous model" >&2
+python3 scripts/gear-effect.py "$BIN"
 echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null

@@ -6,7 +6,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::{BallSpec, ClubFile, ClubSpec};
+use impactd::equipment::ClubSpec;
 use impactd::impact::continuous::ball::{BallPart, RigidBall, TwoLayerBall};
 use impactd::impact::continuous::club::{ClubPart, FreeHead, FreeHeadState, Head};
 use impactd::impact::continuous::ground::NoGround;
@@ -14,8 +14,8 @@ use impactd::impact::continuous::law::volumetric::Volumetric;
 use impactd::impact::continuous::law::{Contact, ContactForce, ContactLaw};
 use impactd::impact::continuous::surface::{FaceSurface, Overlap};
 use impactd::impact::continuous::{Assembly, Integration, Start, TwoLayerParams};
-use impactd::impact::{Delivery, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant, Launch};
 use impactd::impact::LaunchMetrics;
+use impactd::impact::{Delivery, Equipment, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant, Launch};
 use impactd::math::{Real, Vector3};
 use std::cell::{Cell, RefCell};
 
@@ -147,9 +147,11 @@ fn two_layer(eq: &Equipment, p: &TwoLayerParams) -> TwoLayerBall {
     TwoLayerBall::new(&eq.ball, p.cover_thickness_m, p.k_ball_nm_per_rad, p.c_ball_nms_per_rad)
 }
 
-fn one_cycle(text: &str) -> TwoLayerParams {
-    let loaded = ClubFile::parse(text).unwrap();
-    TwoLayerParams::from_sections(&loaded.sections, &BallSpec::SEED).unwrap().unwrap()
+/// The one-cycle ball of `clubs/driver-one-cycle.toml` and `clubs/iron7-one-cycle.toml`: Table 3.5 with the
+/// core-cover spring 1000 N m/rad, 0.05 N m s/rad, and the iron's Hunt-Crossley damping 4.5 ms/m.
+fn one_cycle(table: TwoLayerParams) -> TwoLayerParams {
+    let d_s_per_m = if table == TwoLayerParams::IRON7 { 4.5e-3 } else { table.d_s_per_m };
+    TwoLayerParams { k_ball_nm_per_rad: 1000.0, c_ball_nms_per_rad: 0.05, d_s_per_m, ..table }
 }
 
 /// The driver of the observation: 100 mph, 10.5 deg dynamic loft, level, square, on the face's centre line.
@@ -215,7 +217,7 @@ fn core_cover_period_s(b: &TwoLayerBall) -> Real {
 
 /// With Table 3.5's ball the driver's continuous model has almost no gear effect, and it is not for want of
 /// friction: the cover reaches rolling (slip under `v_tr / 4`, where eq. 3.15's tanh is 0.76 of `μ F_N`) within
-/// the first quarter of the contact, and doubling... `μ = 2` changes nothing. The cause is the ball: the
+/// the first quarter of the contact, and `μ = 2` instead of 0.372 leaves it as small. The cause is the ball: the
 /// core-cover mode's period (2.2 ms) is five times the contact (0.44 ms), so only the cover (26 % of the inertia)
 /// turns with the face; the friction that keeps it rolling as the head yaws leaves little angular momentum, and
 /// the bulge's fade impulse of the sliding phase cancels most of it. Measured (this test): -16 rpm at 20 mm toe,
@@ -267,7 +269,7 @@ fn a_rigid_ball_on_the_same_head_gives_the_rolling_gear_effect() {
 #[test]
 fn one_cycle_ball_gives_a_gear_effect() {
     let eq = Equipment::new(ClubSpec::driver());
-    let p = one_cycle(include_str!("../clubs/driver-one-cycle.toml"));
+    let p = one_cycle(TwoLayerParams::DRIVER);
     let ball = two_layer(&eq, &p);
     let centre = run(&eq, &driver_state(&eq, 0.0), &p, ball);
     assert!(core_cover_period_s(&ball) < centre.contact_time_s, "period {}", core_cover_period_s(&ball));
@@ -281,41 +283,56 @@ fn one_cycle_ball_gives_a_gear_effect() {
 }
 
 /// The 7-iron: the ball rolls up the face during the contact, so the contact's centroid (where eq. 3.14's force
-/// acts) climbs the face and the head pitches far more than about the fixed contact point of the impulse models;
-/// the strike that gives the most ball speed lies below the one of the standard impulse model (the seed finds the
-/// same, section 4.4: "the maximum carry distance occurs slightly below the center of the clubface").
+/// acts) climbs the face and the head pitches about its toe axis far more than about the fixed contact point of
+/// the impulse models. The strike that gives the most ball speed therefore lies lower than the standard impulse
+/// model's (the seed finds the same, section 4.4: "the maximum carry distance occurs slightly below the center of
+/// the clubface"), by about the normal-impulse-weighted climb; the 7-iron's small loss at 17 mm toe measured
+/// from the face centre (docs/offcentre-iron.md) is mostly this shifted reference.
+///
+/// Measured here (85 mph, 32 deg loft, -4.5 deg attack, the delivery of docs/offcentre-iron.md): the centroid
+/// climbs 6.5 mm over 0.47 ms; the head's pitch rate after impact is 276 rad/s against the standard model's 123;
+/// the fastest strike is 8 mm below centre (standard: 3 mm, the CG's projection on the face at -2.35 mm); 17 mm
+/// toe at that height loses 4.3 % of ball speed (2.0 % from the centre; the published 8-iron pair 5.7 %).
 #[test]
 fn iron_ball_rolls_up_the_face_and_the_best_strike_is_lower() {
-    let eq = Equipment::new(ClubSpec::iron7());
-    let p = TwoLayerParams::IRON7;
-    let st = state(&eq, 85.0, 32.0, -4.5, 0.0, 0.0);
-    let r = run(&eq, &st, &p, two_layer(&eq, &p));
-    let u0 = eq.club.face.u0();
-    let climb_m = (r.log.last().unwrap().0.overlap.centroid_m - r.log[0].0.overlap.centroid_m).dot(&u0);
-    let standard = ImpulseModel::new(ImpulseVariant::Standard).predict(&st, &eq).unwrap();
-    eprintln!(
-        "climb {:.2} mm; pitch {:.0} vs standard {:.0} rad/s",
-        climb_m * 1e3,
-        r.launch.club_angular_velocity_radps.z,
-        standard.club_angular_velocity_radps.z
-    );
-    let speed = |v: Real, continuous: bool| {
-        let st = state(&eq, 85.0, 32.0, -4.5, 0.0, v);
-        if continuous {
-            ball_speed_mps(&run(&eq, &st, &p, two_layer(&eq, &p)).launch)
-        } else {
-            ball_speed_mps(&ImpulseModel::new(ImpulseVariant::Standard).predict(&st, &eq).unwrap())
-        }
-    };
-    let best = |continuous: bool| {
-        (-14..=4).map(|v| v as Real).max_by(|a, b| speed(*a, continuous).total_cmp(&speed(*b, continuous))).unwrap()
-    };
-    let (best_c, best_s) = (best(true), best(false));
-    eprintln!("best v: continuous {best_c} mm, standard {best_s} mm");
-    for v in [-12.0, -10.0, -8.0, -6.0, -4.0, -2.0, 0.0, 2.0] {
-        eprintln!("v {v}: continuous {:.2} standard {:.2}", speed(v, true), speed(v, false));
+    for p in [TwoLayerParams::IRON7, one_cycle(TwoLayerParams::IRON7)] {
+        iron_rolls_up(&p);
     }
-    let toe_c = ball_speed_mps(&run(&eq, &state(&eq, 85.0, 32.0, -4.5, 17.0, best_c), &p, two_layer(&eq, &p)).launch);
-    eprintln!("toe 17 at best_c: {:.2} vs {:.2} {:.2} %", toe_c, speed(best_c, true), 100.0 * (toe_c / speed(best_c, true) - 1.0));
-    let _ = climb_m;
+}
+
+fn iron_rolls_up(p: &TwoLayerParams) {
+    let p = *p;
+    let eq = Equipment::new(ClubSpec::iron7());
+    let at = |h: Real, v: Real| state(&eq, 85.0, 32.0, -4.5, h, v);
+    let r = run(&eq, &at(0.0, 0.0), &p, two_layer(&eq, &p));
+    let u0 = eq.club.face.u0();
+    let climb = |c: &Contact| (c.overlap.centroid_m - r.log[0].0.overlap.centroid_m).dot(&u0);
+    let climb_m = climb(&r.log.last().unwrap().0);
+    // Upper bound: the ball's centre cannot move up the face faster than at first contact, when the ball is at
+    // rest and the face slides under it at the whole tangential speed (the slip then).
+    let bound_m = r.log[0].0.slip_mps.norm() * r.contact_time_s;
+    assert!(climb_m > 0.5 * bound_m && climb_m < bound_m, "climb {climb_m} m, bound {bound_m} m");
+    let n_impulse: Real = r.log.iter().map(|(_, f)| f.normal_n).sum();
+    let mean_climb_m = r.log.iter().map(|(c, f)| f.normal_n * climb(c)).sum::<Real>() / n_impulse;
+    let standard = ImpulseModel::new(ImpulseVariant::Standard).predict(&at(0.0, 0.0), &eq).unwrap();
+    let (pitch, pitch_std) = (r.launch.club_angular_velocity_radps.z, standard.club_angular_velocity_radps.z);
+    assert!(pitch > 1.5 * pitch_std, "pitch {pitch} vs standard {pitch_std} rad/s");
+
+    let continuous_speed = |h: Real, v: Real| ball_speed_mps(&run(&eq, &at(h, v), &p, two_layer(&eq, &p)).launch);
+    let standard_speed =
+        |v: Real| ball_speed_mps(&ImpulseModel::new(ImpulseVariant::Standard).predict(&at(0.0, v), &eq).unwrap());
+    let best = |speed: &dyn Fn(Real) -> Real| {
+        (-14..=4).map(|v| v as Real).max_by(|a, b| speed(*a).total_cmp(&speed(*b))).unwrap()
+    };
+    let (best_c, best_s) = (best(&|v| continuous_speed(0.0, v)), best(&standard_speed));
+    eprintln!(
+        "climb {:.2} mm (impulse-weighted {:.2}); best v {best_c} vs {best_s} mm",
+        climb_m * 1e3,
+        mean_climb_m * 1e3
+    );
+    assert!(best_s - best_c >= 3.0, "best strike: continuous {best_c} mm, standard {best_s} mm");
+    assert!(((best_s - best_c) - mean_climb_m * 1e3).abs() <= 2.0, "shift {} vs climb {mean_climb_m}", best_s - best_c);
+    let loss_pct = 100.0 * (1.0 - continuous_speed(17.0, best_c) / continuous_speed(0.0, best_c));
+    eprintln!("pitch {pitch:.0} vs {pitch_std:.0}; toe loss {loss_pct:.2} %");
+    assert!((3.0..6.0).contains(&loss_pct), "17 mm toe at the best height loses {loss_pct} %");
 }

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Regenerates the off-centre tables of docs/models-notes.md (regions `gear-driver` and `gear-iron`, between
+`<!-- generated: NAME -->` and `<!-- end -->`) from `impactd predict [--flight]` for the impulse-momentum and
+continuous models, the continuous one with the preset club and with the one-cycle club file.
+
+Usage: scripts/gear-effect.py [path/to/impactd]   (default target/release/impactd; run from the repository)
+"""
+import json
+import re
+import subprocess
+import sys
+
+BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/impactd"
+DOC = "docs/models-notes.md"
+# The driver delivery of the gear-effect question: 100 mph, level, square, 10.5 deg of dynamic loft.
+DRIVER = {"club_speed_mph": 100.0, "attack_angle_deg": 0.0, "club_path_deg": 0.0, "face_angle_deg": 0.0,
+          "dynamic_loft_deg": 10.5}
+DRIVER_H_MM = [-20.0, 0.0, 20.0, 30.0]
+# The 7-iron delivery of docs/offcentre-iron.md (85 mph, -4.5 deg attack, 32 deg dynamic loft).
+IRON = {"club_speed_mph": 85.0, "attack_angle_deg": -4.5, "dynamic_loft_deg": 32.0}
+IRON_V_MM = [-12.0, -10.0, -8.0, -6.0, -4.0, -2.0, 0.0, 2.0, 4.0]
+# (label, model, club)
+DRIVER_MODELS = [
+    ("adjusted", "adjusted", "driver"),
+    ("standard", "standard", "driver"),
+    ("continuous, `--club driver`", "continuous", "driver"),
+    ("continuous, one-cycle club", "continuous", "clubs/driver-one-cycle.toml"),
+]
+IRON_MODELS = [
+    ("adjusted", "adjusted", "iron7"),
+    ("standard", "standard", "iron7"),
+    ("continuous, `--club iron7`", "continuous", "iron7"),
+    ("continuous, one-cycle club", "continuous", "clubs/iron7-one-cycle.toml"),
+]
+
+
+def predict(model, club, deliveries, flight=False):
+    lines = "".join(json.dumps(d) + "\n" for d in deliveries)
+    args = [BIN, "predict", "--club", club, "--model", model] + (["--flight"] if flight else [])
+    out = subprocess.run(args, input=lines, text=True, capture_output=True, check=True).stdout
+    return [json.loads(l) for l in out.splitlines() if l.strip()]
+
+
+def driver_table():
+    rows = ["| model | impact | launch direction (deg) | sidespin (rpm, + fade) | change from centre (rpm) "
+            "| offline (yd, right +) |", "|---|---|---|---|---|---|"]
+    for label, model, club in DRIVER_MODELS:
+        shots = predict(model, club, [dict(DRIVER, impact_h_mm=h, impact_v_mm=0.0) for h in DRIVER_H_MM], True)
+        centre = shots[DRIVER_H_MM.index(0.0)]["sidespin_rpm"]
+        for h, s in zip(DRIVER_H_MM, shots):
+            where = "centre" if h == 0 else f"{abs(h):.0f} mm {'toe' if h > 0 else 'heel'}"
+            change = "" if h == 0 else f"{s['sidespin_rpm'] - centre:+.0f}"
+            rows.append(f"| {label} | {where} | {s['launch_direction_deg']:+.2f} | {s['sidespin_rpm']:+.0f} | "
+                        f"{change} | {s['offline_yd']:+.1f} |")
+    return "\n".join(rows)
+
+
+def iron_table():
+    cols = []
+    for _, model, club in IRON_MODELS:
+        shots = predict(model, club, [dict(IRON, impact_h_mm=0.0, impact_v_mm=v) for v in IRON_V_MM])
+        cols.append([s["ball_speed_mph"] for s in shots])
+    rows = ["| up the face (mm) | " + " | ".join(label for label, _, _ in IRON_MODELS) + " |",
+            "|---|" + "---|" * len(IRON_MODELS)]
+    for i, v in enumerate(IRON_V_MM):
+        cells = []
+        for col in cols:
+            cell = f"{col[i]:.1f}"
+            cells.append(f"**{cell}**" if col[i] == max(col) else cell)
+        rows.append(f"| {v:+.0f} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
+def replace(regions):
+    with open(DOC) as f:
+        text = f.read()
+    for name, body in regions.items():
+        pattern = re.compile(rf"(<!-- generated: {name} -->\n).*?(<!-- end -->)", re.S)
+        if not pattern.search(text):
+            sys.exit(f"{DOC}: no region {name}")
+        text = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
+    with open(DOC, "w") as f:
+        f.write(text)
+    print(f"{DOC}: {', '.join(regions)}", file=sys.stderr)
+
+
+replace({"gear-driver": driver_table(), "gear-iron": iron_table()})
