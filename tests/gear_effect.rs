@@ -215,9 +215,9 @@ fn core_cover_period_s(b: &TwoLayerBall) -> Real {
     std::f64::consts::TAU / k.sqrt()
 }
 
-/// The ball's spin about the vertical (rad/s, + draw) from the friction while the cover slides and after it
-/// first rolls (slip under `v_tr / 4`).
-fn yaw_spin_by_phase(r: &Run, eq: &Equipment, v_tr_mps: Real) -> (Real, Real) {
+/// When the cover first rolls (slip under `v_tr / 4`, s), and the ball's spin about the vertical (rad/s, + draw)
+/// from the friction before and after.
+fn yaw_spin_by_phase(r: &Run, eq: &Equipment, v_tr_mps: Real) -> (Real, Real, Real) {
     let w = [1.0, 2.0, 2.0, 1.0];
     let rolling_at = r.log.iter().step_by(4).position(|(c, _)| c.slip_mps.norm() < v_tr_mps / 4.0).unwrap();
     let (mut sliding, mut rolling) = (0.0, 0.0);
@@ -229,7 +229,7 @@ fn yaw_spin_by_phase(r: &Run, eq: &Equipment, v_tr_mps: Real) -> (Real, Real) {
             rolling += spin
         }
     }
-    (sliding, rolling)
+    (rolling_at as Real * STEP_S, sliding, rolling)
 }
 
 /// With Table 3.5's ball the driver's continuous model has almost no gear effect, and it is not for want of
@@ -247,13 +247,13 @@ fn table_3_5_ball_rolls_early_yet_shows_almost_no_gear_effect() {
     let ball = two_layer(&eq, &p);
     let toe = run(&eq, &driver_state(&eq, 20.0), &p, ball);
     assert!(core_cover_period_s(&ball) > 4.0 * toe.contact_time_s, "period {}", core_cover_period_s(&ball));
-    let rolling_at = toe.log.iter().step_by(4).position(|(c, _)| c.slip_mps.norm() < p.v_tr_mps / 4.0).unwrap();
-    let rolling_s = rolling_at as Real * STEP_S;
+    let (rolling_s, sliding, rolling) = yaw_spin_by_phase(&toe, &eq, p.v_tr_mps);
     eprintln!("rolling after {:.1} us of {:.1}", rolling_s * 1e6, toe.contact_time_s * 1e6);
-    let (sliding, rolling) = yaw_spin_by_phase(&toe, &eq, p.v_tr_mps);
+    assert!(rolling_s < 0.25 * toe.contact_time_s, "rolling after {rolling_s} s of {}", toe.contact_time_s);
     let rigid = run(&eq, &driver_state(&eq, 20.0), &p, RigidBall::new(&eq.ball));
-    let (sliding_rigid, rolling_rigid) = yaw_spin_by_phase(&rigid, &eq, p.v_tr_mps);
-    eprintln!("yaw spin from friction (rad/s, + draw): sliding {sliding:.1}, rolling {rolling:.1}; rigid ball {sliding_rigid:.1}, {rolling_rigid:.1}");
+    let (_, sliding_rigid, rolling_rigid) = yaw_spin_by_phase(&rigid, &eq, p.v_tr_mps);
+    eprintln!("yaw spin from friction (rad/s, + draw): sliding {sliding:.1}, rolling {rolling:.1}");
+    eprintln!("rigid ball: sliding {sliding_rigid:.1}, rolling {rolling_rigid:.1}");
     // The rolling phase's draw is a third of a rigid ball's, and the sliding phase's fade cancels 90 % of it.
     assert!(sliding < 0.0 && sliding_rigid < 0.0, "the bulge's sliding friction fades");
     assert!(rolling < 0.5 * rolling_rigid, "rolling-phase draw {rolling} vs rigid {rolling_rigid} rad/s");
