@@ -61,7 +61,8 @@ impl GaussRule {
 pub struct SoleArcWorld {
     /// The head's CG (world).
     pub cg_m: Vector3,
-    /// The club frame's axes in the world: forward, up, toe (the cylinder's axis).
+    /// The sole cylinder's axes in the world: forward, up, toe (the cylinder's axis); the club frame's for a
+    /// level sole.
     pub ex: Vector3,
     pub ey: Vector3,
     pub ez: Vector3,
@@ -76,7 +77,7 @@ pub struct SoleArcWorld {
 
 impl SoleArcWorld {
     pub fn new(arc: &SoleArc, world_from_club: &Isometry3, ground_y_m: Real) -> Self {
-        let r = world_from_club.rotation;
+        let r = world_from_club.rotation * nalgebra::UnitQuaternion::from_rotation_matrix(&arc.axes);
         SoleArcWorld {
             cg_m: world_from_club.translation.vector,
             ex: r * Vector3::x(),
