@@ -2,6 +2,8 @@
 # Regenerates the numeric tables of docs/estimation.md and docs/performance.md from the commands' JSON output:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
+#   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
+#   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
 set -euo pipefail
@@ -25,6 +27,10 @@ for club in driver iron7; do
 done
 echo "bench" >&2
 "$BIN" bench --json >"$OUT/bench.json"
+echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md" >&2
+cargo run --release --quiet --example ground_face >"$OUT/ground-face.jsonl"
+python3 scripts/ground-table.py docs/ground.md docs/ground-findings.md <"$OUT/ground-face.jsonl"
+python3 scripts/ground-sensitivity.py "$BIN" >docs/ground-sensitivity.md
 
 python3 - "$OUT" "$SHOTS" <<'PY'
 import datetime, json, os, platform, re, sys
