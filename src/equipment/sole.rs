@@ -33,7 +33,7 @@
 //! what the tilt does to the seed's findings.
 
 use super::EquipmentError;
-use crate::math::{Real, Rotation3, Vector3};
+use crate::math::{Real, UnitQuaternion, Vector3};
 
 /// The sole, lie and shaft mount of an iron.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -127,7 +127,7 @@ impl SoleSpec {
         let theta_te = (theta_le.sin() - self.sole_width_m / r).asin();
         // Toe down: a turn about the face normal n0 = (cos loft, sin loft, 0) takes the toe (+z) toward -u0.
         let n0 = nalgebra::Unit::new_normalize(Vector3::new(loft_rad.cos(), loft_rad.sin(), 0.0));
-        let axes = Rotation3::from_axis_angle(&n0, self.toe_down_deg.to_radians());
+        let axes = UnitQuaternion::from_axis_angle(&n0, self.toe_down_deg.to_radians());
         SoleArc {
             centre_m: face_centre_m + axes * (level - face_centre_m),
             axes,
@@ -146,7 +146,7 @@ pub struct SoleArc {
     pub centre_m: Vector3,
     /// The cylinder's frame in the club frame (identity for a level sole): its x forward, y up, z (the axis)
     /// toward the toe.
-    pub axes: Rotation3,
+    pub axes: UnitQuaternion,
     pub radius_m: Real,
     pub theta_te_rad: Real,
     pub theta_le_rad: Real,

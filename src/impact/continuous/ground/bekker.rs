@@ -77,7 +77,7 @@ pub struct SoleArcWorld {
 
 impl SoleArcWorld {
     pub fn new(arc: &SoleArc, world_from_club: &Isometry3, ground_y_m: Real) -> Self {
-        let r = world_from_club.rotation * nalgebra::UnitQuaternion::from_rotation_matrix(&arc.axes);
+        let r = world_from_club.rotation * arc.axes;
         SoleArcWorld {
             cg_m: world_from_club.translation.vector,
             ex: r * Vector3::x(),
