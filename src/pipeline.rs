@@ -160,7 +160,7 @@ impl Pipeline {
             let m = Arc::clone(&self.setup.models[i]);
             // The ground model runs the strike through the turf and reports it; the others give a launch.
             let result = match m.ground(&est.state, &self.equipment, 0) {
-                Some(r) => r.map(|r| (r.launch, Some(r.summary()))),
+                Some(r) => r.map(|r| (r.launch, Some(Box::new(r.summary())))),
                 None => m.predict(&est.state, &self.equipment).map(|l| (l, None)),
             };
             match result {

@@ -162,7 +162,7 @@ pub struct LaunchPrediction {
     /// How the club met the turf (the `ground` model of an iron rig with `soil`, seed chapter 4); absent for
     /// other models.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ground: Option<crate::impact::continuous::iron_ground::GroundSummary>,
+    pub ground: Option<Box<crate::impact::continuous::iron_ground::GroundSummary>>,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.
