@@ -193,8 +193,9 @@ mod tests {
         assert!((le.y - arc.point(0.0, 0.0).y - 0.1 * (1.0 - 4f64.to_radians().cos())).abs() < 1e-15);
     }
 
-    /// A toe-down sole: the toe end of the leading edge drops by `L/2 sin(a)` along the face (closed form), the
-    /// heel end rises as much, and the face centre's point of the sole stays where the level sole has it.
+    /// A toe-down sole, turned by `a` about the face normal through the face centre c: its leading edge at
+    /// heel-toe offset s is `c + (−d u0 + s z)` turned, so along the face the toe end (s = +L/2) lies `L sin a`
+    /// below the heel end, the middle stays `d` from the face centre, and the level sole is the unturned one.
     #[test]
     fn toe_down_tilts_the_sole_about_the_face_normal() {
         let c = Vector3::new(0.00361, 0.00485, 0.00112);
@@ -202,11 +203,10 @@ mod tests {
         let level = SoleSpec::IRON7.arc(&c, loft);
         let tilted = SoleSpec { toe_down_deg: 5.0, ..SoleSpec::IRON7 }.arc(&c, loft);
         let u0 = Vector3::new(-loft.sin(), loft.cos(), 0.0);
-        let drop = 0.03 * 5f64.to_radians().sin();
-        let toe = tilted.leading_edge(0.03) - level.leading_edge(0.0);
-        let heel = tilted.leading_edge(-0.03) - level.leading_edge(0.0);
-        assert!((toe.dot(&u0) + drop).abs() < 1e-9 && (heel.dot(&u0) - drop).abs() < 1e-9, "{toe:?} {heel:?}");
-        assert!((tilted.leading_edge(0.0) - level.leading_edge(0.0)).norm() < 1e-12);
+        let (toe, heel) = (tilted.leading_edge(0.03), tilted.leading_edge(-0.03));
+        assert!(((toe - heel).dot(&u0) + 0.06 * 5f64.to_radians().sin()).abs() < 1e-12, "{toe:?} {heel:?}");
+        assert!(((tilted.leading_edge(0.0) - c).norm() - 0.012).abs() < 1e-12);
+        assert!((level.leading_edge(0.03) - level.leading_edge(-0.03)).dot(&u0).abs() < 1e-15);
         let mut bad = SoleSpec::IRON7;
         bad.toe_down_deg = 20.0;
         assert!(bad.validate().unwrap_err().to_string().contains("toe_down_deg"));
