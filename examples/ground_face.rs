@@ -54,31 +54,34 @@ fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: R
     })
 }
 
-/// The two readings of the continuous model's ball the ground model can run on: Table 3.5 as printed (the
-/// default) and the one-cycle two-layer ball of clubs/iron7-one-cycle.toml.
-fn balls() -> Vec<(&'static str, Option<TwoLayerParams>)> {
-    let mut out = vec![("table_3_5", None)];
+/// The variants the findings are measured on: the continuous model's ball read two ways, Table 3.5 as printed
+/// (the default) and the one-cycle two-layer ball of clubs/iron7-one-cycle.toml; and the default ball with the
+/// leading edge 20 mm down the face from its centre (a measured 7-iron's; the preset takes 12 mm).
+fn variants() -> Vec<(&'static str, Option<TwoLayerParams>, Real)> {
+    let mut out = vec![("table_3_5", None, 0.012)];
     match load_club("clubs/iron7-one-cycle.toml") {
         Ok(c) => match TwoLayerParams::from_sections(&c.sections, &BallSpec::SEED) {
-            Ok(p) => out.push(("one_cycle", p)),
+            Ok(p) => out.push(("one_cycle", p, 0.012)),
             Err(e) => eprintln!("clubs/iron7-one-cycle.toml: {e}"),
         },
         Err(e) => eprintln!("clubs/iron7-one-cycle.toml: {e}"),
     }
+    out.push(("table_3_5_edge_20mm", None, 0.020));
     out
 }
 
 fn main() {
     let eq = Equipment::new(ClubSpec::iron7());
     let flight = Flight::default();
-    let prepare = |soil: SoilSpec, with_ground: bool, params: Option<TwoLayerParams>, toe_down_deg: Real| {
-        let mut m = GroundModel::new(soil);
-        m.with_ground = with_ground;
-        m.params = params;
-        m.sole.toe_down_deg = toe_down_deg;
-        m.prepare(&eq).map_err(|e| e.to_string())
-    };
-    for (ball, params) in balls() {
+    for (ball, params, edge_m) in variants() {
+        let prepare = |soil: SoilSpec, with_ground: bool, params: Option<TwoLayerParams>, toe_down_deg: Real| {
+            let mut m = GroundModel::new(soil);
+            m.with_ground = with_ground;
+            m.params = params;
+            m.sole.toe_down_deg = toe_down_deg;
+            m.sole.leading_edge_below_face_centre_m = edge_m;
+            m.prepare(&eq).map_err(|e| e.to_string())
+        };
         let (firm, none) =
             match (prepare(SoilSpec::firm(), true, params, 0.0), prepare(SoilSpec::firm(), false, params, 0.0)) {
                 (Ok(a), Ok(b)) => (a, b),
@@ -109,7 +112,7 @@ fn main() {
         }
         // The sole's heel-toe tilt (`[sole] toe_down_deg`): the toe digging first moves the ground's force toward
         // the toe, the direction that opens the face.
-        for toe_down_deg in [0.0, 5.0, 10.0] {
+        for toe_down_deg in [0.0, 5.0, 10.0].into_iter().filter(|_| edge_m == 0.012) {
             let Ok(p) = prepare(SoilSpec::firm(), true, params, toe_down_deg) else { continue };
             for v in [10.0, 20.0] {
                 println!(
