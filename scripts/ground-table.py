@@ -210,6 +210,19 @@ for d in rows["toe_down"]:
           f"{g['sidespin_rpm'] - n['sidespin_rpm']:+.0f} | {g['offline_yd']:+.1f} |")
 w("")
 w("  Stiffer turf turns the face further the same way (closed, draw): [ground-sensitivity.md](ground-sensitivity.md).")
+# A bound in closed form: opening the face by 5° (what ~+1000 rpm of sidespin takes at 25° of loft) from rest in
+# the time the ground acts before the ball takes a mean yaw moment 2 dphi / dt² I about the shaft axis, I the
+# head's yaw inertia (Table 3.1, 2889 g cm²) plus m d² with the shaft axis 38 mm from the CG (equipment::sole).
+dt = t["ground_contact_before_ball_ms"] * 1e-3
+inertia = 2889e-7 + 0.264 * 0.038 ** 2
+need = 2 * math.radians(5.0) / dt ** 2 * inertia
+drag = 0.4 * t["peak_ground_force_n"]
+w(f"  A bound: opening the face 5° (about +1000 rpm at 25° of loft) in the {dt * 1e3:.1f} ms the ground acts before")
+w(f"  the ball takes a mean yaw moment of {need:.1f} N m about the shaft axis (yaw inertia 2889 g cm² of Table 3.1")
+w(f"  plus the head's mass 38 mm from the axis); the firm soil's drag peaks near {drag:.0f} N, which even all of it")
+w(f"  acting 70 mm toward the toe of the axis gives {drag * 0.07:.1f} N m at its peak and about half that on average")
+w(f"  over the rise before the ball: about {drag * 0.07 / 2 / need:.1f} of what the seed's fade needs, before the")
+w("  vertical force's closing moment is subtracted.")
 cross = [("soft", "firm"), ("soft", "medium"), ("medium", "firm")]
 w("- **Soils ordered.** At equal sinkage, Table 4.3's pressures (eq. 4.3, k_c in kN/m^(n+1), k_φ in kN/m^(n+2),")
 w("  z in m, b = the 20 mm sole width) cross: " + "; ".join(
