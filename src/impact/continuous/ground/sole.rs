@@ -92,7 +92,7 @@ pub fn sole_forces(
         for j in 0..along.n {
             let theta = a + gt[j] * (b - a);
             let (sin, cos) = theta.sin_cos();
-            let p = arc.point(theta, s);
+            let p = arc.point_sc(sin, cos, s);
             let z = arc.ground_y_m - p.y;
             if z <= 0.0 {
                 continue;
