@@ -29,7 +29,7 @@
 //! the turf level, heel first or toe first. `toe_down_deg` turns the sole (and the leading edge with it) about
 //! the face normal through the face centre, toe down for positive angles. A shaft bowed toe-down at impact
 //! ("droop", a few degrees for a steel iron) or a lie flatter than the golfer's delivery puts the toe down;
-//! hands higher at impact than at address put it up. The two roughly cancel for a typical 7-iron, so the level
+//! hands higher at impact than at address put it up. With no measured typical value of either sign, the level
 //! sole (0) is the default; docs/ground-findings.md measures what the tilt does to the seed's findings.
 
 use super::EquipmentError;
