@@ -1,14 +1,17 @@
 //! The iron-plus-ground model over the face (seed section 4.3, Figures 4.10-4.17), one swing, as JSON lines:
-//! each impact location with and without ground on a soil, plus a fat and a good strike on every soil.
-//! Usage: `cargo run --release --example ground_face -- [--json]`; `scripts/ground-table.py` turns the
-//! output into `docs/ground.md`.
+//! for each reading of the ball (Table 3.5, and the one-cycle ball of clubs/iron7-one-cycle.toml), each impact
+//! location with and without ground on firm soil, fat and good strikes on every soil, and the sole tilted toe
+//! down; then the leading edge's height. Usage, from the crate's root: `cargo run --release --example
+//! ground_face`; `scripts/ground-table.py` turns the output into docs/ground.md and docs/ground-findings.md
+//! (scripts/make-docs.sh runs both).
 
 #![allow(clippy::unwrap_used)]
 
 use impactd::equipment::soil::SoilSpec;
-use impactd::equipment::ClubSpec;
+use impactd::equipment::{load_club, BallSpec, ClubSpec};
 use impactd::flight::{Flight, LaunchState};
 use impactd::impact::continuous::iron_ground::{GroundModel, GroundResult, PreparedGround};
+use impactd::impact::continuous::TwoLayerParams;
 use impactd::impact::{Delivery, Equipment, LaunchMetrics};
 use impactd::math::{Real, Vector3};
 use serde_json::json;
@@ -51,57 +54,92 @@ fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: R
     })
 }
 
+/// The variants the findings are measured on: the continuous model's ball read two ways, Table 3.5 as printed
+/// (the default) and the one-cycle two-layer ball of clubs/iron7-one-cycle.toml; and the default ball with the
+/// leading edge 20 mm down the face from its centre (a measured 7-iron's; the preset takes 12 mm).
+fn variants() -> Vec<(&'static str, Option<TwoLayerParams>, Real)> {
+    let mut out = vec![("table_3_5", None, 0.012)];
+    match load_club("clubs/iron7-one-cycle.toml") {
+        Ok(c) => match TwoLayerParams::from_sections(&c.sections, &BallSpec::SEED) {
+            Ok(p) => out.push(("one_cycle", p, 0.012)),
+            Err(e) => eprintln!("clubs/iron7-one-cycle.toml: {e}"),
+        },
+        Err(e) => eprintln!("clubs/iron7-one-cycle.toml: {e}"),
+    }
+    out.push(("table_3_5_edge_20mm", None, 0.020));
+    out
+}
+
 fn main() {
     let eq = Equipment::new(ClubSpec::iron7());
     let flight = Flight::default();
-    let prepare = |soil: SoilSpec, with_ground: bool| {
-        let mut m = GroundModel::new(soil);
-        m.with_ground = with_ground;
-        m.prepare(&eq).map_err(|e| e.to_string())
-    };
-    let (firm, none) = match (prepare(SoilSpec::firm(), true), prepare(SoilSpec::firm(), false)) {
-        (Ok(a), Ok(b)) => (a, b),
-        (Err(e), _) | (_, Err(e)) => {
-            eprintln!("{e}");
-            std::process::exit(1);
+    for (ball, params, edge_m) in variants() {
+        let prepare = |soil: SoilSpec, with_ground: bool, params: Option<TwoLayerParams>, toe_down_deg: Real| {
+            let mut m = GroundModel::new(soil);
+            m.with_ground = with_ground;
+            m.params = params;
+            m.sole.toe_down_deg = toe_down_deg;
+            m.sole.leading_edge_below_face_centre_m = edge_m;
+            m.prepare(&eq).map_err(|e| e.to_string())
+        };
+        let (firm, none) =
+            match (prepare(SoilSpec::firm(), true, params, 0.0), prepare(SoilSpec::firm(), false, params, 0.0)) {
+                (Ok(a), Ok(b)) => (a, b),
+                (Err(e), _) | (_, Err(e)) => {
+                    eprintln!("{e}");
+                    std::process::exit(1);
+                }
+            };
+        for v in [-20.0, -15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0] {
+            for h in [-20.0, -10.0, 0.0, 10.0, 20.0] {
+                let line = json!({
+                    "kind": "face", "ball": ball, "soil": "firm", "h_mm": h, "v_mm": v,
+                    "ground": shot(&firm, &eq, &flight, h, v), "no_ground": shot(&none, &eq, &flight, h, v),
+                });
+                println!("{line}");
+            }
         }
-    };
-    for v in [-20.0, -15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0] {
-        for h in [-20.0, -10.0, 0.0, 10.0, 20.0] {
-            let line = json!({
-                "kind": "face", "soil": "firm", "h_mm": h, "v_mm": v,
-                "ground": shot(&firm, &eq, &flight, h, v), "no_ground": shot(&none, &eq, &flight, h, v),
-            });
-            println!("{line}");
+        for soil in SoilSpec::PRESETS {
+            let Ok(spec) = SoilSpec::preset(soil) else { continue };
+            let Ok(p) = prepare(spec, true, params, 0.0) else { continue };
+            for (name, v) in [("fat_top", 20.0), ("fat", 15.0), ("good", 0.0)] {
+                println!(
+                    "{}",
+                    json!({ "kind": "soil", "ball": ball, "soil": soil, "strike_at": name, "v_mm": v,
+                            "ground": shot(&p, &eq, &flight, 0.0, v) })
+                );
+            }
+        }
+        // The sole's heel-toe tilt (`[sole] toe_down_deg`): the toe digging first moves the ground's force toward
+        // the toe, the direction that opens the face.
+        for toe_down_deg in [0.0, 5.0, 10.0].into_iter().filter(|_| edge_m == 0.012) {
+            let Ok(p) = prepare(SoilSpec::firm(), true, params, toe_down_deg) else { continue };
+            for v in [10.0, 20.0] {
+                println!(
+                    "{}",
+                    json!({ "kind": "toe_down", "ball": ball, "toe_down_deg": toe_down_deg, "h_mm": 0.0, "v_mm": v,
+                            "ground": shot(&p, &eq, &flight, 0.0, v), "no_ground": shot(&none, &eq, &flight, 0.0, v) })
+                );
+            }
         }
     }
     // The leading edge's height is the one club dimension that decides which strikes are fat: a measured
     // 7-iron's face centre sits ~20 mm up the face from the leading edge (the preset takes 12 mm).
     for le_mm in [12.0, 20.0] {
-        let eq_le = Equipment::new(ClubSpec::iron7());
         let make = |with_ground: bool| {
             let mut m = GroundModel::new(SoilSpec::firm());
             m.sole.leading_edge_below_face_centre_m = le_mm * 1e-3;
             m.with_ground = with_ground;
-            m.prepare(&eq_le)
+            m.prepare(&eq)
         };
         let (Ok(g), Ok(n)) = (make(true), make(false)) else { continue };
         for v in [-15.0, -10.0, -5.0, 0.0, 5.0, 10.0] {
             let line = json!({
-                "kind": "leading_edge", "leading_edge_below_face_centre_mm": le_mm, "h_mm": 0.0, "v_mm": v,
-                "ground": shot(&g, &eq_le, &flight, 0.0, v), "no_ground": shot(&n, &eq_le, &flight, 0.0, v),
+                "kind": "leading_edge", "ball": "table_3_5", "leading_edge_below_face_centre_mm": le_mm,
+                "h_mm": 0.0, "v_mm": v,
+                "ground": shot(&g, &eq, &flight, 0.0, v), "no_ground": shot(&n, &eq, &flight, 0.0, v),
             });
             println!("{line}");
-        }
-    }
-    for soil in SoilSpec::PRESETS {
-        let Ok(spec) = SoilSpec::preset(soil) else { continue };
-        let Ok(p) = prepare(spec, true) else { continue };
-        for (name, v) in [("fat", 15.0), ("good", 0.0)] {
-            println!(
-                "{}",
-                json!({ "kind": "soil", "soil": soil, "strike_at": name, "v_mm": v, "ground": shot(&p, &eq, &flight, 0.0, v) })
-            );
         }
     }
 }

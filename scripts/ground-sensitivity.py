@@ -46,7 +46,8 @@ def main():
     for k in (1, 3, 10):
         rows.append((f"iron7, firm soil x{k}", "-", predict("iron7", soils[k], [15, 20])))
     for sole in ("lie_deg = 58.0", "lie_deg = 67.0", "shaft_tip_from_cg_m = [0.008, 0.050, -0.030]",
-                 "shaft_tip_from_cg_m = [-0.010, 0.050, -0.068]", "shaft_tip_from_cg_m = [0.025, 0.050, -0.068]"):
+                 "shaft_tip_from_cg_m = [-0.010, 0.050, -0.068]", "shaft_tip_from_cg_m = [0.025, 0.050, -0.068]",
+                 "toe_down_deg = 10.0", "toe_down_deg = -10.0"):
         path = os.path.join(tmp, "club.toml")
         with open(path, "w") as f:
             f.write(base + f"\n[sole]\n{sole}\n")
@@ -78,11 +79,13 @@ What the table shows:
   toe-up points left. Moving the hosel from 68 to 30 mm heel-ward of the CG cuts the closing to a tenth or a sixth
   (-0.03 / -0.11 deg); moving it back or forward changes it by about half; the lie angle changes it little (the
   sole stays level heel to toe in this model).
-- The seed's fade (~+1000 rpm, ~15 yd right) needs the face to open by several degrees: a vertical force acting
-  toward the heel of the pivot (the heel digging: a dynamic lie flatter than the static one, toe up) or a drag
-  that dominates the vertical force. Neither is in the model: the sole's cylinder lies along the club's heel-toe
-  axis, so its wetted area is centred under the face whatever the lie. A heel-toe tilt of the sole (dynamic lie)
-  is the next thing to add.
+- The seed's fade (~+1000 rpm, ~15 yd right) needs the face to open by several degrees. `toe_down_deg` tilts
+  the sole heel to toe about the face normal: toe down 10 deg (the toe digs first) moves the force toward the
+  toe and closes the face less (-0.67 -> -0.40 deg at v = +20); heel down (-10) closes it more (-0.98 deg). The
+  heel digging first therefore does not open the face here: the force it puts toward the heel keeps the toe-up
+  turn (the shaft axis is further toward the heel still) and adds drag heel-ward of the CG, which swings the toe
+  through. The fat sole is wetted heel to toe, so no tilt moves the force far enough toward the toe to open
+  the face on Table 4.3's soil.
 """)
 
 

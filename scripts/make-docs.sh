@@ -5,6 +5,8 @@
 #   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
 #   impactd predict [--flight]          -> docs/models-notes.md, regions gear-driver, gear-iron (scripts/gear-effect.py)
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
+#   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
+#   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
 set -euo pipefail
@@ -28,6 +30,10 @@ for club in driver iron7; do
 done
 echo "bench" >&2
 "$BIN" bench --json >"$OUT/bench.json"
+echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md" >&2
+cargo run --release --quiet --example ground_face >"$OUT/ground-face.jsonl"
+python3 scripts/ground-table.py docs/ground.md docs/ground-findings.md <"$OUT/ground-face.jsonl"
+python3 scripts/ground-sensitivity.py "$BIN" >docs/ground-sensitivity.md
 
 python3 - "$OUT" "$SHOTS" <<'PY'
 import datetime, json, os, platform, re, sys

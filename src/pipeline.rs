@@ -158,8 +158,13 @@ impl Pipeline {
         }));
         for i in 0..self.setup.models.len() {
             let m = Arc::clone(&self.setup.models[i]);
-            match m.predict(&est.state, &self.equipment) {
-                Ok(launch) => {
+            // The ground model runs the strike through the turf and reports it; the others give a launch.
+            let result = match m.ground(&est.state, &self.equipment, 0) {
+                Some(r) => r.map(|r| (r.launch, Some(Box::new(r.summary())))),
+                None => m.predict(&est.state, &self.equipment).map(|l| (l, None)),
+            };
+            match result {
+                Ok((launch, ground)) => {
                     self.counts.predictions += 1;
                     let output = PredictOutput::new(&launch, &delivery, Default::default(), &self.equipment);
                     for w in &output.warnings {
@@ -187,6 +192,7 @@ impl Pipeline {
                                 0.0,
                             )
                         }),
+                        ground,
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),

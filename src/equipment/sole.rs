@@ -16,6 +16,7 @@
 //! | `sole_radius_m` | 0.10 | front-to-back sole camber, ~4 in |
 //! | `leading_edge_below_face_centre_m` | 0.012 | see below |
 //! | `shaft_tip_from_cg_m` | (0.008, 0.050, −0.068) | hosel top: shaft axis 38 mm from the CG (irons: 35-40 mm) |
+//! | `toe_down_deg` | 0.0 | the sole's heel-toe tilt at delivery, toe down + (see below) |
 //!
 //! The leading edge's distance below the face centre decides which strikes meet the ground first. The seed
 //! finds that strikes below the face centre meet the ball before the ground (section 4.3, Figure 4.11): for a
@@ -23,9 +24,16 @@
 //! ground, so a leading edge 12 mm down the face (10.3 mm vertically) puts the centred strike's leading edge at
 //! the ground. A measured 7-iron's scoreline centre sits 18-22 mm above the leading edge; with 20 mm, strikes
 //! 5 mm below the centre are already fat (docs/ground.md).
+//!
+//! The delivery fixes the face's direction but not the head's roll about the face normal: whether the sole meets
+//! the turf level, heel first or toe first. `toe_down_deg` turns the sole (and the leading edge with it) about
+//! the face normal through the face centre, toe down for positive angles. A shaft bowed toe-down at impact
+//! ("droop", a few degrees for a steel iron) or a lie flatter than the golfer's delivery puts the toe down;
+//! hands higher at impact than at address put it up. With no measured typical value of either sign, the level
+//! sole (0) is the default; docs/ground-findings.md measures what the tilt does to the seed's findings.
 
 use super::EquipmentError;
-use crate::math::{Real, Vector3};
+use crate::math::{Real, UnitQuaternion, Vector3};
 
 /// The sole, lie and shaft mount of an iron.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -45,6 +53,10 @@ pub struct SoleSpec {
     pub leading_edge_below_face_centre_m: Real,
     /// The shaft's tip (top of the hosel, on the shaft axis) from the CG, club frame (m).
     pub shaft_tip_from_cg_m: [Real; 3],
+    /// The sole's heel-toe tilt at delivery, toe down + (deg): a turn about the face normal through the face
+    /// centre.
+    #[serde(default)]
+    pub toe_down_deg: Real,
 }
 
 impl SoleSpec {
@@ -57,6 +69,7 @@ impl SoleSpec {
         sole_radius_m: 0.10,
         leading_edge_below_face_centre_m: 0.012,
         shaft_tip_from_cg_m: [0.008, 0.050, -0.068],
+        toe_down_deg: 0.0,
     };
 
     /// Checks every field, naming a bad one.
@@ -74,6 +87,9 @@ impl SoleSpec {
         }
         if !(self.lie_deg > 30.0 && self.lie_deg < 80.0) {
             return invalid("sole.lie_deg", format!("must lie in (30, 80), got {}", self.lie_deg));
+        }
+        if !(self.toe_down_deg > -15.0 && self.toe_down_deg < 15.0) {
+            return invalid("sole.toe_down_deg", format!("must lie in (-15, 15), got {}", self.toe_down_deg));
         }
         if !(self.bounce_deg > -10.0 && self.bounce_deg < 30.0) {
             return invalid("sole.bounce_deg", format!("must lie in (-10, 30), got {}", self.bounce_deg));
@@ -107,10 +123,14 @@ impl SoleSpec {
         let le = face_centre_m - self.leading_edge_below_face_centre_m * u0;
         let theta_le = self.bounce_deg.to_radians();
         let r = self.sole_radius_m;
-        let centre = Vector3::new(le.x - r * theta_le.sin(), le.y + r * theta_le.cos(), face_centre_m.z);
+        let level = Vector3::new(le.x - r * theta_le.sin(), le.y + r * theta_le.cos(), face_centre_m.z);
         let theta_te = (theta_le.sin() - self.sole_width_m / r).asin();
+        // Toe down: a turn about the face normal n0 = (cos loft, sin loft, 0) takes the toe (+z) toward -u0.
+        let n0 = nalgebra::Unit::new_normalize(Vector3::new(loft_rad.cos(), loft_rad.sin(), 0.0));
+        let axes = UnitQuaternion::from_axis_angle(&n0, self.toe_down_deg.to_radians());
         SoleArc {
-            centre_m: centre,
+            centre_m: face_centre_m + axes * (level - face_centre_m),
+            axes,
             radius_m: r,
             theta_te_rad: theta_te,
             theta_le_rad: theta_le,
@@ -124,6 +144,9 @@ impl SoleSpec {
 pub struct SoleArc {
     /// A point on the cylinder's axis, at the sole's heel-toe middle (club frame, m).
     pub centre_m: Vector3,
+    /// The cylinder's frame in the club frame (identity for a level sole): its x forward, y up, z (the axis)
+    /// toward the toe.
+    pub axes: UnitQuaternion,
     pub radius_m: Real,
     pub theta_te_rad: Real,
     pub theta_le_rad: Real,
@@ -135,7 +158,7 @@ impl SoleArc {
     /// The sole point at angle `theta` and heel-toe offset `s` from the middle (club frame, m).
     #[inline]
     pub fn point(&self, theta: Real, s_m: Real) -> Vector3 {
-        self.centre_m + Vector3::new(self.radius_m * theta.sin(), -self.radius_m * theta.cos(), s_m)
+        self.centre_m + self.axes * Vector3::new(self.radius_m * theta.sin(), -self.radius_m * theta.cos(), s_m)
     }
 
     /// The leading edge at heel-toe offset `s` (club frame, m).
@@ -168,6 +191,25 @@ mod tests {
         // The lowest point (θ = 0) lies on the arc, R (1 − cos 4°) = 0.24 mm below the leading edge.
         assert!(arc.theta_te_rad < 0.0 && arc.theta_le_rad > 0.0);
         assert!((le.y - arc.point(0.0, 0.0).y - 0.1 * (1.0 - 4f64.to_radians().cos())).abs() < 1e-15);
+    }
+
+    /// A toe-down sole, turned by `a` about the face normal through the face centre c: its leading edge at
+    /// heel-toe offset s is `c + (−d u0 + s z)` turned, so along the face the toe end (s = +L/2) lies `L sin a`
+    /// below the heel end, the middle stays `d` from the face centre, and the level sole is the unturned one.
+    #[test]
+    fn toe_down_tilts_the_sole_about_the_face_normal() {
+        let c = Vector3::new(0.00361, 0.00485, 0.00112);
+        let loft = 30.5f64.to_radians();
+        let level = SoleSpec::IRON7.arc(&c, loft);
+        let tilted = SoleSpec { toe_down_deg: 5.0, ..SoleSpec::IRON7 }.arc(&c, loft);
+        let u0 = Vector3::new(-loft.sin(), loft.cos(), 0.0);
+        let (toe, heel) = (tilted.leading_edge(0.03), tilted.leading_edge(-0.03));
+        assert!(((toe - heel).dot(&u0) + 0.06 * 5f64.to_radians().sin()).abs() < 1e-12, "{toe:?} {heel:?}");
+        assert!(((tilted.leading_edge(0.0) - c).norm() - 0.012).abs() < 1e-12);
+        assert!((level.leading_edge(0.03) - level.leading_edge(-0.03)).dot(&u0).abs() < 1e-15);
+        let mut bad = SoleSpec::IRON7;
+        bad.toe_down_deg = 20.0;
+        assert!(bad.validate().unwrap_err().to_string().contains("toe_down_deg"));
     }
 
     /// The shaft axis leaves the tip at the lie angle: its elevation is 62.5° and it leans toward the heel.

@@ -61,7 +61,8 @@ impl GaussRule {
 pub struct SoleArcWorld {
     /// The head's CG (world).
     pub cg_m: Vector3,
-    /// The club frame's axes in the world: forward, up, toe (the cylinder's axis).
+    /// The sole cylinder's axes in the world: forward, up, toe (the cylinder's axis); the club frame's for a
+    /// level sole.
     pub ex: Vector3,
     pub ey: Vector3,
     pub ez: Vector3,
@@ -72,23 +73,34 @@ pub struct SoleArcWorld {
     pub theta_le_rad: Real,
     pub half_length_m: Real,
     pub ground_y_m: Real,
+    /// The sinkage's form `A(s) + R ρ cos(θ − θ₀)`, computed once: `(A(0), slope of A in s, ρ, θ₀)`.
+    form: (Real, Real, Real, Real),
 }
 
 impl SoleArcWorld {
     pub fn new(arc: &SoleArc, world_from_club: &Isometry3, ground_y_m: Real) -> Self {
-        let r = world_from_club.rotation;
+        let r = world_from_club.rotation * arc.axes;
+        let (ex, ey, ez) = (r * Vector3::x(), r * Vector3::y(), r * Vector3::z());
+        let centre_m = (world_from_club * nalgebra::Point3::from(arc.centre_m)).coords;
         SoleArcWorld {
             cg_m: world_from_club.translation.vector,
-            ex: r * Vector3::x(),
-            ey: r * Vector3::y(),
-            ez: r * Vector3::z(),
-            centre_m: (world_from_club * nalgebra::Point3::from(arc.centre_m)).coords,
+            ex,
+            ey,
+            ez,
+            centre_m,
             radius_m: arc.radius_m,
             theta_te_rad: arc.theta_te_rad,
             theta_le_rad: arc.theta_le_rad,
             half_length_m: 0.5 * arc.length_m,
             ground_y_m,
+            form: (ground_y_m - centre_m.y, -ez.y, ex.y.hypot(ey.y), (-ex.y).atan2(ey.y)),
         }
+    }
+
+    /// The sole point at angle θ, given `sin θ` and `cos θ`, and heel-toe offset s (world).
+    #[inline]
+    pub fn point_sc(&self, sin: Real, cos: Real, s_m: Real) -> Vector3 {
+        self.centre_m + self.radius_m * (sin * self.ex - cos * self.ey) + s_m * self.ez
     }
 
     /// The sole point at angle θ and heel-toe offset s (world).
@@ -100,8 +112,7 @@ impl SoleArcWorld {
     /// Sinkage `A(s) + R ρ cos(θ − θ₀)`: returns `(A(0), slope of A in s, ρ, θ₀)`.
     #[inline]
     fn sinkage_form(&self) -> (Real, Real, Real, Real) {
-        let rho = self.ex.y.hypot(self.ey.y);
-        (self.ground_y_m - self.centre_m.y, -self.ez.y, rho, (-self.ex.y).atan2(self.ey.y))
+        self.form
     }
 
     /// The deepest sinkage of any sole point (m; negative when the sole is clear of the ground).

@@ -2,7 +2,8 @@
 //! strength integrated over the wetted part of the sole's cylinder.
 //!
 //! A sole point at angle θ (from straight down, positive toward the leading edge) and heel-toe offset s is
-//! `P = c + R (sin θ x̂ − cos θ ŷ) + s ẑ` in the club frame ([`SoleArc`]). Its sinkage below the undisturbed
+//! `P = c + R (sin θ x̂ − cos θ ŷ) + s ẑ` in the sole's frame ([`SoleArc`]; the club frame turned toe down by
+//! `toe_down_deg` about the face normal). Its sinkage below the undisturbed
 //! playing surface is `z = y_ground − P_y`. Over the wetted arc `θ_T.E ≤ θ ≤ θ_L.E` where `z > 0`:
 //!
 //! - pressure, eq. 4.3: `σ(z) = (k_c / b + k_φ) zⁿ`, `b` the smaller of the wetted patch's length (along the arc)
@@ -91,7 +92,7 @@ pub fn sole_forces(
         for j in 0..along.n {
             let theta = a + gt[j] * (b - a);
             let (sin, cos) = theta.sin_cos();
-            let p = arc.point(theta, s);
+            let p = arc.point_sc(sin, cos, s);
             let z = arc.ground_y_m - p.y;
             if z <= 0.0 {
                 continue;

@@ -38,6 +38,7 @@ struct SoleSection {
     sole_radius_m: Option<Real>,
     leading_edge_below_face_centre_m: Option<Real>,
     shaft_tip_from_cg_m: Option<[Real; 3]>,
+    toe_down_deg: Option<Real>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -102,6 +103,7 @@ impl GroundModel {
                     .leading_edge_below_face_centre_m
                     .unwrap_or(d.leading_edge_below_face_centre_m),
                 shaft_tip_from_cg_m: s.shaft_tip_from_cg_m.unwrap_or(d.shaft_tip_from_cg_m),
+                toe_down_deg: s.toe_down_deg.unwrap_or(d.toe_down_deg),
             };
             model.sole.validate().map_err(|e| invalid("sole", e))?;
         }
