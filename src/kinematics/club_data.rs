@@ -1,0 +1,86 @@
+//! TrackMan's club data of the path from the frames (docs/club-data.md): swing direction, swing plane and the
+//! low point, computed once per detected impact from the face centre's positions over the last
+//! [`WINDOW_MS`] before it.
+//!
+//! - The path is fitted with an arc ([`ArcFit`]: a plane through the points by total least squares, in it a
+//!   circle with a cubic angle and a quadratic radius in time), the same model as the `arc` estimator's path.
+//! - Swing plane: the angle between the fitted plane and the ground, `acos |m · y|` for its normal `m`.
+//! - Swing direction: the azimuth of the plane's base line `b = m × y` (its intersection with the ground),
+//!   oriented toward the target, `atan2(b_z, b_x)` (right +).
+//! - Low point: the point of the fitted path where its height turns from falling to rising, the path continued
+//!   past contact as the approach would go on without the ball; its distance from the face centre at contact
+//!   along `b` (after +) and its height above the ball's bottom.
+//!
+//! Dynamic lie, closure rate and face to path come from the impact state alone ([`DeliveryMetrics`]).
+//!
+//! [`DeliveryMetrics`]: crate::impact::DeliveryMetrics
+
+use super::arc::ArcFit;
+use super::sample::ClubPose;
+use crate::impact::SwingArc;
+use crate::math::{Real, Vector3};
+
+/// The span of frames before impact the path is fitted over (ms): the `arc` estimator's span
+/// (`EstimatorSpec::ARC_WINDOW_MS`), the last 60-100 deg of the downswing's arc.
+pub const WINDOW_MS: Real = 60.0;
+
+/// How far past contact the low point is looked for (s): an iron's low point is 2-6 ms after it.
+const LOW_POINT_AFTER_S: Real = 0.03;
+
+/// The swing plane's base line and angle for a plane normal `m` (any sign): `(direction, plane)` in radians and
+/// the base line's unit vector toward the target; `None` for a level plane (no base line).
+pub fn plane_angles(m: &Vector3) -> Option<(Real, Real, Vector3)> {
+    let m = m.try_normalize(1e-12)?;
+    let base = m.cross(&Vector3::y());
+    let norm = base.norm();
+    if norm < 1e-9 {
+        return None;
+    }
+    let mut base = base / norm;
+    if base.x < 0.0 {
+        base = -base;
+    }
+    Some((base.z.atan2(base.x), m.y.abs().clamp(0.0, 1.0).acos(), base))
+}
+
+/// The path's metrics from its plane normal, the face centre at contact and the lowest point (m, world).
+pub fn swing_arc_of(
+    normal: &Vector3,
+    at_contact_m: &Vector3,
+    lowest_m: &Vector3,
+    ball_position_m: &Vector3,
+    ball_radius_m: Real,
+) -> Option<SwingArc> {
+    let (direction, plane, base) = plane_angles(normal)?;
+    let d = lowest_m - at_contact_m;
+    Some(SwingArc {
+        swing_direction_deg: direction.to_degrees(),
+        swing_plane_deg: plane.to_degrees(),
+        low_point_distance_mm: (d.x * base.x + d.z * base.z) * 1e3,
+        low_point_height_mm: (lowest_m.y - (ball_position_m.y - ball_radius_m)) * 1e3,
+    })
+}
+
+/// The swing arc of the frames before impact (`pre_impact` oldest first, all before `reveal_t_ns`), with the
+/// contact at `t_contact_s` from the revealing frame (the estimate's `t_from_reveal_s`); `None` when the frames
+/// do not fit an arc or the path has no low point within reach.
+pub fn swing_arc(
+    pre_impact: &[ClubPose],
+    reveal_t_ns: u64,
+    t_contact_s: Real,
+    face_centre_club_m: &Vector3,
+    ball_position_m: &Vector3,
+    ball_radius_m: Real,
+) -> Option<SwingArc> {
+    let newest = pre_impact.last()?.t_ns;
+    let span_ns = (WINDOW_MS * 1e6) as u64;
+    let rel = |t_ns: u64| -((reveal_t_ns.saturating_sub(t_ns)) as Real) * 1e-9;
+    let first = pre_impact.iter().rposition(|p| newest - p.t_ns > span_ns).map_or(0, |i| i + 1);
+    let points: Vec<(Real, Vector3)> = pre_impact[first..]
+        .iter()
+        .map(|p| (rel(p.t_ns), (p.world_from_club * nalgebra::Point3::from(*face_centre_club_m)).coords))
+        .collect();
+    let arc = ArcFit::fit(&points)?;
+    let t_low = arc.lowest_time(&Vector3::y(), points[0].0, t_contact_s + LOW_POINT_AFTER_S)?;
+    swing_arc_of(&arc.normal(), &arc.position(t_contact_s), &arc.position(t_low), ball_position_m, ball_radius_m)
+}
