@@ -305,38 +305,6 @@ impl ArcFit {
         self.n
     }
 
-    /// The time within `[t_from_s, t_to_s]` at which the path is lowest along `up`, where its velocity along
-    /// `up` turns from falling to rising; `None` when it does not within the span.
-    pub fn lowest_time(&self, up: &Vector3, t_from_s: Real, t_to_s: Real) -> Option<Real> {
-        let rate = |t: Real| self.velocity(t).dot(up);
-        // Steps of a quarter millisecond: the vertical velocity changes sign once near the bottom of the arc.
-        let steps = (((t_to_s - t_from_s) / 2.5e-4).ceil() as usize).clamp(1, 4000);
-        let dt = (t_to_s - t_from_s) / steps as Real;
-        let (mut a, mut fa) = (t_from_s, rate(t_from_s));
-        for k in 1..=steps {
-            let b = t_from_s + k as Real * dt;
-            let fb = rate(b);
-            if fa < 0.0 && fb >= 0.0 {
-                // Bisection to a nanosecond's billionth: the position at the bottom is then exact to rounding.
-                let (mut lo, mut hi) = (a, b);
-                for _ in 0..80 {
-                    let mid = 0.5 * (lo + hi);
-                    if rate(mid) < 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                    if hi - lo < 1e-15 {
-                        break;
-                    }
-                }
-                return Some(0.5 * (lo + hi));
-            }
-            (a, fa) = (b, fb);
-        }
-        None
-    }
-
     /// Velocity (m/s) at `t_s`.
     pub fn velocity(&self, t_s: Real) -> Vector3 {
         let tau = (t_s - self.t_ref_s) / self.scale_s;

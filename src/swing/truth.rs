@@ -70,40 +70,13 @@ impl Swing {
 
     /// The exact swing direction, swing plane and low point of this swing for a ball of `ball_radius_m` at
     /// `ball_position_m`: the approach path lies in the plane through the arc's centre spanned by `n_c` and the
-    /// club's direction at impact, and its lowest point is where the height's rate turns positive (found by
-    /// bisection on a central difference to 1e-13 s, a few nanometres along the path).
+    /// club's direction at impact, and its lowest point, the one nearest impact, is where the height's rate turns
+    /// positive (found by bisection on a central difference of the height, to rounding).
     pub fn swing_arc_truth(&self, ball_position_m: &Vector3, ball_radius_m: Real) -> Option<SwingArc> {
         let normal = self.v_hat.cross(&self.n_c);
         let h = 1e-6;
         let rate = |t: Real| (self.approach_face_centre(t + h).y - self.approach_face_centre(t - h).y) / (2.0 * h);
-        let (t_from, t_to) = (-0.1, 0.03);
-        let steps = 520;
-        let dt = (t_to - t_from) / steps as Real;
-        let (mut a, mut fa) = (t_from, rate(t_from));
-        for k in 1..=steps {
-            let b = t_from + k as Real * dt;
-            let fb = rate(b);
-            if fa < 0.0 && fb >= 0.0 {
-                let (mut lo, mut hi) = (a, b);
-                while hi - lo > 1e-13 {
-                    let mid = 0.5 * (lo + hi);
-                    if rate(mid) < 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                let lowest = self.approach_face_centre(0.5 * (lo + hi));
-                return crate::kinematics::club_data::swing_arc_of(
-                    &normal,
-                    &self.f_i,
-                    &lowest,
-                    ball_position_m,
-                    ball_radius_m,
-                );
-            }
-            (a, fa) = (b, fb);
-        }
-        None
+        let lowest = self.approach_face_centre(crate::kinematics::club_data::lowest_time(rate, 0.0)?);
+        crate::kinematics::club_data::swing_arc_of(&normal, &self.f_i, &lowest, ball_position_m, ball_radius_m)
     }
 }
