@@ -151,6 +151,7 @@ impl Pipeline {
             self.detector.pre_impact(),
             d.reveal_t_ns,
             est.t_from_reveal_s,
+            est.arc.as_ref(),
             &club.face.center_m,
             &config.ball_position_m,
             config.ball_radius_m,

@@ -98,15 +98,29 @@ pub fn swing_arc_of(
 
 /// The swing arc of the frames before impact (`pre_impact` oldest first, all before `reveal_t_ns`), with the
 /// contact at `t_contact_s` from the revealing frame (the estimate's `t_from_reveal_s`); `None` when the frames
-/// do not fit an arc or the path has no low point within reach.
+/// do not fit an arc or the path has no low point within reach. `estimated` is the estimate's own arc of the
+/// face centre (times from the revealing frame), used when there is one: the `arc` estimator keeps its 60 ms arc
+/// only while it fits the frames as well as a polynomial does, so a path it rejects (a wrist uncocking late)
+/// is fitted again over the shorter [`WINDOW_MS`], and the fit is paid once per shot where the arc fits.
 pub fn swing_arc(
     pre_impact: &[ClubPose],
     reveal_t_ns: u64,
     t_contact_s: Real,
+    estimated: Option<&ArcFit>,
     face_centre_club_m: &Vector3,
     ball_position_m: &Vector3,
     ball_radius_m: Real,
 ) -> Option<SwingArc> {
+    let arc = match estimated {
+        Some(a) => *a,
+        None => fit_window(pre_impact, reveal_t_ns, face_centre_club_m)?,
+    };
+    let t_low = lowest_time(|t| arc.velocity(t).y, t_contact_s)?;
+    swing_arc_of(&arc.normal(), &arc.position(t_contact_s), &arc.position(t_low), ball_position_m, ball_radius_m)
+}
+
+/// The arc of the face centre over the last [`WINDOW_MS`] of `pre_impact`, times from the revealing frame.
+fn fit_window(pre_impact: &[ClubPose], reveal_t_ns: u64, face_centre_club_m: &Vector3) -> Option<ArcFit> {
     let newest = pre_impact.last()?.t_ns;
     let span_ns = (WINDOW_MS * 1e6) as u64;
     let rel = |t_ns: u64| -((reveal_t_ns.saturating_sub(t_ns)) as Real) * 1e-9;
@@ -115,7 +129,5 @@ pub fn swing_arc(
         .iter()
         .map(|p| (rel(p.t_ns), (p.world_from_club * nalgebra::Point3::from(*face_centre_club_m)).coords))
         .collect();
-    let arc = ArcFit::fit(&points)?;
-    let t_low = lowest_time(|t| arc.velocity(t).y, t_contact_s)?;
-    swing_arc_of(&arc.normal(), &arc.position(t_contact_s), &arc.position(t_low), ball_position_m, ball_radius_m)
+    ArcFit::fit(&points)
 }
