@@ -2,6 +2,7 @@
 # Regenerates the numeric tables of docs/estimation.md and docs/performance.md from the commands' JSON output:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
+#   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
 set -euo pipefail
@@ -131,3 +132,4 @@ replace("docs/estimation.md", {
 })
 replace("docs/performance.md", {"bench": bench_table()})
 PY
+scripts/club-data-docs.sh
