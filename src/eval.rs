@@ -88,6 +88,21 @@ pub struct ClubDataErrors {
     pub face_to_path_deg: ErrorStats,
 }
 
+impl ClubDataErrors {
+    /// Keys in order, with their stats.
+    pub fn entries(&self) -> [(&'static str, ErrorStats); 7] {
+        [
+            ("swing_direction_deg", self.swing_direction_deg),
+            ("swing_plane_deg", self.swing_plane_deg),
+            ("low_point_distance_mm", self.low_point_distance_mm),
+            ("low_point_height_mm", self.low_point_height_mm),
+            ("dynamic_lie_deg", self.dynamic_lie_deg),
+            ("closure_rate_degps", self.closure_rate_degps),
+            ("face_to_path_deg", self.face_to_path_deg),
+        ]
+    }
+}
+
 /// One estimator's result.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EstimatorReport {
