@@ -48,6 +48,12 @@ fn shots(club: &ClubSpec, path: SwingPath, n: usize, noise_mm: f64, noise_deg: f
             .iter()
             .find_map(|e| if let Event::Impact(m) = e { Some(m.delivery) } else { None })
             .expect("every swing is detected and estimated");
+        // The launch carries the same club data in its delivery and, for dynamic lie and closure rate, in its
+        // `predict`-style output.
+        let launch = events.iter().find_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).unwrap();
+        assert_eq!(launch.delivery, measured);
+        assert_eq!(launch.launch.dynamic_lie_deg, measured.dynamic_lie_deg);
+        assert_eq!(launch.launch.closure_rate_degps, measured.closure_rate_degps);
         let truth = DeliveryMetrics::from_state(&swing.truth, club);
         out.push(Shot {
             truth,
