@@ -7,6 +7,7 @@
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
 #   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
 #   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
+#   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
 set -euo pipefail
@@ -147,3 +148,4 @@ python3 scripts/gear-effect.py "$BIN"
 echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
+scripts/club-data-docs.sh

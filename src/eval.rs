@@ -74,6 +74,35 @@ impl Errors {
     }
 }
 
+/// The error of TrackMan's club data from the frames (docs/club-data.md; estimate minus truth), over the shots
+/// whose path gave a swing arc.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct ClubDataErrors {
+    pub shots: usize,
+    pub swing_direction_deg: ErrorStats,
+    pub swing_plane_deg: ErrorStats,
+    pub low_point_distance_mm: ErrorStats,
+    pub low_point_height_mm: ErrorStats,
+    pub dynamic_lie_deg: ErrorStats,
+    pub closure_rate_degps: ErrorStats,
+    pub face_to_path_deg: ErrorStats,
+}
+
+impl ClubDataErrors {
+    /// Keys in order, with their stats.
+    pub fn entries(&self) -> [(&'static str, ErrorStats); 7] {
+        [
+            ("swing_direction_deg", self.swing_direction_deg),
+            ("swing_plane_deg", self.swing_plane_deg),
+            ("low_point_distance_mm", self.low_point_distance_mm),
+            ("low_point_height_mm", self.low_point_height_mm),
+            ("dynamic_lie_deg", self.dynamic_lie_deg),
+            ("closure_rate_degps", self.closure_rate_degps),
+            ("face_to_path_deg", self.face_to_path_deg),
+        ]
+    }
+}
+
 /// One estimator's result.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EstimatorReport {
@@ -83,6 +112,8 @@ pub struct EstimatorReport {
     /// Shots the estimator refused or missed, by reason.
     pub refused: std::collections::BTreeMap<String, usize>,
     pub errors: Errors,
+    #[serde(default)]
+    pub club_data: ClubDataErrors,
 }
 
 /// The whole evaluation.
@@ -98,26 +129,54 @@ pub struct EvalReport {
     pub estimators: Vec<EstimatorReport>,
 }
 
-#[derive(Default, Clone)]
-struct Acc {
+#[derive(Clone)]
+struct Acc<const N: usize> {
     n: usize,
-    sums: [Real; 13],
-    maxes: [Real; 13],
+    sums: [Real; N],
+    maxes: [Real; N],
 }
 
-impl Acc {
-    fn add(&mut self, e: &[Real; 13]) {
+impl<const N: usize> Default for Acc<N> {
+    fn default() -> Self {
+        Acc { n: 0, sums: [0.0; N], maxes: [0.0; N] }
+    }
+}
+
+impl<const N: usize> Acc<N> {
+    fn add(&mut self, e: &[Real; N]) {
         self.n += 1;
         for ((sum, max), e) in self.sums.iter_mut().zip(self.maxes.iter_mut()).zip(e) {
             *sum += e * e;
             *max = max.max(e.abs());
         }
     }
-    fn errors(&self) -> Errors {
-        let s = |i: usize| ErrorStats {
+    fn stats(&self, i: usize) -> ErrorStats {
+        ErrorStats {
             rms: if self.n > 0 { (self.sums[i] / self.n as Real).sqrt() } else { Real::NAN },
             max: self.maxes[i],
-        };
+        }
+    }
+}
+
+impl Acc<7> {
+    fn club_data(&self) -> ClubDataErrors {
+        let s = |i| self.stats(i);
+        ClubDataErrors {
+            shots: self.n,
+            swing_direction_deg: s(0),
+            swing_plane_deg: s(1),
+            low_point_distance_mm: s(2),
+            low_point_height_mm: s(3),
+            dynamic_lie_deg: s(4),
+            closure_rate_degps: s(5),
+            face_to_path_deg: s(6),
+        }
+    }
+}
+
+impl Acc<13> {
+    fn errors(&self) -> Errors {
+        let s = |i| self.stats(i);
         Errors {
             club_speed_pct: s(0),
             attack_angle_deg: s(1),
@@ -153,7 +212,8 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
         drop_probability: config.drop_probability,
         ..Sampling::default()
     };
-    let mut accs = vec![Acc::default(); config.estimators.len()];
+    let mut accs = vec![Acc::<13>::default(); config.estimators.len()];
+    let mut club_accs = vec![Acc::<7>::default(); config.estimators.len()];
     let mut refused = vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
     let calibration = Calibration::default();
     for shot in 0..config.shots {
@@ -176,6 +236,8 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
             }
         }
         let truth = DeliveryMetrics::from_state(&swing.truth, &config.club);
+        let ball = DetectorConfig::default();
+        let truth_arc = swing.swing_arc_truth(&ball.ball_position_m, ball.ball_radius_m);
         let truth_launch = launch(config.launch_model.as_ref(), &swing.truth, &eq);
         for (i, _) in config.estimators.iter().enumerate() {
             let reason = match detections.as_ref().map(|d| &d[i].result) {
@@ -183,6 +245,27 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
                 Some(Err(e)) => Some(e.key().to_string()),
                 Some(Ok(est)) => {
                     let m = DeliveryMetrics::from_state(&est.state, &config.club);
+                    let reveal_t_ns = detections.as_ref().map_or(0, |d| d[i].reveal_t_ns);
+                    let arc = crate::kinematics::club_data::swing_arc(
+                        detector.pre_impact(),
+                        reveal_t_ns,
+                        est.t_from_reveal_s,
+                        est.arc.as_ref(),
+                        &config.club.face.center_m,
+                        &ball.ball_position_m,
+                        ball.ball_radius_m,
+                    );
+                    if let (Some(a), Some(t)) = (arc, truth_arc) {
+                        club_accs[i].add(&[
+                            a.swing_direction_deg - t.swing_direction_deg,
+                            a.swing_plane_deg - t.swing_plane_deg,
+                            a.low_point_distance_mm - t.low_point_distance_mm,
+                            a.low_point_height_mm - t.low_point_height_mm,
+                            m.dynamic_lie_deg - truth.dynamic_lie_deg,
+                            m.closure_rate_degps - truth.closure_rate_degps,
+                            m.face_to_path_deg - truth.face_to_path_deg,
+                        ]);
+                    }
                     match (launch(config.launch_model.as_ref(), &est.state, &eq), truth_launch) {
                         (Some(l), Some(t)) => {
                             accs[i].add(&[
@@ -223,12 +306,13 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
         estimators: config
             .estimators
             .iter()
-            .zip(accs.iter().zip(refused))
-            .map(|(spec, (acc, refused))| EstimatorReport {
+            .zip(accs.iter().zip(refused).zip(&club_accs))
+            .map(|(spec, ((acc, refused), club_acc))| EstimatorReport {
                 name: spec.name.clone(),
                 shots: acc.n,
                 refused,
                 errors: acc.errors(),
+                club_data: club_acc.club_data(),
             })
             .collect(),
     }

@@ -144,7 +144,18 @@ impl Pipeline {
             Err(e) => return self.fail(shot, d.reveal_frame, e.to_string(), e.key(), out),
         };
         let club = &self.setup.club;
-        let delivery = DeliveryMetrics::from_state(&est.state, club);
+        let mut delivery = DeliveryMetrics::from_state(&est.state, club);
+        // Once per impact: the plane and low point of the path over the frames before it (docs/club-data.md).
+        let config = &self.detector.config;
+        delivery.swing_arc = crate::kinematics::club_data::swing_arc(
+            self.detector.pre_impact(),
+            d.reveal_t_ns,
+            est.t_from_reveal_s,
+            est.arc.as_ref(),
+            &club.face.center_m,
+            &config.ball_position_m,
+            config.ball_radius_m,
+        );
         out(Event::Impact(ImpactMessage {
             rig: self.setup.name.clone(),
             shot,

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use crate::equipment::{ClubSpec, LoadedClub, ModelSections};
 use crate::impact::registry::{self, BuildOptions};
 use crate::impact::{Delivery, Equipment, ImpactModel, ImpactState};
+use crate::kinematics::arc::ArcFit;
 use crate::kinematics::estimate::estimate;
 use crate::kinematics::{Calibration, ClubPose, EstimatorSpec, Scene, Track, TrackLimits};
 use crate::math::Vector3;
@@ -146,6 +147,34 @@ pub fn extrapolation_stages() -> Vec<Stage> {
     out
 }
 
+/// TrackMan's club data of the path, once per impact: `club_data/<club>`, one swing arc (the plane and low point
+/// of the `arc` estimate's arc, or of a fit of its own where the estimate has none) per operation on the
+/// extrapolation stages' shots.
+pub fn club_data_stages() -> Vec<Stage> {
+    let mut out = Vec::new();
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let (ball, radius) = (Vector3::zeros(), crate::equipment::BallSpec::SEED.radius_m);
+        let scene = Scene { face: &club.face, ball_position_m: ball, ball_radius_m: radius, max_extrapolation_s: 0.01 };
+        let shots: Vec<(Vec<ClubPose>, u64, f64, Option<ArcFit>)> = pre_impact_spread(&club)
+            .into_iter()
+            .filter_map(|(poses, reveal)| {
+                let e = estimate(&EstimatorSpec::arc(), &poses, reveal, &scene).ok()?;
+                Some((poses, reveal, e.t_from_reveal_s, e.arc))
+            })
+            .collect();
+        let centre = club.face.center_m;
+        out.push(Stage {
+            name: format!("club_data/{}", club.name),
+            run: Box::new(move |i| {
+                let (poses, reveal, t, arc) = &shots[i % shots.len()];
+                crate::kinematics::club_data::swing_arc(poses, *reveal, *t, arc.as_ref(), &centre, &ball, radius)
+                    .map_or(0.0, |a| a.swing_plane_deg)
+            }),
+        });
+    }
+    out
+}
+
 /// The pipeline over recorded-like samples: `pipeline/sample/<club>`, one sample (track, detection, and at
 /// each impact the estimate and the prediction) per operation. Its inverse is the replay rate.
 pub fn pipeline_stages() -> Vec<Stage> {
@@ -214,6 +243,7 @@ pub fn all_stages() -> Vec<Stage> {
     let mut stages = model_stages();
     stages.extend(ground_stages());
     stages.extend(extrapolation_stages());
+    stages.extend(club_data_stages());
     stages.extend(flight_stages());
     stages.extend(pipeline_stages());
     stages

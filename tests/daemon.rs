@@ -141,6 +141,14 @@ async fn end_to_end_two_rigs_record_and_replay() {
         assert!((p.sidespin_rpm - q.sidespin_rpm).abs() < 200.0, "{} shot {} sidespin", l.rig, l.shot);
         assert!((t.t_impact_ns as f64 - l.t_impact_ns as f64).abs() < 50_000.0);
         assert!(l.latency_us > 0.0 && l.latency_us < 50_000.0);
+        // Club data against the truth (docs/club-data.md): about five times tests/club_data.rs's RMS errors.
+        let (pa, ta, pd, td) = (l.delivery.swing_arc.unwrap(), t.delivery.swing_arc.unwrap(), &l.delivery, &t.delivery);
+        let near = |a: f64, b: f64, tol: f64| assert!((a - b).abs() < tol, "{} shot {}: {a} vs {b}", l.rig, l.shot);
+        near(pa.swing_direction_deg, ta.swing_direction_deg, 0.1);
+        near(pa.swing_plane_deg, ta.swing_plane_deg, 0.1);
+        near(pa.low_point_distance_mm, ta.low_point_distance_mm, 6.0);
+        near(pd.dynamic_lie_deg, td.dynamic_lie_deg, 0.4);
+        near(pd.closure_rate_degps, td.closure_rate_degps, 100.0);
     }
     let received: u64 = summary.rigs.values().map(|c| c.samples).sum();
     assert_eq!(received, sent, "no sample lost between the rig and the daemon");

@@ -125,10 +125,15 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         write!(out, " {:>21}", format!("{} rms / max", e.name))?;
     }
     writeln!(out)?;
-    for (k, key) in report.estimators[0].errors.entries().iter().map(|(k, _)| *k).enumerate() {
+    let rows = |e: &impactd::eval::EstimatorReport| {
+        let mut rows = e.errors.entries().to_vec();
+        rows.extend(e.club_data.entries());
+        rows
+    };
+    for (k, key) in rows(&report.estimators[0]).iter().map(|(k, _)| *k).enumerate() {
         write!(out, "{key:<22}")?;
         for e in &report.estimators {
-            let s = e.errors.entries()[k].1;
+            let s = rows(e)[k].1;
             write!(out, " {:>10} / {:>8}", format!("{:.4}", s.rms), format!("{:.3}", s.max))?;
         }
         writeln!(out)?;

@@ -167,7 +167,8 @@ impl SimRig {
         self.frame += 1;
         let truth = if t_ns > t_impact && self.truth_sent <= k && (self.shots == 0 || k < self.shots) {
             self.truth_sent = k + 1;
-            let delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
+            let mut delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
+            delivery.swing_arc = swing.swing_arc_truth(&Vector3::zeros(), self.equipment.ball.radius_m);
             ImpulseModel::new(ImpulseVariant::Adjusted).predict(&swing.truth, &self.equipment).ok().map(|l| {
                 TruthMessage {
                     rig: self.name.clone(),

@@ -24,6 +24,10 @@ pub struct ClubSpec {
     pub face_outline: super::FaceOutline,
     /// Shaft mass (kg), for reference (the seed's section 3.1.4).
     pub shaft_mass_kg: Real,
+    /// Static lie: the shaft's angle above the ground at a square address (deg); the shaft axis in the club
+    /// frame is `(0, sin lie, -cos lie)`, from the head up toward the grip. The seed gives none: the presets use
+    /// [`ClubSpec::DEFAULT_LIE_DEG`].
+    pub lie_deg: Real,
 }
 
 impl ClubSpec {
@@ -77,7 +81,18 @@ impl ClubSpec {
             face_half_height_m,
             face_outline: if shape.is_curved() { super::FaceOutline::driver() } else { super::FaceOutline::iron7() },
             shaft_mass_kg,
+            lie_deg: Self::DEFAULT_LIE_DEG,
         }
+    }
+
+    /// The presets' static lie (deg): between a driver's (makers' spec sheets: 56-59°) and a 7-iron's
+    /// (61.5-63°), and the synthetic swings' shaft axis.
+    pub const DEFAULT_LIE_DEG: Real = 60.0;
+
+    /// The shaft axis from the head up toward the grip, club frame (a unit vector at the static lie).
+    pub fn shaft_axis_up(&self) -> Vector3 {
+        let lie = self.lie_deg.to_radians();
+        Vector3::new(0.0, lie.sin(), -lie.cos())
     }
 
     /// A preset by name: `driver` or `iron7`.

@@ -8,7 +8,7 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, face_half_width_m, face_half_height_m, face_outline_mm
+//! # optional: shaft_mass_kg, lie_deg, face_half_width_m, face_half_height_m, face_outline_mm
 //! # a polygon of impact locations [h toe +, v up +] in mm:
 //! # face_outline_mm = [[-33.0, -17.0], [30.0, -19.0], [38.0, 0.0], [20.0, 27.0], [-33.0, 14.0]]
 //! # and any model's section, read by that model: [adjusted], [slip], [continuous], ...
@@ -39,6 +39,8 @@ pub struct ClubFile {
     pub bulge_radius_m: Option<Real>,
     pub roll_radius_m: Option<Real>,
     pub shaft_mass_kg: Option<Real>,
+    /// Static lie (deg), the shaft's angle above the ground at address (default `ClubSpec::DEFAULT_LIE_DEG`).
+    pub lie_deg: Option<Real>,
     pub face_half_width_m: Option<Real>,
     pub face_half_height_m: Option<Real>,
     /// The face's outline as a polygon of impact locations `[h, v]` (mm).
@@ -175,6 +177,10 @@ impl ClubFile {
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
+        let lie_deg = finite("lie_deg", self.lie_deg.unwrap_or(ClubSpec::DEFAULT_LIE_DEG))?;
+        if !(30.0..=80.0).contains(&lie_deg) {
+            return Err(invalid("lie_deg", format!("must be within 30-80 deg, got {lie_deg}")));
+        }
         let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {
             name: self.name.unwrap_or_else(|| "custom".to_string()),
@@ -186,6 +192,7 @@ impl ClubFile {
             face_half_height_m,
             face_outline,
             shaft_mass_kg,
+            lie_deg,
         })
     }
 }

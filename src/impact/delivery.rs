@@ -6,6 +6,9 @@
 //!   lie change, `world_from_club = Ry(-face_angle) Rz(dynamic_loft - static_loft)`, which turns
 //!   `n0 = (cos L, sin L, 0)` into `(cos dl cos f, sin dl, cos dl sin f)`.
 //! - The CG velocity is `v_cg = v_face - w x r(CG -> face centre)` (rigid body, seed eq. 3.7).
+//! - Dynamic lie and closure rate (TrackMan's club data, docs/club-data.md) from the state alone: the shaft axis
+//!   `a = R (0, sin λ, -cos λ)` at the static lie λ gives `dynamic_lie = asin(a_y)` (above the static lie: the shaft
+//!   more upright and the toe down; below: toe up, as TrackMan reads it) and `closure_rate = ω · a` (closing +: the face turning left for a right-hander).
 //! - The ball rests at the world origin and touches the face at the contact point, so the contact point is at
 //!   `-R_ball n` and the CG at `-R_ball n - r(CG -> contact)`.
 
@@ -99,6 +102,34 @@ pub struct DeliveryMetrics {
     pub impact_h_mm: Real,
     pub impact_v_mm: Real,
     pub club_angular_velocity_radps: [Real; 3],
+    /// The shaft's angle above the ground at impact (deg), TrackMan's dynamic lie: the static lie at a square
+    /// address; above it the shaft is more upright and the toe down (toe first into the turf), below it the toe
+    /// is up (heel first).
+    #[serde(default)]
+    pub dynamic_lie_deg: Real,
+    /// The head's rotation rate about the shaft axis at impact (deg/s, closing +), TrackMan's closure rate.
+    #[serde(default)]
+    pub closure_rate_degps: Real,
+    /// Swing direction, swing plane and low point from the clubhead's path over the frames before impact
+    /// (`kinematics::club_data`); absent where there is no path (a delivery typed in, a path that fits no arc).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swing_arc: Option<SwingArc>,
+}
+
+/// TrackMan's club data of the path (docs/club-data.md): the plane of the face centre's path over the last
+/// frames before impact, and that path's lowest point.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+pub struct SwingArc {
+    /// Horizontal direction of the swing plane's base line (its intersection with the ground) from the target
+    /// line (deg, right +).
+    pub swing_direction_deg: Real,
+    /// The swing plane's angle to the ground (deg; 90 is vertical).
+    pub swing_plane_deg: Real,
+    /// From the face centre at impact to the path's lowest point, horizontally along the swing direction (mm;
+    /// + after impact, toward the target: TrackMan's "A"; - before: "B").
+    pub low_point_distance_mm: Real,
+    /// The lowest point's height above the ball's bottom (the ground under a ball on the turf) (mm).
+    pub low_point_height_mm: Real,
 }
 
 impl DeliveryMetrics {
@@ -114,6 +145,7 @@ impl DeliveryMetrics {
         let face = n.z.atan2(n.x);
         let loft = n.y.atan2(n.x.hypot(n.z));
         let spin_loft = v_face.cross(&n).norm().atan2(v_face.dot(&n));
+        let shaft = rot * club.shaft_axis_up();
         DeliveryMetrics {
             club_speed_mps: speed,
             club_speed_mph: crate::units::mps_to_mph(speed),
@@ -126,6 +158,9 @@ impl DeliveryMetrics {
             impact_h_mm: state.impact_h_m * 1e3,
             impact_v_mm: state.impact_v_m * 1e3,
             club_angular_velocity_radps: [w.x, w.y, w.z],
+            dynamic_lie_deg: shaft.y.clamp(-1.0, 1.0).asin().to_degrees(),
+            closure_rate_degps: w.dot(&shaft).to_degrees(),
+            swing_arc: None,
         }
     }
 

@@ -13,7 +13,7 @@ pub mod registry;
 pub mod sanity;
 
 pub use continuous::ContinuousModel;
-pub use delivery::{Delivery, DeliveryMetrics};
+pub use delivery::{Delivery, DeliveryMetrics, SwingArc};
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
 pub use sanity::LaunchWarning;

@@ -300,6 +300,11 @@ impl ArcFit {
             + self.n * (self.z[0] + self.z[1] * tau)
     }
 
+    /// The unit normal of the arc's plane (the frames' best-fitting plane; its sign is arbitrary).
+    pub fn normal(&self) -> Vector3 {
+        self.n
+    }
+
     /// Velocity (m/s) at `t_s`.
     pub fn velocity(&self, t_s: Real) -> Vector3 {
         let tau = (t_s - self.t_ref_s) / self.scale_s;

@@ -64,6 +64,11 @@ impl ImpactDetector {
         ImpactDetector { config, armed: false, previous: None, before_previous: None, scratch: Vec::with_capacity(64) }
     }
 
+    /// The pre-impact poses of the latest detection (oldest first), for the club data of its path.
+    pub fn pre_impact(&self) -> &[ClubPose] {
+        &self.scratch
+    }
+
     /// Whether the next crossing would fire.
     pub fn armed(&self) -> bool {
         self.armed

@@ -77,6 +77,9 @@ pub struct ImpactEstimate {
     pub t_from_reveal_s: Real,
     pub state: ImpactState,
     pub quality: Quality,
+    /// The face centre's arc the estimate used (`arc` estimator, while it fits the frames), with times from the
+    /// revealing frame: the club data of the path reuse it (`club_data::swing_arc`).
+    pub arc: Option<ArcFit>,
 }
 
 /// What an estimate needs to know of the scene.
@@ -276,5 +279,6 @@ pub fn estimate(
             impact_v_m: g.v_m,
         },
         quality: Quality { frames_used: need, residual_rms_mm, residual_rms_deg, extrapolation_ms, score },
+        arc,
     })
 }

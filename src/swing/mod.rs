@@ -24,6 +24,7 @@
 //! jitter, dropped and occluded frames; everything is drawn from a seeded [`Rng`].
 
 pub mod golfer;
+mod truth;
 
 use crate::equipment::ClubSpec;
 use crate::impact::{Delivery, Equipment, ImpactError, ImpactModel, ImpactState, ImpulseModel, ImpulseVariant};
@@ -40,9 +41,6 @@ pub const ANGULAR_ACCEL_SIGMA_RADPS2: Real = 400.0;
 /// Spread of the rate of the angular acceleration at impact (rad/s³): the club's rotation peaks within about
 /// 50 ms of impact.
 pub const ANGULAR_JERK_SIGMA_RADPS3: Real = 1.5e4;
-
-/// Lie angle used to place the shaft axis for the face-closure rotation (deg).
-const LIE_DEG: Real = 60.0;
 
 /// What a synthetic swing looks like around impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,6 +63,9 @@ pub struct SwingSpec {
     pub angular_jerk_radps3: Vector3,
     /// When set, the face centre's path before impact is a double pendulum instead of the arc.
     pub double_pendulum: Option<DoublePendulum>,
+    /// The head turned about its face-centre normal at impact, toe up + (deg): the dynamic lie falls below the
+    /// static lie by about this much while face angle and dynamic loft stay. 0 in the drawn swings.
+    pub face_roll_deg: Real,
 }
 
 /// The arm and club of a double-pendulum path (see the module docs).
@@ -149,6 +150,7 @@ impl SwingSpec {
             angular_accel_radps2: rand_vec(rng, ANGULAR_ACCEL_SIGMA_RADPS2),
             angular_jerk_radps3: rand_vec(rng, ANGULAR_JERK_SIGMA_RADPS3),
             double_pendulum: None,
+            face_roll_deg: 0.0,
         }
     }
 
@@ -200,11 +202,10 @@ impl Swing {
         // The orientation at impact does not depend on the angular velocity.
         let mut delivery = d;
         delivery.club_angular_velocity_radps = Vector3::zeros();
-        let r_i = delivery.to_state(equipment)?.world_from_club.rotation;
-        let lie = LIE_DEG.to_radians();
-        let shaft_world = r_i * Vector3::new(0.0, lie.sin(), -lie.cos());
+        let r_i = truth::rolled(delivery.to_state(equipment)?.world_from_club.rotation, club, spec.face_roll_deg);
+        let shaft_world = r_i * club.shaft_axis_up();
         delivery.club_angular_velocity_radps = omega_arc + spec.face_closure_degps.to_radians() * shaft_world;
-        let truth = delivery.to_state(equipment)?;
+        let truth = truth::state(&delivery, equipment, r_i)?;
         let r_fc = club.face.center_m;
         let f_i = truth.world_from_club.translation.vector + r_i * r_fc;
         let after = ImpulseModel::new(ImpulseVariant::Adjusted).predict(&truth, equipment)?;
@@ -241,18 +242,11 @@ impl Swing {
             let arc = self.speed_after_mps * tau_s + 0.5 * sp.tangential_accel_mps2 * tau_s * tau_s;
             (arc / rho0, tau_s * self.omega_after)
         };
-        let rho = rho0 * (1.0 + sp.radius_curvature_per_s2 * tau_s * tau_s);
-        let u = |angle: Real| -self.n_c * angle.cos() + self.v_hat * angle.sin();
-        let f = match sp.double_pendulum {
-            Some(dp) if tau_s <= 0.0 => {
-                let (l1, l2) = (dp.arm_share * rho0, (1.0 - dp.arm_share) * rho0);
-                let w1 = self.delivery.club_speed_mps / (l1 + dp.rate_ratio * l2);
-                let w2 = dp.rate_ratio * w1;
-                let theta1 = w1 * tau_s + 0.5 * dp.arm_accel_radps2 * tau_s * tau_s;
-                let theta2 = w2 * tau_s + 0.5 * dp.club_accel_radps2 * tau_s * tau_s;
-                self.centre + l1 * u(theta1) + l2 * u(theta2)
-            }
-            _ => self.centre + rho * u(phi),
+        let f = if tau_s <= 0.0 {
+            self.approach_face_centre(tau_s)
+        } else {
+            let rho = rho0 * (1.0 + sp.radius_curvature_per_s2 * tau_s * tau_s);
+            self.centre + rho * self.in_plane(phi)
         };
         let r = so3::exp(&rotation) * self.r_i;
         let p = f - r * self.r_fc;

@@ -132,6 +132,13 @@ pub struct PredictOutput {
     pub smash_factor: Real,
     pub spin_loft_deg: Real,
     pub face_to_path_deg: Real,
+    /// TrackMan's dynamic lie: the shaft's angle above the ground at impact (deg; docs/club-data.md).
+    #[serde(default)]
+    pub dynamic_lie_deg: Real,
+    /// TrackMan's closure rate: the head's rotation rate about the shaft at impact (deg/s, closing +; 0 for a
+    /// delivery given without its angular velocity).
+    #[serde(default)]
+    pub closure_rate_degps: Real,
     /// The ball's velocity (m/s) in the world frame: x toward the target, y up, z right of the target line seen
     /// from behind the ball. The same frame for left- and right-handed golfers (a left-hander's shot is mirrored
     /// back into it), so a ball starting right of the target has z > 0 whoever hit it.
@@ -162,6 +169,8 @@ impl PredictOutput {
             launch: metrics,
             spin_loft_deg: delivery.spin_loft_deg,
             face_to_path_deg: sign * delivery.face_to_path_deg,
+            dynamic_lie_deg: delivery.dynamic_lie_deg,
+            closure_rate_degps: delivery.closure_rate_degps,
             ball_velocity_mps: [v.x, v.y, v.z],
             ball_spin_radps: [w.x, w.y, w.z],
         }

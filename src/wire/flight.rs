@@ -23,6 +23,11 @@ pub struct FlightInput {
     pub smash_factor: Option<Real>,
     pub spin_loft_deg: Option<Real>,
     pub face_to_path_deg: Option<Real>,
+    /// Club data `impactd predict` writes (docs/club-data.md); read and not used.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_lie_deg: Option<Real>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closure_rate_degps: Option<Real>,
     pub ball_velocity_mps: Option<[Real; 3]>,
     pub ball_spin_radps: Option<[Real; 3]>,
 }

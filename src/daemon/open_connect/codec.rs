@@ -89,6 +89,7 @@ pub struct ClubData {
     pub vertical_face_impact_mm: Option<f64>,
     #[serde(rename = "HorizontalFaceImpact", default, skip_serializing_if = "Option::is_none")]
     pub horizontal_face_impact_mm: Option<f64>,
+    /// Deg/s, closing + (`closure_rate_degps` of the delivery, docs/club-data.md); `Lie` is the dynamic lie (deg).
     #[serde(rename = "ClosureRate", default, skip_serializing_if = "Option::is_none")]
     pub closure_rate: Option<f64>,
 }
@@ -194,13 +195,13 @@ impl ShotMessage {
                 speed_mph: finite(d.club_speed_mph),
                 angle_of_attack_deg: finite(d.attack_angle_deg),
                 face_to_target_deg: finite(d.face_angle_deg),
-                lie_deg: None,
+                lie_deg: finite(d.dynamic_lie_deg),
                 loft_deg: finite(d.dynamic_loft_deg),
                 path_deg: finite(d.club_path_deg),
                 speed_at_impact_mph: finite(d.club_speed_mph),
                 vertical_face_impact_mm: finite(d.impact_v_mm),
                 horizontal_face_impact_mm: finite(d.impact_h_mm),
-                closure_rate: None,
+                closure_rate: finite(d.closure_rate_degps),
             }),
             shot_data_options: ShotDataOptions {
                 contains_ball_data: true,
