@@ -164,10 +164,13 @@ impl TangentialLaw for ArakawaLaw {
         -self.magnitude(c.normal_force_n, c.xdot_mps) * t / norm
     }
 
-    fn commit(&mut self, c: &ContactKinematics) {
+    fn commit(&mut self, c: &ContactKinematics) -> Vector3 {
         if self.params.reading == ArakawaReading::Friction {
             (self.force_n, self.stuck) =
                 if c.x_m > 0.0 && c.normal_force_n > 0.0 { self.friction(c) } else { (Vector3::zeros(), false) };
+            -self.force_n
+        } else {
+            self.force(c)
         }
     }
 
