@@ -11,6 +11,9 @@ use crate::math::{Real, UnitQuaternion, Vector3};
 
 type Rotation3 = nalgebra::Rotation3<Real>;
 
+/// A step the tangential law flags ([`TangentialLaw::refine`]) is split into this many.
+const REFINE: usize = 8;
+
 #[derive(Debug, Clone, Copy)]
 struct State {
     p_c: Vector3,
@@ -242,8 +245,9 @@ pub(super) fn run(
 
     let energy_before = setup.energy(&s, law);
     let momentum_before = setup.momentum(&s);
-    let h = model.step_s;
-    let max_steps = (model.max_contact_s / h).ceil() as usize;
+    let max_steps = (model.max_contact_s / model.step_s).ceil() as usize;
+    // Time since first contact (s); steps near a switch the law flags are split in `REFINE`.
+    let mut t_s = 0.0;
     let (mut trace, mut peak, mut ft_max, mut ft_min) = (Vec::new(), 0.0f64, 0.0f64, 0.0f64);
     let (mut touched, mut steps, mut contact_time) = (false, 0usize, 0.0);
     let (mut energy, mut max_increase) = (energy_before, 0.0f64);
@@ -271,7 +275,7 @@ pub(super) fn run(
             let (fn_, ft, x) =
                 c1.as_ref().map_or((0.0, 0.0, 0.0), |(c, f_t)| (c.kin.normal_force_n, f_t.dot(&face_dir), c.kin.x_m));
             trace.push(HertzTracePoint {
-                t_us: steps as Real * h * 1e6,
+                t_us: t_s * 1e6,
                 normal_force_n: fn_,
                 tangential_force_n: ft,
                 ball_spin_rpm: crate::units::radps_to_rpm(s.w_b.dot(&spin_axis)),
@@ -281,16 +285,20 @@ pub(super) fn run(
         }
         if c1.is_none() && (touched || steps > 10) {
             if touched {
-                contact_time = steps as Real * h;
+                contact_time = t_s;
             }
             break;
         }
-        if steps >= max_steps {
+        if steps >= max_steps * REFINE {
             return Err(HertzModel::not_converged(format!(
                 "still in contact after {:.2} ms",
                 model.max_contact_s * 1e3
             )));
         }
+        let h = match &c1 {
+            Some((c, _)) if law.refine(&c.kin) => model.step_s / REFINE as Real,
+            _ => model.step_s,
+        };
         let step = |h: Real| {
             let k2 = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
             let k3 = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
@@ -319,7 +327,7 @@ pub(super) fn run(
                 t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
             }
             next = step(t);
-            contact_time = steps as Real * h + t;
+            contact_time = t_s + t;
             s = next;
             law.commit(&contact_at_rest(n0));
             steps += 1;
@@ -337,6 +345,7 @@ pub(super) fn run(
             }
         });
         steps += 1;
+        t_s += h;
         if trace_every > 0 || cfg!(debug_assertions) {
             let e = setup.energy(&s, law);
             max_increase = max_increase.max(e - energy);

@@ -152,6 +152,11 @@ pub trait TangentialLaw {
     fn stored_energy_j(&self) -> Real;
     /// How many rings are stuck (Maw), if the law has rings.
     fn stuck_rings(&self) -> Option<usize>;
+    /// Whether the step starting at `c` (the committed state) is near a switch of the law that a full step
+    /// would resolve only to first order, so it should be split.
+    fn refine(&self, _c: &ContactKinematics) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]
