@@ -244,8 +244,10 @@ impl TangentialLaw for ArakawaLaw {
     /// The envelope reading near its bound: eq. 3.23 within twice the committed force (the bound sweeps
     /// through zero within microseconds of the largest compression).
     fn refine(&self, c: &ContactKinematics) -> bool {
+        let f_t = self.magnitude(c.normal_force_n, c.xdot_mps).abs();
         self.params.reading == ArakawaReading::Envelope
-            && self.magnitude(c.normal_force_n, c.xdot_mps).abs() < 2.0 * self.force_n.norm()
+            && f_t < 2.0 * self.force_n.norm()
+            && f_t < 2.0 * self.params.mu * c.normal_force_n
     }
 
     /// The friction reading's contact is one ring: 1 while it sticks.
