@@ -62,7 +62,7 @@ fn readings_of_table_3_5() {
     assert_eq!(TwoLayerParams::preset(&driver, TwoLayerReading::Table).k_ball_nm_per_rad, 13.5);
     let section = |body: &str| {
         let file = include_str!("../clubs/iron7-one-cycle.toml");
-        let text = format!("{}[continuous]\n{body}\n", &file[..file.find("[continuous]").unwrap()]);
+        let text = format!("{}\n[continuous]\n{body}\n", &file[..file.find("\n[continuous]").unwrap()]);
         let loaded = ClubFile::parse(&text).unwrap();
         TwoLayerParams::from_sections(&loaded.sections, &iron, &BallSpec::SEED)
     };
