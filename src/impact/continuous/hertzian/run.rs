@@ -70,7 +70,8 @@ impl Setup {
             FaceSurface::Plane { point, normal } => (self.r_ball - normal.dot(&(ball - point)), normal),
             FaceSurface::Sphere { centre, radius_m } => {
                 let d = ball - centre;
-                (self.r_ball + radius_m - d.norm(), d.normalize())
+                let dn = d.norm();
+                (self.r_ball + radius_m - dn, d / dn)
             }
         };
         if x < -1e-12 {
@@ -114,25 +115,27 @@ impl Setup {
     fn rates_with(&self, s: &State, rot: &Rotation3, cf: Option<(&Contact, &Vector3)>) -> Rates {
         let w = s.w_c_body;
         let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
-        let gyro = self.i_c_inv * (-w.cross(&(self.i_c * w)));
+        // The head's torque in its body frame: gyroscopic, plus the contact's.
+        let mut torque_body = -w.cross(&(self.i_c * w));
         let mut r = Rates {
             v_c: s.v_c,
             a_c: Vector3::zeros(),
             q_dot,
-            alpha_c_body: gyro,
+            alpha_c_body: Vector3::zeros(),
             v_b: s.v_b,
             a_b: Vector3::zeros(),
             alpha_b: Vector3::zeros(),
             s_dot: Vector3::zeros(),
         };
-        let Some((c, f_t)) = cf else { return r };
-        let f = c.kin.normal_force_n * c.kin.normal + *f_t;
-        r.a_b = f / self.m_b;
-        r.alpha_b = c.r_b.cross(&f) / self.i_b;
-        r.a_c = -f / self.m_c;
-        let torque_body = rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
-        r.alpha_c_body += self.i_c_inv * torque_body;
-        r.s_dot = c.kin.slip_velocity_mps;
+        if let Some((c, f_t)) = cf {
+            let f = c.kin.normal_force_n * c.kin.normal + *f_t;
+            r.a_b = f / self.m_b;
+            r.alpha_b = c.r_b.cross(&f) / self.i_b;
+            r.a_c = -f / self.m_c;
+            torque_body += rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
+            r.s_dot = c.kin.slip_velocity_mps;
+        }
+        r.alpha_c_body = self.i_c_inv * torque_body;
         r
     }
 
