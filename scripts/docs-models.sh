@@ -10,8 +10,11 @@ bin_ = sys.argv[1]
 clubs = {"driver": (13.0, -1.3), "iron7": (25.0, -4.3)}
 models = ["continuous", "maw", "arakawa", "adjusted"]
 timed = {"continuous", "maw", "arakawa"}
-bench = json.loads(subprocess.run([bin_, "bench", "--json"], check=True, capture_output=True, text=True).stdout)
-ns = {s["name"]: s["ns_per_op"] for s in bench["stages"]}
+ns = {}
+for f in ("continuous/", "impulse/adjusted/"):
+    bench = json.loads(subprocess.run([bin_, "bench", "--json", "--filter", f], check=True, capture_output=True,
+                                      text=True).stdout)
+    ns.update({s["name"]: s["ns_per_op"] for s in bench["stages"]})
 def per_shot(model, club):
     for name, v in ns.items():
         parts = name.split("/")

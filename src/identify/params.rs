@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use super::IdentifyError;
 use crate::equipment::{BallSpec, ClubSpec, LoadedClub};
-use crate::impact::continuous::TwoLayerParams;
+use crate::impact::continuous::{TwoLayerParams, TwoLayerReading};
 use crate::impact::impulse::ImpulseTuning;
 use crate::impact::registry::{self, BuildOptions};
 use crate::impact::{ImpactError, ImpactModel};
@@ -124,7 +124,7 @@ fn slip_defaults(club: &ClubSpec) -> toml::Table {
 }
 
 fn continuous_defaults(club: &ClubSpec) -> toml::Table {
-    toml::Table::try_from(TwoLayerParams::seed_for(club)).unwrap_or_default()
+    toml::Table::try_from(TwoLayerParams::preset(club, TwoLayerReading::OneCycle)).unwrap_or_default()
 }
 
 /// Every model with identifiable parameters; adding one is one entry here.

@@ -53,13 +53,13 @@ fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Resu
 /// soil of Table 4.3 by default), its ball from the `[continuous]` section.
 fn ground(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let mut model = super::continuous::iron_ground::GroundModel::from_sections(&club.sections)?;
-    model.params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
+    model.params = TwoLayerParams::from_sections(&club.sections, &club.club, &o.ball)?;
     let equipment = super::Equipment { club: club.club.clone(), ball: o.ball };
     Ok(Arc::new(model.prepare(&equipment)?))
 }
 
 fn continuous(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    let params = TwoLayerParams::from_sections(&club.sections, &o.ball)?;
+    let params = TwoLayerParams::from_sections(&club.sections, &club.club, &o.ball)?;
     Ok(Arc::new(ContinuousModel { params, ..ContinuousModel::default() }))
 }
 
@@ -88,7 +88,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "continuous",
-        summary: "two-layer ball, volumetric contact, free head, in time (seed 3.2.1, Table 3.5)",
+        summary: "two-layer ball, volumetric contact, free head, in time (seed 3.2.1, Table 3.5 read for one \
+                  force reversal per contact)",
         sections: &["continuous"],
         resolved_in_time: true,
         build: continuous,

@@ -8,7 +8,9 @@
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
 //! - Integration: classical RK4 at a fixed step (default 0.5 µs) from first contact until the bodies separate.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
-//!   (its own stick/slip test at every stage) and the step's end is committed. Both bodies feel equal and
+//!   (its own stick/slip test at every stage) and the step's end is committed; the committed contact and force
+//!   are the next step's first stage. Steps the law flags near one of its switches (Arakawa's envelope near
+//!   eq. 3.23's sign change) are split in eight. Both bodies feel equal and
 //!   opposite forces at the same point, so linear and angular momentum are conserved to rounding.
 //!
 //! Assumptions: a rigid ball (its spin is the launch spin), no gravity or shaft in the half millisecond of

@@ -9,6 +9,11 @@ use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::{Equipment, ImpactError, ImpactState, Launch};
 use crate::math::{Real, UnitQuaternion, Vector3};
 
+type Rotation3 = nalgebra::Rotation3<Real>;
+
+/// A step the tangential law flags ([`TangentialLaw::refine`]) is split into this many.
+const REFINE: usize = 8;
+
 #[derive(Debug, Clone, Copy)]
 struct State {
     p_c: Vector3,
@@ -56,13 +61,17 @@ struct Contact {
 
 impl Setup {
     fn contact(&self, s: &State, s_step: &Vector3) -> Option<Contact> {
-        let rot = s.q_c.to_rotation_matrix();
+        self.contact_rot(s, &s.q_c.to_rotation_matrix(), s_step)
+    }
+
+    fn contact_rot(&self, s: &State, rot: &Rotation3, s_step: &Vector3) -> Option<Contact> {
         let ball = rot.inverse_transform_vector(&(s.p_b - s.p_c));
         let (x, normal) = match self.surface {
             FaceSurface::Plane { point, normal } => (self.r_ball - normal.dot(&(ball - point)), normal),
             FaceSurface::Sphere { centre, radius_m } => {
                 let d = ball - centre;
-                (self.r_ball + radius_m - d.norm(), d.normalize())
+                let dn = d.norm();
+                (self.r_ball + radius_m - dn, d / dn)
             }
         };
         if x < -1e-12 {
@@ -90,31 +99,44 @@ impl Setup {
         Some(Contact { kin, r_b, r_c })
     }
 
-    fn rates(&self, s: &State, s_step: &Vector3, law: &dyn TangentialLaw) -> (Rates, Option<(Contact, Vector3)>) {
+    /// The rates at an intermediate stage.
+    fn rates(&self, s: &State, s_step: &Vector3, law: &dyn TangentialLaw) -> Rates {
         let rot = s.q_c.to_rotation_matrix();
+        match self.contact_rot(s, &rot, s_step) {
+            Some(c) => {
+                let f_t = law.force(&c.kin);
+                self.rates_with(s, &rot, Some((&c, &f_t)))
+            }
+            None => self.rates_with(s, &rot, None),
+        }
+    }
+
+    /// The rates at `s` with the contact and tangential force found there (`None`: apart).
+    fn rates_with(&self, s: &State, rot: &Rotation3, cf: Option<(&Contact, &Vector3)>) -> Rates {
         let w = s.w_c_body;
         let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
-        let gyro = self.i_c_inv * (-w.cross(&(self.i_c * w)));
+        // The head's torque in its body frame: gyroscopic, plus the contact's.
+        let mut torque_body = -w.cross(&(self.i_c * w));
         let mut r = Rates {
             v_c: s.v_c,
             a_c: Vector3::zeros(),
             q_dot,
-            alpha_c_body: gyro,
+            alpha_c_body: Vector3::zeros(),
             v_b: s.v_b,
             a_b: Vector3::zeros(),
             alpha_b: Vector3::zeros(),
             s_dot: Vector3::zeros(),
         };
-        let Some(c) = self.contact(s, s_step) else { return (r, None) };
-        let f_t = law.force(&c.kin);
-        let f = c.kin.normal_force_n * c.kin.normal + f_t;
-        r.a_b = f / self.m_b;
-        r.alpha_b = c.r_b.cross(&f) / self.i_b;
-        r.a_c = -f / self.m_c;
-        let torque_body = rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
-        r.alpha_c_body += self.i_c_inv * torque_body;
-        r.s_dot = c.kin.slip_velocity_mps;
-        (r, Some((c, f_t)))
+        if let Some((c, f_t)) = cf {
+            let f = c.kin.normal_force_n * c.kin.normal + *f_t;
+            r.a_b = f / self.m_b;
+            r.alpha_b = c.r_b.cross(&f) / self.i_b;
+            r.a_c = -f / self.m_c;
+            torque_body += rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
+            r.s_dot = c.kin.slip_velocity_mps;
+        }
+        r.alpha_c_body = self.i_c_inv * torque_body;
+        r
     }
 
     fn momentum(&self, s: &State) -> (Vector3, Vector3) {
@@ -226,14 +248,25 @@ pub(super) fn run(
 
     let energy_before = setup.energy(&s, law);
     let momentum_before = setup.momentum(&s);
-    let h = model.step_s;
-    let max_steps = (model.max_contact_s / h).ceil() as usize;
+    let max_steps = (model.max_contact_s / model.step_s).ceil() as usize;
+    // Time since first contact (s); steps near a switch the law flags are split in `REFINE`.
+    let mut t_s = 0.0;
     let (mut trace, mut peak, mut ft_max, mut ft_min) = (Vec::new(), 0.0f64, 0.0f64, 0.0f64);
     let (mut touched, mut steps, mut contact_time) = (false, 0usize, 0.0);
     let (mut energy, mut max_increase) = (energy_before, 0.0f64);
+    // The contact and tangential force found when the last step was committed: the next step's first stage.
+    let mut committed: Option<Option<(Contact, Vector3)>> = None;
     loop {
         let s0 = s.s;
-        let (k1, c1) = setup.rates(&s, &s0, law);
+        let rot = s.q_c.to_rotation_matrix();
+        let c1 = match committed.take() {
+            Some(cf) => cf,
+            None => setup.contact_rot(&s, &rot, &s0).map(|c| {
+                let f_t = law.force(&c.kin);
+                (c, f_t)
+            }),
+        };
+        let k1 = setup.rates_with(&s, &rot, c1.as_ref().map(|(c, f)| (c, f)));
         if let Some((c, f_t)) = &c1 {
             touched = true;
             peak = peak.max(c.kin.normal_force_n);
@@ -245,7 +278,7 @@ pub(super) fn run(
             let (fn_, ft, x) =
                 c1.as_ref().map_or((0.0, 0.0, 0.0), |(c, f_t)| (c.kin.normal_force_n, f_t.dot(&face_dir), c.kin.x_m));
             trace.push(HertzTracePoint {
-                t_us: steps as Real * h * 1e6,
+                t_us: t_s * 1e6,
                 normal_force_n: fn_,
                 tangential_force_n: ft,
                 ball_spin_rpm: crate::units::radps_to_rpm(s.w_b.dot(&spin_axis)),
@@ -255,20 +288,24 @@ pub(super) fn run(
         }
         if c1.is_none() && (touched || steps > 10) {
             if touched {
-                contact_time = steps as Real * h;
+                contact_time = t_s;
             }
             break;
         }
-        if steps >= max_steps {
+        if steps >= max_steps * REFINE {
             return Err(HertzModel::not_converged(format!(
                 "still in contact after {:.2} ms",
                 model.max_contact_s * 1e3
             )));
         }
+        let h = match &c1 {
+            Some((c, _)) if law.refine(&c.kin) => model.step_s / REFINE as Real,
+            _ => model.step_s,
+        };
         let step = |h: Real| {
-            let (k2, _) = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
-            let (k3, _) = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
-            let (k4, _) = setup.rates(&advance(&s, &k3, h), &s0, law);
+            let k2 = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
+            let k3 = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
+            let k4 = setup.rates(&advance(&s, &k3, h), &s0, law);
             let mut next = advance(&s, &combine([&k1, &k2, &k3, &k4]), h);
             next.q_c = UnitQuaternion::new_normalize(next.q_c.into_inner());
             next
@@ -293,18 +330,25 @@ pub(super) fn run(
                 t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
             }
             next = step(t);
-            contact_time = steps as Real * h + t;
+            contact_time = t_s + t;
             s = next;
-            law.commit(&ContactKinematics { x_m: 0.0, normal_force_n: 0.0, ..contact_at_rest(n0) });
+            law.commit(&contact_at_rest(n0));
             steps += 1;
             break;
         }
         s = next;
-        match setup.contact(&s, &s0) {
-            Some(c) => law.commit(&c.kin),
-            None => law.commit(&ContactKinematics { x_m: 0.0, normal_force_n: 0.0, ..contact_at_rest(n0) }),
-        }
+        committed = Some(match setup.contact(&s, &s0) {
+            Some(c) => {
+                let f_t = law.commit(&c.kin);
+                Some((c, f_t))
+            }
+            None => {
+                law.commit(&contact_at_rest(n0));
+                None
+            }
+        });
         steps += 1;
+        t_s += h;
         if trace_every > 0 || cfg!(debug_assertions) {
             let e = setup.energy(&s, law);
             max_increase = max_increase.max(e - energy);

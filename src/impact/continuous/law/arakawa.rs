@@ -11,13 +11,28 @@
 //!   slip relative to the face at first contact (kept in the tangent plane as the normal turns); `F_T` acts on
 //!   the ball against it. `R` is eq. 3.18's equivalent radius (the ball's radius for a flat face).
 //!
-//! Two readings of eq. 3.23, chosen by `reading` in the club file's `[arakawa]` section:
-//! - `friction` (the default): eq. 3.23 is the size of a friction force that the contact can carry,
-//!   `|F| ≤ max(F_T, 0)`, acting against the slip of the contact point (Figure 3.5's tangential axis along the
-//!   relative motion). A contact that stops slipping sticks with Mindlin's tangential stiffness `2 G* b_max`
-//!   (Johnson eq. 7.40 at the largest contact radius of the elastic Hertz estimate) until the force it needs
-//!   exceeds the bound: one ring of Maw's model with Arakawa's bound. The force never drives the slip within a
-//!   step (it is a return map on the slip since the step's start), so the energy never increases.
+//! Three readings of eq. 3.23, chosen by `reading` in the club file's `[arakawa]` section:
+//! - `envelope` (the default): eq. 3.23, signed along the slip axis at first contact (Figure 3.5's tangential
+//!   axis), is the envelope of a stick-slip force: while the contact area grows (`F_T > 0`) the contact can carry
+//!   a force against the initial slip up to `F_T`; once it shrinks fast enough that `F_T < 0` (the seed, section
+//!   2.2.3: "in this phase dA/dt is negative, which produces the friction reversal"), only a reversed force, up to
+//!   `|F_T|`. Inside that half disc the force is an elastic stick with Mindlin's stiffness `2 G* b` at the current
+//!   contact radius `b = √(R x)` (eq. 3.19: the area of eq. 3.21 sets the stiffness as its rate sets the bound):
+//!   area newly gained carries no traction, a shrinking contact releases its share (as Maw's rings do). The
+//!   force is the closest point of the half disc to the elastic trial (a return map on the slip since the step's
+//!   start); the half disc holds the origin, so the projection never adds stick energy and the energy never
+//!   increases. The reversal comes from the ball's spin overshooting rolling while stuck, as in real impacts.
+//!   Steps where eq. 3.23 is within twice the carried force (it sweeps through zero a few µs after the largest
+//!   compression) are split in eight.
+//! - `friction`: eq. 3.23 is the size of a friction force that the contact can carry, `|F| ≤ max(F_T, 0)`,
+//!   acting against the slip of the contact point. A contact that stops slipping sticks with Mindlin's
+//!   tangential stiffness `2 G* b_max` (Johnson eq. 7.40 at the largest contact radius of the elastic Hertz
+//!   estimate). It cannot reverse: the bound is positive only while `ẋ > −F_N/(η π R)`, i.e. until a few µs after
+//!   the largest compression (7-iron: `η π R` = 13.8 kN s/m against `F_N` ≈ 9 kN), and a stuck contact's force
+//!   stays forward for half the tangential period `π √(m_t / k_t)`, which for elastic Hertz contact with
+//!   Mindlin's stiffness at the largest radius is `(π / √(2 G*/E*)) / 1.425 · √(m_t / m_n)` = 1.03 times the
+//!   compression time (ball on the free 7-iron head, ν = 0.418; independent of speed, E, μ and η); damping only
+//!   shortens the compression.
 //! - `literal`: eq. 3.23 as printed, signed, along the slip axis at first contact. With Table 3.7's `η` its
 //!   second term is 18 kN (driver) and 78 kN (7-iron) at first contact, several times the normal force; the slip
 //!   reverses within the compression and the force keeps pushing the same way, so the energy rises (12-14 %,
@@ -51,8 +66,11 @@ pub struct ArakawaParams {
 #[serde(rename_all = "snake_case")]
 pub enum ArakawaReading {
     /// The bound of a friction force against the slip, with an elastic stick.
-    #[default]
     Friction,
+    /// eq. 3.23 signed along the slip axis bounds an elastic stick-slip force between 0 and its value: forward
+    /// while the contact grows, reversed while it shrinks.
+    #[default]
+    Envelope,
     /// eq. 3.23 signed along the slip axis at first contact.
     Literal,
 }
@@ -65,7 +83,7 @@ impl ArakawaParams {
         d_s_per_m: 6.35e-3,
         mu: 0.0486,
         eta_n_s_per_m2: 1.32e5,
-        reading: ArakawaReading::Friction,
+        reading: ArakawaReading::Envelope,
     };
     /// Table 3.7, 7-iron.
     pub const IRON7: ArakawaParams = ArakawaParams {
@@ -74,7 +92,7 @@ impl ArakawaParams {
         d_s_per_m: 9.89e-3,
         mu: 0.118,
         eta_n_s_per_m2: 2.06e5,
-        reading: ArakawaReading::Friction,
+        reading: ArakawaReading::Envelope,
     };
 
     pub fn hertz(&self) -> Hertz {
@@ -96,6 +114,11 @@ pub struct ArakawaLaw {
     r_eq_m: Real,
     axis: Vector3,
     stick_stiffness_n_per_m: Real,
+    /// Mindlin's `2 G*` (N/m²): the envelope reading's stick stiffness is this times the contact radius.
+    stick_modulus_n_per_m2: Real,
+    /// The contact radius (m) and stick stiffness (N/m) at the committed state.
+    radius_m: Real,
+    committed_stiffness_n_per_m: Real,
     force_n: Vector3,
     stuck: bool,
 }
@@ -107,6 +130,9 @@ impl ArakawaLaw {
             r_eq_m: 0.0,
             axis: Vector3::zeros(),
             stick_stiffness_n_per_m: 0.0,
+            stick_modulus_n_per_m2: 0.0,
+            radius_m: 0.0,
+            committed_stiffness_n_per_m: 0.0,
             force_n: Vector3::zeros(),
             stuck: false,
         }
@@ -115,13 +141,40 @@ impl ArakawaLaw {
     /// The friction reading's force on the face at `c` from the committed one, and whether it sticks: the
     /// committed force in the current tangent plane plus the stick stiffness times the slip since the step's
     /// start, scaled back to eq. 3.23's bound when it exceeds it.
+    ///
+    /// The envelope reading bounds the same trial force by the half disc `|f| ≤ |F_T|` on the side of the slip
+    /// axis that eq. 3.23's sign gives (forward, against the initial slip, while `F_T > 0`; reversed while
+    /// `F_T < 0`): the closest point of that set, which holds the origin, so the stick spring's energy never
+    /// grows by the projection.
     fn friction(&self, c: &ContactKinematics) -> (Vector3, bool) {
-        let bound = self.magnitude(c.normal_force_n, c.xdot_mps).max(0.0);
+        let signed = self.magnitude(c.normal_force_n, c.xdot_mps);
         let n = c.normal;
-        let trial = self.force_n - self.force_n.dot(&n) * n + self.stick_stiffness_n_per_m * c.slip_since_step_m;
+        let carried = self.force_n - self.force_n.dot(&n) * n;
+        let mut stuck = true;
+        let (mut trial, bound) = if self.params.reading == ArakawaReading::Envelope {
+            // The stick spring follows the contact (eq. 3.19): 2 G* b; area newly gained carries no traction and
+            // a shrinking contact releases its share.
+            let b = (self.r_eq_m * c.x_m.max(0.0)).sqrt();
+            let kept = if b < self.radius_m { b / self.radius_m } else { 1.0 };
+            // The stiffness over the step at the mean radius (second order in the step).
+            let k = self.stick_modulus_n_per_m2 * 0.5 * (b + self.radius_m);
+            (kept * carried + k * c.slip_since_step_m, signed.abs())
+        } else {
+            (carried + self.stick_stiffness_n_per_m * c.slip_since_step_m, signed.max(0.0))
+        };
+        if self.params.reading == ArakawaReading::Envelope {
+            let a = self.axis - self.axis.dot(&n) * n;
+            let a2 = a.norm_squared();
+            let along = trial.dot(&a);
+            if a2 > 1e-24 && along * signed < 0.0 {
+                // The force on the face along the slip axis must have eq. 3.23's sign: drop the other part.
+                trial -= (along / a2) * a;
+                stuck = false;
+            }
+        }
         let mag2 = trial.norm_squared();
         if mag2 <= bound * bound {
-            (trial, true)
+            (trial, stuck)
         } else {
             (trial * (bound / mag2.sqrt()), false)
         }
@@ -143,7 +196,10 @@ impl TangentialLaw for ArakawaLaw {
         let x_max = (5.0 * reduced_mass_kg * xdot0_mps * xdot0_mps / (4.0 * k)).powf(0.4);
         let e_star = 3.0 * k / (4.0 * r_eq_m.sqrt());
         let ratio = self.params.hertz().tangential_ratio();
-        self.stick_stiffness_n_per_m = 2.0 * ratio * e_star * (r_eq_m * x_max).sqrt();
+        self.stick_modulus_n_per_m2 = 2.0 * ratio * e_star;
+        self.stick_stiffness_n_per_m = self.stick_modulus_n_per_m2 * (r_eq_m * x_max).sqrt();
+        self.radius_m = 0.0;
+        self.committed_stiffness_n_per_m = self.stick_stiffness_n_per_m;
         self.force_n = Vector3::zeros();
         self.stuck = false;
     }
@@ -152,7 +208,7 @@ impl TangentialLaw for ArakawaLaw {
         if c.x_m < 0.0 {
             return Vector3::zeros();
         }
-        if self.params.reading == ArakawaReading::Friction {
+        if self.params.reading != ArakawaReading::Literal {
             return if c.x_m > 0.0 && c.normal_force_n > 0.0 { -self.friction(c).0 } else { Vector3::zeros() };
         }
         let n = c.normal;
@@ -164,23 +220,39 @@ impl TangentialLaw for ArakawaLaw {
         -self.magnitude(c.normal_force_n, c.xdot_mps) * t / norm
     }
 
-    fn commit(&mut self, c: &ContactKinematics) {
-        if self.params.reading == ArakawaReading::Friction {
+    fn commit(&mut self, c: &ContactKinematics) -> Vector3 {
+        if self.params.reading != ArakawaReading::Literal {
             (self.force_n, self.stuck) =
                 if c.x_m > 0.0 && c.normal_force_n > 0.0 { self.friction(c) } else { (Vector3::zeros(), false) };
+            if self.params.reading == ArakawaReading::Envelope {
+                self.radius_m = (self.r_eq_m * c.x_m.max(0.0)).sqrt();
+                self.committed_stiffness_n_per_m = self.stick_modulus_n_per_m2 * self.radius_m;
+            }
+            -self.force_n
+        } else {
+            self.force(c)
         }
     }
 
     fn stored_energy_j(&self) -> Real {
-        if self.stick_stiffness_n_per_m <= 0.0 {
+        if self.committed_stiffness_n_per_m <= 0.0 {
             return 0.0;
         }
-        0.5 * self.force_n.norm_squared() / self.stick_stiffness_n_per_m
+        0.5 * self.force_n.norm_squared() / self.committed_stiffness_n_per_m
+    }
+
+    /// The envelope reading near its bound: eq. 3.23 within twice the committed force (the bound sweeps
+    /// through zero within microseconds of the largest compression).
+    fn refine(&self, c: &ContactKinematics) -> bool {
+        let f_t = self.magnitude(c.normal_force_n, c.xdot_mps).abs();
+        self.params.reading == ArakawaReading::Envelope
+            && f_t < 2.0 * self.force_n.norm()
+            && f_t < 2.0 * self.params.mu * c.normal_force_n
     }
 
     /// The friction reading's contact is one ring: 1 while it sticks.
     fn stuck_rings(&self) -> Option<usize> {
-        (self.params.reading == ArakawaReading::Friction).then_some(usize::from(self.stuck))
+        (self.params.reading != ArakawaReading::Literal).then_some(usize::from(self.stuck))
     }
 }
 
@@ -206,7 +278,8 @@ mod tests {
         let f = law.force(&c);
         assert!((f.y + want).abs() < 1e-9 * want && f.x.abs() < 1e-12);
         // The friction reading: a slip of 1 m (far past the stick) slides at the bound, against the slip (+y).
-        let mut friction = ArakawaLaw::new(&ArakawaParams::IRON7);
+        let mut friction =
+            ArakawaLaw::new(&ArakawaParams { reading: ArakawaReading::Friction, ..ArakawaParams::IRON7 });
         friction.begin(Vector3::y(), 40.0, 1e7, 0.0213, 0.04);
         let slid = ContactKinematics { slip_since_step_m: Vector3::y(), ..c };
         assert!((friction.force(&slid).y + want).abs() < 1e-9 * want);
@@ -217,5 +290,35 @@ mod tests {
         // A negative bound (fast restitution) carries no force.
         let back = ContactKinematics { xdot_mps: -1e3, ..slid };
         assert_eq!(friction.force(&back), Vector3::zeros());
+    }
+
+    /// The envelope reading: while eq. 3.23 is positive the contact carries a force against the initial slip
+    /// (+y) up to F_T; once it is negative (the contact shrinking) only a reversed one, up to |F_T|.
+    #[test]
+    fn envelope_half_discs() {
+        let mut law = ArakawaLaw::new(&ArakawaParams::IRON7);
+        assert_eq!(ArakawaParams::IRON7.reading, ArakawaReading::Envelope);
+        law.begin(Vector3::y(), 40.0, 1e7, 0.0213, 0.04);
+        let c = |xdot_mps: Real, slip_m: Real| ContactKinematics {
+            normal: Vector3::x(),
+            x_m: 1e-3,
+            xdot_mps,
+            normal_force_n: 1000.0,
+            slip_velocity_mps: Vector3::zeros(),
+            slip_since_step_m: Vector3::new(0.0, slip_m, 0.0),
+        };
+        // Growing (F_T = 3.3 kN at 10 m/s): a forward slip of 1 m slides at F_T, a backward one carries nothing.
+        let grow = law.magnitude(1000.0, 10.0);
+        assert!((law.force(&c(10.0, 1.0)).y + grow).abs() < 1e-9 * grow);
+        assert_eq!(law.force(&c(10.0, -1.0)).y, 0.0);
+        // Shrinking (F_T = -3.1 kN at -10 m/s): the other way round, bounded by |F_T|.
+        let shrink = law.magnitude(1000.0, -10.0);
+        assert!(shrink < 0.0);
+        assert_eq!(law.force(&c(-10.0, 1.0)).y, 0.0);
+        assert!((law.force(&c(-10.0, -1.0)).y + shrink).abs() < 1e-9 * grow);
+        // A small slip sticks with Mindlin's 2 G* b at the mean of the committed (0) and current radius.
+        let b = (0.0213 * 1e-3 as Real).sqrt();
+        let f = law.force(&c(10.0, 1e-9)).y;
+        assert!((f + law.stick_modulus_n_per_m2 * 0.5 * b * 1e-9).abs() < 1e-9 * f.abs(), "{f}");
     }
 }

@@ -145,12 +145,18 @@ pub trait TangentialLaw {
     fn begin(&mut self, slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real);
     /// The tangential force on the ball (N, in the tangent plane) at an intermediate stage of a step.
     fn force(&self, c: &ContactKinematics) -> Vector3;
-    /// Accepts the end of a step as the new reference state.
-    fn commit(&mut self, c: &ContactKinematics);
+    /// Accepts the end of a step as the new reference state; returns the tangential force on the ball there
+    /// (what [`Self::force`] gives at the same instant with no slip since the step's start).
+    fn commit(&mut self, c: &ContactKinematics) -> Vector3;
     /// Elastic energy the law stores (J).
     fn stored_energy_j(&self) -> Real;
     /// How many rings are stuck (Maw), if the law has rings.
     fn stuck_rings(&self) -> Option<usize>;
+    /// Whether the step starting at `c` (the committed state) is near a switch of the law that a full step
+    /// would resolve only to first order, so it should be split.
+    fn refine(&self, _c: &ContactKinematics) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 //!   the 3D one); the ring loads are scaled to sum to eq. 3.16's `F_N`, so full sliding gives `μ F_N`.
 //! - 2D model in the normal-tangential frame of Figure 3.5, applied in 3D: each ring's displacement is a vector
 //!   in the tangent plane (along the relative motion at the contact point while the slip keeps its direction),
-//!   re-projected as the normal turns.
+//!   kept in a basis that turns with the normal.
 //!
 //! The ring width is the expected largest contact radius (elastic Hertz estimate from the approach speed)
 //! over the ring count; the contact may grow past it by up to the same again.
@@ -67,6 +67,10 @@ impl MawParams {
 }
 
 /// The rings' state through one impact.
+///
+/// Each ring's committed tangential force is kept as two coordinates in a basis of the tangent plane, `t1` the
+/// initial slip axis projected onto the plane and `t2 = n × t1`, so the forces follow the plane as the normal
+/// turns (the rings are carried with the surface) and a stage costs a few operations per ring.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MawRings {
     mu: Real,
@@ -76,11 +80,39 @@ pub struct MawRings {
     /// Ring width Δr (m) and tangential stiffness of one ring, `2 G* Δr` (N/m).
     width_m: Real,
     ring_stiffness_n_per_m: Real,
-    /// Committed tangential force each ring carries on the face (N, tangent plane); minus it acts on the ball.
-    force_n: Vec<Vector3>,
-    /// The previous step's forces, reused as the next step's buffer.
-    scratch: Vec<Vector3>,
+    /// The initial slip axis, from which the tangent basis is built.
+    axis: Vector3,
+    /// Each ring's `r_i² / R` (m): its normal load is proportional to `x − r_i²/R`.
+    depth_m: Vec<Real>,
+    /// Committed tangential force each ring carries on the face (N), along `t1` and `t2`; minus it acts on the
+    /// ball.
+    force_t1_n: Vec<Real>,
+    force_t2_n: Vec<Real>,
     stuck: usize,
+}
+
+/// The rings in contact at `c` and the slip limit per unit of `x − r_i²/R`.
+struct Sweep {
+    active: usize,
+    scale: Real,
+    t1: Vector3,
+    t2: Vector3,
+    step1: Real,
+    step2: Real,
+}
+
+/// One ring's force from its committed one plus the spring's step, scaled back to its slip limit; and whether
+/// it sticks.
+#[inline(always)]
+fn ring(f1: Real, f2: Real, step1: Real, step2: Real, limit: Real) -> (Real, Real, bool) {
+    let (a, b) = (f1 + step1, f2 + step2);
+    let mag2 = a * a + b * b;
+    if mag2 <= limit * limit {
+        (a, b, true)
+    } else {
+        let s = limit / mag2.sqrt();
+        (a * s, b * s, false)
+    }
 }
 
 impl MawRings {
@@ -92,49 +124,55 @@ impl MawRings {
             r_eq_m: 0.0,
             width_m: 0.0,
             ring_stiffness_n_per_m: 0.0,
-            force_n: Vec::new(),
-            scratch: Vec::new(),
+            axis: Vector3::zeros(),
+            depth_m: Vec::new(),
+            force_t1_n: Vec::new(),
+            force_t2_n: Vec::new(),
             stuck: 0,
         }
     }
 
-    /// The rings' forces at `c` from the committed state, and how many are stuck. Calls `each(i, force)` for
-    /// the rings in contact; the others carry nothing.
+    /// The tangent basis at normal `n`: the slip axis projected onto the plane, and `n × t1`.
     #[inline]
-    fn evaluate(&self, c: &ContactKinematics, mut each: impl FnMut(usize, Vector3)) -> (Vector3, usize) {
-        let n = c.normal;
-        let mut total = Vector3::zeros();
+    fn basis(&self, n: &Vector3) -> (Vector3, Vector3) {
+        let mut t1 = self.axis - self.axis.dot(n) * *n;
+        let norm2 = t1.norm_squared();
+        if norm2 < 1e-12 {
+            // The axis along the normal (never in a golf impact): any tangent direction.
+            t1 = n.cross(&if n.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() });
+            t1.normalize_mut();
+        } else {
+            t1 /= norm2.sqrt();
+        }
+        (t1, n.cross(&t1))
+    }
+
+    /// The rings in contact at `c`, `None` when out of contact.
+    #[inline]
+    fn sweep(&self, c: &ContactKinematics) -> Option<Sweep> {
         if c.x_m <= 0.0 || c.normal_force_n <= 0.0 {
-            return (total, 0);
+            return None;
         }
         // Rings in contact: r_i = (i + 1/2) Δr < √(R x); their normal loads E* (x − r_i²/R) 2 Δr, scaled to sum
         // to F_N: Σ (x − r_i²/R) = n x − (Δr²/R)(n³/3 − n/12).
         let b = (self.r_eq_m * c.x_m).sqrt();
-        let active = ((b / self.width_m + 0.5).ceil() as usize).saturating_sub(1).min(self.force_n.len());
+        let active = ((b / self.width_m + 0.5).ceil() as usize).saturating_sub(1).min(self.depth_m.len());
         if active == 0 {
-            return (total, 0);
+            return None;
         }
         let nf = active as Real;
         let dr2_r = self.width_m * self.width_m / self.r_eq_m;
         let sum_w = nf * c.x_m - dr2_r * (nf * nf * nf / 3.0 - nf / 12.0);
-        let scale = self.mu * c.normal_force_n / sum_w;
+        let (t1, t2) = self.basis(&c.normal);
         let step = self.ring_stiffness_n_per_m * c.slip_since_step_m;
-        let mut stuck = 0;
-        for (i, f0) in self.force_n[..active].iter().enumerate() {
-            let r = i as Real + 0.5;
-            let limit = scale * (c.x_m - r * r * dr2_r);
-            let trial = f0 - f0.dot(&n) * n + step;
-            let mag2 = trial.norm_squared();
-            let f = if mag2 <= limit * limit {
-                stuck += 1;
-                trial
-            } else {
-                trial * (limit / mag2.sqrt())
-            };
-            total += f;
-            each(i, f);
-        }
-        (-total, stuck)
+        Some(Sweep {
+            active,
+            scale: self.mu * c.normal_force_n / sum_w,
+            t1,
+            t2,
+            step1: step.dot(&t1),
+            step2: step.dot(&t2),
+        })
     }
 
     /// The ring width (m).
@@ -144,7 +182,7 @@ impl MawRings {
 }
 
 impl TangentialLaw for MawRings {
-    fn begin(&mut self, _slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real) {
+    fn begin(&mut self, slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real) {
         // Elastic Hertz: the largest approach x_max = (5 m v² / (4 k))^(2/5), contact radius √(R x_max).
         let x_max = (5.0 * reduced_mass_kg * xdot0_mps * xdot0_mps / (4.0 * k)).powf(0.4);
         let b_max = (r_eq_m * x_max).sqrt();
@@ -152,28 +190,62 @@ impl TangentialLaw for MawRings {
         self.width_m = b_max / self.rings as Real;
         let e_star = 3.0 * k / (4.0 * r_eq_m.sqrt());
         self.ring_stiffness_n_per_m = 2.0 * self.tangential_ratio * e_star * self.width_m;
-        self.force_n = vec![Vector3::zeros(); 2 * self.rings];
+        self.axis = slip_dir;
+        let dr2_r = self.width_m * self.width_m / r_eq_m;
+        self.depth_m = (0..2 * self.rings)
+            .map(|i| {
+                let r = i as Real + 0.5;
+                r * r * dr2_r
+            })
+            .collect();
+        self.force_t1_n = vec![0.0; 2 * self.rings];
+        self.force_t2_n = vec![0.0; 2 * self.rings];
         self.stuck = 0;
     }
 
     fn force(&self, c: &ContactKinematics) -> Vector3 {
-        self.evaluate(c, |_, _| {}).0
+        let Some(w) = self.sweep(c) else { return Vector3::zeros() };
+        let (mut a1, mut a2) = (0.0, 0.0);
+        let rings = self.force_t1_n[..w.active].iter().zip(&self.force_t2_n[..w.active]).zip(&self.depth_m);
+        for ((&f1, &f2), &depth) in rings {
+            // ring() without the branch: the slip factor min(1, limit/|trial|) (1 when the trial is zero).
+            let (g1, g2) = (f1 + w.step1, f2 + w.step2);
+            let factor = (w.scale * (c.x_m - depth) / (g1 * g1 + g2 * g2).sqrt()).min(1.0);
+            a1 += g1 * factor;
+            a2 += g2 * factor;
+        }
+        -(a1 * w.t1 + a2 * w.t2)
     }
 
-    fn commit(&mut self, c: &ContactKinematics) {
-        let mut next = std::mem::take(&mut self.scratch);
-        next.clear();
-        next.resize(self.force_n.len(), Vector3::zeros());
-        let (_, stuck) = self.evaluate(c, |i, f| next[i] = f);
-        self.scratch = std::mem::replace(&mut self.force_n, next);
+    fn commit(&mut self, c: &ContactKinematics) -> Vector3 {
+        let Some(w) = self.sweep(c) else {
+            self.force_t1_n.fill(0.0);
+            self.force_t2_n.fill(0.0);
+            self.stuck = 0;
+            return Vector3::zeros();
+        };
+        let (mut a1, mut a2, mut stuck) = (0.0, 0.0, 0);
+        let (t1s, t2s) = (&mut self.force_t1_n[..w.active], &mut self.force_t2_n[..w.active]);
+        for ((f1, f2), &depth) in t1s.iter_mut().zip(t2s.iter_mut()).zip(&self.depth_m) {
+            let (g1, g2, s) = ring(*f1, *f2, w.step1, w.step2, w.scale * (c.x_m - depth));
+            (*f1, *f2) = (g1, g2);
+            a1 += g1;
+            a2 += g2;
+            stuck += usize::from(s);
+        }
+        // Rings the contact has left are released.
+        self.force_t1_n[w.active..].fill(0.0);
+        self.force_t2_n[w.active..].fill(0.0);
         self.stuck = stuck;
+        -(a1 * w.t1 + a2 * w.t2)
     }
 
     fn stored_energy_j(&self) -> Real {
         if self.ring_stiffness_n_per_m <= 0.0 {
             return 0.0;
         }
-        self.force_n.iter().map(|f| 0.5 * f.norm_squared() / self.ring_stiffness_n_per_m).sum()
+        let sum: Real = self.force_t1_n.iter().zip(&self.force_t2_n).map(|(a, b)| a * a + b * b).sum();
+        0.5 * sum / self.ring_stiffness_n_per_m
     }
 
     fn stuck_rings(&self) -> Option<usize> {
