@@ -25,8 +25,9 @@ pub struct ClubSpec {
     /// Shaft mass (kg), for reference (the seed's section 3.1.4).
     pub shaft_mass_kg: Real,
     /// Static lie: the shaft's angle above the ground at a square address (deg); the shaft axis in the club
-    /// frame is `(0, sin lie, -cos lie)`, from the head up toward the grip. The seed gives none: the presets use
-    /// [`ClubSpec::DEFAULT_LIE_DEG`].
+    /// frame is `(0, sin lie, -cos lie)`, from the head up toward the grip. The seed gives none: a curved face
+    /// (driver) defaults to [`ClubSpec::DRIVER_LIE_DEG`], a flat one (iron) to [`ClubSpec::IRON_LIE_DEG`], which is
+    /// also the ground model's sole lie unless its `[sole]` section says otherwise.
     pub lie_deg: Real,
 }
 
@@ -81,13 +82,24 @@ impl ClubSpec {
             face_half_height_m,
             face_outline: if shape.is_curved() { super::FaceOutline::driver() } else { super::FaceOutline::iron7() },
             shaft_mass_kg,
-            lie_deg: Self::DEFAULT_LIE_DEG,
+            lie_deg: Self::default_lie_deg(shape),
         }
     }
 
-    /// The presets' static lie (deg): between a driver's (makers' spec sheets: 56-59°) and a 7-iron's
-    /// (61.5-63°), and the synthetic swings' shaft axis.
-    pub const DEFAULT_LIE_DEG: Real = 60.0;
+    /// A driver's static lie (deg): makers' spec sheets give 56-59°.
+    pub const DRIVER_LIE_DEG: Real = 58.0;
+    /// A 7-iron's static lie (deg): makers' spec sheets give 61.5-63° (the ground model's sole,
+    /// `SoleSpec::IRON7`, uses the same value).
+    pub const IRON_LIE_DEG: Real = 62.5;
+
+    /// The static lie a club gets when nothing says otherwise: a driver's for a curved face, an iron's for a flat one.
+    pub fn default_lie_deg(shape: FaceShape) -> Real {
+        if shape.is_curved() {
+            Self::DRIVER_LIE_DEG
+        } else {
+            Self::IRON_LIE_DEG
+        }
+    }
 
     /// The shaft axis from the head up toward the grip, club frame (a unit vector at the static lie).
     pub fn shaft_axis_up(&self) -> Vector3 {

@@ -39,7 +39,7 @@ pub struct ClubFile {
     pub bulge_radius_m: Option<Real>,
     pub roll_radius_m: Option<Real>,
     pub shaft_mass_kg: Option<Real>,
-    /// Static lie (deg), the shaft's angle above the ground at address (default `ClubSpec::DEFAULT_LIE_DEG`).
+    /// Static lie (deg), the shaft's angle above the ground at address (default `ClubSpec::default_lie_deg`: a driver's for a curved face, an iron's for a flat one).
     pub lie_deg: Option<Real>,
     pub face_half_width_m: Option<Real>,
     pub face_half_height_m: Option<Real>,
@@ -177,7 +177,7 @@ impl ClubFile {
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
-        let lie_deg = finite("lie_deg", self.lie_deg.unwrap_or(ClubSpec::DEFAULT_LIE_DEG))?;
+        let lie_deg = finite("lie_deg", self.lie_deg.unwrap_or(ClubSpec::default_lie_deg(shape)))?;
         if !(30.0..=80.0).contains(&lie_deg) {
             return Err(invalid("lie_deg", format!("must be within 30-80 deg, got {lie_deg}")));
         }

@@ -62,7 +62,7 @@ pub struct SoleSpec {
 impl SoleSpec {
     /// Typical 7-iron values (table above).
     pub const IRON7: SoleSpec = SoleSpec {
-        lie_deg: 62.5,
+        lie_deg: super::ClubSpec::IRON_LIE_DEG,
         sole_width_m: 0.020,
         sole_length_m: 0.060,
         bounce_deg: 4.0,

@@ -52,7 +52,7 @@ fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Resu
 /// The iron-plus-ground model, its soil, sole and shaft from the `[soil]`, `[sole]` and `[shaft]` sections (firm
 /// soil of Table 4.3 by default), its ball from the `[continuous]` section.
 fn ground(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    let mut model = super::continuous::iron_ground::GroundModel::from_sections(&club.sections)?;
+    let mut model = super::continuous::iron_ground::GroundModel::from_sections(&club.sections, club.club.lie_deg)?;
     model.params = TwoLayerParams::from_sections(&club.sections, &club.club, &o.ball)?;
     let equipment = super::Equipment { club: club.club.clone(), ball: o.ball };
     Ok(Arc::new(model.prepare(&equipment)?))

@@ -88,11 +88,14 @@ pub fn soil_section(soil: &SoilSpec) -> toml::Table {
 
 impl GroundModel {
     /// The model of a club file's `[soil]`, `[sole]` and `[shaft]` sections (defaults above), each validated.
-    pub fn from_sections(sections: &ModelSections) -> Result<Self, ImpactError> {
+    /// The sole's lie is the club's static lie (`club_lie_deg`) unless `[sole]` gives its own.
+    pub fn from_sections(sections: &ModelSections, club_lie_deg: Real) -> Result<Self, ImpactError> {
         let soil = sections.get("soil").map(soil_of).transpose()?.unwrap_or_else(SoilSpec::firm);
         let mut model = GroundModel::new(soil);
+        model.sole.lie_deg = club_lie_deg;
+        model.sole.validate().map_err(|e| invalid("sole", e))?;
         if let Some(s) = section::<SoleSection>(sections, "sole")? {
-            let d = SoleSpec::IRON7;
+            let d = SoleSpec { lie_deg: club_lie_deg, ..SoleSpec::IRON7 };
             model.sole = SoleSpec {
                 lie_deg: s.lie_deg.unwrap_or(d.lie_deg),
                 sole_width_m: s.sole_width_m.unwrap_or(d.sole_width_m),
@@ -136,18 +139,31 @@ mod tests {
 
     #[test]
     fn defaults_presets_partial_sections_and_bad_fields() {
-        let m = GroundModel::from_sections(&ModelSections::default()).unwrap();
+        let iron = crate::equipment::ClubSpec::IRON_LIE_DEG;
+        let m = GroundModel::from_sections(&ModelSections::default(), iron).unwrap();
         assert_eq!((m.soil.name.as_str(), m.sole, m.shaft.clone()), ("firm", SoleSpec::IRON7, ShaftSpec::iron7()));
-        let m = GroundModel::from_sections(&sections(
-            "[soil]\npreset = \"soft\"\n[sole]\nlie_deg = 63.0\n[shaft]\nmass_kg = 0.110\n",
-        ))
+        // The club's own static lie is the sole's unless `[sole]` says otherwise.
+        let m = GroundModel::from_sections(
+            &sections(
+                "[sole]
+bounce_deg = 6.0
+",
+            ),
+            61.0,
+        )
+        .unwrap();
+        assert_eq!((m.sole.lie_deg, m.sole.bounce_deg), (61.0, 6.0));
+        let m = GroundModel::from_sections(
+            &sections("[soil]\npreset = \"soft\"\n[sole]\nlie_deg = 63.0\n[shaft]\nmass_kg = 0.110\n"),
+            iron,
+        )
         .unwrap();
         assert_eq!(m.soil, SoilSpec::soft());
         assert_eq!((m.sole.lie_deg, m.sole.sole_width_m), (63.0, SoleSpec::IRON7.sole_width_m));
         assert_eq!((m.shaft.mass_kg, m.shaft.stations.len()), (0.110, 4));
         // A soil's own fields, and the section that stands for a soil reads back as that soil.
         let own = "[soil]\ndensity_kg_m3 = 1800.0\nn = 0.9\nk_c_n_per_m_n1 = 2e4\nk_phi_n_per_m_n2 = 3e6\n";
-        let m = GroundModel::from_sections(&sections(own)).unwrap();
+        let m = GroundModel::from_sections(&sections(own), iron).unwrap();
         assert_eq!(m.soil.n, 0.9);
         assert_eq!(soil_of(&soil_section(&m.soil)).unwrap(), m.soil);
         assert_eq!(soil_section(&SoilSpec::medium()).get("preset").and_then(|v| v.as_str()), Some("medium"));
@@ -157,7 +173,7 @@ mod tests {
             ("[sole]\nlie = 60.0\n", "sole"),
             ("[shaft]\nmass_kg = -1.0\n", "[shaft]"),
         ] {
-            let e = GroundModel::from_sections(&sections(text)).unwrap_err().to_string();
+            let e = GroundModel::from_sections(&sections(text), iron).unwrap_err().to_string();
             assert!(e.contains(field), "{text}: {e}");
         }
     }
