@@ -6,9 +6,10 @@
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
 use impactd::identify::dataset::resolve;
-use impactd::identify::fisher::{bounds, information, Bound};
+use impactd::identify::fisher::{bounds, information_of, jacobian, l1_scatter, Bound};
 use impactd::identify::fit::{run, FitOptions};
 use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::identify::CostScales;
 use impactd::identify::{FitModel, ParamSpace, Shot};
 use impactd::impact::Equipment;
 
@@ -27,27 +28,24 @@ fn shots(model: &str, club: ClubSpec, truth: &[f64], n: usize, seed: u64) -> (Pa
     (space, club, shots)
 }
 
-fn crb(space: &ParamSpace, club: &LoadedClub, shots: &[Shot], truth: &[f64]) -> Vec<Bound> {
-    let f = information(
-        space,
-        &space.club_with(club, truth),
-        &Default::default(),
-        shots,
-        truth,
-        &LmNoise::default().as_array(),
-    )
-    .unwrap();
-    let b = bounds(&f);
-    for (d, b) in space.defs.iter().zip(&b) {
+/// The Cramér-Rao bounds at the truth with the noise, and the scatter of eq. 3.13's estimate (SI).
+fn crb(space: &ParamSpace, club: &LoadedClub, shots: &[Shot], truth: &[f64]) -> (Vec<Bound>, Vec<f64>) {
+    let sigma = LmNoise::default().as_array();
+    let jac = jacobian(space, &space.club_with(club, truth), &Default::default(), shots, truth).unwrap();
+    let b = bounds(&information_of(&jac, &sigma));
+    let scatter = l1_scatter(&jac, &sigma, &CostScales::of(shots).0);
+    for ((d, b), s) in space.defs.iter().zip(&b).zip(&scatter) {
+        let f = d.display_factor;
         eprintln!(
-            "{:<16} CRB {:>12.5} (alone {:>12.5}) {}",
+            "{:<16} CRB {:>12.5} (alone {:>12.5}), eq. 3.13 SD {:>12.5} {}",
             d.name,
-            b.joint * d.display_factor,
-            b.alone * d.display_factor,
+            b.joint * f,
+            b.alone * f,
+            s * f,
             d.unit
         );
     }
-    b
+    (b, scatter)
 }
 
 /// The ball-CG shift along the face normal (x') on 500 driver shots: with the noise its Cramér-Rao
@@ -60,7 +58,7 @@ fn crb(space: &ParamSpace, club: &LoadedClub, shots: &[Shot], truth: &[f64]) -> 
 fn the_cramer_rao_bound_of_the_ball_cg_shift_along_the_normal() {
     let truth = [7.3e-3, 0.31e-3, -0.42e-3, 0.17e-3];
     let (space, club, shots) = shots("adjusted", ClubSpec::driver(), &truth, 500, 11);
-    let b = crb(&space, &club, &shots, &truth);
+    let (b, scatter) = crb(&space, &club, &shots, &truth);
     let mm = |v: f64| v * 1e3;
     // x': between the 0.05 mm target and a quarter of the 0.5 mm range, and wider jointly than alone.
     assert!((0.05..0.5 / 4.0).contains(&mm(b[1].joint)), "x' CRB {:.4} mm", mm(b[1].joint));
@@ -68,6 +66,9 @@ fn the_cramer_rao_bound_of_the_ball_cg_shift_along_the_normal() {
     // y', z': a tenth of their 0.05 mm target or less; Δm: under half of its 0.5 g.
     assert!(mm(b[2].joint) < 0.005 && mm(b[3].joint) < 0.005, "{b:?}");
     assert!(b[0].joint * 1e3 < 0.25, "delta mass CRB {:.4} g", b[0].joint * 1e3);
+    // Eq. 3.13 weights the fields by their measured means, not their noise, and is least-absolute: its own
+    // scatter of x' is about twice the bound, and 0.5 mm is two to three of its standard deviations.
+    assert!(scatter[1] > 1.5 * b[1].joint && (2.0..4.0).contains(&(0.5 / mm(scatter[1]))), "{scatter:?}");
 }
 
 /// The two-layer model on 7-iron shots: which of Table 3.5's seven parameters the five launch fields pin down.
@@ -82,7 +83,7 @@ fn two_layer_identifiability_on_7_iron_shots() {
     // Table 3.5's 7-iron moved by 10-40 % per parameter (examples/fit_two_layer.rs).
     let truth = [8.5e9, 7.0e-3, 0.42, 45.0, 9.0e-3, 2.2e-3, 0.65];
     let (space, club, shots) = shots("continuous", ClubSpec::iron7(), &truth, 550, 17);
-    let b = crb(&space, &club, &shots, &truth);
+    let (b, _) = crb(&space, &club, &shots, &truth);
     let relative: Vec<f64> = b.iter().zip(&truth).map(|(b, t)| b.joint / t).collect();
     eprintln!("relative joint CRB: {relative:?}");
     let names = space.names();

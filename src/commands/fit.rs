@@ -149,16 +149,16 @@ fn render(r: &FitReport) -> String {
     );
     let _ = writeln!(
         s,
-        "{:<18} {:>12} {:>12} {:>12} {:>12} {:>24}",
-        "parameter", "start", "fitted", "CRB", "CRB alone", "bounds"
+        "{:<18} {:>12} {:>12} {:>12} {:>12} {:>12} {:>24}",
+        "parameter", "start", "fitted", "CRB", "CRB alone", "eq. 3.13 SD", "bounds"
     );
     let or_flat = |v: Option<f64>| v.map_or("flat".to_string(), |v| format!("{v:.5}"));
     for p in &r.params {
         let bounds = format!("[{:.4}, {:.4}]", p.lo, p.hi);
-        let (joint, alone) = (or_flat(p.std_error), or_flat(p.std_error_alone));
+        let (joint, alone, scatter) = (or_flat(p.std_error), or_flat(p.std_error_alone), or_flat(p.scatter));
         let _ = writeln!(
             s,
-            "{:<18} {:>12.5} {:>12.5} {joint:>12} {alone:>12} {bounds:>24} {}",
+            "{:<18} {:>12.5} {:>12.5} {joint:>12} {alone:>12} {scatter:>12} {bounds:>24} {}",
             p.name, p.start, p.fitted, p.unit
         );
     }

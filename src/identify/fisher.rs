@@ -10,8 +10,11 @@
 //! standard deviation below `sqrt((F⁻¹)_kk)` (the Cramér-Rao bound), the bound when every parameter is
 //! unknown; `1 / sqrt(F_kk)` is the bound when the others are known. Where the two differ by a large factor,
 //! the parameter trades against others along a nearly flat direction of the cost. Eq. 3.13 is a least-absolute
-//! criterion, whose efficiency under normal errors is 2/π, so its estimates scatter by about `sqrt(π/2)` = 1.25
-//! times the bound.
+//! criterion, whose efficiency under normal errors is 2/π, and it weights each field by `1 / mean|x_exp,i|`
+//! rather than by `1 / σ_i`, so its estimates scatter more than the bound: [`l1_scatter`] gives their
+//! asymptotic standard deviation, the sandwich `A⁻¹ B A⁻¹` of an M-estimator with
+//! `A = Σ_j Σ_i w_i 2 f_i(0) g g'`, `B = Σ_j Σ_i w_i² g g'` (`g = ∂x_sim,i,j/∂θ`, `w_i = 1 / mean|x_exp,i|`,
+//! `f_i(0) = 1 / (σ_i sqrt(2π))` the noise's density at zero, and `Var(sign ε) = 1`).
 
 use nalgebra::DMatrix;
 
@@ -34,21 +37,18 @@ pub struct Bound {
 /// The relative step of the central differences, of each parameter's bounds (linear) or value (logarithmic).
 const STEP: Real = 1e-3;
 
-/// The Fisher information of `shots` about the parameters of `space` at `values` (SI), with noise `sigma` per
-/// launch field. Shots the model fails on at any of the evaluation points are left out.
-pub fn information(
+/// The derivatives of each shot's five launch fields by each parameter of `space` at `values` (SI), by central
+/// differences (one-sided at a bound): per shot, one row per parameter, `None` where the model failed.
+pub fn jacobian(
     space: &ParamSpace,
     club: &LoadedClub,
     ball: &BallSpec,
     shots: &[Shot],
     values: &[Real],
-    sigma: &[Real; 5],
-) -> Result<DMatrix<Real>, IdentifyError> {
-    let d = space.defs.len();
+) -> Result<Vec<Option<Vec<[Real; 5]>>>, IdentifyError> {
     let predict = |v: &[Real]| evaluate(space, &space.club_with(club, v), ball, shots);
-    // Per parameter: the two points and the distance between them.
-    let mut derivatives: Vec<Vec<Option<[Real; 5]>>> = Vec::with_capacity(d);
     let base = predict(values)?;
+    let mut per_param: Vec<Vec<Option<[Real; 5]>>> = Vec::with_capacity(space.defs.len());
     for (k, def) in space.defs.iter().enumerate() {
         let h = if def.log { STEP * values[k].abs() } else { STEP * (def.hi - def.lo) };
         let (lo, hi) = ((values[k] - h).max(def.lo), (values[k] + h).min(def.hi));
@@ -57,12 +57,10 @@ pub fn information(
             v[k] = x;
             v
         };
-        let (minus, plus) = (
-            if lo < values[k] { predict(&at(lo))? } else { base.clone() },
-            if hi > values[k] { predict(&at(hi))? } else { base.clone() },
-        );
+        let minus = if lo < values[k] { predict(&at(lo))? } else { base.clone() };
+        let plus = if hi > values[k] { predict(&at(hi))? } else { base.clone() };
         let span = hi - lo;
-        derivatives.push(
+        per_param.push(
             minus
                 .iter()
                 .zip(&plus)
@@ -73,16 +71,57 @@ pub fn information(
                 .collect(),
         );
     }
-    let mut f = DMatrix::<Real>::zeros(d, d);
-    for j in 0..shots.len() {
-        let Some(row) = derivatives.iter().map(|g| g[j]).collect::<Option<Vec<[Real; 5]>>>() else { continue };
+    Ok((0..shots.len()).map(|j| per_param.iter().map(|g| g[j]).collect::<Option<Vec<_>>>()).collect())
+}
+
+/// `Σ_j Σ_i weight_i g_ik g_il` over the shots the model predicted.
+fn weighted_gram(jacobian: &[Option<Vec<[Real; 5]>>], weight: &[Real; 5]) -> DMatrix<Real> {
+    let d = jacobian.iter().flatten().next().map_or(0, Vec::len);
+    let mut m = DMatrix::<Real>::zeros(d, d);
+    for row in jacobian.iter().flatten() {
         for k in 0..d {
             for l in 0..d {
-                f[(k, l)] += (0..5).map(|i| row[k][i] * row[l][i] / (sigma[i] * sigma[i])).sum::<Real>();
+                m[(k, l)] += (0..5).map(|i| weight[i] * row[k][i] * row[l][i]).sum::<Real>();
             }
         }
     }
-    Ok(f)
+    m
+}
+
+/// The Fisher information from a [`jacobian`] with noise `sigma` per launch field.
+pub fn information_of(jacobian: &[Option<Vec<[Real; 5]>>], sigma: &[Real; 5]) -> DMatrix<Real> {
+    weighted_gram(jacobian, &sigma.map(|s| 1.0 / (s * s)))
+}
+
+/// The Fisher information of `shots` about the parameters of `space` at `values` (SI), with noise `sigma` per
+/// launch field. Shots the model fails on at any of the evaluation points are left out.
+pub fn information(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+    values: &[Real],
+    sigma: &[Real; 5],
+) -> Result<DMatrix<Real>, IdentifyError> {
+    Ok(information_of(&jacobian(space, club, ball, shots, values)?, sigma))
+}
+
+/// The asymptotic standard deviation of each parameter as eq. 3.13 estimates it (SI): the sandwich covariance
+/// of a least-absolute fit weighted by `1 / scales` under normal noise `sigma` (module docs). Infinite where
+/// the matrix is singular.
+pub fn l1_scatter(jacobian: &[Option<Vec<[Real; 5]>>], sigma: &[Real; 5], scales: &[Real; 5]) -> Vec<Real> {
+    let w: [Real; 5] = std::array::from_fn(|i| 1.0 / scales[i]);
+    let density: [Real; 5] = std::array::from_fn(|i| 1.0 / (sigma[i] * (2.0 * std::f64::consts::PI).sqrt()));
+    let a = weighted_gram(jacobian, &std::array::from_fn(|i| 2.0 * w[i] * density[i]));
+    let b = weighted_gram(jacobian, &w.map(|x| x * x));
+    let d = a.nrows();
+    // Scaled to a unit diagonal before inverting, as in `bounds`.
+    let scale: Vec<Real> = (0..d).map(|k| if a[(k, k)] > 0.0 { 1.0 / a[(k, k)].sqrt() } else { 0.0 }).collect();
+    let scaled = DMatrix::from_fn(d, d, |k, l| a[(k, l)] * scale[k] * scale[l]);
+    let Some(inv) = scaled.try_inverse() else { return vec![Real::INFINITY; d] };
+    let a_inv = DMatrix::from_fn(d, d, |k, l| inv[(k, l)] * scale[k] * scale[l]);
+    let cov = &a_inv * b * &a_inv;
+    (0..d).map(|k| if cov[(k, k)] > 0.0 { cov[(k, k)].sqrt() } else { Real::INFINITY }).collect()
 }
 
 /// The Cramér-Rao bounds of each parameter from a Fisher information matrix (SI).
@@ -123,6 +162,19 @@ pub fn residual_sigma(predictions: &[Option<[Real; 5]>], shots: &[Shot]) -> [Rea
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_least_absolute_fit_of_a_mean_scatters_sqrt_pi_over_2_times_the_bound() {
+        // One parameter moving one field by 1 per unit over n shots: the bound is σ / sqrt(n), and the median
+        // (the least-absolute estimate of a location) scatters sqrt(π/2) times more.
+        let n = 400;
+        let jac: Vec<Option<Vec<[Real; 5]>>> = (0..n).map(|_| Some(vec![[1.0, 0.0, 0.0, 0.0, 0.0]])).collect();
+        let sigma = [2.0, 1.0, 1.0, 1.0, 1.0];
+        let bound = bounds(&information_of(&jac, &sigma))[0].joint;
+        assert!((bound - 2.0 / (n as Real).sqrt()).abs() < 1e-12);
+        let scatter = l1_scatter(&jac, &sigma, &[150.0, 1.0, 1.0, 1.0, 1.0])[0];
+        assert!((scatter / bound - (std::f64::consts::PI / 2.0).sqrt()).abs() < 1e-9, "{scatter} {bound}");
+    }
 
     #[test]
     fn the_bounds_of_a_diagonal_and_a_correlated_information() {

@@ -72,6 +72,10 @@ pub struct ParamReport {
     pub std_error: Option<Real>,
     #[serde(default)]
     pub std_error_alone: Option<Real>,
+    /// The standard deviation of eq. 3.13's own estimate at this noise (display unit): least-absolute and
+    /// weighted by the measured means, it scatters more than the bound ([`super::fisher::l1_scatter`]).
+    #[serde(default)]
+    pub scatter: Option<Real>,
 }
 
 /// The cross-validated errors: every shot predicted by the parameters fitted without its fold.
@@ -270,9 +274,10 @@ pub fn run(
     let fit_seconds = started.elapsed().as_secs_f64();
     let fitted_club = space.club_with(club, &fitted.values);
     let sigma = fisher::residual_sigma(&evaluate(space, &fitted_club, ball, shots)?, shots);
-    let information = fisher::information(space, &fitted_club, ball, shots, &fitted.values, &sigma)?;
-    let bounds = fisher::bounds(&information);
+    let jacobian = fisher::jacobian(space, &fitted_club, ball, shots, &fitted.values)?;
+    let bounds = fisher::bounds(&fisher::information_of(&jacobian, &sigma));
     let scales = CostScales::of(shots);
+    let scatter = fisher::l1_scatter(&jacobian, &sigma, &scales.0);
     let cost_before = cost(&evaluate(space, club, ball, shots)?, shots, &scales);
     let start = display(&space.get(club));
     let fitted_display = display(&fitted.values);
@@ -289,6 +294,7 @@ pub fn run(
             hi: d.hi * d.display_factor,
             std_error: Some(bounds[i].joint * d.display_factor).filter(|v| v.is_finite()),
             std_error_alone: Some(bounds[i].alone * d.display_factor).filter(|v| v.is_finite()),
+            scatter: Some(scatter[i] * d.display_factor).filter(|v| v.is_finite()),
         })
         .collect();
     let report = FitReport {
