@@ -131,3 +131,6 @@ replace("docs/estimation.md", {
 })
 replace("docs/performance.md", {"bench": bench_table()})
 PY
+
+# docs/identify.md: comparison, recovery, fit time and live latency (about 20 minutes more on 2 shared cores).
+scripts/docs-identify.sh

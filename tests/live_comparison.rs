@@ -185,8 +185,8 @@ async fn each_measured_shot_is_compared_within_10_ms_whatever_the_connector_send
                 other.write_all(&msg.as_bytes()[..msg.len() / 2]).await.unwrap();
                 drop(other);
                 let cut = msg.find("\"Speed\":").unwrap() + 10;
-                lm.write_all(msg[..cut].as_bytes()).await.unwrap();
-                lm.write_all(msg[cut..].as_bytes()).await.unwrap();
+                lm.write_all(&msg.as_bytes()[..cut]).await.unwrap();
+                lm.write_all(&msg.as_bytes()[cut..]).await.unwrap();
                 want_codes.push(200);
                 Instant::now()
             }
