@@ -118,8 +118,8 @@ def timing(name):
         lines = f.read().splitlines()
     loads = [l.split("load average:")[1].split(",")[0].strip() for l in lines if "load average:" in l]
     for l in lines:
-        if ":" in l and "load average" not in l:
-            k, v = l.strip().split(":", 1)
+        if ": " in l and "load average" not in l:
+            k, v = l.strip().split(": ", 1)
             t[k.strip()] = v.strip()
     cpu = float(t["User time (seconds)"]) + float(t["System time (seconds)"])
     wall = t["Elapsed (wall clock) time (h:mm:ss or m:ss)"]
@@ -163,6 +163,10 @@ def cv_table():
                         "MAE is σ sqrt(2/π)."]
 
 
+def dur(s):
+    return f"{s:.1f} s" if s < 60 else f"{s / 60:.1f} min"
+
+
 def time_table():
     lines = ["| model | shots | impacts (fit) | impacts (cross-validation) | wall | CPU | CPU / 2 cores | load before, after |",
              "|---|---|---|---|---|---|---|---|"]
@@ -170,7 +174,7 @@ def time_table():
         r = load(f"fit-{m}.json")
         cpu, wall, loads = timing(f"fit-{m}.json.time")
         lines.append(f"| {m} | {r['shots']} | {r.get('simulations', 0):,} | {r.get('cv_simulations', 0):,} | "
-                     f"{wall / 60:.1f} min | {cpu / 60:.1f} min | {cpu / 120:.1f} min | {', '.join(loads)} |")
+                     f"{dur(wall)} | {dur(cpu)} | {dur(cpu / 2)} | {', '.join(loads)} |")
     return lines + ["", "The whole `impactd fit` command (the fit on all shots and its 5-fold cross-validation) under "
                         "`/usr/bin/time -v`. The machine is shared, so the wall time depends on the load; CPU / 2 "
                         "cores is the wall time on the same two cores with nothing else running."]

@@ -104,7 +104,8 @@ pub struct FitReport {
     pub cost_before: Real,
     pub cost: Real,
     pub evaluations: usize,
-    /// Impacts simulated by the fit on all shots (evaluations x shots per stage), and by the cross-validation.
+    /// Impacts simulated by the fit on all shots (evaluations x shots per stage), and by the cross-validation;
+    /// the bounds' passes over the shots afterwards (at most 2 per parameter, and 3) are not counted.
     #[serde(default)]
     pub simulations: u64,
     #[serde(default)]
