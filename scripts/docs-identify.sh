@@ -5,7 +5,7 @@
 #   impactd fit --json (under /usr/bin/time -v)    -> regions recovery-*, cv, fit-time, crb
 #   tests/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> region live-latency
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
-# Usage: scripts/docs-identify.sh   (about 20 minutes on 2 shared cores, most of it the two-layer fit with its
+# Usage: scripts/docs-identify.sh   (about 10 minutes on 2 cores at load 8, most of it the two-layer fit with its
 # 5-fold cross-validation; IDENTIFY_OUT=DIR keeps the JSON there and reuses what is already in it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
