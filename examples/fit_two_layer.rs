@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         generations,
         local_evaluations: 300,
         seed: 1,
-        global_shots: None,
+        ..FitOptions::default()
     };
     let mut last = std::time::Instant::now();
     let (report, _) = run(&space, &club, &Default::default(), &shots, &options, &mut |phase, p| {

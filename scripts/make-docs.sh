@@ -149,3 +149,6 @@ echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
 scripts/club-data-docs.sh
+
+# docs/identify.md: comparison, recovery, fit time and live latency (about 20 minutes more on 2 shared cores).
+scripts/docs-identify.sh

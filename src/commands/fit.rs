@@ -47,9 +47,15 @@ pub struct FitArgs {
     /// Nelder-Mead evaluations after the global search.
     #[arg(long, default_value_t = 400)]
     pub local_evaluations: usize,
-    /// Shots the global search evaluates (a seeded subsample; default all).
+    /// Shots the global search evaluates (a seeded subsample; default all, 150 for a model resolved in time).
     #[arg(long)]
     pub global_shots: Option<usize>,
+    /// Integrate the global search at the exact step too (default: 4 x coarser for a model resolved in time).
+    #[arg(long)]
+    pub exact_global: bool,
+    /// Stop the global search when its best cost gains under 0.1 % in this many generations (0: never).
+    #[arg(long, default_value_t = 10)]
+    pub stall_generations: usize,
     /// Where to write the fitted club file.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -75,6 +81,8 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
         generations: args.generations,
         local_evaluations: args.local_evaluations,
         global_shots: args.global_shots,
+        coarse_global: !args.exact_global,
+        stall_generations: args.stall_generations,
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new_spinner();
@@ -125,13 +133,34 @@ fn render(r: &FitReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{} on {} ({} shots, seed {}): eq. 3.13 {:.5} -> {:.5} ({} evaluations, {:.1} s; cross-validation {:.1} s)",
-        r.model, r.club, r.shots, r.seed, r.cost_before, r.cost, r.evaluations, r.fit_seconds, r.cv_seconds
+        "{} on {} ({} shots, seed {}): eq. 3.13 {:.5} -> {:.5} ({} evaluations, {} impacts, {:.1} s; \
+         cross-validation {} impacts, {:.1} s)",
+        r.model,
+        r.club,
+        r.shots,
+        r.seed,
+        r.cost_before,
+        r.cost,
+        r.evaluations,
+        r.simulations,
+        r.fit_seconds,
+        r.cv_simulations,
+        r.cv_seconds
     );
-    let _ = writeln!(s, "{:<18} {:>12} {:>12} {:>24}", "parameter", "start", "fitted", "bounds");
+    let _ = writeln!(
+        s,
+        "{:<18} {:>12} {:>12} {:>12} {:>12} {:>12} {:>24}",
+        "parameter", "start", "fitted", "CRB", "CRB alone", "eq. 3.13 SD", "bounds"
+    );
+    let or_flat = |v: Option<f64>| v.map_or("flat".to_string(), |v| format!("{v:.5}"));
     for p in &r.params {
         let bounds = format!("[{:.4}, {:.4}]", p.lo, p.hi);
-        let _ = writeln!(s, "{:<18} {:>12.5} {:>12.5} {:>24} {}", p.name, p.start, p.fitted, bounds, p.unit);
+        let (joint, alone, scatter) = (or_flat(p.std_error), or_flat(p.std_error_alone), or_flat(p.scatter));
+        let _ = writeln!(
+            s,
+            "{:<18} {:>12.5} {:>12.5} {joint:>12} {alone:>12} {scatter:>12} {bounds:>24} {}",
+            p.name, p.start, p.fitted, p.unit
+        );
     }
     if let Some(cv) = &r.cv {
         let _ = writeln!(s, "{}-fold cross-validated MAE (held-out shots): before -> after", cv.folds);

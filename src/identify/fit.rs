@@ -6,8 +6,9 @@ use serde::{Deserialize, Serialize};
 
 use super::cost::{cost, field_stats, predict_all, CostScales, FieldStats};
 use super::dataset::Shot;
+use super::fisher;
 use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
-use super::params::ParamSpace;
+use super::params::{BuildFn, ParamSpace};
 use super::IdentifyError;
 use crate::equipment::{BallSpec, LoadedClub};
 use crate::impact::Equipment;
@@ -25,13 +26,33 @@ pub struct FitOptions {
     pub generations: usize,
     /// Nelder-Mead evaluations.
     pub local_evaluations: usize,
-    /// Shots the global stage evaluates (a seeded subsample; `None`: all); the local stage uses all.
+    /// Shots the global stage evaluates (a seeded subsample); the local stage uses all. `None`: all shots for a
+    /// model without a coarse step, [`GLOBAL_SHOTS_IN_TIME`] for one resolved in time.
     pub global_shots: Option<usize>,
+    /// The global stage integrates a model resolved in time at its coarse step ([`super::params::COARSE_STEP_FACTOR`]);
+    /// the local refinement and every reported number use the exact step.
+    pub coarse_global: bool,
+    /// The global stage stops when its best cost has gained less than 0.1 % in this many generations (0: it
+    /// runs every generation).
+    pub stall_generations: usize,
 }
+
+/// The global stage's subsample for a model resolved in time: enough shots to find the basin of eq. 3.13
+/// (the local refinement then fits on all of them).
+pub const GLOBAL_SHOTS_IN_TIME: usize = 150;
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { seed: 1, folds: 5, population: None, generations: 100, local_evaluations: 400, global_shots: None }
+        FitOptions {
+            seed: 1,
+            folds: 5,
+            population: None,
+            generations: 100,
+            local_evaluations: 400,
+            global_shots: None,
+            coarse_global: true,
+            stall_generations: 10,
+        }
     }
 }
 
@@ -44,6 +65,17 @@ pub struct ParamReport {
     pub fitted: Real,
     pub lo: Real,
     pub hi: Real,
+    /// The Cramér-Rao bound at the fitted values (display unit) with every parameter unknown, and with the
+    /// others known ([`super::fisher`]; the noise is the residuals' standard deviation per field). `None`: no
+    /// information (a flat direction of the cost).
+    #[serde(default)]
+    pub std_error: Option<Real>,
+    #[serde(default)]
+    pub std_error_alone: Option<Real>,
+    /// The standard deviation of eq. 3.13's own estimate at this noise (display unit): least-absolute and
+    /// weighted by the measured means, it scatters more than the bound ([`super::fisher::l1_scatter`]).
+    #[serde(default)]
+    pub scatter: Option<Real>,
 }
 
 /// The cross-validated errors: every shot predicted by the parameters fitted without its fold.
@@ -72,6 +104,12 @@ pub struct FitReport {
     pub cost_before: Real,
     pub cost: Real,
     pub evaluations: usize,
+    /// Impacts simulated by the fit on all shots (evaluations x shots per stage), and by the cross-validation;
+    /// the bounds' passes over the shots afterwards (at most 2 per parameter, and 3) are not counted.
+    #[serde(default)]
+    pub simulations: u64,
+    #[serde(default)]
+    pub cv_simulations: u64,
     /// Wall time of the fit on all shots (s), and of the cross-validation.
     pub fit_seconds: Real,
     pub cv_seconds: Real,
@@ -85,6 +123,8 @@ pub struct Fitted {
     pub values: Vec<Real>,
     pub cost: Real,
     pub evaluations: usize,
+    /// Impacts simulated (each evaluation costs one per shot it covers).
+    pub simulations: u64,
 }
 
 /// Minimises eq. 3.13 over `shots` for the parameters of `space`, starting from `club`'s values.
@@ -99,11 +139,13 @@ pub fn fit_once(
     if shots.is_empty() {
         return Err(IdentifyError::NoShots("fit"));
     }
-    let objective_on = |u: &[Real], shots: &[Shot], scales: &CostScales| {
+    let coarse = space.model.coarse.filter(|_| options.coarse_global);
+    let objective_on = |u: &[Real], shots: &[Shot], scales: &CostScales, coarse: Option<BuildFn>| {
         let candidate = space.club_with(club, &space.from_unit(u));
-        evaluate(space, &candidate, ball, shots).map_or(Real::INFINITY, |p| cost(&p, shots, scales))
+        evaluate_with(space, coarse, &candidate, ball, shots).map_or(Real::INFINITY, |p| cost(&p, shots, scales))
     };
-    let subsample: Vec<Shot> = match options.global_shots {
+    let global_shots = options.global_shots.or(space.model.coarse.map(|_| GLOBAL_SHOTS_IN_TIME));
+    let subsample: Vec<Shot> = match global_shots {
         Some(n) if n < shots.len() => {
             let fold = fold_of_each(shots.len(), shots.len(), options.seed);
             shots.iter().zip(fold).filter(|(_, f)| *f < n).map(|(s, _)| *s).collect()
@@ -111,11 +153,12 @@ pub fn fit_once(
         _ => shots.to_vec(),
     };
     let (sub_scales, scales) = (CostScales::of(&subsample), CostScales::of(shots));
-    let mut global_objective = |u: &[Real]| objective_on(u, &subsample, &sub_scales);
-    let mut objective = |u: &[Real]| objective_on(u, shots, &scales);
+    let mut global_objective = |u: &[Real]| objective_on(u, &subsample, &sub_scales, coarse);
+    let mut objective = |u: &[Real]| objective_on(u, shots, &scales, None);
     let d = space.defs.len();
     let mut de = DeOptions::for_dimension(d, options.seed);
     de.generations = options.generations;
+    de.stall_generations = options.stall_generations;
     if let Some(p) = options.population {
         de.population = p;
     }
@@ -125,10 +168,12 @@ pub fn fit_once(
     let nm = NmOptions { max_evaluations: options.local_evaluations, ..Default::default() };
     let local = nelder_mead(&mut objective, &global.x, &nm, progress);
     let best = if local.cost <= global_cost { local.x } else { global.x };
+    let (n_global, n_all) = (subsample.len() as u64, shots.len() as u64);
     Ok(Fitted {
         values: space.from_unit(&best),
         cost: local.cost.min(global_cost),
         evaluations: global.evaluations + local.evaluations + 1,
+        simulations: global.evaluations as u64 * n_global + (local.evaluations as u64 + 1) * n_all,
     })
 }
 
@@ -139,7 +184,21 @@ pub fn evaluate(
     ball: &BallSpec,
     shots: &[Shot],
 ) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
-    let model = space.model.build(club, ball)?;
+    evaluate_with(space, None, club, ball, shots)
+}
+
+/// The same with the model from `build` (a coarse variant) instead of the exact one.
+fn evaluate_with(
+    space: &ParamSpace,
+    build: Option<BuildFn>,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
+    let model = match build {
+        Some(b) => b(club, ball)?,
+        None => space.model.build(club, ball)?,
+    };
     let equipment = Equipment { club: club.club.clone(), ball: *ball };
     Ok(predict_all(model.as_ref(), &equipment, shots))
 }
@@ -174,6 +233,7 @@ pub fn run(
     let display =
         |values: &[Real]| -> Vec<Real> { space.defs.iter().zip(values).map(|(d, v)| v * d.display_factor).collect() };
     let mut cv = None;
+    let mut cv_simulations = 0;
     let cv_started = std::time::Instant::now();
     if options.folds >= 2 {
         let k = options.folds;
@@ -184,11 +244,14 @@ pub fn run(
         let before = evaluate(space, club, ball, shots)?;
         let mut after = vec![None; shots.len()];
         let mut fold_values = Vec::new();
+        // The starting parameters and each fold's fitted ones on its held-out shots: one pass over all shots each.
+        cv_simulations = 2 * shots.len() as u64;
         for f in 0..k {
             let train: Vec<Shot> = shots.iter().zip(&fold).filter(|(_, &g)| g != f).map(|(s, _)| *s).collect();
             let label = format!("fold {}/{k}", f + 1);
             let fitted = fit_once(space, club, ball, &train, options, &mut |p| progress(&label, p))?;
             fold_values.push(display(&fitted.values));
+            cv_simulations += fitted.simulations;
             let fitted_club = space.club_with(club, &fitted.values);
             let held: Vec<usize> = (0..shots.len()).filter(|&i| fold[i] == f).collect();
             let held_shots: Vec<Shot> = held.iter().map(|&i| shots[i]).collect();
@@ -210,7 +273,12 @@ pub fn run(
     let started = std::time::Instant::now();
     let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
     let fit_seconds = started.elapsed().as_secs_f64();
+    let fitted_club = space.club_with(club, &fitted.values);
+    let sigma = fisher::residual_sigma(&evaluate(space, &fitted_club, ball, shots)?, shots);
+    let jacobian = fisher::jacobian(space, &fitted_club, ball, shots, &fitted.values)?;
+    let bounds = fisher::bounds(&fisher::information_of(&jacobian, &sigma));
     let scales = CostScales::of(shots);
+    let scatter = fisher::l1_scatter(&jacobian, &sigma, &scales.0);
     let cost_before = cost(&evaluate(space, club, ball, shots)?, shots, &scales);
     let start = display(&space.get(club));
     let fitted_display = display(&fitted.values);
@@ -225,6 +293,9 @@ pub fn run(
             fitted: fitted_display[i],
             lo: d.lo * d.display_factor,
             hi: d.hi * d.display_factor,
+            std_error: Some(bounds[i].joint * d.display_factor).filter(|v| v.is_finite()),
+            std_error_alone: Some(bounds[i].alone * d.display_factor).filter(|v| v.is_finite()),
+            scatter: Some(scatter[i] * d.display_factor).filter(|v| v.is_finite()),
         })
         .collect();
     let report = FitReport {
@@ -236,11 +307,13 @@ pub fn run(
         cost_before,
         cost: fitted.cost,
         evaluations: fitted.evaluations,
+        simulations: fitted.simulations,
+        cv_simulations,
         fit_seconds,
         cv_seconds,
         cv,
     };
-    Ok((report, space.club_with(club, &fitted.values)))
+    Ok((report, fitted_club))
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@
 //! - [`params`]: each model's identifiable parameters with bounds ([`params::ParamSet`]).
 //! - [`optimize`]: differential evolution (the global search) and Nelder-Mead (the local refinement).
 //! - [`fit`]: the seed's procedure (global, then local) and k-fold cross-validation.
+//! - [`fisher`]: the Fisher information of the shots and each parameter's Cramér-Rao bound.
 //! - [`synth`]: synthetic datasets with known parameters and launch-monitor noise.
 //! - [`pairing`]: live pairing of measured launches with the rig's predictions.
 //! - [`club_toml`]: the fitted parameters written as a club file.
@@ -26,6 +27,7 @@
 pub mod club_toml;
 pub mod cost;
 pub mod dataset;
+pub mod fisher;
 pub mod fit;
 pub mod optimize;
 pub mod pairing;

@@ -33,6 +33,10 @@ pub struct DeOptions {
     pub weight: (Real, Real),
     /// Stop when the population's costs span less than this (relative to the best).
     pub tolerance: Real,
+    /// Stop when the best cost has improved by less than `stall_tolerance` (relative) over this many
+    /// generations (0: never): the basin is found, and the local refinement does the rest more cheaply.
+    pub stall_generations: usize,
+    pub stall_tolerance: Real,
     pub seed: u64,
 }
 
@@ -45,6 +49,8 @@ impl DeOptions {
             crossover: 0.9,
             weight: (0.5, 0.9),
             tolerance: 1e-6,
+            stall_generations: 0,
+            stall_tolerance: 1e-3,
             seed,
         }
     }
@@ -85,6 +91,7 @@ pub fn differential_evolution(
     let mut costs: Vec<Real> = pop.iter().map(|x| f(x)).collect();
     let mut evaluations = np;
     let best_of = |costs: &[Real]| (0..costs.len()).fold(0, |b, i| if costs[i] < costs[b] { i } else { b });
+    let mut history = vec![costs[best_of(&costs)]];
     for generation in 0..options.generations {
         let best = best_of(&costs);
         let weight = rng.uniform(options.weight.0, options.weight.1);
@@ -131,6 +138,14 @@ pub fn differential_evolution(
         let worst = costs.iter().copied().fold(Real::NEG_INFINITY, Real::max);
         if worst - costs[best] <= options.tolerance * costs[best].abs().max(1e-12) {
             break;
+        }
+        history.push(costs[best]);
+        let k = options.stall_generations;
+        if k > 0 && history.len() > k {
+            let gain = history[history.len() - 1 - k] - costs[best];
+            if gain <= options.stall_tolerance * costs[best].abs().max(1e-12) {
+                break;
+            }
         }
     }
     let best = best_of(&costs);
@@ -257,6 +272,17 @@ mod tests {
         assert!((m.x[0] - 0.6).abs() < 1e-4 && (m.x[1] - 0.5).abs() < 1e-4, "{m:?}");
         assert!(m.cost < 1e-8);
         assert_eq!(run(3), m);
+    }
+
+    #[test]
+    fn a_stalled_search_stops_early() {
+        // A flat cost never improves: with a stall window of 5 generations the search stops after 5.
+        let mut f = |_: &[Real]| 1.0;
+        let mut options = DeOptions::for_dimension(2, 1);
+        options.tolerance = -1.0;
+        options.stall_generations = 5;
+        let m = differential_evolution(&mut f, 2, None, &options, &mut |_| {});
+        assert_eq!(m.evaluations, options.population * (1 + 5));
     }
 
     #[test]

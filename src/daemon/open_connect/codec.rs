@@ -153,9 +153,13 @@ impl ShotMessage {
         }
     }
 
-    /// Whether this is a heartbeat (flagged, or carrying no ball data).
+    /// Whether this is a heartbeat: flagged, or carrying no ball data. A message with a nonzero ball speed is a
+    /// shot even when `ContainsBallData` is left out, so a connector that omits the flag is answered (200, or
+    /// 501 with the reason) rather than silently ignored.
     pub fn is_heartbeat(&self) -> bool {
-        self.shot_data_options.is_heart_beat == Some(true) || !self.shot_data_options.contains_ball_data
+        let carries_ball = self.ball_data.as_ref().is_some_and(|b| b.speed_mph != 0.0);
+        self.shot_data_options.is_heart_beat == Some(true)
+            || !(self.shot_data_options.contains_ball_data || carries_ball)
     }
 
     /// A prediction as shot `shot_number`. Refuses a launch with a zero, negative or non-finite number where
@@ -293,6 +297,15 @@ mod tests {
                      "SpeedAtImpact": 0.0, "VerticalFaceImpact": 0.0, "HorizontalFaceImpact": 0.0, "ClosureRate": 0.0},
         "ShotDataOptions": {"ContainsBallData": true, "ContainsClubData": false, "LaunchMonitorIsReady": true,
                             "LaunchMonitorBallDetected": true, "IsHeartBeat": false}}"#;
+
+    #[test]
+    fn ball_data_without_the_flag_is_a_shot_and_zero_ball_data_is_a_heartbeat() {
+        let shot =
+            r#"{"DeviceID":"LM","ShotNumber":3,"APIversion":"1","BallData":{"Speed":140.0,"HLA":0.0,"VLA":12.0}}"#;
+        assert!(!serde_json::from_str::<ShotMessage>(shot).unwrap().is_heartbeat());
+        let idle = r#"{"DeviceID":"LM","ShotNumber":0,"BallData":{"Speed":0.0,"HLA":0.0,"VLA":0.0}}"#;
+        assert!(serde_json::from_str::<ShotMessage>(idle).unwrap().is_heartbeat());
+    }
 
     #[test]
     fn the_specification_example_reads_as_a_measured_launch() {

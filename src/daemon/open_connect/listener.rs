@@ -7,6 +7,8 @@
 //! a shot, impossible numbers, over 64 KiB, bytes outside any object) is answered with code 501 and the reason,
 //! counted, and the connection goes on, so one bad message never costs another shot. Every message both ways is
 //! recorded as `OpenConnectTraffic` on `lm/<rig>/open_connect`, each published shot on `lm/<rig>/launch`.
+//! Received bytes are acknowledged at once (`TCP_QUICKACK`), so a connector's shot split over several writes
+//! is not held back 40 ms by Nagle's algorithm waiting on a delayed ACK (`tests/live_comparison.rs`).
 
 use std::collections::HashMap;
 use std::net::SocketAddr;
@@ -125,6 +127,17 @@ impl Drop for LaunchMonitorListener {
     }
 }
 
+/// Acknowledges received bytes at once rather than after the kernel's delayed-ACK timer (40 ms on Linux).
+/// A connector that writes a shot in pieces without `TCP_NODELAY` has each later piece held back by Nagle's
+/// algorithm until the previous one is acknowledged, so a delayed ACK would add 40 ms to the shot's arrival.
+/// Linux drops out of quick-ACK mode by itself, so this is set again after every read.
+fn quick_ack(stream: &TcpStream) {
+    #[cfg(target_os = "linux")]
+    let _ = socket2::SockRef::from(stream).set_tcp_quickack(true);
+    #[cfg(not(target_os = "linux"))]
+    let _ = stream;
+}
+
 impl Shared {
     fn update(&self, f: impl FnOnce(&mut LaunchMonitorStatus)) {
         if let Ok(mut s) = self.status.lock() {
@@ -161,6 +174,7 @@ impl Shared {
         let _ = stream.set_nodelay(true);
         self.update(|s| s.connections += 1);
         tracing::info!("rig {}: Open Connect client {peer} connected", self.rig);
+        quick_ack(&stream);
         let (mut rd, mut wr) = stream.into_split();
         let mut splitter = Splitter::new(MAX_MESSAGE_BYTES);
         let mut buf = vec![0u8; 8192];
@@ -170,6 +184,7 @@ impl Shared {
                 Ok(0) | Err(_) => break,
                 Ok(n) => n,
             };
+            quick_ack(rd.as_ref());
             splitter.push(&buf[..n], &mut |f| frames.push(f));
             for frame in std::mem::take(&mut frames) {
                 let Some(reply) = self.on_frame(frame, &peer).await else { continue };
