@@ -99,8 +99,9 @@ fn gross_slip_line_matches_chung_ooi() {
 
 /// The reversal against the FEM series with ν = 0.3: from x = 1.9 on the model is within 0.07 of every FEM
 /// point (measured worst 0.059 at x = 4.76 in the reversal, 0.066 at the FEM's last point on the line), its
-/// deepest point within 0.05 of the FEM's -1.72 near x = 4-4.8; below x = 1.9 (towards full stick) the FEM is flat at about -0.03 and the model
-/// slightly positive, worst 0.148 at x = 1.19. The mean absolute error over all 16 points is 0.052.
+/// deepest point within 0.05 of the FEM's -1.72 near x = 4-4.8; below x = 1.9 (towards full stick) the FEM
+/// is flat at about -0.03 and the model slightly positive, worst 0.148 at x = 1.19. The mean absolute error
+/// over all 16 points is 0.052.
 #[test]
 fn reversal_matches_chung_ooi_fem() {
     let mut sum = 0.0;
