@@ -60,7 +60,7 @@ fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: R
 fn variants() -> Vec<(&'static str, Option<TwoLayerParams>, Real)> {
     let mut out = vec![("table_3_5", None, 0.012)];
     match load_club("clubs/iron7-one-cycle.toml") {
-        Ok(c) => match TwoLayerParams::from_sections(&c.sections, &BallSpec::SEED) {
+        Ok(c) => match TwoLayerParams::from_sections(&c.sections, &c.club, &BallSpec::SEED) {
             Ok(p) => out.push(("one_cycle", p, 0.012)),
             Err(e) => eprintln!("clubs/iron7-one-cycle.toml: {e}"),
         },

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the numeric tables of docs/estimation.md and docs/performance.md from the commands' JSON output:
+# Regenerates the numeric tables and figures of docs/ from the commands' JSON output:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
 #   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
@@ -8,8 +8,9 @@
 #   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
 #   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
+#   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
-# Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000, about 1.5 minutes in all on 2 cores)
+# Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000; about 30 minutes in all on 2 cores, most of it docs-identify.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

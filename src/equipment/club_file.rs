@@ -178,8 +178,9 @@ impl ClubFile {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
         let lie_deg = finite("lie_deg", self.lie_deg.unwrap_or(ClubSpec::default_lie_deg(shape)))?;
-        if !(30.0..=80.0).contains(&lie_deg) {
-            return Err(invalid("lie_deg", format!("must be within 30-80 deg, got {lie_deg}")));
+        if !(lie_deg > 30.0 && lie_deg < 80.0) {
+            // The same open range as the ground model's sole (`SoleSpec::validate`), which takes this lie.
+            return Err(invalid("lie_deg", format!("must lie in (30, 80) deg, got {lie_deg}")));
         }
         let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {

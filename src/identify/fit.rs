@@ -293,9 +293,10 @@ pub fn run(
             fitted: fitted_display[i],
             lo: d.lo * d.display_factor,
             hi: d.hi * d.display_factor,
-            std_error: Some(bounds[i].joint * d.display_factor).filter(|v| v.is_finite()),
-            std_error_alone: Some(bounds[i].alone * d.display_factor).filter(|v| v.is_finite()),
-            scatter: Some(scatter[i] * d.display_factor).filter(|v| v.is_finite()),
+            // No bound when the model predicted none of the shots near the fitted values (empty information).
+            std_error: bounds.get(i).map(|b| b.joint * d.display_factor).filter(|v| v.is_finite()),
+            std_error_alone: bounds.get(i).map(|b| b.alone * d.display_factor).filter(|v| v.is_finite()),
+            scatter: scatter.get(i).map(|v| v * d.display_factor).filter(|v| v.is_finite()),
         })
         .collect();
     let report = FitReport {

@@ -97,8 +97,9 @@ pub struct ClubData {
 /// What the message carries and the launch monitor's readiness.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct ShotDataOptions {
-    #[serde(rename = "ContainsBallData", default)]
-    pub contains_ball_data: bool,
+    /// Left out by some connectors: then a nonzero ball speed makes the message a shot ([`ShotMessage::is_heartbeat`]).
+    #[serde(rename = "ContainsBallData", default, skip_serializing_if = "Option::is_none")]
+    pub contains_ball_data: Option<bool>,
     #[serde(rename = "ContainsClubData", default)]
     pub contains_club_data: bool,
     #[serde(rename = "LaunchMonitorIsReady", default, skip_serializing_if = "Option::is_none")]
@@ -144,7 +145,7 @@ impl ShotMessage {
             ball_data: None,
             club_data: None,
             shot_data_options: ShotDataOptions {
-                contains_ball_data: false,
+                contains_ball_data: Some(false),
                 contains_club_data: false,
                 launch_monitor_is_ready: Some(ready),
                 launch_monitor_ball_detected: Some(ready),
@@ -154,12 +155,12 @@ impl ShotMessage {
     }
 
     /// Whether this is a heartbeat: flagged, or carrying no ball data. A message with a nonzero ball speed is a
-    /// shot even when `ContainsBallData` is left out, so a connector that omits the flag is answered (200, or
-    /// 501 with the reason) rather than silently ignored.
+    /// shot when `ContainsBallData` is left out, so a connector that omits the flag is answered (200, or 501 with
+    /// the reason) rather than silently ignored; an explicit `ContainsBallData: false` is never a shot.
     pub fn is_heartbeat(&self) -> bool {
         let carries_ball = self.ball_data.as_ref().is_some_and(|b| b.speed_mph != 0.0);
         self.shot_data_options.is_heart_beat == Some(true)
-            || !(self.shot_data_options.contains_ball_data || carries_ball)
+            || !self.shot_data_options.contains_ball_data.unwrap_or(carries_ball)
     }
 
     /// A prediction as shot `shot_number`. Refuses a launch with a zero, negative or non-finite number where
@@ -208,7 +209,7 @@ impl ShotMessage {
                 closure_rate: finite(d.closure_rate_degps),
             }),
             shot_data_options: ShotDataOptions {
-                contains_ball_data: true,
+                contains_ball_data: Some(true),
                 contains_club_data: true,
                 launch_monitor_is_ready: Some(true),
                 launch_monitor_ball_detected: Some(true),
@@ -305,6 +306,9 @@ mod tests {
         assert!(!serde_json::from_str::<ShotMessage>(shot).unwrap().is_heartbeat());
         let idle = r#"{"DeviceID":"LM","ShotNumber":0,"BallData":{"Speed":0.0,"HLA":0.0,"VLA":0.0}}"#;
         assert!(serde_json::from_str::<ShotMessage>(idle).unwrap().is_heartbeat());
+        // An explicit "no ball data" wins over stale ball data (a club-only message).
+        let club_only = r#"{"DeviceID":"LM","ShotNumber":4,"BallData":{"Speed":140.0,"HLA":0.0,"VLA":12.0},"ShotDataOptions":{"ContainsBallData":false,"ContainsClubData":true}}"#;
+        assert!(serde_json::from_str::<ShotMessage>(club_only).unwrap().is_heartbeat());
     }
 
     #[test]

@@ -248,7 +248,6 @@ pub(super) fn run(
 
     let energy_before = setup.energy(&s, law);
     let momentum_before = setup.momentum(&s);
-    let max_steps = (model.max_contact_s / model.step_s).ceil() as usize;
     // Time since first contact (s); steps near a switch the law flags are split in `REFINE`.
     let mut t_s = 0.0;
     let (mut trace, mut peak, mut ft_max, mut ft_min) = (Vec::new(), 0.0f64, 0.0f64, 0.0f64);
@@ -292,7 +291,7 @@ pub(super) fn run(
             }
             break;
         }
-        if steps >= max_steps * REFINE {
+        if t_s >= model.max_contact_s {
             return Err(HertzModel::not_converged(format!(
                 "still in contact after {:.2} ms",
                 model.max_contact_s * 1e3
@@ -313,7 +312,8 @@ pub(super) fn run(
         let mut next = step(h);
         // Separation inside the step: shorten it to end where the overlap closes (secant on the overlap), so
         // the forces that jump there (Arakawa's ẋ term) stop at the right instant.
-        if let (Some((c0, _)), None) = (&c1, setup.contact(&next, &s0)) {
+        let c_next = setup.contact(&next, &s0);
+        if let (Some((c0, _)), None) = (&c1, &c_next) {
             let gap = |st: &State| signed_overlap(&setup, st);
             let (mut lo, mut x_lo, mut hi, mut x_hi) = (0.0, c0.kin.x_m, h, gap(&next));
             let mut t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
@@ -337,7 +337,7 @@ pub(super) fn run(
             break;
         }
         s = next;
-        committed = Some(match setup.contact(&s, &s0) {
+        committed = Some(match c_next {
             Some(c) => {
                 let f_t = law.commit(&c.kin);
                 Some((c, f_t))
