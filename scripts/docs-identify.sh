@@ -244,18 +244,8 @@ def valley_line():
             f"it)."]
 
 
-def replace(path, regions):
-    with open(path) as f:
-        text = f.read()
-    for name, lines in regions.items():
-        pattern = re.compile(r"(<!-- generated: " + re.escape(name) + r" -->\n).*?(<!-- end -->)", re.S)
-        if not pattern.search(text):
-            sys.exit(f"{path}: no region '{name}'")
-        body = "\n".join(lines) + "\n"
-        text = pattern.sub(lambda m: m.group(1) + body + m.group(2), text, count=1)
-    with open(path, "w") as f:
-        f.write(text)
-    print(f"{path}: {', '.join(regions)}", file=sys.stderr)
+sys.path.insert(0, "scripts")
+from docs_regions import replace  # noqa: E402
 
 
 replace("docs/identify.md", {

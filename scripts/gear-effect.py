@@ -7,6 +7,7 @@ so the rows say which ball they use whichever the presets default to).
 
 Usage: scripts/gear-effect.py [path/to/impactd]   (default target/release/impactd; run from the repository)
 """
+from docs_regions import replace
 import json
 import os
 import re
@@ -98,20 +99,7 @@ def iron_table():
     return "\n".join(rows)
 
 
-def replace(regions):
-    with open(DOC) as f:
-        text = f.read()
-    for name, body in regions.items():
-        pattern = re.compile(rf"(<!-- generated: {name} -->\n).*?(<!-- end -->)", re.S)
-        if not pattern.search(text):
-            sys.exit(f"{DOC}: no region {name}")
-        text = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
-    with open(DOC, "w") as f:
-        f.write(text)
-    print(f"{DOC}: {', '.join(regions)}", file=sys.stderr)
-
-
 try:
-    replace({"gear-driver": driver_table(), "gear-iron": iron_table()})
+    replace(DOC, {"gear-driver": driver_table(), "gear-iron": iron_table()})
 finally:
     shutil.rmtree(TMP, ignore_errors=True)
