@@ -133,9 +133,32 @@ impl ZenohArgs {
     }
 }
 
-/// A free TCP port on 127.0.0.1 (for in-process loopback sessions).
+/// A free TCP port on 127.0.0.1 (for in-process loopback sessions), below Linux's ephemeral range (32768-60999).
+///
+/// The port is free when checked but only bound later by zenoh; a port from the ephemeral range (what binding to
+/// port 0 gives) can be taken in between by any outgoing connection on the machine. Ports below that range are
+/// only taken by listeners: each process walks them from its own offset (its id), never handing out one twice.
 pub fn free_loopback_port() -> Result<u16, DaemonError> {
-    let l = std::net::TcpListener::bind("127.0.0.1:0")
-        .map_err(|e| DaemonError::Io { what: "finding a free port".into(), source: e })?;
-    l.local_addr().map(|a| a.port()).map_err(|e| DaemonError::Io { what: "finding a free port".into(), source: e })
+    use std::sync::atomic::{AtomicU32, Ordering};
+    const FIRST: u32 = 20_000;
+    const COUNT: u32 = 12_000;
+    static NEXT: AtomicU32 = AtomicU32::new(u32::MAX);
+    let _ = NEXT.compare_exchange(
+        u32::MAX,
+        std::process::id().wrapping_mul(7919) % COUNT,
+        Ordering::Relaxed,
+        Ordering::Relaxed,
+    );
+    let mut last = None;
+    for _ in 0..COUNT {
+        let port = (FIRST + NEXT.fetch_add(1, Ordering::Relaxed) % COUNT) as u16;
+        match std::net::TcpListener::bind(("127.0.0.1", port)) {
+            Ok(_) => return Ok(port),
+            Err(e) => last = Some(e),
+        }
+    }
+    Err(DaemonError::Io {
+        what: "finding a free port".into(),
+        source: last.unwrap_or_else(|| std::io::Error::other("no free port")),
+    })
 }

@@ -142,21 +142,7 @@ impl Heatmap {
         let sy = |y: f64| top + ph - (y - y0) * k;
         let scale = self.scale();
         let stops = self.stops();
-        let mut out = String::new();
-        let _ = write!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12"><rect width="100%" height="100%" fill="white"/>"#
-        );
-        for (i, line) in title_lines.iter().enumerate() {
-            let _ = write!(
-                out,
-                r#"<text x="{}" y="{}" font-size="{}" text-anchor="middle">{}</text>"#,
-                width / 2.0,
-                22.0 + 18.0 * i as f64,
-                if i == 0 { 15 } else { 13 },
-                escape(line)
-            );
-        }
+        let mut out = super::svg_open(width, height, &title_lines);
         if let Some(note) = &self.note {
             let _ = write!(
                 out,

@@ -121,22 +121,7 @@ impl LineChart {
         let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
         let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
         let sy2 = |y: f64| mt + ph - (y - y20) / (y21 - y20) * ph;
-        let mut out = String::new();
-        let _ = write!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">"#
-        );
-        let _ = write!(out, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        for (i, line) in title_lines.iter().enumerate() {
-            let _ = write!(
-                out,
-                r#"<text x="{}" y="{}" font-size="{}" text-anchor="middle">{}</text>"#,
-                width / 2.0,
-                22.0 + 18.0 * i as f64,
-                if i == 0 { 15 } else { 13 },
-                escape(line)
-            );
-        }
+        let mut out = super::svg_open(width, height, &title_lines);
         if let Some(note) = extras.note {
             let _ = write!(
                 out,

@@ -53,6 +53,26 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
+/// An SVG document's opening: a white background and the title's lines centred at the top, the first larger.
+fn svg_open(width: f64, height: f64, title_lines: &[&str]) -> String {
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12"><rect width="100%" height="100%" fill="white"/>"#
+    );
+    for (i, line) in title_lines.iter().enumerate() {
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="middle">{}</text>"#,
+            width / 2.0,
+            22.0 + 18.0 * i as f64,
+            if i == 0 { 15 } else { 13 },
+            escape(line)
+        );
+    }
+    out
+}
+
 /// The x label under the plot area and the y label beside it; `area` is (left, top, width, height).
 fn axis_labels(out: &mut String, (ml, mt, pw, ph): (f64, f64, f64, f64), height: f64, x: &str, y: &str) {
     let _ = write!(
