@@ -19,6 +19,7 @@ use std::sync::Arc;
 
 use super::IdentifyError;
 use crate::equipment::{BallSpec, ClubSpec, LoadedClub};
+use crate::impact::continuous::law::{arakawa::ArakawaParams, maw::MawParams};
 use crate::impact::continuous::{ContinuousModel, TwoLayerParams, TwoLayerReading};
 use crate::impact::impulse::ImpulseTuning;
 use crate::impact::registry::{self, BuildOptions};
@@ -115,6 +116,24 @@ fn continuous_coarse(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn Impac
     Ok(Arc::new(ContinuousModel { params, step_s: COARSE_STEP_FACTOR * exact.step_s, ..exact }))
 }
 
+/// Maw's and Arakawa's global search: the exact model on the subsample of a model resolved in time (their steps
+/// cannot be coarsened: the stick/slip switches of the rings make the step error first order, docs/models.md).
+fn maw_global(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    registry::build_one("maw", club, &BuildOptions { ball: *ball, ..Default::default() })
+}
+
+fn arakawa_global(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    registry::build_one("arakawa", club, &BuildOptions { ball: *ball, ..Default::default() })
+}
+
+fn maw_defaults(club: &ClubSpec) -> toml::Table {
+    toml::Table::try_from(if club.is_wood() { MawParams::DRIVER } else { MawParams::IRON7 }).unwrap_or_default()
+}
+
+fn arakawa_defaults(club: &ClubSpec) -> toml::Table {
+    toml::Table::try_from(if club.is_wood() { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 }).unwrap_or_default()
+}
+
 const fn p(name: &'static str, key: &'static str, index: Option<usize>, unit: &'static str, f: Real) -> ParamDef {
     ParamDef { name, key, index, unit, display_factor: f, lo: 0.0, hi: 1.0, log: false }
 }
@@ -181,6 +200,30 @@ pub const FIT_MODELS: &[FitModel] = &[
             bounded(p("c_ball", "c_ball_nms_per_rad", None, "mN m s/rad", 1e3), 1e-4, 0.3, true),
             bounded(p("t_cover", "cover_thickness_m", None, "mm", 1e3), 0.5e-3, 5e-3, false),
             bounded(p("v_tr", "v_tr_mps", None, "m/s", 1.0), 0.05, 3.0, true),
+        ],
+    },
+    FitModel {
+        name: "maw",
+        section: "maw",
+        defaults: maw_defaults,
+        coarse: Some(maw_global),
+        params: &[
+            bounded(p("e", "e_pa", None, "MPa", 1e-6), 20e6, 2e9, true),
+            bounded(p("nu", "nu", None, "", 1.0), 0.2, 0.49, false),
+            bounded(p("d", "d_s_per_m", None, "ms/m", 1e3), 0.0, 0.03, false),
+            bounded(p("mu", "mu", None, "", 1.0), 0.05, 1.5, false),
+        ],
+    },
+    FitModel {
+        name: "arakawa",
+        section: "arakawa",
+        defaults: arakawa_defaults,
+        coarse: Some(arakawa_global),
+        params: &[
+            bounded(p("e", "e_pa", None, "MPa", 1e-6), 20e6, 2e9, true),
+            bounded(p("d", "d_s_per_m", None, "ms/m", 1e3), 0.0, 0.03, false),
+            bounded(p("mu", "mu", None, "", 1.0), 0.01, 1.0, true),
+            bounded(p("eta", "eta_n_s_per_m2", None, "N s/m^2", 1.0), 1e3, 1e7, true),
         ],
     },
 ];
