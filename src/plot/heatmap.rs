@@ -142,16 +142,7 @@ impl Heatmap {
         let sy = |y: f64| top + ph - (y - y0) * k;
         let scale = self.scale();
         let stops = self.stops();
-        let mut out = super::svg_open(width, height, &title_lines);
-        if let Some(note) = &self.note {
-            let _ = write!(
-                out,
-                r##"<text x="{}" y="{}" font-size="11" fill="#555" text-anchor="middle">{}</text>"##,
-                width / 2.0,
-                22.0 + 18.0 * title_lines.len() as f64,
-                escape(note)
-            );
-        }
+        let mut out = super::svg_open(width, height, &title_lines, self.note.as_deref());
         let outline: Vec<String> = self.outline.iter().map(|p| format!("{:.1},{:.1}", sx(p[0]), sy(p[1]))).collect();
         if !outline.is_empty() {
             let _ = write!(

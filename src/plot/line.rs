@@ -121,16 +121,7 @@ impl LineChart {
         let sx = |x: f64| ml + (x - x0) / (x1 - x0) * pw;
         let sy = |y: f64| mt + ph - (y - y0) / (y1 - y0) * ph;
         let sy2 = |y: f64| mt + ph - (y - y20) / (y21 - y20) * ph;
-        let mut out = super::svg_open(width, height, &title_lines);
-        if let Some(note) = extras.note {
-            let _ = write!(
-                out,
-                r##"<text x="{}" y="{}" font-size="11" fill="#555" text-anchor="middle">{}</text>"##,
-                width / 2.0,
-                22.0 + 18.0 * title_lines.len() as f64,
-                escape(note)
-            );
-        }
+        let mut out = super::svg_open(width, height, &title_lines, extras.note);
         // Grid and ticks.
         let xs = nice_step(x1 - x0, 8.0);
         let mut x = (x0 / xs).ceil() * xs;

@@ -53,8 +53,9 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
-/// An SVG document's opening: a white background and the title's lines centred at the top, the first larger.
-fn svg_open(width: f64, height: f64, title_lines: &[&str]) -> String {
+/// An SVG document's opening: a white background, the title's lines centred at the top (the first larger) and an
+/// optional note under them in grey.
+fn svg_open(width: f64, height: f64, title_lines: &[&str], note: Option<&str>) -> String {
     let mut out = String::new();
     let _ = write!(
         out,
@@ -68,6 +69,15 @@ fn svg_open(width: f64, height: f64, title_lines: &[&str]) -> String {
             22.0 + 18.0 * i as f64,
             if i == 0 { 15 } else { 13 },
             escape(line)
+        );
+    }
+    if let Some(note) = note {
+        let _ = write!(
+            out,
+            r##"<text x="{}" y="{}" font-size="11" fill="#555" text-anchor="middle">{}</text>"##,
+            width / 2.0,
+            22.0 + 18.0 * title_lines.len() as f64,
+            escape(note)
         );
     }
     out
