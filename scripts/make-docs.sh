@@ -7,6 +7,7 @@
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
 #   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
 #   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
+#   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
@@ -32,10 +33,11 @@ for club in driver iron7; do
 done
 echo "bench" >&2
 "$BIN" bench --json >"$OUT/bench.json"
-echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md" >&2
+echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md, docs/ground-parts.md" >&2
 cargo run --release --quiet --example ground_face >"$OUT/ground-face.jsonl"
 python3 scripts/ground-table.py docs/ground.md docs/ground-findings.md <"$OUT/ground-face.jsonl"
 python3 scripts/ground-sensitivity.py "$BIN" >docs/ground-sensitivity.md
+cargo run --release --quiet --example ground_parts | python3 scripts/ground-parts.py docs/ground-parts.md
 
 python3 - "$OUT" "$SHOTS" <<'PY'
 import datetime, json, os, platform, re, sys

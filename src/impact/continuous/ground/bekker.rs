@@ -206,6 +206,8 @@ pub struct SoilGround {
     pub strips: GaussRule,
     pub along_arc: GaussRule,
     pub along_edge: GaussRule,
+    /// World-frame multipliers of every force component (ones: the seed's model); see [`super::sole_forces`].
+    pub force_mask: Vector3,
 }
 
 impl SoilGround {
@@ -224,6 +226,7 @@ impl SoilGround {
             strips: GaussRule::new(3),
             along_arc: GaussRule::new(5),
             along_edge: GaussRule::new(3),
+            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -235,8 +238,16 @@ impl SoilGround {
     /// Every ground force on the head at pose `world_from_club`, CG velocity `v_cg` and angular velocity `w`.
     pub fn forces(&self, world_from_club: &Isometry3, v_cg: &Vector3, w: &Vector3) -> GroundForces {
         let placed = self.placed(world_from_club);
-        let sole =
-            sole_forces(&placed, &self.soil, v_cg, w, self.slip_regularisation_mps, &self.strips, &self.along_arc);
+        let sole = sole_forces(
+            &placed,
+            &self.soil,
+            v_cg,
+            w,
+            self.slip_regularisation_mps,
+            &self.strips,
+            &self.along_arc,
+            &self.force_mask,
+        );
         if sole.max_sinkage_m <= 0.0 {
             return GroundForces { sole, face: FacePressure::default(), phase: GroundPhase::Clear };
         }
@@ -250,6 +261,7 @@ impl SoilGround {
             w,
             self.slip_regularisation_mps,
             &self.along_edge,
+            &self.force_mask,
         );
         let phase = if face.leading_edge_depth_m > 0.0 { GroundPhase::Divot } else { GroundPhase::Compression };
         GroundForces { sole, face, phase }

@@ -38,6 +38,7 @@ pub fn face_forces(
     w: &Vector3,
     v_reg_mps: Real,
     rule: &GaussRule,
+    mask: &Vector3,
 ) -> FacePressure {
     let half = arc.half_length_m;
     let (h_heel, h_toe) = (arc.leading_edge_depth_m(-half), arc.leading_edge_depth_m(half));
@@ -81,7 +82,7 @@ pub fn face_forces(
         if speed <= 0.0 {
             continue;
         }
-        let f = -(k * h * h * rule.w[i] * (hi - lo) * (speed / v_reg_mps).tanh()) * n_h;
+        let f = -(k * h * h * rule.w[i] * (hi - lo) * (speed / v_reg_mps).tanh()) * n_h.component_mul(mask);
         out.force_n += f;
         out.torque_nm += r.cross(&f);
     }

@@ -41,7 +41,10 @@ pub struct SoleContact {
 }
 
 /// The sole's forces. `arc` is the sole placed in the world, `v_cg` and `w` the head's velocity and angular
-/// velocity, `v_reg` the shear's smoothing speed; `strips` the Gauss rule heel to toe, `along` along the arc.
+/// velocity, `v_reg` the shear's smoothing speed; `strips` the Gauss rule heel to toe, `along` along the arc;
+/// `mask` multiplies each point's force component by component in the world frame (ones: the seed's model;
+/// `(0, 1, 0)` keeps only the vertical part, which separates what each part does: docs/ground-findings.md).
+#[allow(clippy::too_many_arguments)]
 pub fn sole_forces(
     arc: &SoleArcWorld,
     soil: &SoilSpec,
@@ -50,6 +53,7 @@ pub fn sole_forces(
     v_reg_mps: Real,
     strips: &GaussRule,
     along: &GaussRule,
+    mask: &Vector3,
 ) -> SoleContact {
     let max_sinkage_m = arc.max_sinkage_m();
     let mut out = SoleContact { max_sinkage_m, ..SoleContact::default() };
@@ -104,11 +108,11 @@ pub fn sole_forces(
             let v = v_cg + w.cross(&r);
             let slip = v - v.dot(&normal) * normal;
             let slip_speed = slip.norm();
-            let f_p = sigma * area * normal;
+            let f_p = (sigma * area * normal).component_mul(mask);
             let f_s = if slip_speed > 1e-12 {
                 let x = slip_speed / v_reg_mps;
                 let smooth = if x > 20.0 { 1.0 } else { x.tanh() }; // tanh(20) = 1 - 8e-18
-                -(tan_phi * sigma * area * smooth / slip_speed) * slip
+                -(tan_phi * sigma * area * smooth / slip_speed) * slip.component_mul(mask)
             } else {
                 Vector3::zeros()
             };

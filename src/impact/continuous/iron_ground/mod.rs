@@ -46,6 +46,10 @@ pub struct GroundModel {
     pub follow_s: Real,
     /// `false`: the same club on a teed ball, no ground.
     pub with_ground: bool,
+    /// World-frame multipliers of the ground's force components, ones by default (the seed's model);
+    /// `(0, 1, 0)` keeps the vertical part alone, `(1, 0, 1)` the horizontal: what each part does to the strike
+    /// (docs/ground-findings.md).
+    pub force_mask: Vector3,
 }
 
 impl GroundModel {
@@ -65,6 +69,7 @@ impl GroundModel {
             ground_step_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
+            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -148,6 +153,8 @@ pub struct GroundResult {
     pub club_momentum_start: Vector3,
     pub club_momentum_end: Vector3,
     pub ball_impulse_ns: Vector3,
+    /// The ground's impulse on the club before the ball's first contact (N s, world).
+    pub ground_impulse_before_ball_ns: Vector3,
     pub ground_impulse_ns: Vector3,
     pub grip_impulse_ns: Vector3,
     pub steps: usize,
@@ -217,11 +224,13 @@ impl PreparedGround {
     pub fn ground_for(&self, state: &ImpactState) -> Result<SoilGround, ImpactError> {
         let ball = &self.equipment.ball;
         let centre = placement::ball_centre_m(state, &self.equipment.club, ball)?;
-        Ok(SoilGround::new(
+        let mut ground = SoilGround::new(
             self.model.soil.clone(),
             self.model.sole,
             &self.equipment.club,
             placement::ground_y_m(&centre, ball),
-        ))
+        );
+        ground.force_mask = self.model.force_mask;
+        Ok(ground)
     }
 }

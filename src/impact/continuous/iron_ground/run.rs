@@ -118,6 +118,7 @@ pub(super) fn simulate(
             if !out.ball_touched {
                 out.ball_touched = true;
                 out.t_ball_s = s.t_s;
+                out.ground_impulse_before_ball = s.j_ground;
                 let fc = club.face.center_m;
                 let v_fc = |b: &BodyMotion| {
                     (b.velocity_mps + b.angular_velocity_radps.cross(&(b.world_from_club * fc))).norm()
@@ -193,6 +194,7 @@ pub(super) fn simulate(
         club_momentum_start: momentum_start,
         club_momentum_end: sys.club_momentum(&s),
         ball_impulse_ns: s.j_ball,
+        ground_impulse_before_ball_ns: out.ground_impulse_before_ball,
         ground_impulse_ns: s.j_ground,
         grip_impulse_ns: s.j_grip,
         steps,
@@ -215,4 +217,5 @@ struct Measures {
     speed_loss_mps: Real,
     face_change_deg: Real,
     loft_change_deg: Real,
+    ground_impulse_before_ball: Vector3,
 }
