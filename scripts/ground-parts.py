@@ -137,11 +137,10 @@ w("  seed's fade and an eighth of its offline.")
 top = max(vs)
 w("- **Backspin** falls with the soil's strength, the seed's way: at v = " + f"{top:+.0f} mm " + ", ".join(
     f"x{sc:g} {d(parts[(sc, 'whole', top)], 'backspin_rpm', top):+.0f} rpm" for sc in scales) +
-  " (the seed: up to about -700). Changing the sole and the hosel instead of the soil: [ground-sensitivity.md](ground-sensitivity.md). What the")
-w("  seed's fade would take is a force with no vertical moment about the shaft's line, a shaft that gives along its")
-w("  axis, or a horizontal force the equations do not have (the soil's inertia ahead of the face: ρ v² per unit")
-w("  area, about 3.7 MPa at 40 m/s, is not in eq. 4.10); [ground-findings.md](ground-findings.md) lists each")
-w("  finding against ours.")
+  " (the seed: up to about -700). Changing the sole, the lie and the hosel instead of the soil does not open the")
+w("  face either: [ground-sensitivity.md](ground-sensitivity.md). The seed's +1000 rpm would take a torque that")
+w("  opens the face without the vertical force's toe-up turn, which neither eq. 4.3-4.13 nor this club's")
+w("  geometry provide; [ground-findings.md](ground-findings.md) lists each finding against ours.")
 with open(OUT, "w") as f:
     f.write("\n".join(out).rstrip("\n") + "\n")
 print(OUT, file=sys.stderr)
