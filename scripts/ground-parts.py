@@ -32,6 +32,11 @@ bound = math.tan(math.radians(PHI_DEG + theta_le))
 bound_static = math.tan(math.radians(PHI_DEG + BOUNCE_DEG))
 
 
+def z(x):
+    """No negative zero in the tables."""
+    return 0.0 if abs(x) < 5e-4 else x
+
+
 def d(s, key, v):
     return s[key] - none[v][key]
 
@@ -56,7 +61,7 @@ for sc in scales:
         for v in vs:
             s = parts[(sc, part, v)]
             j = s["impulse_before_ball_ns"]
-            w(f"| firm x{sc:g} | {part} | {v:+.0f} | {j['back']:.3f} / {j['up']:.3f} | "
+            w(f"| firm x{sc:g} | {part} | {v:+.0f} | {z(j['back']):.3f} / {z(j['up']):.3f} | "
               f"{d(s, 'ball_speed_mph', v):+.2f} | {d(s, 'backspin_rpm', v):+.0f} | {d(s, 'sidespin_rpm', v):+.0f} | "
               f"{d(s, 'carry_yd', v):+.1f} | {d(s, 'offline_yd', v):+.1f} | {s['face_angle_change_deg']:+.2f} | "
               f"{s['dynamic_loft_change_deg']:+.2f} |")
