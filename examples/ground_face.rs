@@ -10,29 +10,14 @@
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::{load_club, BallSpec, ClubSpec};
 use impactd::flight::{Flight, LaunchState};
-use impactd::impact::continuous::iron_ground::{GroundModel, GroundResult, PreparedGround};
+use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, GroundResult, PreparedGround};
 use impactd::impact::continuous::TwoLayerParams;
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
-use impactd::math::{Real, Vector3};
+use impactd::impact::{Equipment, LaunchMetrics};
+use impactd::math::Real;
 use serde_json::json;
 
-/// The swing of tests/ground.rs: 90 mph, 4.3° down, 25° dynamic loft, 27 rad/s about a 60° plane's normal.
-fn swing(h_mm: Real, v_mm: Real) -> Delivery {
-    let plane = 60f64.to_radians();
-    Delivery {
-        club_speed_mps: 90.0 * 0.44704,
-        attack_angle_rad: (-4.3f64).to_radians(),
-        club_path_rad: 0.0,
-        face_angle_rad: 0.0,
-        dynamic_loft_rad: 25f64.to_radians(),
-        impact_h_m: h_mm * 1e-3,
-        impact_v_m: v_mm * 1e-3,
-        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
-    }
-}
-
 fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: Real) -> serde_json::Value {
-    let state = match swing(h_mm, v_mm).to_state(eq) {
+    let state = match reference_swing(h_mm, v_mm).to_state(eq) {
         Ok(s) => s,
         Err(e) => return json!({ "error": e.to_string() }),
     };

@@ -10,28 +10,13 @@
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::ClubSpec;
 use impactd::flight::{Flight, LaunchState};
-use impactd::impact::continuous::iron_ground::{GroundModel, PreparedGround};
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
+use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, PreparedGround};
+use impactd::impact::{Equipment, LaunchMetrics};
 use impactd::math::{Real, Vector3};
 use serde_json::json;
 
-/// The swing of examples/ground_face and tests/ground.rs.
-fn swing(v_mm: Real) -> Delivery {
-    let plane = 60f64.to_radians();
-    Delivery {
-        club_speed_mps: 90.0 * 0.44704,
-        attack_angle_rad: (-4.3f64).to_radians(),
-        club_path_rad: 0.0,
-        face_angle_rad: 0.0,
-        dynamic_loft_rad: 25f64.to_radians(),
-        impact_h_m: 0.0,
-        impact_v_m: v_mm * 1e-3,
-        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
-    }
-}
-
 fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, v_mm: Real) -> serde_json::Value {
-    let state = swing(v_mm).to_state(eq).unwrap();
+    let state = reference_swing(0.0, v_mm).to_state(eq).unwrap();
     let r = p.simulate(&state, 1).unwrap();
     let l = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     let t = flight
@@ -60,10 +45,7 @@ fn main() {
     let eq = Equipment::new(ClubSpec::iron7());
     let flight = Flight::default();
     let prepare = |scale: Real, mask: Option<Vector3>| {
-        let mut soil = SoilSpec::firm();
-        soil.k_c_n_per_m_n1 *= scale;
-        soil.k_phi_n_per_m_n2 *= scale;
-        let mut m = GroundModel::new(soil);
+        let mut m = GroundModel::new(SoilSpec::firm().with_moduli_scaled(scale));
         match mask {
             Some(mask) => m.force_mask = mask,
             None => m.with_ground = false,

@@ -155,26 +155,9 @@ fn soils_order_when_deep() {
 // ---------------------------------------------------------------------------------------------------------
 // The assembled model (seed section 4.3) on one swing over the face.
 
-use impactd::impact::continuous::iron_ground::{GroundModel, GroundResult, PreparedGround, Strike};
+use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, GroundResult, PreparedGround, Strike};
 use impactd::impact::continuous::shaft::ShaftMesh;
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
-
-/// The swing of every test: 90 mph at the face centre, 4.3° down, square path and face, 25° dynamic loft
-/// (TrackMan's 7-iron averages), the club turning at 27 rad/s (club speed over a 1.5 m swing radius) about the
-/// normal of a 60° swing plane, closing the face.
-fn swing(h_mm: Real, v_mm: Real) -> Delivery {
-    let plane = 60f64.to_radians();
-    Delivery {
-        club_speed_mps: 90.0 * 0.44704,
-        attack_angle_rad: (-4.3f64).to_radians(),
-        club_path_rad: 0.0,
-        face_angle_rad: 0.0,
-        dynamic_loft_rad: 25f64.to_radians(),
-        impact_h_m: h_mm * 1e-3,
-        impact_v_m: v_mm * 1e-3,
-        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
-    }
-}
+use impactd::impact::{Equipment, LaunchMetrics};
 
 fn prepared(soil: SoilSpec, with_ground: bool) -> (PreparedGround, Equipment) {
     let eq = Equipment::new(ClubSpec::iron7());
@@ -184,7 +167,7 @@ fn prepared(soil: SoilSpec, with_ground: bool) -> (PreparedGround, Equipment) {
 }
 
 fn run(p: &PreparedGround, eq: &Equipment, h_mm: Real, v_mm: Real) -> (GroundResult, LaunchMetrics) {
-    let r = p.simulate(&swing(h_mm, v_mm).to_state(eq).unwrap(), 0).unwrap();
+    let r = p.simulate(&reference_swing(h_mm, v_mm).to_state(eq).unwrap(), 0).unwrap();
     let l = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     (r, l)
 }
@@ -255,7 +238,7 @@ fn converges_under_step_halving_and_shaft_refinement() {
     fine.mesh = ShaftMesh { elements: 16, clamp_m: 0.0 };
     fine.max_mode_hz = 20_000.0;
     for v in [-10.0, 15.0] {
-        let st = swing(5.0, v).to_state(&eq).unwrap();
+        let st = reference_swing(5.0, v).to_state(&eq).unwrap();
         let m = |g: &GroundModel| {
             let r = g.prepare(&eq).unwrap().simulate(&st, 0).unwrap();
             (r.launch.ball_velocity_mps.norm(), r.launch.ball_spin_radps.norm())
@@ -294,14 +277,14 @@ fn peak_ground_force_by_soil() {
 #[test]
 fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
     let (p, eq) = prepared(SoilSpec::firm(), true);
-    let fat = p.simulate(&swing(0.0, 15.0).to_state(&eq).unwrap(), 1).unwrap();
+    let fat = p.simulate(&reference_swing(0.0, 15.0).to_state(&eq).unwrap(), 1).unwrap();
     let first_ball = fat.trace.iter().position(|t| t.ball_normal_n > 0.0).unwrap();
     let before = &fat.trace[..first_ball];
     assert!(before.iter().any(|t| t.ground_vertical_n > 10.0), "the sole pushes up before the ball");
     let peak = fat.trace.iter().max_by(|a, b| a.ground_vertical_n.total_cmp(&b.ground_vertical_n)).unwrap();
     assert!(peak.ground_vertical_n > peak.ground_horizontal_n);
     assert!(fat.trace.iter().any(|t| t.phase == impactd::impact::continuous::ground::GroundPhase::Divot));
-    let good = p.simulate(&swing(0.0, 0.0).to_state(&eq).unwrap(), 0).unwrap();
+    let good = p.simulate(&reference_swing(0.0, 0.0).to_state(&eq).unwrap(), 0).unwrap();
     println!("peak ground force: fat {:.0} N, good {:.0} N", fat.peak_ground_force_n, good.peak_ground_force_n);
     assert!(good.peak_ground_force_n < fat.peak_ground_force_n);
 }
@@ -310,7 +293,7 @@ fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
 #[test]
 fn ground_summary_has_the_wire_names() {
     let (p, eq) = prepared(SoilSpec::firm(), true);
-    let r = p.simulate(&swing(0.0, 15.0).to_state(&eq).unwrap(), 0).unwrap();
+    let r = p.simulate(&reference_swing(0.0, 15.0).to_state(&eq).unwrap(), 0).unwrap();
     let v = serde_json::to_value(r.summary()).unwrap();
     for key in [
         "strike",
@@ -336,7 +319,7 @@ fn registry_builds_the_ground_model() {
     let model = build_one("ground", &club, &BuildOptions::default()).unwrap();
     assert_eq!(model.name(), "ground");
     let (p, eq) = prepared(SoilSpec::firm(), true);
-    let st = swing(0.0, 15.0).to_state(&eq).unwrap();
+    let st = reference_swing(0.0, 15.0).to_state(&eq).unwrap();
     let via_registry = model.predict(&st, &eq).unwrap();
     let direct = p.predict(&st, &eq).unwrap();
     assert_eq!(via_registry.ball_velocity_mps, direct.ball_velocity_mps);

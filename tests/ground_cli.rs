@@ -7,9 +7,8 @@ use std::process::{Command, Output};
 
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::ClubSpec;
-use impactd::impact::continuous::iron_ground::{GroundModel, Strike};
-use impactd::impact::{Delivery, Equipment};
-use impactd::math::Vector3;
+use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, Strike};
+use impactd::impact::Equipment;
 
 fn impactd(args: &[&str], stdin: &str) -> Output {
     use std::io::Write;
@@ -97,17 +96,7 @@ fn predict_adds_the_ground_object_for_fat_and_thin_strikes() {
 #[test]
 fn the_same_fat_strike_on_three_soils() {
     let eq = Equipment::new(ClubSpec::iron7());
-    let plane = 60f64.to_radians();
-    let delivery = Delivery {
-        club_speed_mps: 90.0 * 0.44704,
-        attack_angle_rad: (-4.3f64).to_radians(),
-        club_path_rad: 0.0,
-        face_angle_rad: 0.0,
-        dynamic_loft_rad: 25f64.to_radians(),
-        impact_h_m: 0.0,
-        impact_v_m: 0.015,
-        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
-    };
+    let delivery = reference_swing(0.0, 15.0);
     let state = delivery.to_state(&eq).unwrap();
     let runs: Vec<_> = [SoilSpec::soft(), SoilSpec::medium(), SoilSpec::firm()]
         .into_iter()

@@ -5,31 +5,13 @@
 
 use impactd::equipment::soil::SoilSpec;
 use impactd::equipment::ClubSpec;
-use impactd::impact::continuous::iron_ground::{GroundModel, GroundResult, PreparedGround};
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
+use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, GroundResult, PreparedGround};
+use impactd::impact::{Equipment, LaunchMetrics};
 use impactd::math::{Real, Vector3};
-
-/// The swing of tests/ground.rs, struck `v_mm` up the face.
-fn swing(v_mm: Real) -> Delivery {
-    let plane = 60f64.to_radians();
-    Delivery {
-        club_speed_mps: 90.0 * 0.44704,
-        attack_angle_rad: (-4.3f64).to_radians(),
-        club_path_rad: 0.0,
-        face_angle_rad: 0.0,
-        dynamic_loft_rad: 25f64.to_radians(),
-        impact_h_m: 0.0,
-        impact_v_m: v_mm * 1e-3,
-        club_angular_velocity_radps: 27.0 * Vector3::new(0.0, plane.cos(), plane.sin()),
-    }
-}
 
 /// Firm soil (Table 4.3) with both moduli scaled; `mask` the force components kept, `None` for no ground.
 fn prepared(eq: &Equipment, scale: Real, mask: Option<Vector3>) -> PreparedGround {
-    let mut soil = SoilSpec::firm();
-    soil.k_c_n_per_m_n1 *= scale;
-    soil.k_phi_n_per_m_n2 *= scale;
-    let mut m = GroundModel::new(soil);
+    let mut m = GroundModel::new(SoilSpec::firm().with_moduli_scaled(scale));
     match mask {
         Some(mask) => m.force_mask = mask,
         None => m.with_ground = false,
@@ -38,7 +20,7 @@ fn prepared(eq: &Equipment, scale: Real, mask: Option<Vector3>) -> PreparedGroun
 }
 
 fn run(p: &PreparedGround, eq: &Equipment, v_mm: Real, trace_every: usize) -> (GroundResult, LaunchMetrics) {
-    let r = p.simulate(&swing(v_mm).to_state(eq).unwrap(), trace_every).unwrap();
+    let r = p.simulate(&reference_swing(0.0, v_mm).to_state(eq).unwrap(), trace_every).unwrap();
     let l = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     (r, l)
 }

@@ -76,6 +76,14 @@ impl SoilSpec {
         Self::preset_of("firm", 2300.0, 1.20, 48.4, 15000.0)
     }
 
+    /// This soil pressing `factor` times as hard at every sinkage (both moduli of eq. 4.3 scaled): how the
+    /// ground model's response to the soil's strength is measured (docs/ground-parts.md).
+    pub fn with_moduli_scaled(mut self, factor: Real) -> Self {
+        self.k_c_n_per_m_n1 *= factor;
+        self.k_phi_n_per_m_n2 *= factor;
+        self
+    }
+
     /// Names of the presets.
     pub const PRESETS: [&'static str; 3] = ["soft", "medium", "firm"];
 

@@ -12,6 +12,7 @@
 
 pub mod dynamics;
 pub mod placement;
+mod reference_swing;
 mod run;
 pub mod sections;
 
@@ -26,6 +27,7 @@ use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
 use crate::math::{Real, Vector3};
 
 pub use placement::Strike;
+pub use reference_swing::reference_swing;
 
 /// The model's settings.
 #[derive(Debug, Clone, PartialEq)]
