@@ -5,6 +5,8 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
+mod common;
+
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
@@ -172,7 +174,7 @@ for t, n in sorted(counts.items()):
     print(t, n)
 print("metadata", ",".join(names))
 "#;
-    let out = std::process::Command::new("python3").arg("-c").arg(script).arg(&recording).output().expect("python3");
+    let out = common::python().arg("-c").arg(script).arg(&recording).output().expect("python3");
     assert!(out.status.success(), "python mcap reader: {}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout).to_string();
     let count = |topic: &str| {

@@ -1,11 +1,13 @@
 //! The Foxglove live view for real: `impactd demo` with `--foxglove` on loopback, and an independent client of
-//! the Foxglove WebSocket protocol (Python's `websockets`, installed by `.ci/run`) that negotiates
+//! the Foxglove WebSocket protocol (Python's `websockets`, installed by `scripts/test.sh`) that negotiates
 //! `foxglove.websocket.v1`, reads the server info and the advertised channels, subscribes to all of them and
 //! decodes the binary message frames (opcode 1, subscription id, time, JSON) until every channel of the demo's
 //! rig has spoken.
 
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
+
+mod common;
 
 use impactd::daemon::bus::free_loopback_port;
 use impactd::daemon::demo::{demo, DemoOptions};
@@ -74,7 +76,7 @@ async fn a_foxglove_client_receives_every_channel_during_a_demo() {
         "/foxglove/rig1/impact_scene",
         "/foxglove/rig1/ball_flight",
     ];
-    let client = std::process::Command::new("python3")
+    let client = common::python()
         .arg("-c")
         .arg(CLIENT)
         .arg(format!("ws://{address}"))

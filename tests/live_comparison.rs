@@ -279,7 +279,7 @@ with open(sys.argv[1], "rb") as f:
         c = json.loads(message.data)
         print(c["shot"], round(c["residual"]["ball_speed_mph"], 6))
 "#;
-    let out = std::process::Command::new("python3").arg("-c").arg(script).arg(&recording).output().expect("python3");
+    let out = common::python().arg("-c").arg(script).arg(&recording).output().expect("python3");
     assert!(out.status.success(), "python mcap reader: {}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout).to_string();
     let want: String = shots.iter().map(|s| format!("{s} {}\n", -OFFSET[0])).collect();

@@ -96,3 +96,15 @@ pub fn quantile(v: &[f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
     v[((q * v.len() as f64).ceil() as usize).clamp(1, v.len()) - 1]
 }
+
+/// The Python interpreter that has the independent test clients (`scripts/test.sh` prepares them in
+/// `target/pyenv` and points `IMPACTD_PYTHON` there). Without it the test fails and says how to set it up.
+pub fn python() -> std::process::Command {
+    let venv = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/pyenv/bin/python");
+    let exe =
+        std::env::var_os("IMPACTD_PYTHON").map(std::path::PathBuf::from).or_else(|| venv.exists().then_some(venv));
+    let exe = exe.unwrap_or_else(|| {
+        panic!("the Python test clients are not set up: run the tests with `bash scripts/test.sh` (it creates target/pyenv)")
+    });
+    std::process::Command::new(exe)
+}
