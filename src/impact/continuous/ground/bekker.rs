@@ -9,7 +9,7 @@
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::{SoleArc, SoleSpec};
 use crate::equipment::ClubSpec;
-use crate::math::{Isometry3, Real, Vector3};
+use crate::math::{Isometry3, Real, Rotation3, Vector3};
 
 use super::face_pressure::{face_forces, FacePressure};
 use super::sole::{sole_forces, SoleContact};
@@ -79,11 +79,16 @@ pub struct SoleArcWorld {
 
 impl SoleArcWorld {
     pub fn new(arc: &SoleArc, world_from_club: &Isometry3, ground_y_m: Real) -> Self {
-        let r = world_from_club.rotation * arc.axes;
-        let (ex, ey, ez) = (r * Vector3::x(), r * Vector3::y(), r * Vector3::z());
-        let centre_m = (world_from_club * nalgebra::Point3::from(arc.centre_m)).coords;
+        Self::at(arc, &world_from_club.rotation.to_rotation_matrix(), &world_from_club.translation.vector, ground_y_m)
+    }
+
+    /// [`Self::new`] with the pose as a rotation matrix and the CG's position (no quaternion on the way).
+    pub fn at(arc: &SoleArc, world_from_club: &Rotation3, cg_m: &Vector3, ground_y_m: Real) -> Self {
+        let r = world_from_club * arc.axes.to_rotation_matrix();
+        let (ex, ey, ez) = (r.matrix().column(0).into_owned(), r.matrix().column(1).into_owned(), r.matrix().column(2).into_owned());
+        let centre_m = cg_m + world_from_club * arc.centre_m;
         SoleArcWorld {
-            cg_m: world_from_club.translation.vector,
+            cg_m: *cg_m,
             ex,
             ey,
             ez,
@@ -237,7 +242,13 @@ impl SoilGround {
 
     /// Every ground force on the head at pose `world_from_club`, CG velocity `v_cg` and angular velocity `w`.
     pub fn forces(&self, world_from_club: &Isometry3, v_cg: &Vector3, w: &Vector3) -> GroundForces {
-        let placed = self.placed(world_from_club);
+        let rotation = world_from_club.rotation.to_rotation_matrix();
+        self.forces_at(&rotation, &world_from_club.translation.vector, v_cg, w)
+    }
+
+    /// [`Self::forces`] with the pose as a rotation matrix and the CG's position.
+    pub fn forces_at(&self, world_from_club: &Rotation3, cg_m: &Vector3, v_cg: &Vector3, w: &Vector3) -> GroundForces {
+        let placed = SoleArcWorld::at(&self.arc, world_from_club, cg_m, self.ground_y_m);
         let sole = sole_forces(
             &placed,
             &self.soil,
@@ -251,7 +262,7 @@ impl SoilGround {
         if sole.max_sinkage_m <= 0.0 {
             return GroundForces { sole, face: FacePressure::default(), phase: GroundPhase::Clear };
         }
-        let r = world_from_club.rotation;
+        let r = world_from_club;
         let face = face_forces(
             &placed,
             &(r * self.face_normal),

@@ -87,15 +87,15 @@ pub fn sole_forces(
         return out;
     }
     let tan_phi = soil.shear_ratio();
-    let (gt, gtw) = (&along.x, &along.w);
+    let gtw = &along.w;
     let ds = s_hi - s_lo;
     for &(s, a, b, ws) in intervals.iter().take(n) {
         if ws == 0.0 || b <= a {
             continue;
         }
+        let angles = node_sin_cos(a, b, along);
         for j in 0..along.n {
-            let theta = a + gt[j] * (b - a);
-            let (sin, cos) = theta.sin_cos();
+            let (sin, cos) = angles[j];
             let p = arc.point_sc(sin, cos, s);
             let z = arc.ground_y_m - p.y;
             if z <= 0.0 {
@@ -122,4 +122,45 @@ pub fn sole_forces(
         }
     }
     out
+}
+
+/// `(sin θⱼ, cos θⱼ)` at the rule's nodes `θⱼ = a + xⱼ (b − a)`. The Gauss-Legendre nodes pair up about the
+/// middle `m`, `θ = m ± δ`, so each pair costs one `sin_cos` of `δ` and the sum formulas (one of `m` in all).
+fn node_sin_cos(a: Real, b: Real, rule: &GaussRule) -> [(Real, Real); super::bekker::MAX_GAUSS] {
+    let mut out = [(0.0, 0.0); super::bekker::MAX_GAUSS];
+    let n = rule.n;
+    let (m, half) = (0.5 * (a + b), 0.5 * (b - a));
+    let (sm, cm) = crate::math::sin_cos_small(m);
+    for j in 0..n.div_ceil(2) {
+        let k = n - 1 - j;
+        if j == k {
+            out[j] = (sm, cm);
+            continue;
+        }
+        // x_j and x_k = 1 - x_j: θ = m ∓ δ, δ = (1 − 2 x_j) (b − a) / 2 (the mean of both nodes' offsets).
+        let delta = 0.5 * ((1.0 - 2.0 * rule.x[j]) + (2.0 * rule.x[k] - 1.0)) * half;
+        let (sd, cd) = crate::math::sin_cos_small(delta);
+        out[j] = (sm * cd - cm * sd, cm * cd + sm * sd);
+        out[k] = (sm * cd + cm * sd, cm * cd - sm * sd);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paired nodes' sines and cosines are the direct ones to rounding, for odd and even rules.
+    #[test]
+    fn node_angles_are_the_direct_ones() {
+        for n in [1, 2, 3, 5, 8, 16] {
+            let rule = GaussRule::new(n);
+            let (a, b) = (-0.41, 0.63);
+            let got = node_sin_cos(a, b, &rule);
+            for j in 0..n {
+                let (s, c) = (a + rule.x[j] * (b - a)).sin_cos();
+                assert!((got[j].0 - s).abs() < 1e-15 && (got[j].1 - c).abs() < 1e-15, "n {n} node {j}");
+            }
+        }
+    }
 }

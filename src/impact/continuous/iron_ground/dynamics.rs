@@ -18,7 +18,7 @@ use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::continuous::{ContactForces, TwoLayerParams};
-use crate::math::{Isometry3, Real, Rotation3, Translation3, UnitQuaternion, Vector3};
+use crate::math::{Real, Rotation3, Vector3};
 
 /// The integrated state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -121,11 +121,7 @@ impl System<'_> {
     }
 
     fn ground_forces_on(&self, h: &BodyMotion) -> GroundForces {
-        let pose = Isometry3::from_parts(
-            Translation3::from(h.position_m),
-            UnitQuaternion::from_rotation_matrix(&h.world_from_club),
-        );
-        self.ground.forces(&pose, &h.velocity_mps, &h.angular_velocity_radps)
+        self.ground.forces_at(&h.world_from_club, &h.position_m, &h.velocity_mps, &h.angular_velocity_radps)
     }
 
     /// The rates; `ground` given holds the ground's forces (sub-cycled during the ball's contact).
@@ -168,7 +164,13 @@ impl System<'_> {
     /// One classical Runge-Kutta step of `h`; with `hold_ground` the ground's forces are evaluated once, at the
     /// step's start, and held over it.
     pub fn step(&self, s: &State, h: Real, hold_ground: bool) -> (State, Eval) {
-        let e1 = self.eval(s, None);
+        self.step_held(s, h, hold_ground, None)
+    }
+
+    /// [`Self::step`] with the ground's forces `ground` given (held from an earlier step) or, when `None`,
+    /// evaluated at the step's start.
+    pub fn step_held(&self, s: &State, h: Real, hold_ground: bool, ground: Option<&GroundForces>) -> (State, Eval) {
+        let e1 = self.eval(s, ground);
         let held = hold_ground.then_some(e1.ground);
         let s2 = advance(s, s, &e1.rates, 0.5 * h);
         let e2 = self.eval(&s2, held.as_ref());

@@ -5,8 +5,10 @@
 //!
 //! A run starts just before the sole first touches the ground on the undisturbed swing (or at the ball's first
 //! contact when the ball comes first), integrates with classical Runge-Kutta at `ground_step_s` while only the
-//! ground acts and at `ball_step_s` from just before the ball's contact until it leaves (the ground's forces are
-//! then evaluated once per step and held: they change over milliseconds, the ball's over microseconds), and
+//! ground acts and at `ball_step_s` from the ball's contact until it leaves (the ground's forces are then
+//! evaluated once every quarter of `ground_step_s` and held: they change over milliseconds, the ball's over
+//! microseconds); the steps before the ball's contact shrink geometrically from the one to the other, each
+//! covering at most half the time the face needs to reach the ball, and
 //! follows the ground contact after the ball leaves to measure the divot. Without ground (`with_ground = false`)
 //! it is the same flexible club on a teed-up ball, the seed's reference in Figures 4.11-4.17.
 

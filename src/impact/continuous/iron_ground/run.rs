@@ -5,7 +5,7 @@ use super::placement::{classify, first_ground_contact_s};
 use super::{GroundResult, GroundTracePoint, PreparedGround};
 use crate::impact::continuous::ball::TwoLayerBall;
 use crate::impact::continuous::club::Head as BodyMotion;
-use crate::impact::continuous::ground::GroundPhase;
+use crate::impact::continuous::ground::{GroundForces, GroundPhase};
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::ModalState;
 use crate::impact::continuous::surface::FaceSurface;
@@ -55,8 +55,9 @@ pub(super) fn simulate(
     if !model.with_ground {
         ground.ground_y_m = Real::NEG_INFINITY;
     }
+    let ground_step_s = model.ground_step_s;
     let t0 = match first_ground {
-        Some(t) if t < 0.0 => t - 2.0 * model.ground_step_s,
+        Some(t) if t < 0.0 => t - 2.0 * ground_step_s,
         _ => 0.0,
     };
     let sys = System {
@@ -96,13 +97,31 @@ pub(super) fn simulate(
     let mut launch: Option<Launch> = None;
     let mut steps = 0usize;
     let max_steps = 2_000_000;
+    // The ground's forces held during the ball's contact, and when they were evaluated.
+    let mut held: Option<(GroundForces, Real)> = None;
     loop {
         let head = sys.head(&s);
         let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b - head.position_m));
         let gap = face_normal.dot(&(ball_club - face_point)) - r_ball;
-        let near_ball = launch.is_none() && (out.ball_touched || gap < 4.0 * approach0 * model.ground_step_s);
-        let h = if near_ball { model.ball_step_s } else { model.ground_step_s };
-        let (next, e) = sys.step(&s, h, near_ball && model.with_ground);
+        // The ball's contact is an event: approaching it, each step covers at most half the time the face
+        // needs to reach the ball at its first approach speed, so the steps shrink geometrically from the
+        // ground's to the ball's and the contact starts within one ball step (the head only slows in the turf).
+        let h = if launch.is_some() {
+            ground_step_s
+        } else if out.ball_touched {
+            model.ball_step_s
+        } else {
+            (0.5 * gap / approach0).clamp(model.ball_step_s, ground_step_s.max(model.ball_step_s))
+        };
+        let near_ball = launch.is_none() && h <= model.ball_step_s;
+        // During the ball's contact the ground's forces are held over a quarter of the ground's step (they change
+        // over milliseconds, the ball's over microseconds).
+        let hold = near_ball && model.with_ground;
+        let reuse = held.filter(|(_, t)| hold && s.t_s - t < 0.25 * ground_step_s - 0.5 * h).map(|(g, _)| g);
+        let (next, e) = sys.step_held(&s, h, hold, reuse.as_ref());
+        if reuse.is_none() {
+            held = hold.then_some((e.ground, s.t_s));
+        }
         // Measures at the step's start.
         let f_ground = e.ground.force_n();
         if e.ground.phase != GroundPhase::Clear {

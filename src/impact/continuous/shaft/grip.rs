@@ -37,8 +37,9 @@ impl ConstantTwist {
             return (r, i);
         }
         let th = wn * t_s;
-        let r = Matrix3::identity() + k * (th.sin() / wn) + k * k * ((1.0 - th.cos()) / (wn * wn));
-        let i = Matrix3::identity() * t_s + k * ((1.0 - th.cos()) / (wn * wn)) + k * k * ((th - th.sin()) / wn.powi(3));
+        let (sin, cos) = crate::math::sin_cos_small(th);
+        let r = Matrix3::identity() + k * (sin / wn) + k * k * ((1.0 - cos) / (wn * wn));
+        let i = Matrix3::identity() * t_s + k * ((1.0 - cos) / (wn * wn)) + k * k * ((th - sin) / wn.powi(3));
         (r, i)
     }
 
