@@ -6,7 +6,8 @@
 //!   of bulge and roll (drivers), as the two-layer model; the approach `x` is the overlap along the normal,
 //!   the contact point sits `R − x/2` from the ball's centre.
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
-//! - Integration: classical RK4 at a fixed step (default 0.5 µs) from first contact until the bodies separate.
+//! - Integration: classical RK4 at a fixed step (default 0.5 µs for Maw, 1 µs for Arakawa) from first contact
+//!   until the bodies separate.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
 //!   (its own stick/slip test at every stage) and the step's end is committed; the committed contact and force
 //!   are the next step's first stage. Steps the law flags near one of its switches (Arakawa's envelope near
@@ -83,8 +84,10 @@ impl HertzModel {
         HertzModel { law: HertzLaw::Maw(None), step_s: 0.5e-6, max_contact_s: 3e-3 }
     }
 
+    /// Arakawa's law with a 1 µs step: halving it moves ball speed < 4e-6 and spin < 3e-4 (both clubs,
+    /// 35-55 m/s, tests/maw_arakawa.rs; Maw's rings need the 0.5 µs step for the same).
     pub fn arakawa() -> Self {
-        HertzModel { law: HertzLaw::Arakawa(None), ..Self::maw() }
+        HertzModel { law: HertzLaw::Arakawa(None), step_s: 1e-6, ..Self::maw() }
     }
 
     /// `maw` or `arakawa`.
