@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the numeric tables and figures of docs/ from the commands' JSON output:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
-#   impactd bench --json                -> docs/performance.md, region bench
+#   impactd bench --json --baseline     -> docs/performance.md, region bench (scripts/docs-bench.sh)
 #   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
 #   impactd predict [--flight]          -> docs/models-notes.md, regions gear-driver, gear-iron (scripts/gear-effect.py)
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
@@ -32,7 +32,7 @@ for club in driver iron7; do
         2>/dev/null >"$OUT/pendulum-$club.json"
 done
 echo "bench" >&2
-"$BIN" bench --json >"$OUT/bench.json"
+scripts/docs-bench.sh
 echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md, docs/ground-parts.md" >&2
 cargo run --release --quiet --example ground_face >"$OUT/ground-face.jsonl"
 python3 scripts/ground-table.py docs/ground.md docs/ground-findings.md <"$OUT/ground-face.jsonl"
@@ -40,7 +40,7 @@ python3 scripts/ground-sensitivity.py "$BIN" >docs/ground-sensitivity.md
 cargo run --release --quiet --example ground_parts | python3 scripts/ground-parts.py docs/ground-parts.md
 
 python3 - "$OUT" "$SHOTS" <<'PY'
-import datetime, json, os, platform, re, sys
+import json, os, sys
 
 out, shots = sys.argv[1], int(sys.argv[2])
 
@@ -105,24 +105,6 @@ def pendulum_table():
     return table("double pendulum, 720 Hz", cols)
 
 
-def bench_table():
-    stages = load("bench.json")["stages"]
-
-    def t(ns):
-        return f"{ns:.0f} ns" if ns < 1e3 else f"{ns / 1e3:.3g} us" if ns < 1e6 else f"{ns / 1e6:.3g} ms"
-
-    lines = ["| stage | median per op |", "|---|---|"]
-    lines += [f"| {s['name']} | {t(s['ns_per_op'])} |" for s in stages]
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    date = datetime.datetime.now(datetime.timezone.utc).date().isoformat()
-    return lines + ["", f"`impactd bench --json`, {date}, {os.cpu_count()} cores, {cpu}."]
-
-
 sys.path.insert(0, "scripts")
 from docs_regions import replace  # noqa: E402
 
@@ -132,7 +114,6 @@ replace("docs/estimation.md", {
     "extrapolation-arc-iron7": arc_table("iron7"),
     "extrapolation-double-pendulum": pendulum_table(),
 })
-replace("docs/performance.md", {"bench": bench_table()})
 PY
 echo "off-centre iron table" >&2
 python3 scripts/offcentre-iron.py "$BIN"

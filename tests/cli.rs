@@ -251,3 +251,28 @@ fn trajectory_picture_is_a_report_picture() {
     assert!(svg.contains("wind 3.0 m/s toward -90°") && svg.contains("firmness 0.50"), "conditions");
     assert_eq!(svg.matches("<circle").count(), 4, "a landing mark per shot in each view");
 }
+
+/// `bench --baseline`: every stage against a saved `--json` run, those slower by more than 20 % named, with the
+/// date and the machine.
+#[test]
+fn bench_names_the_stages_slower_than_the_baseline() {
+    let dir = tempfile::tempdir().unwrap();
+    let saved = dir.path().join("saved.json");
+    let name = "impulse/standard/iron7";
+    // A saved run a thousand times faster than any machine: the stage is named; an absurdly slow one: not.
+    for (ns, slower) in [(1e-3, true), (1e9, false)] {
+        std::fs::write(&saved, format!(r#"{{"stages": [{{"name": "{name}", "ns_per_op": {ns}}}]}}"#)).unwrap();
+        let out = impactd(&["bench", "--filter", name, "--json", "--baseline", saved.to_str().unwrap()], "");
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let doc: serde_json::Value = serde_json::from_str(&text(&out.stdout)).unwrap();
+        assert_eq!(doc["slower"].as_array().unwrap().len(), usize::from(slower), "{doc}");
+        assert_eq!(doc["stages"][0]["slower"].as_bool(), Some(slower));
+        assert!(doc["stages"][0]["ratio"].as_f64().unwrap() > 0.0);
+        assert!(doc["date"].as_str().unwrap().len() == 10 && doc["machine"].as_str().unwrap().contains("cores"));
+        assert_eq!(text(&out.stderr).contains(name), slower, "{}", text(&out.stderr));
+    }
+    std::fs::write(&saved, "{}").unwrap();
+    let out = impactd(&["bench", "--filter", name, "--baseline", saved.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("no `stages` array"), "{}", text(&out.stderr));
+}

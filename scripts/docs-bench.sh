@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Rewrites docs/performance.md's region `bench` from `impactd bench --json --baseline FILE`: each stage's median
+# per operation, the saved run's and their ratio, the stages slower by more than 20 %, the date and the machine
+# (both from the JSON). Without a baseline file the table has the medians alone.
+# Usage: scripts/docs-bench.sh [BASELINE.json]   (default docs/bench-baseline.json when it exists)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BASELINE="${1:-docs/bench-baseline.json}"
+cargo build --release --quiet
+BIN=target/release/impactd
+OUT="$(mktemp)"
+trap 'rm -f "$OUT"' EXIT
+if [[ -f "$BASELINE" ]]; then
+    "$BIN" bench --json --baseline "$BASELINE" >"$OUT"
+else
+    "$BIN" bench --json >"$OUT"
+fi
+python3 - "$OUT" <<'PY'
+import json, sys
+
+sys.path.insert(0, "scripts")
+from docs_regions import replace  # noqa: E402
+
+with open(sys.argv[1]) as f:
+    run = json.load(f)
+
+
+def t(ns):
+    return f"{ns:.0f} ns" if ns < 1e3 else f"{ns / 1e3:.3g} us" if ns < 1e6 else f"{ns / 1e6:.3g} ms"
+
+
+base = run.get("baseline")
+if base:
+    lines = ["| stage | median per op | baseline | ratio |", "|---|---|---|---|"]
+    for s in run["stages"]:
+        if "ratio" in s:
+            lines.append(f"| {s['name']} | {t(s['ns_per_op'])} | {t(s['baseline_ns_per_op'])} | {s['ratio']:.2f} |")
+        else:
+            lines.append(f"| {s['name']} | {t(s['ns_per_op'])} | | |")
+    slower = run.get("slower", [])
+    lines += ["", f"Against `{base}`: " + (
+        "slower by more than 20 %: " + ", ".join(slower) + "." if slower else "no stage slower by more than 20 %.")]
+else:
+    lines = ["| stage | median per op |", "|---|---|"]
+    lines += [f"| {s['name']} | {t(s['ns_per_op'])} |" for s in run["stages"]]
+lines += ["", f"`impactd bench --json`, {run['date']}, {run['machine']}."]
+replace("docs/performance.md", {"bench": lines})
+PY
