@@ -10,9 +10,9 @@ use std::io::{Read, Write};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
-use impactd::daemon::open_connect::{SimulatorClient, SimulatorOptions};
-use impactd::daemon::recorder::RecorderHandle;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::{SimulatorClient, SimulatorOptions};
+use impactd::daemon::recording::writer::RecorderHandle;
 use impactd::daemon::sim::{SimOptions, SimRig};
 use impactd::pipeline::{Event, Pipeline, RigSetup};
 use impactd::wire::LaunchPrediction;

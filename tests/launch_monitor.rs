@@ -11,8 +11,8 @@ mod common;
 use std::time::Duration;
 
 use common::{collect, recorded, start_daemon, wait_until};
-use impactd::daemon::open_connect::codec::Reply;
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::codec::Reply;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
 use impactd::daemon::RunOptions;
 use impactd::wire::{MeasuredLaunch, StatusMessage};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};

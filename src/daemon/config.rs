@@ -32,8 +32,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::open_connect::{LaunchMonitorConfig, SimulatorConfig};
-use super::DaemonError;
+use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
+use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};

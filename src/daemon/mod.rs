@@ -1,23 +1,14 @@
 //! The daemon and its tools: zenoh in and out, MCAP recording, replay, a synthetic rig, Open Connect to golf
 //! simulators and from launch monitors, the Foxglove live view. The only code that touches tokio, zenoh or mcap.
 
+pub mod bridges;
 pub mod bus;
 pub mod config;
 pub mod demo;
-pub mod foxglove;
-pub mod foxglove_live;
-pub mod info;
 pub mod live;
-pub mod mcap_read;
-mod mcap_records;
-pub mod open_connect;
-pub mod recorded_shots;
-pub mod recorder;
-pub mod recover;
+pub mod recording;
 pub mod replay;
 pub mod sim;
-pub mod sinks;
-pub mod stats;
 
 pub use config::DaemonConfig;
 pub use live::{run, RunOptions, RunSummary};

@@ -13,8 +13,8 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-pub use super::mcap_records::MAX_CHUNK_BYTES;
-use super::mcap_records::{op, parse, unpack, Rec};
+pub use crate::daemon::recording::records::MAX_CHUNK_BYTES;
+use crate::daemon::recording::records::{op, parse, unpack, Rec};
 
 /// The MCAP magic that starts and ends a file.
 pub const MAGIC: &[u8; 8] = b"\x89MCAP0\r\n";

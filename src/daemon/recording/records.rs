@@ -1,10 +1,10 @@
 //! The records of an MCAP file, parsed within bounds: every length is checked against the bytes that hold it,
 //! and a chunk is decompressed only to a size its zstd frame and the largest zstd ratio allow, then checked
-//! against its CRC. Used by [`mcap_read`](super::mcap_read).
+//! against its CRC. Used by [`mcap_read`](crate::daemon::recording::reader).
 
 use std::collections::BTreeMap;
 
-use super::mcap_read::{ChannelDef, RawMessage, SchemaDef};
+use crate::daemon::recording::reader::{ChannelDef, RawMessage, SchemaDef};
 
 /// The largest chunk (uncompressed) this reader will allocate.
 pub const MAX_CHUNK_BYTES: u64 = 1 << 30;

@@ -93,7 +93,7 @@ pub struct LaunchMonitorConfig {
 pub async fn start_rig(
     rig: &crate::daemon::config::RigConfig,
     session: &zenoh::Session,
-    recorder: &crate::daemon::recorder::RecorderHandle,
+    recorder: &crate::daemon::recording::writer::RecorderHandle,
 ) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
     let simulator = rig
         .simulator

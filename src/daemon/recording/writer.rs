@@ -3,7 +3,7 @@
 //! Every zenoh message in and out is a record with `log_time` = receive (or publish) wall time and
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding
 //! `jsonschema`. Foxglove's well-known `foxglove.PoseInFrame` (the club in the world) and `foxglove.SceneUpdate`
-//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`super::foxglove`], shared
+//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`crate::daemon::bridges::foxglove::server`], shared
 //! with the live view), and a `session` metadata record holds versions and the configuration. Chunks are
 //! zstd-compressed and closed (flushed to the file) after every shot and at least once a second, so a killed
 //! daemon loses at most the last second. Sending never blocks: a full queue drops the record and counts it.
@@ -16,8 +16,8 @@ use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TryS
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use super::foxglove::Schema;
-use super::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::bridges::foxglove::server::Schema;
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::math::Isometry3;
 use crate::wire::{ImpactStateMsg, MessageType};
 
@@ -170,7 +170,7 @@ pub struct RecorderHandle {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
     error: Arc<OnceLock<String>>,
-    live: Option<super::foxglove_live::LiveTap>,
+    live: Option<crate::daemon::bridges::foxglove::live::LiveTap>,
 }
 
 impl RecorderHandle {
@@ -180,7 +180,7 @@ impl RecorderHandle {
     }
 
     /// This handle, also feeding the live view.
-    pub fn with_live(mut self, live: Option<super::foxglove_live::LiveTap>) -> Self {
+    pub fn with_live(mut self, live: Option<crate::daemon::bridges::foxglove::live::LiveTap>) -> Self {
         self.live = live;
         self
     }
@@ -258,7 +258,7 @@ fn write_all(
     let mut end = BTreeMap::new();
     end.insert("messages".to_string(), summary.messages.to_string());
     end.insert("dropped".to_string(), dropped.load(Ordering::Relaxed).to_string());
-    end.insert("end_ns".to_string(), super::wall_ns().to_string());
+    end.insert("end_ns".to_string(), crate::daemon::wall_ns().to_string());
     w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })?;
     w.finish()?;
     Ok(())
@@ -305,7 +305,7 @@ impl Channels {
         w: &mut mcap::Writer<W>,
         record: Record,
     ) -> Result<(), mcap::McapError> {
-        let Some(e) = super::foxglove::encode(record) else { return Ok(()) };
+        let Some(e) = crate::daemon::bridges::foxglove::server::encode(record) else { return Ok(()) };
         let channel_id = self.channel(w, &e.topic, e.schema)?;
         self.sequence = self.sequence.wrapping_add(1);
         let header = mcap::records::MessageHeader {
