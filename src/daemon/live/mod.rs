@@ -126,7 +126,14 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
-        let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
+        let (simulator, listener) = open_connect::start_rig(
+            &rig_config.name,
+            rig_config.simulator.as_ref(),
+            rig_config.launch_monitor.as_ref(),
+            session,
+            &handle,
+        )
+        .await?;
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
@@ -183,7 +190,7 @@ pub async fn run(
                         payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
                     };
                     let now = wall_ns();
-                    unknown_recorder.send(crate::daemon::recording::writer::Record::Message {
+                    unknown_recorder.send(crate::daemon::recording::record::Record::Message {
                         key: keys::UNKNOWN_RIG_REJECTED.to_string(),
                         message_type: <wire::RejectedInput as wire::Message>::TYPE,
                         log_time_ns: now,

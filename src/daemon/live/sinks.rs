@@ -7,7 +7,8 @@ use std::collections::BTreeMap;
 use zenoh::Wait;
 
 use crate::daemon::live::stats::LatencyWindow;
-use crate::daemon::recording::writer::{Record, RecorderHandle};
+use crate::daemon::recording::record::Record;
+use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::DaemonError;
 use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;

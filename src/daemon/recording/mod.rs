@@ -3,6 +3,7 @@
 
 pub mod info;
 pub mod reader;
+pub mod record;
 mod records;
 pub mod recover;
 pub mod shots;

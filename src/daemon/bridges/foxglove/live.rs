@@ -22,7 +22,7 @@ use tokio_tungstenite::tungstenite::http::{HeaderValue, StatusCode};
 use tokio_tungstenite::tungstenite::Message;
 
 use crate::daemon::bridges::foxglove::server::{encode, rig_channels};
-use crate::daemon::recording::writer::Record;
+use crate::daemon::recording::record::Record;
 use crate::daemon::DaemonError;
 
 /// The WebSocket subprotocol.

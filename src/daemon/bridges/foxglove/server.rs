@@ -9,7 +9,7 @@
 //! 50 ms). Positions are in the world frame (DESIGN.md section 2: x to the target, y up, z right), `frame_id`
 //! `world`.
 
-use crate::daemon::recording::writer::Record;
+use crate::daemon::recording::record::Record;
 use crate::wire::{
     keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType, StatusMessage,
 };
