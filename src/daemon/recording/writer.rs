@@ -1,4 +1,4 @@
-//! MCAP recording on a writer thread behind a bounded queue (DESIGN.md section 4).
+//! MCAP recording on a writer thread behind a bounded queue (ARCHITECTURE.md section 4).
 //!
 //! Every zenoh message in and out is a record with `log_time` = receive (or publish) wall time and
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding

@@ -2,7 +2,7 @@
 //! and the passive earth pressure on the face below the surface ([`super::face_pressure`], eq. 4.10-4.13).
 //!
 //! The ground is the plane `y = y_ground` (world; for a ball resting on the turf `y_ground = y_ball − r_ball`,
-//! DESIGN.md section 2). Contact has two phases (seed 4.2): compression, while only the sole is below the
+//! ARCHITECTURE.md section 2). Contact has two phases (seed 4.2): compression, while only the sole is below the
 //! surface and the soil is pressed down; and the divot, once the leading edge is below the surface and the
 //! face pushes soil forward. The sole's forces act in both phases, the face's only in the second.
 
