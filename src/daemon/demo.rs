@@ -128,7 +128,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let _ = stop_sim_tx.send(());
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon.await.map_err(|e| DaemonError::Task(e.to_string()))??;
+    let summary = daemon.await.map_err(DaemonError::Task)??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

@@ -71,8 +71,8 @@ impl Recovered {
     }
 }
 
-fn mcap_err(path: &Path, e: impl std::fmt::Display) -> DaemonError {
-    DaemonError::Mcap { path: path.display().to_string(), reason: e.to_string() }
+fn mcap_err(path: &Path, e: mcap::McapError) -> DaemonError {
+    DaemonError::Mcap { path: path.display().to_string(), source: e }
 }
 
 /// The losses a scan found, with time ranges.

@@ -127,7 +127,7 @@ impl Recorder {
         match self.join.take().map(|j| j.join()) {
             Some(Ok(r)) => r,
             Some(Err(_)) => {
-                Err(DaemonError::Mcap { path: self.path.display().to_string(), reason: "writer panicked".into() })
+                Err(DaemonError::WriterPanicked { path: self.path.display().to_string() })
             }
             None => Ok(RecorderSummary::default()),
         }
