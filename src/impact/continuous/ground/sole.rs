@@ -24,7 +24,7 @@
 //! Assumptions (the seed's): the soil has no memory (sinkage is measured from the undisturbed surface, the
 //! pressure follows the sinkage up and down), no grass, no cohesion.
 
-use super::bekker::{GaussRule, SoleArcWorld};
+use super::sole_arc::{GaussRule, SoleArcWorld};
 use crate::equipment::soil::SoilSpec;
 use crate::math::{Real, Vector3};
 
@@ -65,7 +65,7 @@ pub fn sole_forces(
     };
     // First pass: each strip's wetted arc, for the patch's smaller dimension b.
     let (gs, gw) = (&strips.x, &strips.w);
-    let mut intervals = [(0.0, 0.0, 0.0, 0.0); super::bekker::MAX_GAUSS];
+    let mut intervals = [(0.0, 0.0, 0.0, 0.0); super::sole_arc::MAX_GAUSS];
     let n = strips.n;
     let mut arc_len_sum = 0.0;
     let mut weight_sum = 0.0;
@@ -126,8 +126,8 @@ pub fn sole_forces(
 
 /// `(sin θⱼ, cos θⱼ)` at the rule's nodes `θⱼ = a + xⱼ (b − a)`. The Gauss-Legendre nodes pair up about the
 /// middle `m`, `θ = m ± δ`, so each pair costs one `sin_cos` of `δ` and the sum formulas (one of `m` in all).
-fn node_sin_cos(a: Real, b: Real, rule: &GaussRule) -> [(Real, Real); super::bekker::MAX_GAUSS] {
-    let mut out = [(0.0, 0.0); super::bekker::MAX_GAUSS];
+fn node_sin_cos(a: Real, b: Real, rule: &GaussRule) -> [(Real, Real); super::sole_arc::MAX_GAUSS] {
+    let mut out = [(0.0, 0.0); super::sole_arc::MAX_GAUSS];
     let n = rule.n;
     let (m, half) = (0.5 * (a + b), 0.5 * (b - a));
     let (sm, cm) = crate::math::sin_cos_small(m);
