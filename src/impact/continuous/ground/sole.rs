@@ -157,9 +157,9 @@ mod tests {
             let rule = GaussRule::new(n);
             let (a, b) = (-0.41, 0.63);
             let got = node_sin_cos(a, b, &rule);
-            for j in 0..n {
-                let (s, c) = (a + rule.x[j] * (b - a)).sin_cos();
-                assert!((got[j].0 - s).abs() < 1e-15 && (got[j].1 - c).abs() < 1e-15, "n {n} node {j}");
+            for (j, (x, g)) in rule.x.iter().zip(&got).take(n).enumerate() {
+                let (s, c) = (a + x * (b - a)).sin_cos();
+                assert!((g.0 - s).abs() < 1e-15 && (g.1 - c).abs() < 1e-15, "n {n} node {j}");
             }
         }
     }
