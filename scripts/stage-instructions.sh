@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Instructions per operation of `impactd bench` stages, two builds side by side, counted by callgrind (repeatable
+# on a busy machine, unlike wall time): each stage is run by examples/stage_loop N times and 0 times, and the
+# difference over N is one operation. Rewrites docs/performance.md's region `instructions`.
+# Usage: scripts/stage-instructions.sh BASELINE_STAGE_LOOP LABEL   (the other build is this tree's; needs valgrind)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BASE="$1"
+LABEL="$2"
+cargo build --release --quiet --example stage_loop
+NEW=target/release/examples/stage_loop
+STAGES=(continuous/two_layer/driver continuous/two_layer/iron7 continuous/maw/driver continuous/maw/iron7
+    continuous/arakawa/driver continuous/arakawa/iron7 ground/iron7 ground/firm/iron7_fat
+    impulse/standard/iron7 impulse/adjusted/driver extrapolate/poly/driver extrapolate/arc/iron7 club_data/iron7
+    flight/trajectory pipeline/sample/iron7)
+
+count() { # BIN STAGE N -> instructions
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 | sed -n 's/.*Collected : //p'
+}
+
+OUT="$(mktemp)"
+trap 'rm -f "$OUT"' EXIT
+for stage in "${STAGES[@]}"; do
+    n=20
+    [[ "$stage" == impulse/* || "$stage" == pipeline/* || "$stage" == club_data/* ]] && n=2000
+    [[ "$stage" == extrapolate/* || "$stage" == flight/* ]] && n=200
+    row="$stage $n"
+    for bin in "$BASE" "$NEW"; do
+        row="$row $(count "$bin" "$stage" 0) $(count "$bin" "$stage" "$n")"
+    done
+    echo "$row" >>"$OUT"
+    echo "$row" >&2
+done
+python3 - "$OUT" "$LABEL" <<'PY'
+import sys
+
+sys.path.insert(0, "scripts")
+from docs_regions import replace  # noqa: E402
+
+label = sys.argv[2]
+lines = [f"| stage | {label} | this build | speed-up |", "|---|---|---|---|"]
+
+
+def m(x):
+    return f"{x / 1e6:.2f} M" if x >= 1e6 else f"{x / 1e3:.1f} k" if x >= 1e3 else f"{x:.0f}"
+
+
+with open(sys.argv[1]) as f:
+    for line in f:
+        stage, n, b0, b1, n0, n1 = line.split()
+        n = int(n)
+        base, new = (int(b1) - int(b0)) / n, (int(n1) - int(n0)) / n
+        lines.append(f"| {stage} | {m(base)} | {m(new)} | {base / new:.2f}x |")
+lines += ["", f"Instructions per operation (callgrind, `examples/stage_loop STAGE N` less `STAGE 0`, over N), "
+          f"`scripts/stage-instructions.sh`."]
+replace("docs/performance.md", {"instructions": lines})
+PY
