@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Rewrites docs/performance.md's region `bench` from `impactd bench --json --baseline FILE`: each stage's median
-# per operation, the saved run's and their ratio, the stages slower by more than 20 %, the date and the machine
-# (both from the JSON). Without a baseline file the table has the medians alone.
+# per operation, the saved run's and their ratio, the stages slower by more than 20 %, the date, the machine and
+# the load average before and after (all from the JSON). Without a baseline file the table has the medians alone.
 # Usage: scripts/docs-bench.sh [BASELINE.json]   (default docs/bench-baseline.json when it exists)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,6 +44,8 @@ if base:
 else:
     lines = ["| stage | median per op |", "|---|---|"]
     lines += [f"| {s['name']} | {t(s['ns_per_op'])} |" for s in run["stages"]]
-lines += ["", f"`impactd bench --json`, {run['date']}, {run['machine']}."]
+load = [x for x in run.get("load", []) if x is not None]
+at_load = f", load {load[0]:.1f} before and {load[-1]:.1f} after" if load else ""
+lines += ["", f"`impactd bench --json`, {run['date']}, {run['machine']}{at_load}."]
 replace("docs/performance.md", {"bench": lines})
 PY

@@ -8,7 +8,8 @@ use clap::Args;
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// Print JSON (`{"date", "machine", "stages": [{"name", "ns_per_op"}]}`; with `--baseline` each stage also has
+    /// Print JSON (`{"date", "machine", "load", "stages": [{"name", "ns_per_op"}]}`, `load` the one-minute load
+    /// average before and after; with `--baseline` each stage also has
     /// `baseline_ns_per_op`, `ratio` and `slower`, and the document `baseline` and `slower`) instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -31,6 +32,7 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
         }
     }
     let baseline = args.baseline.as_deref().map(super::bench_baseline::load).transpose()?;
+    let load_before = super::bench_baseline::load_average();
     let mut results = Vec::new();
     let mut slower = Vec::new();
     let mut progress = super::progress::Progress::new(stages.len() as u64, "stages");
@@ -49,7 +51,8 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     let mut out = std::io::stdout().lock();
     let (date, machine) = super::bench_baseline::date_and_machine();
     if args.json {
-        let mut doc = serde_json::json!({ "date": date, "machine": machine, "stages": results });
+        let load = [load_before, super::bench_baseline::load_average()];
+        let mut doc = serde_json::json!({ "date": date, "machine": machine, "load": load, "stages": results });
         if let Some(path) = &args.baseline {
             doc["baseline"] = serde_json::json!(path.display().to_string());
             doc["slower"] = serde_json::json!(slower);

@@ -60,6 +60,11 @@ pub fn date_and_machine() -> (String, String) {
     (format!("{y:04}-{m:02}-{d:02}"), format!("{cores} cores, {cpu}"))
 }
 
+/// The one-minute load average (`/proc/loadavg`), where the system gives it: timings under load are slower.
+pub fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg").ok()?.split_whitespace().next()?.parse().ok()
+}
+
 /// The proleptic Gregorian date of a day count from 1970-01-01 (Howard Hinnant's `civil_from_days`).
 fn civil_from_days(z: i64) -> (i64, u32, u32) {
     let z = z + 719_468;
