@@ -5,6 +5,7 @@
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
 
+pub mod club_sections;
 pub mod continuous;
 mod delivery;
 pub mod identifiable;

@@ -95,7 +95,7 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry {
         name: "continuous",
         summary: "two-layer ball, volumetric contact, free head, in time (seed 3.2.1, Table 3.5 read for one \
-                  force reversal per contact)",
+                  force reversal per contact; `reading = \"table\"`: as printed)",
         sections: &["continuous"],
         resolved_in_time: true,
         fit: Some(identifiable::CONTINUOUS),
@@ -103,8 +103,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "maw",
-        summary:
-            "rigid ball, Hertz normal force and Maw's stick-slip rings, free head, in time (seed 3.2.2, Table 3.6)",
+        summary: "rigid ball, Hertz + Hunt-Crossley normal force and Maw's stick-slip rings with Mindlin \
+                  compliance, free head, in time (seed 3.2.2, eq. 3.16-3.18, Table 3.6)",
         sections: &["maw"],
         resolved_in_time: true,
         fit: Some(identifiable::MAW),
@@ -112,8 +112,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "arakawa",
-        summary: "rigid ball, Hertz normal force and Arakawa's contact-area friction, free head, in time (seed 3.2.3, \
-                  Table 3.7)",
+        summary: "rigid ball, Hertz normal force and Arakawa's contact-area friction F_T = mu F_N + mu eta pi R \
+                  xdot bounding an elastic stick, free head, in time (seed 3.2.3, eq. 3.19-3.23, Table 3.7)",
         sections: &["arakawa"],
         resolved_in_time: true,
         fit: Some(identifiable::ARAKAWA),
@@ -130,12 +130,43 @@ pub const MODELS: &[ModelEntry] = &[
     },
 ];
 
-/// Names that stand for several models, published in order.
-pub const GROUPS: &[(&str, &[&str])] = &[("both", &["adjusted", "continuous"])];
+/// A name that stands for several models, published in order: one list for a ball on a tee, one for a ball on
+/// the turf (a rig or command with a soil).
+pub struct Group {
+    pub name: &'static str,
+    pub members: &'static [&'static str],
+    pub on_turf: &'static [&'static str],
+}
+
+/// Every group.
+pub const GROUPS: &[Group] =
+    &[Group { name: "both", members: &["adjusted", "continuous"], on_turf: &["adjusted", "ground"] }];
+
+/// The model (or comma-separated models) a configured name stands for, the one place groups are resolved: a
+/// group expands to its members, on the turf (`on_turf`: a soil is given) to its turf members, which must then
+/// include the ground model.
+pub fn resolve(name: &str, on_turf: bool) -> Result<String, ImpactError> {
+    let list = match GROUPS.iter().find(|g| g.name == name) {
+        Some(g) => (if on_turf { g.on_turf } else { g.members }).join(","),
+        None => name.to_string(),
+    };
+    for n in list.split(',').map(str::trim) {
+        if entry(n).is_none() {
+            return Err(ImpactError::UnknownModel { name: n.to_string(), expected: names() });
+        }
+    }
+    if on_turf && !list.split(',').any(|m| m.trim() == "ground") {
+        return Err(ImpactError::InvalidParameter {
+            field: "soil".into(),
+            reason: format!("needs the ground model (model ground or both), not {name}"),
+        });
+    }
+    Ok(list)
+}
 
 /// The model names and groups, for help texts and errors: `standard, adjusted, slip, continuous, both`.
 pub fn names() -> String {
-    MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.0)).collect::<Vec<_>>().join(", ")
+    MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.name)).collect::<Vec<_>>().join(", ")
 }
 
 /// The identifiable parameters of every model that has them, in the registry's order.
@@ -153,10 +184,8 @@ pub fn entry(name: &str) -> Option<&'static ModelEntry> {
 /// that belongs to no model is an error (a typo would otherwise be ignored).
 pub fn build(name: &str, club: &LoadedClub, options: &BuildOptions) -> Result<Vec<Arc<dyn ImpactModel>>, ImpactError> {
     check_sections(club)?;
-    let names: Vec<&str> = match GROUPS.iter().find(|g| g.0 == name) {
-        Some((_, members)) => members.to_vec(),
-        None => name.split(',').map(str::trim).collect(),
-    };
+    let list = resolve(name, false)?;
+    let names: Vec<&str> = list.split(',').map(str::trim).collect();
     names
         .iter()
         .map(|n| {
@@ -184,6 +213,45 @@ fn check_sections(club: &LoadedClub) -> Result<(), ImpactError> {
     Ok(())
 }
 
+/// The models as a Markdown list (the README's "Models" section is this, `impactd models`).
+pub fn models_markdown() -> String {
+    let mut out = String::new();
+    for m in MODELS {
+        out.push_str(&format!("- `{}`: {}", m.name, m.summary));
+        if let Some(fit) = &m.fit {
+            let params: Vec<&str> = fit.params.iter().map(|p| p.name).collect();
+            out.push_str(&format!("; `fit` identifies {}", params.join(", ")));
+        }
+        out.push_str(".\n");
+    }
+    for g in GROUPS {
+        out.push_str(&format!(
+            "- `{}`: {} together (with a soil: {}).\n",
+            g.name,
+            g.members.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(" and "),
+            g.on_turf.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(" and ")
+        ));
+    }
+    out
+}
+
+/// The club-file sections and the models that read them, as the TOML comment block of docs/club-files.md
+/// (`impactd models --sections`).
+pub fn sections_markdown() -> String {
+    let mut out = String::new();
+    for s in super::club_sections::SECTIONS {
+        let readers: Vec<String> =
+            MODELS.iter().filter(|m| m.sections.contains(&s.name)).map(|m| format!("`{}`", m.name)).collect();
+        let head = format!("[{}]", s.name);
+        for (i, line) in s.fields.iter().enumerate() {
+            let text = if i == 0 { format!("read by {}: {line}", readers.join(" and ")) } else { line.to_string() };
+            let left = if i == 0 { head.as_str() } else { "" };
+            out.push_str(&format!("{left:<27}# {text}\n"));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,6 +268,15 @@ mod tests {
         let list = build("slip, standard", &club, &BuildOptions::default()).unwrap();
         assert_eq!(list.iter().map(|m| m.name()).collect::<Vec<_>>(), ["impulse/slip", "impulse/standard"]);
         let e = build("nosuch", &club, &BuildOptions::default()).unwrap_err().to_string();
+        // Every section a model reads is documented, and every documented section is read.
+        for m in MODELS {
+            for s in m.sections {
+                assert!(super::super::club_sections::SECTIONS.iter().any(|d| d.name == *s), "[{s}] undocumented");
+            }
+        }
+        for d in super::super::club_sections::SECTIONS {
+            assert!(MODELS.iter().any(|m| m.sections.contains(&d.name)), "[{}] read by no model", d.name);
+        }
         assert!(e.contains("nosuch") && e.contains("adjusted"), "{e}");
     }
 }
