@@ -60,9 +60,9 @@ impl ConditionArgs {
 
     /// The flight model in these conditions, bouncing and rolling on turf of the given firmness.
     pub fn flight(&self, firmness: f64) -> Result<impactd::flight::Flight> {
-        let ground = impactd::flight::Ground { firmness };
-        ground.validate().context("--firmness")?;
-        Ok(impactd::flight::Flight { conditions: self.conditions()?, ground, ..Default::default() })
+        let turf = impactd::flight::Turf { firmness };
+        turf.validate().context("--firmness")?;
+        Ok(impactd::flight::Flight { conditions: self.conditions()?, turf, ..Default::default() })
     }
 }
 
