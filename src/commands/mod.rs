@@ -8,6 +8,7 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod args;
 mod bench;
+mod checked;
 mod compare;
 mod eval;
 mod fit;

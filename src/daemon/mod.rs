@@ -11,6 +11,7 @@ pub mod live;
 pub mod mcap_read;
 mod mcap_records;
 pub mod open_connect;
+pub mod peers;
 pub mod recorded_shots;
 pub mod recorder;
 pub mod recover;
