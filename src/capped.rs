@@ -37,7 +37,8 @@ mod tests {
     #[test]
     fn a_long_text_is_quoted_short() {
         assert_eq!(super::quote("short"), "short");
-        let q = super::quote(&"é".repeat(100_000));
+        let long = "é".repeat(100_000);
+        let q = super::quote(&long);
         assert!(q.chars().count() < 150 && q.ends_with("(200000 bytes)"), "{q}");
     }
 

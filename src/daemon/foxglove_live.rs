@@ -315,9 +315,16 @@ async fn stream_to(
                 },
                 Some(Ok(Message::Pong(_))) => client.slot.touch(),
                 Some(Err(e)) => {
+                    use tokio_tungstenite::tungstenite::protocol::{frame::coding::CloseCode, CloseFrame};
                     use tokio_tungstenite::tungstenite::Error;
-                    let kind = if matches!(e, Error::Capacity(_)) { "oversized" } else { "protocol" };
+                    let oversized = matches!(e, Error::Capacity(_));
+                    let kind = if oversized { "oversized" } else { "protocol" };
                     client.peers.reject(kind, || format!("{peer}: closed: {e}"));
+                    if oversized {
+                        let reason = format!("a client message is at most {MAX_CLIENT_MESSAGE_BYTES} bytes");
+                        let frame = CloseFrame { code: CloseCode::Size, reason: reason.into() };
+                        let _ = tokio::time::timeout(SEND_TIMEOUT, ws.close(Some(frame))).await;
+                    }
                     break;
                 }
                 Some(Ok(Message::Close(_))) | None => break,
