@@ -9,11 +9,7 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 fn impactd(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_impactd"))
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap()
+    Command::new(env!("CARGO_BIN_EXE_impactd")).args(args).stdin(Stdio::null()).output().unwrap()
 }
 
 fn refused(args: &[&str], says: &str) {
@@ -160,7 +156,8 @@ fn impossible_measured_values_are_refused_with_the_line_and_field() {
     }
     // A huge field is never echoed whole.
     let path = dir.path().join("huge.jsonl");
-    std::fs::write(&path, format!("{{\"delivery\":{{\"club_speed_mph\":\"{}\"}}}}\n", "9".repeat((1 << 20) - 64))).unwrap();
+    std::fs::write(&path, format!("{{\"delivery\":{{\"club_speed_mph\":\"{}\"}}}}\n", "9".repeat((1 << 20) - 64)))
+        .unwrap();
     let out = impactd(&["compare", path.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(out.stderr.len() < 4096, "{} bytes of error", out.stderr.len());

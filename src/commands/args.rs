@@ -181,7 +181,9 @@ pub fn write_new_output(path: &Path, text: &str, overwrite: bool) -> Result<()> 
         }
         _ => anyhow::Error::new(e).context(format!("creating {}", path.display())),
     })?;
-    file.write_all(text.as_bytes()).and_then(|()| file.sync_all()).with_context(|| format!("writing {}", path.display()))?;
+    file.write_all(text.as_bytes())
+        .and_then(|()| file.sync_all())
+        .with_context(|| format!("writing {}", path.display()))?;
     eprintln!("wrote {}", path.display());
     Ok(())
 }

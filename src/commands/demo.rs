@@ -71,7 +71,11 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     let (shots, predictions): (u64, u64) =
         summary.rigs.values().fold((0, 0), |(s, p), c| (s + c.shots, p + c.predictions));
     if let Some(e) = summary.recorder.as_ref().and_then(|r| r.error.as_ref()) {
-        eprintln!("{predictions} of {} shots predicted; the recording {} failed: {e}", args.shots, args.record.display());
+        eprintln!(
+            "{predictions} of {} shots predicted; the recording {} failed: {e}",
+            args.shots,
+            args.record.display()
+        );
         return Ok(ExitCode::from(1));
     }
     eprintln!(

@@ -239,7 +239,8 @@ pub fn on_client_text(text: &str, channels: u32, subscriptions: &mut HashMap<u32
             Ok(())
         }
         Some("unsubscribe") => {
-            let gone: std::collections::HashSet<u64> = ids("subscriptionIds").iter().filter_map(|i| i.as_u64()).collect();
+            let gone: std::collections::HashSet<u64> =
+                ids("subscriptionIds").iter().filter_map(|i| i.as_u64()).collect();
             subscriptions.retain(|_, s| !gone.contains(&u64::from(*s)));
             Ok(())
         }

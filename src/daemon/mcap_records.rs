@@ -107,9 +107,14 @@ pub(super) enum Rec<'a> {
     Metadata(String, BTreeMap<String, String>),
     Statistics(BTreeMap<u16, u64>),
     /// The start of the summary section (0: none) and the CRC of the summary through the footer's offsets.
-    Footer { summary_start: u64, summary_crc: u32 },
+    Footer {
+        summary_start: u64,
+        summary_crc: u32,
+    },
     /// The CRC of the data section (everything before this record).
-    DataEnd { crc: u32 },
+    DataEnd {
+        crc: u32,
+    },
     Other,
 }
 

@@ -143,7 +143,10 @@ impl Peers {
         };
         if evicted {
             self.reject(Cut::Evicted.kind(), || {
-                format!("at the cap of {} connections: the longest idle was closed for {peer}", self.limits.max_connections)
+                format!(
+                    "at the cap of {} connections: the longest idle was closed for {peer}",
+                    self.limits.max_connections
+                )
             });
         }
         PeerSlot { id, state, peers: self.clone(), connected: Instant::now() }

@@ -92,7 +92,8 @@ pub fn read_jsonl(mut input: impl std::io::BufRead) -> Result<Vec<DatasetLine>, 
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
-        let parsed: DatasetLine = serde_json::from_str(t).map_err(|e| err(crate::capped::quote(&e.to_string()).into()))?;
+        let parsed: DatasetLine =
+            serde_json::from_str(t).map_err(|e| err(crate::capped::quote(&e.to_string()).into()))?;
         parsed.measured.check_measurable().map_err(err)?;
         out.push(parsed);
     }

@@ -311,7 +311,12 @@ impl Shared {
                 return self.reject(peer, "oversized", m);
             }
             Frame::Garbage { bytes } => {
-                self.record_rejected(peer, TrafficDirection::Received, b"", Some(format!("{bytes} bytes outside JSON")));
+                self.record_rejected(
+                    peer,
+                    TrafficDirection::Received,
+                    b"",
+                    Some(format!("{bytes} bytes outside JSON")),
+                );
                 return self.reject(peer, "not_json", format!("{bytes} bytes outside any JSON object skipped"));
             }
         };

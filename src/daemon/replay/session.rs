@@ -134,8 +134,11 @@ pub async fn run(
             return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
         }
     }
-    let recorder =
-        options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config), options.overwrite)).transpose()?;
+    let recorder = options
+        .output
+        .as_deref()
+        .map(|p| Recorder::create(p, session_metadata(config), options.overwrite))
+        .transpose()?;
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
     for setup in setups {
