@@ -52,6 +52,9 @@ pub struct LaunchMonitorListener {
     task: tokio::task::JoinHandle<()>,
 }
 
+/// Per device: its last shot number and when it was last heard from (a sequence number).
+type Devices = HashMap<String, (u64, u64)>;
+
 struct Shared {
     rig: String,
     publisher: zenoh::pubsub::Publisher<'static>,
@@ -59,7 +62,7 @@ struct Shared {
     status: Arc<Mutex<LaunchMonitorStatus>>,
     traffic_key: String,
     /// The last shot number published per device, with when it was last heard from (a sequence number).
-    last_shot: Mutex<(HashMap<String, (u64, u64)>, u64)>,
+    last_shot: Mutex<(Devices, u64)>,
     peers: Peers,
     /// The recording budget of rejected messages and their answers, and how many it refused since the last
     /// record (noted on the next one).

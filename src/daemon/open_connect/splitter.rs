@@ -87,10 +87,8 @@ impl Splitter {
                 b'{' | b'[' => self.depth += 1,
                 b'}' | b']' => {
                     self.depth -= 1;
-                    if self.depth == 0 {
-                        if self.oversized.take().is_none() {
-                            out(Frame::Object(std::mem::take(&mut self.buf)));
-                        }
+                    if self.depth == 0 && self.oversized.take().is_none() {
+                        out(Frame::Object(std::mem::take(&mut self.buf)));
                     }
                 }
                 _ => {}
