@@ -11,9 +11,9 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use impactd::daemon::foxglove_live::on_client_text;
-use impactd::daemon::open_connect::codec::ShotMessage;
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::foxglove::live::on_client_text;
+use impactd::daemon::bridges::open_connect::codec::ShotMessage;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
 use impactd::daemon::DaemonConfig;
 use impactd::equipment::ClubFile;
 use proptest::prelude::*;
@@ -118,14 +118,14 @@ fn run(name: &str, strategy: impl Strategy<Value = Vec<u8>>, target: impl Fn(&[u
 }
 
 fn open_connect(bytes: &[u8]) {
-    let mut splitter = Splitter::new(impactd::daemon::open_connect::MAX_MESSAGE_BYTES);
+    let mut splitter = Splitter::new(impactd::daemon::bridges::open_connect::MAX_MESSAGE_BYTES);
     let mut frames = Vec::new();
     for read in bytes.chunks(97) {
         splitter.push(read, &mut |f| frames.push(f));
     }
     for f in frames {
         if let Frame::Object(text) = f {
-            assert!(text.len() <= impactd::daemon::open_connect::MAX_MESSAGE_BYTES);
+            assert!(text.len() <= impactd::daemon::bridges::open_connect::MAX_MESSAGE_BYTES);
             if let Ok(m) = serde_json::from_slice::<ShotMessage>(&text) {
                 let _ = m.is_heartbeat();
                 let _ = m.to_measured("bay1", 1);

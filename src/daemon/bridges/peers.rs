@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
 
-use super::stats::RateLimiter;
+use crate::daemon::live::stats::RateLimiter;
 
 /// The bounds of one surface.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -107,18 +107,18 @@ pub const DEFAULT_IDLE_TIMEOUT_S: f64 = 120.0;
 
 /// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
 pub async fn start_rig(
-    rig: &crate::daemon::config::RigConfig,
+    rig: &str,
+    simulator: Option<&SimulatorConfig>,
+    launch_monitor: Option<&LaunchMonitorConfig>,
     session: &zenoh::Session,
-    recorder: &crate::daemon::recorder::RecorderHandle,
+    recorder: &crate::daemon::recording::writer::RecorderHandle,
 ) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
-    let simulator = rig
-        .simulator
-        .as_ref()
-        .and_then(|c| SimulatorOptions::from_config(&rig.name, c))
+    let simulator = simulator
+        .and_then(|c| SimulatorOptions::from_config(rig, c))
         .map(|o| SimulatorClient::spawn(o, recorder.clone()));
-    let listener = match rig.launch_monitor.as_ref().and_then(|l| Some((l, l.open_connect_listen.as_ref()?))) {
+    let listener = match launch_monitor.and_then(|l| Some((l, l.open_connect_listen.as_ref()?))) {
         Some((config, address)) => {
-            Some(LaunchMonitorListener::start(&rig.name, config, address, session, recorder.clone()).await?)
+            Some(LaunchMonitorListener::start(rig, config, address, session, recorder.clone()).await?)
         }
         None => None,
     };
@@ -182,12 +182,12 @@ impl LaunchMonitorConfig {
     }
 
     /// The bounds of the listener's connections.
-    pub fn peer_limits(&self) -> crate::daemon::peers::PeerLimits {
+    pub fn peer_limits(&self) -> crate::daemon::bridges::peers::PeerLimits {
         let secs = |v: Option<f64>, default: f64| {
             std::time::Duration::try_from_secs_f64(v.unwrap_or(default))
                 .unwrap_or(std::time::Duration::from_secs_f64(default))
         };
-        crate::daemon::peers::PeerLimits {
+        crate::daemon::bridges::peers::PeerLimits {
             max_connections: self.max_connections.unwrap_or(DEFAULT_MAX_CONNECTIONS),
             handshake: secs(self.handshake_timeout_s, DEFAULT_HANDSHAKE_TIMEOUT_S),
             idle: secs(self.idle_timeout_s, DEFAULT_IDLE_TIMEOUT_S),

@@ -10,7 +10,7 @@
 //! rejected messages and their answers within a budget per second, and the next record recorded after a
 //! refusal notes how many were not.
 //!
-//! What a peer can make the listener keep is bounded ([`super::super::peers`]): connections (at the cap the
+//! What a peer can make the listener keep is bounded ([`crate::daemon::bridges::peers`]): connections (at the cap the
 //! longest-idle one is closed for a newcomer), time to the first shot or heartbeat and between them, a message's
 //! size, a `DeviceID`'s length and the devices remembered for repeats. Rejections are counted by kind in the
 //! status and logged at most once a second per kind.
@@ -29,10 +29,11 @@ use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
 use super::{LaunchMonitorConfig, MAX_MESSAGE_BYTES};
 use crate::capped::quote;
+use crate::daemon::bridges::peers::{PeerSlot, Peers};
+use crate::daemon::live::stats::Budget;
 use crate::daemon::live::{REJECTED_BYTES_PER_S, REJECTED_RECORDS_PER_S};
-use crate::daemon::peers::{PeerSlot, Peers};
-use crate::daemon::recorder::{Record, RecorderHandle};
-use crate::daemon::stats::Budget;
+use crate::daemon::recording::record::Record;
+use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::{wall_ns, DaemonError};
 use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, OpenConnectTraffic, TrafficDirection};
 
