@@ -162,3 +162,54 @@ fn impossible_measured_values_are_refused_with_the_line_and_field() {
     assert!(!out.status.success());
     assert!(out.stderr.len() < 4096, "{} bytes of error", out.stderr.len());
 }
+
+#[test]
+fn fit_on_one_shot_claims_no_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("one.jsonl");
+    let synth = impactd(&["synth", "--model", "adjusted", "--shots", "1", "-o", data.to_str().unwrap()]);
+    assert!(synth.status.success(), "{}", String::from_utf8_lossy(&synth.stderr));
+    let out = impactd(&[
+        "fit", "--model", "adjusted", data.to_str().unwrap(), "--folds", "0", "--generations", "3",
+        "--local-evaluations", "20", "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for p in v["params"].as_array().unwrap() {
+        // No bound (null: infinite) rather than a bound of 0 from residuals one shot fits exactly.
+        assert_eq!(p["std_error"], serde_json::Value::Null, "{}: {p}", p["name"]);
+    }
+}
+
+fn flight(line: &str) -> (bool, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .arg("flight")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    use std::io::Write;
+    child.stdin.take().unwrap().write_all(format!("{line}\n").as_bytes()).unwrap();
+    let out = child.wait_with_output().unwrap();
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn flight_refuses_what_it_cannot_fly_and_what_it_would_not_fly() {
+    // 70 m/s at 0.5 deg: a kilometre of roll before; refused now, with the reason.
+    let (ok, out, err) = flight(r#"{"ball_speed_mps":70,"launch_angle_deg":0.5,"backspin_rpm":2500}"#);
+    assert!(!ok && err.contains("roll"), "{out}{err}");
+    // Vectors fly; a scalar beside them that says otherwise is refused, not echoed as if it had flown.
+    let (ok, out, err) = flight(
+        r#"{"ball_velocity_mps":[60,12,0],"ball_spin_radps":[0,0,-280],"ball_speed_mph":200,"launch_angle_deg":11.31}"#,
+    );
+    assert!(!ok && err.contains("ball_speed_mph"), "{out}{err}");
+    // A predicted line (vectors and scalars agreeing) flies.
+    let dir = tempfile::tempdir().unwrap();
+    let delivery = dir.path().join("delivery.jsonl");
+    std::fs::write(&delivery, "{\"club_speed_mph\":100}\n").unwrap();
+    let predicted = impactd(&["predict", "-i", delivery.to_str().unwrap()]);
+    let (ok, out, err) = flight(String::from_utf8_lossy(&predicted.stdout).trim());
+    assert!(ok && out.contains("carry_yd"), "{out}{err}");
+}

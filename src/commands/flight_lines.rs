@@ -18,11 +18,30 @@ pub fn with_flight(mut line: Map<String, Value>, flight: &Flight, every_s: f64) 
     launch_fields.retain(|key, _| !PREDICT_EXTRAS.contains(&key.as_str()));
     let input: FlightInput = serde_json::from_value(Value::Object(launch_fields)).map_err(|e| e.to_string())?;
     let launch = input.to_launch().map_err(|e| e.to_string())?;
-    match serde_json::to_value(flight.fly(&launch, every_s)).map_err(|e| e.to_string())? {
+    let trajectory = flight.fly(&launch, every_s);
+    physical(&trajectory)?;
+    match serde_json::to_value(trajectory).map_err(|e| e.to_string())? {
         Value::Object(fields) => line.extend(fields),
         other => return Err(format!("a trajectory serialized as {other}")),
     }
     Ok(line)
+}
+
+/// The longest roll and total distance the bounce-and-roll model answers for (yd): a launch that would roll
+/// farther (a fast ball launched flat: 70 m/s at 0.5 deg) is outside what it models, and is refused rather than
+/// answered with a kilometre of roll. The longest drives on record total about 515 yd.
+pub const MAX_ROLL_YD: f64 = 150.0;
+pub const MAX_TOTAL_YD: f64 = 550.0;
+
+fn physical(t: &impactd::flight::Trajectory) -> Result<(), String> {
+    if !(t.roll_yd.is_finite() && t.total_yd.is_finite()) || t.roll_yd > MAX_ROLL_YD || t.total_yd > MAX_TOTAL_YD {
+        return Err(format!(
+            "the flight gives {:.0} yd of roll and {:.0} yd in all (carry {:.0} yd): beyond the {MAX_ROLL_YD} yd of \
+             roll and {MAX_TOTAL_YD} yd the bounce and roll model answers for; not a launch it can fly",
+            t.roll_yd, t.total_yd, t.carry_yd
+        ));
+    }
+    Ok(())
 }
 
 /// A writer of JSON lines that adds the flight to each launch line written through it (`predict --flight`).
