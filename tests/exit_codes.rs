@@ -170,8 +170,17 @@ fn fit_on_one_shot_claims_no_bound() {
     let synth = impactd(&["synth", "--model", "adjusted", "--shots", "1", "-o", data.to_str().unwrap()]);
     assert!(synth.status.success(), "{}", String::from_utf8_lossy(&synth.stderr));
     let out = impactd(&[
-        "fit", "--model", "adjusted", data.to_str().unwrap(), "--folds", "0", "--generations", "3",
-        "--local-evaluations", "20", "--json",
+        "fit",
+        "--model",
+        "adjusted",
+        data.to_str().unwrap(),
+        "--folds",
+        "0",
+        "--generations",
+        "3",
+        "--local-evaluations",
+        "20",
+        "--json",
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -192,13 +201,17 @@ fn flight(line: &str) -> (bool, String, String) {
     use std::io::Write;
     child.stdin.take().unwrap().write_all(format!("{line}\n").as_bytes()).unwrap();
     let out = child.wait_with_output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 #[test]
 fn flight_refuses_what_it_cannot_fly_and_what_it_would_not_fly() {
     // 70 m/s at 0.5 deg: a kilometre of roll before; refused now, with the reason.
-    let (ok, out, err) = flight(r#"{"ball_speed_mps":70,"launch_angle_deg":0.5,"backspin_rpm":2500}"#);
+    let (ok, out, err) = flight(r#"{"ball_speed_mps":70,"launch_angle_deg":0.5}"#);
     assert!(!ok && err.contains("roll"), "{out}{err}");
     // Vectors fly; a scalar beside them that says otherwise is refused, not echoed as if it had flown.
     let (ok, out, err) = flight(
@@ -212,4 +225,14 @@ fn flight_refuses_what_it_cannot_fly_and_what_it_would_not_fly() {
     let predicted = impactd(&["predict", "-i", delivery.to_str().unwrap()]);
     let (ok, out, err) = flight(String::from_utf8_lossy(&predicted.stdout).trim());
     assert!(ok && out.contains("carry_yd"), "{out}{err}");
+}
+
+#[test]
+fn a_device_that_never_ends_is_refused_at_once() {
+    for args in [vec!["info", "/dev/zero"], vec!["recover", "/dev/zero", "-o", "/dev/null", "--overwrite"]] {
+        refused(&args, "not an MCAP file");
+    }
+    refused(&["compare", "/dev/zero"], "limit");
+    refused(&["predict", "-i", "/dev/zero"], "limit");
+    refused(&["flight", "-i", "/dev/zero"], "limit");
 }

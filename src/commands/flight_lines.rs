@@ -27,18 +27,22 @@ pub fn with_flight(mut line: Map<String, Value>, flight: &Flight, every_s: f64) 
     Ok(line)
 }
 
-/// The longest roll and total distance the bounce-and-roll model answers for (yd): a launch that would roll
-/// farther (a fast ball launched flat: 70 m/s at 0.5 deg) is outside what it models, and is refused rather than
-/// answered with a kilometre of roll. The longest drives on record total about 515 yd.
-pub const MAX_ROLL_YD: f64 = 150.0;
-pub const MAX_TOTAL_YD: f64 = 550.0;
+/// Where the bounce-and-roll model runs away: a ball that barely flies (launched flat or down) "lands" with most
+/// of its launch speed and rolls on for hundreds of yards (70 m/s at 0.5 deg: 9 yd of carry, 1,290 yd of roll
+/// on the default fairway). Such a launch is refused rather than answered: the roll may be at most twice the
+/// carry plus [`ROLL_MARGIN_YD`], and the total at most [`MAX_TOTAL_YD`] (the longest drives on record total
+/// about 515 yd). Every launch of a struck full shot stays inside (a 100 mph driver: 177 yd carry, 199 roll).
+pub const ROLL_MARGIN_YD: f64 = 100.0;
+pub const MAX_TOTAL_YD: f64 = 600.0;
 
 fn physical(t: &impactd::flight::Trajectory) -> Result<(), String> {
-    if !(t.roll_yd.is_finite() && t.total_yd.is_finite()) || t.roll_yd > MAX_ROLL_YD || t.total_yd > MAX_TOTAL_YD {
+    let runaway = t.roll_yd > 2.0 * t.carry_yd + ROLL_MARGIN_YD || t.total_yd > MAX_TOTAL_YD;
+    if !(t.roll_yd.is_finite() && t.total_yd.is_finite()) || runaway {
         return Err(format!(
-            "the flight gives {:.0} yd of roll and {:.0} yd in all (carry {:.0} yd): beyond the {MAX_ROLL_YD} yd of \
-             roll and {MAX_TOTAL_YD} yd the bounce and roll model answers for; not a launch it can fly",
-            t.roll_yd, t.total_yd, t.carry_yd
+            "the flight gives {:.0} yd of roll after {:.0} yd of carry ({:.0} yd in all): beyond twice the carry \
+             plus {ROLL_MARGIN_YD} yd of roll or {MAX_TOTAL_YD} yd in all, where the bounce and roll model runs \
+             away; not a launch it can fly",
+            t.roll_yd, t.carry_yd, t.total_yd
         ));
     }
     Ok(())

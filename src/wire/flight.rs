@@ -70,7 +70,12 @@ impl FlightInput {
             ("ball_speed_mps", self.ball_speed_mps, velocity_mps.norm(), 0.05),
             ("ball_speed_mph", self.ball_speed_mph, speed_mph, 0.1),
             ("launch_angle_deg", Some(self.launch_angle_deg).filter(|a| *a != 0.0), m.launch_angle_deg, 0.1),
-            ("launch_direction_deg", Some(self.launch_direction_deg).filter(|a| *a != 0.0), m.launch_direction_deg, 0.1),
+            (
+                "launch_direction_deg",
+                Some(self.launch_direction_deg).filter(|a| *a != 0.0),
+                m.launch_direction_deg,
+                0.1,
+            ),
             ("backspin_rpm", self.backspin_rpm, m.backspin_rpm, 10.0),
             ("sidespin_rpm", self.sidespin_rpm, m.sidespin_rpm, 10.0),
             ("total_spin_rpm", self.total_spin_rpm, m.total_spin_rpm, 10.0),

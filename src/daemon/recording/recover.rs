@@ -109,8 +109,7 @@ pub const RECOVERED_METADATA: &str = "recovered";
 /// Copies every readable message and metadata record of `input` into a new, finished MCAP file at `output`.
 /// An existing `output` is replaced only with `overwrite`.
 pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered, DaemonError> {
-    let bytes = std::fs::read(input)
-        .map_err(|e| DaemonError::Io { what: format!("reading {}", input.display()), source: e })?;
+    let bytes = crate::daemon::replay::read_file(input)?;
     let s = scan(&bytes, OnDamage::Resync);
     if let Some(reason) = &s.stopped {
         return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });

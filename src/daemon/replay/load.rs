@@ -30,9 +30,36 @@ pub struct ReplayInput {
 /// Skipped lines whose reason is kept.
 pub const KEPT_SKIPPED_LINES: usize = 100;
 
+/// A recording's bytes. A file that is not a regular file (`/dev/zero`, a pipe) is read only when it starts with
+/// the MCAP magic and only up to [`MAX_STREAMED_RECORDING_BYTES`]; a regular file is read whole (its size is
+/// known, and the reader bounds every allocation by it).
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
-    std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })
+    use std::io::Read;
+    let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
+    let file = std::fs::File::open(path).map_err(io)?;
+    if file.metadata().map_err(io)?.is_file() {
+        let mut bytes = Vec::new();
+        std::io::BufReader::new(file).read_to_end(&mut bytes).map_err(io)?;
+        return Ok(bytes);
+    }
+    let mut bytes = Vec::new();
+    let mut capped = file.take(MAX_STREAMED_RECORDING_BYTES + 1);
+    (&mut capped).take(mcap::MAGIC.len() as u64).read_to_end(&mut bytes).map_err(io)?;
+    if !is_mcap(&bytes) {
+        return Err(DaemonError::NotMcap { path: path.display().to_string() });
+    }
+    capped.read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
+        return Err(DaemonError::Unreadable {
+            path: path.display().to_string(),
+            reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
+        });
+    }
+    Ok(bytes)
 }
+
+/// The most read of a recording that is not a regular file (a pipe, a device).
+pub const MAX_STREAMED_RECORDING_BYTES: u64 = 1 << 30;
 
 /// Whether the bytes start with the MCAP magic.
 pub fn is_mcap(bytes: &[u8]) -> bool {
