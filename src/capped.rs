@@ -20,8 +20,28 @@ pub fn read_to_string(path: &Path, max_bytes: u64) -> std::io::Result<String> {
     Ok(text)
 }
 
+/// The most of one field or message an error quotes (characters).
+pub const QUOTE_CHARS: usize = 120;
+
+/// `text` as an error may quote it: whole when short, else its first [`QUOTE_CHARS`] characters and how long
+/// it was, so an error never echoes a huge field whole.
+pub fn quote(text: &str) -> std::borrow::Cow<'_, str> {
+    match text.char_indices().nth(QUOTE_CHARS) {
+        None => std::borrow::Cow::Borrowed(text),
+        Some((end, _)) => std::borrow::Cow::Owned(format!("{}... ({} bytes)", &text[..end], text.len())),
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_long_text_is_quoted_short() {
+        assert_eq!(super::quote("short"), "short");
+        let long = "é".repeat(100_000);
+        let q = super::quote(&long);
+        assert!(q.chars().count() < 150 && q.ends_with("(200000 bytes)"), "{q}");
+    }
+
     #[test]
     fn dev_zero_is_refused() {
         if std::path::Path::new("/dev/zero").exists() {

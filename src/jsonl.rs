@@ -25,6 +25,12 @@ pub struct Tally {
 pub enum JsonlError {
     #[error("reading input: {0}")]
     Read(#[source] std::io::Error),
+    #[error("reading input line {line}: {source}")]
+    Line {
+        line: usize,
+        #[source]
+        source: std::io::Error,
+    },
     #[error("writing output: {0}")]
     Write(#[source] std::io::Error),
 }
@@ -36,6 +42,44 @@ pub enum ParseError {
     Syntax(serde_json::Error),
     #[error("{0}")]
     Data(serde_json::Error),
+}
+
+/// The longest line read from a JSONL input (bytes, without its newline): a longer one (`/dev/zero`, a file
+/// that is not JSONL) ends the read with an error instead of being held whole.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// Reads the next line into `buf` (without its `\n`), holding at most `max_bytes`: `Ok(false)` at the end of
+/// the input, an `InvalidData` error for a longer line.
+pub fn read_line(input: &mut impl BufRead, buf: &mut Vec<u8>, max_bytes: usize) -> std::io::Result<bool> {
+    buf.clear();
+    let mut any = false;
+    loop {
+        let chunk = match input.fill_buf() {
+            Ok(c) => c,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        if chunk.is_empty() {
+            return Ok(any);
+        }
+        any = true;
+        let (part, end) = match chunk.iter().position(|b| *b == b'\n') {
+            Some(i) => (&chunk[..i], Some(i + 1)),
+            None => (chunk, None),
+        };
+        if buf.len() + part.len() > max_bytes {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("a line longer than the {max_bytes}-byte limit (not JSONL)"),
+            ));
+        }
+        buf.extend_from_slice(part);
+        let used = end.unwrap_or(part.len());
+        input.consume(used);
+        if end.is_some() {
+            return Ok(true);
+        }
+    }
 }
 
 /// Parses one line as a `T`.
@@ -65,8 +109,7 @@ where
     let mut input = input;
     let mut buf = Vec::new();
     for n in 1.. {
-        buf.clear();
-        if input.read_until(b'\n', &mut buf).map_err(JsonlError::Read)? == 0 {
+        if !read_line(&mut input, &mut buf, MAX_LINE_BYTES).map_err(|e| JsonlError::Line { line: n, source: e })? {
             break;
         }
         // A line that is not UTF-8 is answered like any other bad line.

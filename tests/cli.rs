@@ -87,7 +87,7 @@ fn impossible_arguments_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let map = dir.path().join("map.svg");
     let cases: [(Vec<&str>, &str); 4] = [
-        (vec!["eval", "extrapolation", "--shots", "0"], "--shots must be at least 1"),
+        (vec!["eval", "extrapolation", "--shots", "0"], "0 is not a count within 1"),
         (vec!["bench", "--filter", "nosuch"], "no stage's name contains it"),
         (vec!["map", "--club-speed-mph", "0", "-o", map.to_str().unwrap()], "club_speed_mph"),
         (vec!["map", "--club-speed-mph", "900", "-o", map.to_str().unwrap()], "club_speed_mph"),

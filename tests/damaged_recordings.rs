@@ -53,7 +53,7 @@ fn run_all(path: PathBuf, out: PathBuf) -> Option<impactd::daemon::recording::re
             }
         }
         // Only a file too short to hold the magic is refused as not MCAP.
-        let r = impactd::daemon::recording::recover::recover(&path, &out);
+        let r = impactd::daemon::recording::recover::recover(&path, &out, true);
         let short = std::fs::metadata(&path).map(|m| m.len() <= 8).unwrap_or(true);
         assert!(r.is_ok() || short, "{label}: recover: {r:?}");
         let r = r.ok();
@@ -163,7 +163,8 @@ fn the_binary_says_a_file_is_damaged() {
             let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"));
             cmd.args(&args[..1]).arg(file);
             if args.len() > 1 {
-                cmd.arg(args[1]).arg(dir.path().join("out.mcap"));
+                // One output for every case: replacing it is asked for (`recover` never replaces silently).
+                cmd.arg(args[1]).arg(dir.path().join("out.mcap")).arg("--overwrite");
             }
             let out = cmd.output().unwrap();
             let err = String::from_utf8_lossy(&out.stderr);

@@ -87,8 +87,14 @@ async fn a_foxglove_client_receives_every_channel_during_a_demo() {
         .spawn()
         .expect("python3");
     let sim = SimOptions { club: ClubSpec::driver(), shots: 3, interval_s: 2.0, ..SimOptions::default() };
-    let options =
-        DemoOptions { config: DaemonConfig::default(), sim, record: None, json: true, foxglove: Some(address) };
+    let options = DemoOptions {
+        config: DaemonConfig::default(),
+        sim,
+        record: None,
+        overwrite: false,
+        json: true,
+        foxglove: Some(address),
+    };
     let summary = demo(options, std::future::pending()).await.unwrap();
     assert_eq!(summary.rigs["rig1"].predictions, 3);
     let out = tokio::task::spawn_blocking(move || client.wait_with_output()).await.unwrap().unwrap();

@@ -17,7 +17,7 @@ use impactd::identify::cost::model_table;
 use impactd::identify::cost::recorded_table;
 #[cfg(feature = "daemon")]
 use impactd::identify::dataset::fields_of_launch;
-use impactd::identify::dataset::{parse_jsonl, resolve};
+use impactd::identify::dataset::{read_jsonl, resolve};
 use impactd::identify::{DatasetLine, ModelTable, FIELDS};
 use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::Equipment;
@@ -85,8 +85,9 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
             #[cfg(not(feature = "daemon"))]
             bail!("{}: reading recordings needs the daemon feature", path.display());
         } else {
-            let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-            loaded.lines.extend(parse_jsonl(&text).with_context(|| path.display().to_string())?);
+            let file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
+            let lines = read_jsonl(std::io::BufReader::new(file)).with_context(|| path.display().to_string())?;
+            loaded.lines.extend(lines);
         }
     }
     Ok(loaded)

@@ -10,12 +10,13 @@ use impactd::daemon::sim::SimOptions;
 use impactd::daemon::DaemonConfig;
 
 use super::args::load_club;
+use super::checked;
 use super::run::{runtime, shutdown_signal, BridgeArgs};
 
 #[derive(Debug, Args)]
 pub struct DemoArgs {
     /// Shots to swing.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = checked::count)]
     pub shots: u64,
     /// Club preset or club file.
     #[arg(long, default_value = "driver")]
@@ -26,11 +27,14 @@ pub struct DemoArgs {
     /// The recording's path.
     #[arg(long, default_value = "impactd-demo.mcap")]
     pub record: PathBuf,
+    /// Replace the recording if it exists (otherwise an existing file stops the demo, as with `run --record`).
+    #[arg(long)]
+    pub overwrite: bool,
     /// Random seed of the swings.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Capture rate (Hz).
-    #[arg(long, default_value_t = 720.0)]
+    #[arg(long, default_value_t = 720.0, value_parser = checked::capture_rate_hz)]
     pub rate: f64,
     #[command(flatten)]
     pub bridges: BridgeArgs,
@@ -58,6 +62,7 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
             config,
             sim,
             record: Some(args.record.clone()),
+            overwrite: args.overwrite,
             json: args.json,
             foxglove: args.bridges.foxglove.clone(),
         },
@@ -65,6 +70,14 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     ))?;
     let (shots, predictions): (u64, u64) =
         summary.rigs.values().fold((0, 0), |(s, p), c| (s + c.shots, p + c.predictions));
+    if let Some(e) = summary.recorder.as_ref().and_then(|r| r.error.as_ref()) {
+        eprintln!(
+            "{predictions} of {} shots predicted; the recording {} failed: {e}",
+            args.shots,
+            args.record.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
     eprintln!(
         "{predictions} of {} shots predicted ({shots} impacts detected). Recording: {} (try `impactd info {}` or open it in Foxglove)",
         args.shots,

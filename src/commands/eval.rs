@@ -20,22 +20,22 @@ pub struct ExtrapolationArgs {
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// Capture rate (Hz).
-    #[arg(long, default_value_t = 720.0)]
+    #[arg(long, default_value_t = 720.0, value_parser = super::checked::capture_rate_hz)]
     pub rate: f64,
     /// Number of swings.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = 1000, value_parser = super::checked::count_usize)]
     pub shots: usize,
     /// Gaussian position noise per axis (mm).
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = 0.2, value_parser = super::checked::magnitude)]
     pub noise_mm: f64,
     /// Gaussian orientation noise per axis (deg).
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, value_parser = super::checked::magnitude)]
     pub noise_deg: f64,
     /// Gaussian timestamp jitter (us).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::checked::magnitude)]
     pub jitter_us: f64,
     /// Probability that a frame is dropped.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::checked::probability)]
     pub drop: f64,
     /// Random seed.
     #[arg(long, default_value_t = 1)]

@@ -36,35 +36,41 @@ pub struct FitArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Cross-validation folds (0: none).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::checked::count_or_zero_usize)]
     pub folds: usize,
     /// Differential evolution population (default: 10 per parameter, at least 20).
-    #[arg(long)]
+    #[arg(long, value_parser = super::checked::count_usize)]
     pub population: Option<usize>,
     /// Generations of the global search.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = 100, value_parser = super::checked::count_or_zero_usize)]
     pub generations: usize,
     /// Nelder-Mead evaluations after the global search.
-    #[arg(long, default_value_t = 400)]
+    #[arg(long, default_value_t = 400, value_parser = super::checked::count_or_zero_usize)]
     pub local_evaluations: usize,
     /// Shots the global search evaluates (a seeded subsample; default all, 150 for a model resolved in time).
-    #[arg(long)]
+    #[arg(long, value_parser = super::checked::count_usize)]
     pub global_shots: Option<usize>,
     /// Integrate the global search at the exact step too (default: 4 x coarser for a model resolved in time).
     #[arg(long)]
     pub exact_global: bool,
     /// Stop the global search when its best cost gains under 0.1 % in this many generations (0: never).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = super::checked::count_or_zero_usize)]
     pub stall_generations: usize,
     /// Where to write the fitted club file.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// Replace the -o file if it exists.
+    #[arg(long, requires = "output")]
+    pub overwrite: bool,
     /// The report as one JSON object.
     #[arg(long)]
     pub json: bool,
 }
 
 pub fn run(args: &FitArgs) -> Result<ExitCode> {
+    if let Some(path) = args.output.as_ref().filter(|p| !args.overwrite && p.exists()) {
+        anyhow::bail!("{} exists; choose a new name or pass --overwrite", path.display());
+    }
     let model = FitModel::parse(&args.model)?;
     let space = ParamSpace::new(model, &args.params)?;
     let loaded = super::compare::load_files(&args.files)?;
@@ -118,7 +124,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
             "{} parameters fitted by `impactd fit` (eq. 3.13 over {} shots: {:.5} -> {:.5}, seed {})",
             report.model, report.shots, report.cost_before, report.cost, report.seed
         );
-        super::args::write_output(path, &to_toml(&fitted, &comment)?)?;
+        super::args::write_new_output(path, &to_toml(&fitted, &comment)?, args.overwrite)?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

@@ -24,7 +24,7 @@ pub struct FlightArgs {
     #[arg(long, requires = "coefficients")]
     pub json: bool,
     /// Also output the path, sampled every this many seconds.
-    #[arg(long)]
+    #[arg(long, value_parser = super::checked::seconds)]
     pub points_s: Option<f64>,
     /// Read launches from this file instead of stdin.
     #[arg(long, short)]

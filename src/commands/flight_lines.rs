@@ -18,11 +18,34 @@ pub fn with_flight(mut line: Map<String, Value>, flight: &Flight, every_s: f64) 
     launch_fields.retain(|key, _| !PREDICT_EXTRAS.contains(&key.as_str()));
     let input: FlightInput = serde_json::from_value(Value::Object(launch_fields)).map_err(|e| e.to_string())?;
     let launch = input.to_launch().map_err(|e| e.to_string())?;
-    match serde_json::to_value(flight.fly(&launch, every_s)).map_err(|e| e.to_string())? {
+    let trajectory = flight.fly(&launch, every_s);
+    physical(&trajectory)?;
+    match serde_json::to_value(trajectory).map_err(|e| e.to_string())? {
         Value::Object(fields) => line.extend(fields),
         other => return Err(format!("a trajectory serialized as {other}")),
     }
     Ok(line)
+}
+
+/// Where the bounce-and-roll model runs away: a ball that barely flies (launched flat or down) "lands" with most
+/// of its launch speed and rolls on for hundreds of yards (70 m/s at 0.5 deg: 9 yd of carry, 1,290 yd of roll
+/// on the default fairway). Such a launch is refused rather than answered: the roll may be at most twice the
+/// carry plus [`ROLL_MARGIN_YD`], and the total at most [`MAX_TOTAL_YD`] (the longest drives on record total
+/// about 515 yd). Every launch of a struck full shot stays inside (a 100 mph driver: 177 yd carry, 199 roll).
+pub const ROLL_MARGIN_YD: f64 = 100.0;
+pub const MAX_TOTAL_YD: f64 = 600.0;
+
+fn physical(t: &impactd::flight::Trajectory) -> Result<(), String> {
+    let runaway = t.roll_yd > 2.0 * t.carry_yd + ROLL_MARGIN_YD || t.total_yd > MAX_TOTAL_YD;
+    if !(t.roll_yd.is_finite() && t.total_yd.is_finite()) || runaway {
+        return Err(format!(
+            "the flight gives {:.0} yd of roll after {:.0} yd of carry ({:.0} yd in all): beyond twice the carry \
+             plus {ROLL_MARGIN_YD} yd of roll or {MAX_TOTAL_YD} yd in all, where the bounce and roll model runs \
+             away; not a launch it can fly",
+            t.roll_yd, t.carry_yd, t.total_yd
+        ));
+    }
+    Ok(())
 }
 
 /// A writer of JSON lines that adds the flight to each launch line written through it (`predict --flight`).

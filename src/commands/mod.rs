@@ -9,6 +9,7 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 mod args;
 mod bench;
 mod bench_baseline;
+mod checked;
 mod compare;
 mod eval;
 mod fit;

@@ -13,13 +13,16 @@ pub struct RecoverArgs {
     /// The new, finished MCAP file (it records that it was recovered, and from what).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
+    /// Replace the output if it exists.
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 pub fn run(args: &RecoverArgs) -> Result<ExitCode> {
     if args.file == args.output || super::replay::same_file(&args.file, &args.output) {
         bail!("-o {}: that is the input; the output must be a new file", args.output.display());
     }
-    let r = impactd::daemon::recording::recover::recover(&args.file, &args.output)?;
+    let r = impactd::daemon::recording::recover::recover(&args.file, &args.output, args.overwrite)?;
     if r.complete {
         eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
         return Ok(ExitCode::SUCCESS);

@@ -32,16 +32,16 @@ pub struct ReplayArgs {
     #[arg(long, value_parser = model_name)]
     pub model: Option<String>,
     /// Replay at this multiple of real time (default: as fast as possible).
-    #[arg(long)]
+    #[arg(long, value_parser = super::checked::pace)]
     pub rate: Option<f64>,
     /// Replay only these rigs (comma-separated).
     #[arg(long, value_delimiter = ',')]
     pub rig: Vec<String>,
     /// Skip this much capture time at the start (s).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::checked::seconds_or_zero)]
     pub start_offset: f64,
     /// Replay only this much capture time from the start (after --start-offset) (s).
-    #[arg(long)]
+    #[arg(long, value_parser = super::checked::seconds)]
     pub duration: Option<f64>,
     /// Control the replay from stdin: on a terminal, space or Enter pauses and resumes; otherwise lines `pause`,
     /// `resume` or `toggle` (a paused replay resumes when stdin ends).
@@ -63,6 +63,9 @@ pub struct ReplayArgs {
     /// Record the replay to a new MCAP file: samples, impacts, launches and status, as `impactd run` records.
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
+    /// Replace the -o file if it exists.
+    #[arg(long, requires = "output")]
+    pub overwrite: bool,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
 }
@@ -88,7 +91,14 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         for l in input.skipped_lines.iter().take(5) {
             eprintln!("skipped {l}");
         }
-        eprintln!("{} lines skipped: not clubhead samples", input.skipped_lines.len());
+        eprintln!("{} lines skipped: not clubhead samples", input.skipped);
+    }
+    if input.samples.is_empty() {
+        bail!(
+            "{}: no clubhead samples to replay (an empty, truncated or damaged recording, or not a recording or \
+             JSONL file of ClubheadSample messages)",
+            args.file.display()
+        );
     }
     let partial = select(&mut input, args)?;
     let (mut config, mut setups) = replay::resolve_config(&input, args.config.as_deref())?;
@@ -117,6 +127,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     let options = ReplayOptions {
         rate: args.rate,
         output: args.output.clone(),
+        overwrite: args.overwrite,
         publish: publish.unwrap_or_default(),
         pause: pause.clone(),
     };
@@ -168,8 +179,9 @@ fn select(input: &mut ReplayInput, args: &ReplayArgs) -> Result<bool> {
     }
     if let Some(t0) = input.samples.iter().map(|s| s.t_ns).min() {
         let from = t0.saturating_add((args.start_offset * 1e9) as u64);
-        let to = args.duration.map_or(u64::MAX, |d| from.saturating_add((d * 1e9) as u64));
-        input.samples.retain(|s| (from..to).contains(&s.t_ns));
+        // No --duration keeps every sample from `from` on, the one at t_ns = u64::MAX too.
+        let to = args.duration.map(|d| from.saturating_add((d * 1e9) as u64));
+        input.samples.retain(|s| s.t_ns >= from && to.map_or(true, |to| s.t_ns < to));
         if input.samples.is_empty() {
             bail!("--start-offset/--duration leave no samples");
         }

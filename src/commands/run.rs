@@ -126,11 +126,15 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
         }
         if let Some(r) = &summary.recorder {
             match &r.error {
-                Some(e) => tracing::error!(
-                    "recording failed: {e}; {} messages written before it, {} not recorded",
-                    r.messages,
-                    r.dropped
-                ),
+                Some(e) => {
+                    tracing::error!(
+                        "recording failed: {e}; {} messages written before it, {} not recorded",
+                        r.messages,
+                        r.dropped
+                    );
+                    // A recording that failed is a failed run, whatever else went well.
+                    return Ok(ExitCode::from(1));
+                }
                 None => tracing::info!("recording closed: {} messages, {} dropped", r.messages, r.dropped),
             }
         }

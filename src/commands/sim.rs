@@ -7,6 +7,7 @@ use clap::Args;
 use impactd::daemon::sim::{run_sim, SimOptions};
 
 use super::args::{load_club, ZenohArgs};
+use super::checked;
 use super::run::{runtime, shutdown_signal};
 
 #[derive(Debug, Args)]
@@ -15,28 +16,28 @@ pub struct SimArgs {
     #[arg(long = "rig")]
     pub rig: Vec<String>,
     /// Number of rigs named rig1..rigN.
-    #[arg(long)]
+    #[arg(long, value_parser = checked::count_usize)]
     pub rigs: Option<usize>,
     /// Shots per rig (0: until stopped).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = checked::count_or_zero)]
     pub shots: u64,
     /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// Capture rate (Hz).
-    #[arg(long, default_value_t = 720.0)]
+    #[arg(long, default_value_t = 720.0, value_parser = checked::capture_rate_hz)]
     pub rate: f64,
-    /// Seconds between shots.
-    #[arg(long, default_value_t = 1.5)]
+    /// Seconds between shots (at least 0.2).
+    #[arg(long, default_value_t = 1.5, value_parser = checked::seconds)]
     pub interval: f64,
     /// Random seed of the swings and the noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Gaussian position noise per axis (mm).
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = 0.2, value_parser = checked::magnitude)]
     pub noise_mm: f64,
     /// Gaussian orientation noise per axis (deg).
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, value_parser = checked::magnitude)]
     pub noise_deg: f64,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
@@ -50,8 +51,8 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
     if rigs.is_empty() {
         rigs.push("rig1".into());
     }
-    if !(60.0..=10_000.0).contains(&args.rate) || args.interval < 0.2 {
-        bail!("--rate must be within 60 and 10000 Hz and --interval at least 0.2 s");
+    if args.interval < 0.2 {
+        bail!("--interval must be at least 0.2 s, got {}", args.interval);
     }
     let options = SimOptions {
         rigs,

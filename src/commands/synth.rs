@@ -24,7 +24,7 @@ pub struct SynthArgs {
     #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub set: Vec<String>,
     /// Number of shots.
-    #[arg(long, default_value_t = 500)]
+    #[arg(long, default_value_t = 500, value_parser = super::checked::count_usize)]
     pub shots: usize,
     /// Seed of the deliveries and the noise.
     #[arg(long, default_value_t = 1)]

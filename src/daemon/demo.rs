@@ -17,6 +17,8 @@ pub struct DemoOptions {
     pub config: DaemonConfig,
     pub sim: SimOptions,
     pub record: Option<PathBuf>,
+    /// Replace an existing recording (otherwise it stops the demo).
+    pub overwrite: bool,
     pub json: bool,
     /// Serve the Foxglove live view on this `HOST:PORT`.
     pub foxglove: Option<String>,
@@ -48,6 +50,7 @@ pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
 
 /// Runs the demo until the rig's shots are all predicted or `shutdown` completes.
 pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> Result<RunSummary, DaemonError> {
+    options.sim.check()?;
     let setups = options.config.setups()?;
     let port = free_loopback_port()?;
     let endpoint = format!("tcp/127.0.0.1:{port}");
@@ -91,12 +94,13 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let (stop_daemon, daemon_stopped) = tokio::sync::oneshot::channel::<()>();
     let config = options.config.clone();
     let record = options.record.clone();
+    let overwrite = options.overwrite;
     let foxglove = options.foxglove.clone();
     let daemon = tokio::spawn(async move {
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let options = RunOptions { record, overwrite: true, foxglove };
+        let options = RunOptions { record, overwrite, foxglove };
         let r = crate::daemon::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r

@@ -54,6 +54,36 @@ impl Default for SimOptions {
     }
 }
 
+/// The most shots per rig a run may ask for (about 17 days at the default interval).
+pub const MAX_SHOTS: u64 = 1_000_000;
+
+impl SimOptions {
+    /// Refuses what would panic, never end or overflow the clock: a rate, interval or noise that is not a
+    /// finite number in its range, no rig, or more shots than [`MAX_SHOTS`].
+    pub fn check(&self) -> Result<(), DaemonError> {
+        let bad = |option, reason| Err(DaemonError::BadOption { option, reason });
+        if self.rigs.is_empty() {
+            return bad("--rigs", "must name at least one rig");
+        }
+        if !(60.0..=10_000.0).contains(&self.rate_hz) {
+            return bad("--rate", "must be within 60 and 10000 Hz");
+        }
+        if !(0.2..=3600.0).contains(&self.interval_s) {
+            return bad("--interval", "must be within 0.2 and 3600 s");
+        }
+        if self.shots > MAX_SHOTS {
+            return bad("--shots", "must be at most 1000000");
+        }
+        if !(0.0..=1e3).contains(&self.noise_mm) || !(0.0..=1e3).contains(&self.noise_deg) {
+            return bad("--noise-mm/--noise-deg", "must be within 0 and 1000");
+        }
+        if !(0.0..=3600.0).contains(&self.wait_for_subscriber_s) {
+            return bad("wait_for_subscriber_s", "must be within 0 and 3600 s");
+        }
+        Ok(())
+    }
+}
+
 /// What the rig sent.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct SimSummary {
@@ -192,6 +222,7 @@ pub async fn run_sim(
     options: SimOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<SimSummary, DaemonError> {
+    options.check()?;
     let stop = Arc::new(AtomicBool::new(false));
     let start_ns = wall_ns() + 200_000_000;
     let mut threads = Vec::new();

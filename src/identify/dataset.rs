@@ -72,17 +72,29 @@ impl DatasetLine {
 /// Parses a JSONL dataset (blank lines and lines starting with `#` are skipped); a bad line is an error naming
 /// its number (1-based) and the reason.
 pub fn parse_jsonl(text: &str) -> Result<Vec<DatasetLine>, IdentifyError> {
+    read_jsonl(text.as_bytes())
+}
+
+/// [`parse_jsonl`] over a stream, a line at a time: a line over [`crate::jsonl::MAX_LINE_BYTES`] is an error, so
+/// no input (`/dev/zero`, a huge file) is read whole.
+pub fn read_jsonl(mut input: impl std::io::BufRead) -> Result<Vec<DatasetLine>, IdentifyError> {
     let mut out = Vec::new();
-    for (i, line) in text.lines().enumerate() {
+    let mut buf = Vec::new();
+    for n in 1.. {
+        let err = |reason: String| IdentifyError::Line { line: n, reason };
+        match crate::jsonl::read_line(&mut input, &mut buf, crate::jsonl::MAX_LINE_BYTES) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => return Err(err(e.to_string())),
+        }
+        let Ok(line) = std::str::from_utf8(&buf) else { return Err(err("not UTF-8 text".into())) };
         let t = line.trim();
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
         let parsed: DatasetLine =
-            serde_json::from_str(t).map_err(|e| IdentifyError::Line { line: i + 1, reason: e.to_string() })?;
-        if fields_of_launch(&parsed.measured).iter().any(|v| !v.is_finite()) {
-            return Err(IdentifyError::Line { line: i + 1, reason: "a measured field is not finite".into() });
-        }
+            serde_json::from_str(t).map_err(|e| err(crate::capped::quote(&e.to_string()).into()))?;
+        parsed.measured.check_measurable().map_err(err)?;
         out.push(parsed);
     }
     Ok(out)

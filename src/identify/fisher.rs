@@ -144,8 +144,11 @@ pub fn bounds(f: &DMatrix<Real>) -> Vec<Bound> {
         .collect()
 }
 
-/// The standard deviation per field of the residuals (predicted - measured): the noise the fit leaves.
-pub fn residual_sigma(predictions: &[Option<[Real; 5]>], shots: &[Shot]) -> [Real; 5] {
+/// The standard deviation per field of the residuals (predicted - measured): the noise the fit leaves, with the
+/// `params` fitted parameters' degrees of freedom taken out (`Σ r² / (n - params)`). With no more predicted shots
+/// than parameters the residuals say nothing about the noise (one shot is fitted exactly): the noise is then
+/// unknown, returned as infinite, so no bound claims a parameter is pinned down (a bound of 0).
+pub fn residual_sigma(predictions: &[Option<[Real; 5]>], shots: &[Shot], params: usize) -> [Real; 5] {
     let mut sum = [0.0; 5];
     let mut n = 0.0;
     for (p, s) in predictions.iter().zip(shots) {
@@ -156,7 +159,8 @@ pub fn residual_sigma(predictions: &[Option<[Real; 5]>], shots: &[Shot]) -> [Rea
             n += 1.0;
         }
     }
-    sum.map(|v| if n > 0.0 { (v / n).sqrt() } else { Real::NAN })
+    let dof = n - params as Real;
+    sum.map(|v| if dof > 0.0 { (v / dof).sqrt() } else { Real::INFINITY })
 }
 
 #[cfg(test)]

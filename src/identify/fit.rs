@@ -247,7 +247,7 @@ pub fn run(
     let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
     let fit_seconds = started.elapsed().as_secs_f64();
     let fitted_club = space.club_with(club, &fitted.values);
-    let sigma = fisher::residual_sigma(&evaluate(space, &fitted_club, ball, shots)?, shots);
+    let sigma = fisher::residual_sigma(&evaluate(space, &fitted_club, ball, shots)?, shots, space.defs.len());
     let jacobian = fisher::jacobian(space, &fitted_club, ball, shots, &fitted.values)?;
     let bounds = fisher::bounds(&fisher::information_of(&jacobian, &sigma));
     let scales = CostScales::of(shots);

@@ -66,7 +66,21 @@ pub struct LaunchMonitorStatus {
     pub heartbeats: u64,
     /// Shots repeated with the same device and shot number (answered 200, published once).
     pub duplicates: u64,
-    /// Messages answered with a failure code, by reason.
+    /// Messages answered with a failure code and connections closed (`evicted_at_cap`, `handshake_timeout`,
+    /// `idle_timeout`), by reason.
+    pub rejected: BTreeMap<String, u64>,
+    /// Rejected messages and their answers not recorded: over the recording budget.
+    #[serde(default)]
+    pub traffic_not_recorded: u64,
+}
+
+/// The Foxglove live view, in [`StatusMessage`](super::StatusMessage)`.live_view`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct LiveViewStatus {
+    /// Viewers connected now.
+    pub clients: u64,
+    /// Client messages refused and connections closed (`oversized`, `unknown_channel`, `evicted_at_cap`,
+    /// `handshake_timeout`, `idle_timeout`, ...), by reason.
     pub rejected: BTreeMap<String, u64>,
 }
 

@@ -49,12 +49,47 @@ pub enum FlightInputError {
     SpinTooHigh { spin_rpm: Real },
     #[error("field `ball_spin_radps`: {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
     SpinVectorTooHigh { spin_rpm: Real },
+    #[error(
+        "field `{field}` = {given} disagrees with the vectors ({from_vectors:.3}): the vectors are what flies, so \
+         give one or make them agree"
+    )]
+    Disagrees { field: &'static str, given: Real, from_vectors: Real },
 }
 
 /// The most spin a flight accepts: tour wedges reach about 12,000 rpm (TrackMan).
 pub const MAX_BALL_SPIN_RPM: Real = 20_000.0;
 
 impl FlightInput {
+    /// With the vectors present, every scalar launch field given beside them must say the same (the line is
+    /// echoed in the answer, so an ignored scalar that disagreed would be shown as if it had flown).
+    fn agrees_with(&self, velocity_mps: &Vector3, spin_radps: &Vector3) -> Result<(), FlightInputError> {
+        let m = crate::impact::LaunchMetrics::from_ball(velocity_mps, spin_radps);
+        let speed_mph = crate::units::mps_to_mph(velocity_mps.norm());
+        // (field, given, from the vectors, tolerance): rounding in a printed line, not a different launch.
+        let checks = [
+            ("ball_speed_mps", self.ball_speed_mps, velocity_mps.norm(), 0.05),
+            ("ball_speed_mph", self.ball_speed_mph, speed_mph, 0.1),
+            ("launch_angle_deg", Some(self.launch_angle_deg).filter(|a| *a != 0.0), m.launch_angle_deg, 0.1),
+            (
+                "launch_direction_deg",
+                Some(self.launch_direction_deg).filter(|a| *a != 0.0),
+                m.launch_direction_deg,
+                0.1,
+            ),
+            ("backspin_rpm", self.backspin_rpm, m.backspin_rpm, 10.0),
+            ("sidespin_rpm", self.sidespin_rpm, m.sidespin_rpm, 10.0),
+            ("total_spin_rpm", self.total_spin_rpm, m.total_spin_rpm, 10.0),
+        ];
+        for (field, given, from_vectors, tolerance) in checks {
+            if let Some(given) = given {
+                if !(given.is_finite() && (given - from_vectors).abs() <= tolerance) {
+                    return Err(FlightInputError::Disagrees { field, given, from_vectors });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The launch state, or the reason it cannot be made.
     pub fn to_launch(&self) -> Result<crate::flight::LaunchState, FlightInputError> {
         let finite = |field: &'static str, v: Real| {
@@ -79,6 +114,7 @@ impl FlightInput {
             if spin_rpm > MAX_BALL_SPIN_RPM {
                 return Err(FlightInputError::SpinVectorTooHigh { spin_rpm });
             }
+            self.agrees_with(&Vector3::from(v), &Vector3::from(w))?;
             return Ok(crate::flight::LaunchState { velocity_mps: Vector3::from(v), spin_radps: Vector3::from(w) });
         }
         let speed = match (self.ball_speed_mps, self.ball_speed_mph) {

@@ -91,6 +91,41 @@ pub struct LaunchFields {
     pub carry_yd: Option<Real>,
 }
 
+/// What a launch monitor can measure, per field of [`LaunchFields`]: (field, lowest, highest). The Open Connect
+/// listener takes the same bounds.
+pub const MEASURABLE: [(&str, Real, Real); 6] = [
+    ("ball_speed_mph", 0.1, 300.0),
+    ("launch_angle_deg", -90.0, 90.0),
+    ("launch_direction_deg", -90.0, 90.0),
+    ("backspin_rpm", -30_000.0, 30_000.0),
+    ("sidespin_rpm", -30_000.0, 30_000.0),
+    ("carry_yd", 0.0, 600.0),
+];
+
+impl LaunchFields {
+    /// Refuses a value no launch monitor measures (not finite, a negative or absurd speed, ...), naming the
+    /// field, its value and the bounds.
+    pub fn check_measurable(&self) -> Result<(), String> {
+        let values = [
+            Some(self.ball_speed_mph),
+            Some(self.launch_angle_deg),
+            Some(self.launch_direction_deg),
+            Some(self.backspin_rpm),
+            Some(self.sidespin_rpm),
+            self.carry_yd,
+        ];
+        for ((name, lo, hi), v) in MEASURABLE.iter().zip(values) {
+            match v {
+                Some(v) if !(v.is_finite() && (*lo..=*hi).contains(&v)) => {
+                    return Err(format!("measured.{name} = {v} is not what a launch monitor measures ({lo} to {hi})"))
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A prediction paired with its measurement, on `golf/<rig>/comparison`: `residual = predicted - measured`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ComparisonMessage {

@@ -212,6 +212,9 @@ pub struct StatusMessage {
     /// Measured launches received on `lm/<rig>/launch` and their pairing with predictions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub comparison: Option<super::ComparisonStatus>,
+    /// The daemon's Foxglove live view (`--foxglove`), when it serves one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub live_view: Option<super::LiveViewStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

@@ -15,7 +15,8 @@ mod sample;
 mod schema;
 
 pub use bridge::{
-    ConnectionState, LaunchMonitorStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus, TrafficDirection,
+    ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
+    TrafficDirection,
 };
 pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
 pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};

@@ -3,3 +3,4 @@
 
 pub mod foxglove;
 pub mod open_connect;
+pub mod peers;

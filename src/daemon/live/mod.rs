@@ -154,6 +154,7 @@ pub async fn run(
             unknown: unknown.clone(),
             simulator,
             launch_monitor,
+            live_view: foxglove.as_ref().map(FoxgloveServer::status_source),
             pairer: Pairer::new(&name, window),
         };
         workers.push(
@@ -177,7 +178,8 @@ pub async fn run(
             let route = keys::rig_of_clubhead(key).and_then(|rig| routes.get(rig));
             let Some((tx, dropped)) = route else {
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
-                if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow(key)) {
+                // Limited by kind, not by key: a peer choosing a new key for every sample gets one line a second.
+                if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow("unknown_rig")) {
                     tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
                 }
                 // Recorded within the same budget as a rig's rejected payloads.
@@ -262,6 +264,7 @@ struct Worker {
     unknown: Arc<AtomicU64>,
     simulator: Option<SimulatorClient>,
     launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
+    live_view: Option<crate::daemon::bridges::foxglove::live::LiveViewSource>,
     /// Measured launches waiting for their prediction and predictions waiting for their measurement.
     pairer: Pairer,
 }
@@ -407,6 +410,7 @@ impl Worker {
         status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
         status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
         status.comparison = Some(self.pairer.status());
+        status.live_view = self.live_view.as_ref().map(|v| v.status());
         self.sinks.status(&status);
         status
     }

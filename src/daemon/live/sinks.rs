@@ -252,6 +252,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         simulator: None,
         launch_monitor: None,
         comparison: None,
+        live_view: None,
     }
 }
 

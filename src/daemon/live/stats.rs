@@ -41,11 +41,17 @@ impl LatencyWindow {
 pub struct RateLimiter {
     period: Duration,
     last: std::collections::HashMap<String, (Instant, u64)>,
+    /// Events of kinds not tracked because the table was full, reported with the next allowed line.
+    untracked: u64,
 }
+
+/// Kinds a [`RateLimiter`] tracks at once: keys are kinds (a reason, `unknown_rig`), never what a peer chose,
+/// and entries older than the period are pruned when the table fills.
+pub const RATE_LIMITER_KEYS: usize = 256;
 
 impl RateLimiter {
     pub fn new(period: Duration) -> Self {
-        RateLimiter { period, last: Default::default() }
+        RateLimiter { period, last: Default::default(), untracked: 0 }
     }
 
     /// `Some(suppressed since the last allowed)` when this event may be logged.
@@ -57,22 +63,48 @@ impl RateLimiter {
                 None
             }
             Some((t, n)) => {
-                let suppressed = *n;
+                let suppressed = *n + std::mem::take(&mut self.untracked);
                 *t = now;
                 *n = 0;
                 Some(suppressed)
             }
             None => {
+                if self.last.len() >= RATE_LIMITER_KEYS {
+                    let period = self.period;
+                    self.last.retain(|_, (t, _)| now.duration_since(*t) < period);
+                }
+                if self.last.len() >= RATE_LIMITER_KEYS {
+                    self.untracked += 1;
+                    return None;
+                }
                 self.last.insert(key.to_string(), (now, 0));
-                Some(0)
+                Some(std::mem::take(&mut self.untracked))
             }
         }
+    }
+
+    /// Kinds tracked now (bounded by [`RATE_LIMITER_KEYS`]).
+    pub fn tracked(&self) -> usize {
+        self.last.len()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_limiter_fed_distinct_keys_stays_bounded() {
+        let mut l = RateLimiter::new(Duration::from_secs(60));
+        let allowed = (0..10_000).filter(|i| l.allow(&format!("k{i}")).is_some()).count();
+        assert_eq!(allowed, RATE_LIMITER_KEYS);
+        assert_eq!(l.tracked(), RATE_LIMITER_KEYS);
+        let mut short = RateLimiter::new(Duration::ZERO);
+        for i in 0..10_000 {
+            short.allow(&format!("k{i}"));
+        }
+        assert!(short.tracked() <= RATE_LIMITER_KEYS);
+    }
 
     #[test]
     fn quantiles() {

@@ -205,7 +205,42 @@ impl Scan {
             Rec::Message(m) => self.messages.push(m),
             Rec::Metadata(name, m) => self.metadata.push((name, m)),
             Rec::Statistics(counts) => self.statistics = Some(counts),
-            Rec::Footer => {
+            Rec::DataEnd { crc } => {
+                // 0: the writer computed none. Covers everything before the record, the opening magic included.
+                let actual = crc32fast::hash(&bytes[..pos.min(bytes.len())]);
+                if crc != 0 && !bytes.is_empty() && actual != crc {
+                    self.damage.push(Damage {
+                        offset: 0,
+                        bytes: pos as u64,
+                        time_range_ns: None,
+                        after_message: self.messages.len(),
+                        reason: format!(
+                            "the data section's CRC is {actual:08x}, its DataEnd record says {crc:08x}: a record in \
+                             it (a message, the metadata, the recorded configuration) changed after it was written"
+                        ),
+                    });
+                }
+            }
+            Rec::Footer { summary_start, summary_crc } => {
+                // The summary CRC covers the summary section (or nothing) through the footer's two offsets.
+                let start = if summary_start == 0 { pos as u64 } else { summary_start };
+                let end = pos + 1 + 8 + 16;
+                if summary_crc != 0 && !bytes.is_empty() {
+                    let covered = usize::try_from(start).ok().filter(|s| *s <= pos && end <= bytes.len());
+                    let actual = covered.map(|s| crc32fast::hash(&bytes[s..end]));
+                    if actual != Some(summary_crc) {
+                        self.damage.push(Damage {
+                            offset: start,
+                            bytes: (end as u64).saturating_sub(start),
+                            time_range_ns: None,
+                            after_message: self.messages.len(),
+                            reason: format!(
+                                "the summary's CRC does not match its footer ({summary_crc:08x}): the summary, \
+                                 its statistics or indexes changed after they were written"
+                            ),
+                        });
+                    }
+                }
                 self.finished = &bytes[next..] == MAGIC;
                 if !self.finished {
                     self.damage.push(Damage {
@@ -248,8 +283,8 @@ impl Scan {
             recs.push(parse(opcode, body).map_err(|e| format!("inside a chunk, record 0x{opcode:02x}: {e}"))?);
             pos = next;
         }
-        if recs.iter().any(|r| matches!(r, Rec::Chunk(_) | Rec::Footer)) {
-            return Err("a chunk holds a chunk or a footer".into());
+        if recs.iter().any(|r| matches!(r, Rec::Chunk(_) | Rec::Footer { .. } | Rec::DataEnd { .. })) {
+            return Err("a chunk holds a chunk, a footer or a data end".into());
         }
         let messages = recs.iter().filter(|r| matches!(r, Rec::Message(_))).count() as u64;
         for rec in recs {

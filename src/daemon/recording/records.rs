@@ -131,7 +131,15 @@ pub(super) enum Rec<'a> {
     Chunk(Box<ChunkBody<'a>>),
     Metadata(String, BTreeMap<String, String>),
     Statistics(BTreeMap<u16, u64>),
-    Footer,
+    /// The start of the summary section (0: none) and the CRC of the summary through the footer's offsets.
+    Footer {
+        summary_start: u64,
+        summary_crc: u32,
+    },
+    /// The CRC of the data section (everything before this record).
+    DataEnd {
+        crc: u32,
+    },
     Other,
 }
 
@@ -153,8 +161,9 @@ pub(super) fn parse(opcode: u8, body: &[u8]) -> Parse<Rec<'_>> {
             Rec::Other
         }
         op::FOOTER => {
-            c.take(20)?;
-            Rec::Footer
+            let summary_start = c.u64()?;
+            c.u64()?;
+            Rec::Footer { summary_start, summary_crc: c.u32()? }
         }
         op::SCHEMA => {
             let id = c.u16()?;
@@ -202,10 +211,7 @@ pub(super) fn parse(opcode: u8, body: &[u8]) -> Parse<Rec<'_>> {
             }
             Rec::Statistics(counts)
         }
-        op::DATA_END => {
-            c.u32()?;
-            Rec::Other
-        }
+        op::DATA_END => Rec::DataEnd { crc: c.u32()? },
         op::SUMMARY_OFFSET => {
             c.u8()?;
             c.take(16)?;

@@ -107,15 +107,14 @@ fn losses(s: &Scan, file_bytes: u64) -> Vec<Loss> {
 pub const RECOVERED_METADATA: &str = "recovered";
 
 /// Copies every readable message and metadata record of `input` into a new, finished MCAP file at `output`.
-pub fn recover(input: &Path, output: &Path) -> Result<Recovered, DaemonError> {
-    let bytes = std::fs::read(input)
-        .map_err(|e| DaemonError::Io { what: format!("reading {}", input.display()), source: e })?;
+/// An existing `output` is replaced only with `overwrite`.
+pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered, DaemonError> {
+    let bytes = crate::daemon::replay::read_file(input)?;
     let s = scan(&bytes, OnDamage::Resync);
     if let Some(reason) = &s.stopped {
         return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
     }
-    let file = std::fs::File::create(output)
-        .map_err(|e| DaemonError::Io { what: format!("creating {}", output.display()), source: e })?;
+    let file = super::writer::create_output(output, overwrite)?;
     let mut w = mcap::WriteOptions::new()
         .compression(Some(mcap::Compression::Zstd))
         .profile("")

@@ -40,8 +40,7 @@ pub fn delivery_input(p: &LaunchPrediction) -> DeliveryInput {
 
 /// Reads the comparisons and predictions of an MCAP recording.
 pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
-    let bytes =
-        std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
+    let bytes = crate::daemon::replay::read_file(path)?;
     let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut out = RecordedShots { damage: scan.problems(), ..Default::default() };
     let mut predictions: BTreeMap<(String, u64), LaunchPrediction> = BTreeMap::new();

@@ -21,26 +21,74 @@ pub struct ReplayInput {
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
     /// nothing byte for byte.
     pub damage: Vec<String>,
-    /// JSONL lines skipped because they are not samples.
+    /// JSONL lines skipped because they are not samples (the first [`KEPT_SKIPPED_LINES`] of them).
     pub skipped_lines: Vec<String>,
+    /// JSONL lines skipped, all of them.
+    pub skipped: usize,
 }
 
+/// Skipped lines whose reason is kept.
+pub const KEPT_SKIPPED_LINES: usize = 100;
+
+/// A recording's bytes. A file that is not a regular file (`/dev/zero`, a pipe) is read only when it starts with
+/// the MCAP magic and only up to [`MAX_STREAMED_RECORDING_BYTES`]; a regular file is read whole (its size is
+/// known, and the reader bounds every allocation by it).
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
-    std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })
+    use std::io::Read;
+    let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
+    let file = std::fs::File::open(path).map_err(io)?;
+    if file.metadata().map_err(io)?.is_file() {
+        let mut bytes = Vec::new();
+        std::io::BufReader::new(file).read_to_end(&mut bytes).map_err(io)?;
+        return Ok(bytes);
+    }
+    let mut bytes = Vec::new();
+    let mut capped = file.take(MAX_STREAMED_RECORDING_BYTES + 1);
+    (&mut capped).take(mcap::MAGIC.len() as u64).read_to_end(&mut bytes).map_err(io)?;
+    if !is_mcap(&bytes) {
+        return Err(DaemonError::NotMcap { path: path.display().to_string() });
+    }
+    capped.read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
+        return Err(DaemonError::Unreadable {
+            path: path.display().to_string(),
+            reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
+        });
+    }
+    Ok(bytes)
 }
+
+/// The most read of a recording that is not a regular file (a pipe, a device).
+pub const MAX_STREAMED_RECORDING_BYTES: u64 = 1 << 30;
 
 /// Whether the bytes start with the MCAP magic.
 pub fn is_mcap(bytes: &[u8]) -> bool {
     bytes.starts_with(mcap::MAGIC)
 }
 
-/// Reads an MCAP recording or a JSONL file of `ClubheadSample`s.
+/// Reads an MCAP recording or a JSONL file of `ClubheadSample`s. A JSONL file is read a line at a time, each
+/// at most [`crate::jsonl::MAX_LINE_BYTES`], so `/dev/zero` or a huge file that is not JSONL is an error, not a
+/// whole-file read.
 pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
-    let bytes = read_file(path)?;
-    if !is_mcap(&bytes) {
+    use std::io::{BufRead, Read};
+    let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
+    let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
+    if !is_mcap(file.fill_buf().map_err(io)?) {
         let mut input = ReplayInput::default();
-        for (i, line) in bytes.split(|b| *b == b'\n').enumerate() {
-            let reason = match std::str::from_utf8(line) {
+        let mut line = Vec::new();
+        for n in 1.. {
+            match crate::jsonl::read_line(&mut file, &mut line, crate::jsonl::MAX_LINE_BYTES) {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(e) => {
+                    return Err(DaemonError::BadSampleLine {
+                        path: path.display().to_string(),
+                        line: n,
+                        reason: e.to_string(),
+                    })
+                }
+            }
+            let reason = match std::str::from_utf8(&line) {
                 Err(e) => format!("not UTF-8 ({e})"),
                 Ok(text) if text.trim().is_empty() => continue,
                 Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
@@ -48,13 +96,18 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                         input.samples.push(msg);
                         continue;
                     }
-                    Err(e) => e.to_string(),
+                    Err(e) => crate::capped::quote(&e.to_string()).into_owned(),
                 },
             };
-            input.skipped_lines.push(format!("{} line {}: {reason}", path.display(), i + 1));
+            input.skipped += 1;
+            if input.skipped_lines.len() < KEPT_SKIPPED_LINES {
+                input.skipped_lines.push(format!("{} line {n}: {reason}", path.display()));
+            }
         }
         return Ok(input);
     }
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes).map_err(io)?;
     let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut input = ReplayInput { damage: scan.problems(), ..ReplayInput::default() };
     input.config_toml =

@@ -19,8 +19,10 @@ use crate::pipeline::{Event, Pipeline, RigSetup};
 pub struct ReplayOptions {
     /// Replay at this multiple of real time (`None`: as fast as possible).
     pub rate: Option<f64>,
-    /// Record the replay to this new MCAP file.
+    /// Record the replay to this MCAP file.
     pub output: Option<PathBuf>,
+    /// Replace `output` if it exists (otherwise an existing file stops the replay).
+    pub overwrite: bool,
     /// With a `session`: what the replay puts on zenoh.
     pub publish: Publish,
     /// A switch that pauses the replay before its next sample (`impactd replay --pause`).
@@ -132,8 +134,11 @@ pub async fn run(
             return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
         }
     }
-    let recorder =
-        options.output.as_deref().map(|p| Recorder::create(p, session_metadata(config), true)).transpose()?;
+    let recorder = options
+        .output
+        .as_deref()
+        .map(|p| Recorder::create(p, session_metadata(config), options.overwrite))
+        .transpose()?;
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
     for setup in setups {

@@ -8,22 +8,32 @@
 //! from the daemon's [`RecorderHandle`](crate::daemon::recording::writer::RecorderHandle) through a [`LiveTap`], a non-blocking
 //! bounded queue: the view is encoded on its own task (the same encoder as the recording), a slow or absent
 //! viewer never delays a prediction, and a viewer that falls behind skips messages rather than grow memory.
+//!
+//! What a client can make the server keep is bounded: a client message is at most [`MAX_CLIENT_MESSAGE_BYTES`]
+//! (fragments included), subscriptions only to advertised channels (one per channel), at most
+//! [`LIVE_VIEW_LIMITS`]`.max_connections` viewers (at the cap the longest-idle one is closed for a newcomer), a
+//! handshake within its timeout, and a viewer that stops answering the server's pings is closed. Rejections are
+//! counted by kind in every rig's status (`live_view`) and logged at most once a second per kind.
 
 use std::collections::HashMap;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
+use std::time::Duration;
 
 use futures_util::{SinkExt, StreamExt};
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::{broadcast, mpsc};
 use tokio_tungstenite::tungstenite::handshake::server::{ErrorResponse, Request, Response};
 use tokio_tungstenite::tungstenite::http::{HeaderValue, StatusCode};
+use tokio_tungstenite::tungstenite::protocol::WebSocketConfig;
 use tokio_tungstenite::tungstenite::Message;
 
 use crate::daemon::bridges::foxglove::server::{encode, rig_channels};
+use crate::daemon::bridges::peers::{PeerLimits, PeerSlot, Peers};
 use crate::daemon::recording::record::Record;
 use crate::daemon::DaemonError;
+use crate::wire::LiveViewStatus;
 
 /// The WebSocket subprotocol.
 pub const SUBPROTOCOL: &str = "foxglove.websocket.v1";
@@ -31,6 +41,15 @@ pub const SUBPROTOCOL: &str = "foxglove.websocket.v1";
 const TAP_QUEUE: usize = 1 << 12;
 /// Encoded messages a slow viewer may lag behind before it skips some.
 const VIEWER_LAG: usize = 1 << 10;
+/// The largest client message (a `subscribe` of every channel of 16 rigs is about 5 KiB).
+pub const MAX_CLIENT_MESSAGE_BYTES: usize = 16 * 1024;
+/// Viewers at once, the handshake's time, and the longest silence (no message, no answer to a ping).
+pub const LIVE_VIEW_LIMITS: PeerLimits =
+    PeerLimits { max_connections: 16, handshake: Duration::from_secs(5), idle: Duration::from_secs(60) };
+/// How often a viewer is pinged (its pong keeps it from idling out).
+const PING_PERIOD: Duration = Duration::from_secs(15);
+/// The longest a frame to one viewer may take to write before the viewer is dropped.
+const SEND_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// The daemon's side of the live view: hands records over without waiting.
 #[derive(Clone)]
@@ -51,6 +70,7 @@ impl LiveTap {
 pub struct FoxgloveServer {
     local_addr: SocketAddr,
     tap: LiveTap,
+    peers: Peers,
     tasks: Vec<tokio::task::JoinHandle<()>>,
 }
 
@@ -86,6 +106,9 @@ impl FoxgloveServer {
             topics.insert(topic, id);
         }
         let advertise = Arc::new(serde_json::json!({ "op": "advertise", "channels": channels }).to_string());
+        let channel_count = channels.len() as u32;
+        let peers = Peers::new("Foxglove live view", LIVE_VIEW_LIMITS);
+        let peers_accept = peers.clone();
         let (tx, mut rx) = mpsc::channel::<Record>(TAP_QUEUE);
         let (out, _) = broadcast::channel::<Arc<Outgoing>>(VIEWER_LAG);
         let out_enc = out.clone();
@@ -102,7 +125,9 @@ impl FoxgloveServer {
             loop {
                 match listener.accept().await {
                     Ok((stream, peer)) => {
-                        tokio::spawn(serve(stream, peer, advertise.clone(), out.subscribe()));
+                        let slot = peers_accept.admit(&peer.to_string());
+                        let client = Client { peer, slot, channels: channel_count, peers: peers_accept.clone() };
+                        tokio::spawn(serve(stream, client, advertise.clone(), out.subscribe()));
                     }
                     Err(e) => {
                         tracing::warn!("Foxglove live view: accept: {e}");
@@ -115,6 +140,7 @@ impl FoxgloveServer {
         Ok(FoxgloveServer {
             local_addr,
             tap: LiveTap { tx, dropped: Arc::new(AtomicU64::new(0)) },
+            peers,
             tasks: vec![encoder, acceptor],
         })
     }
@@ -130,6 +156,21 @@ impl FoxgloveServer {
     /// Records the view could not keep up with.
     pub fn dropped(&self) -> u64 {
         self.tap.dropped.load(Ordering::Relaxed)
+    }
+
+    /// The viewers and rejections, for a status message.
+    pub fn status_source(&self) -> LiveViewSource {
+        LiveViewSource(self.peers.clone())
+    }
+}
+
+/// Reads the live view's counts for a rig's status.
+#[derive(Clone)]
+pub struct LiveViewSource(Peers);
+
+impl LiveViewSource {
+    pub fn status(&self) -> LiveViewStatus {
+        LiveViewStatus { clients: self.0.open() as u64, rejected: self.0.rejected() }
     }
 }
 
@@ -152,60 +193,153 @@ fn select_subprotocol(request: &Request, mut response: Response) -> Result<Respo
     Ok(response)
 }
 
-/// Subscription ids by channel id, from the client's `subscribe` and `unsubscribe` operations.
-fn on_client_text(text: &str, subscriptions: &mut HashMap<u32, u32>) {
-    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else { return };
-    let ids = |key: &str| v[key].as_array().cloned().unwrap_or_default();
-    match v["op"].as_str() {
-        Some("subscribe") => {
-            for s in ids("subscriptions") {
-                if let (Some(id), Some(channel)) = (s["id"].as_u64(), s["channelId"].as_u64()) {
-                    subscriptions.insert(channel as u32, id as u32);
-                }
-            }
+/// Why a client message was refused.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ClientReject {
+    /// Not a JSON object with an `op`.
+    Malformed,
+    /// An operation this server does not support.
+    UnknownOp,
+    /// A subscription to a channel that was never advertised, or a malformed subscription entry.
+    UnknownChannel { refused: usize },
+}
+
+impl ClientReject {
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ClientReject::Malformed => "malformed",
+            ClientReject::UnknownOp => "unknown_op",
+            ClientReject::UnknownChannel { .. } => "unknown_channel",
         }
-        Some("unsubscribe") => {
-            for id in ids("subscriptionIds").iter().filter_map(|i| i.as_u64()) {
-                subscriptions.retain(|_, s| u64::from(*s) != id);
-            }
-        }
-        _ => {}
     }
 }
 
-async fn serve(
-    stream: TcpStream,
+/// Applies a client's `subscribe` or `unsubscribe` to its subscription ids by channel id (channels are
+/// `1..=channels`). Only advertised channels are taken, one subscription each, so the map never holds more
+/// than the channels advertised whatever the client sends.
+pub fn on_client_text(text: &str, channels: u32, subscriptions: &mut HashMap<u32, u32>) -> Result<(), ClientReject> {
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else { return Err(ClientReject::Malformed) };
+    let ids = |key: &str| v[key].as_array().map(Vec::as_slice).unwrap_or_default();
+    match v["op"].as_str() {
+        Some("subscribe") => {
+            let mut refused = 0;
+            for s in ids("subscriptions") {
+                let id = s["id"].as_u64().and_then(|i| u32::try_from(i).ok());
+                let channel = s["channelId"].as_u64().and_then(|c| u32::try_from(c).ok());
+                match (id, channel) {
+                    (Some(id), Some(channel)) if (1..=channels).contains(&channel) => {
+                        subscriptions.insert(channel, id);
+                    }
+                    _ => refused += 1,
+                }
+            }
+            if refused > 0 {
+                return Err(ClientReject::UnknownChannel { refused });
+            }
+            Ok(())
+        }
+        Some("unsubscribe") => {
+            let gone: std::collections::HashSet<u64> =
+                ids("subscriptionIds").iter().filter_map(|i| i.as_u64()).collect();
+            subscriptions.retain(|_, s| !gone.contains(&u64::from(*s)));
+            Ok(())
+        }
+        Some(_) => Err(ClientReject::UnknownOp),
+        None => Err(ClientReject::Malformed),
+    }
+}
+
+/// One viewer's connection.
+struct Client {
     peer: SocketAddr,
-    advertise: Arc<String>,
-    mut rx: broadcast::Receiver<Arc<Outgoing>>,
-) {
+    slot: PeerSlot,
+    channels: u32,
+    peers: Peers,
+}
+
+async fn serve(stream: TcpStream, client: Client, advertise: Arc<String>, rx: broadcast::Receiver<Arc<Outgoing>>) {
+    let peer = client.peer;
     let _ = stream.set_nodelay(true);
-    let mut ws = match tokio_tungstenite::accept_hdr_async(stream, select_subprotocol).await {
-        Ok(ws) => ws,
-        Err(e) => {
-            tracing::debug!("Foxglove live view: {peer}: handshake: {e}");
+    let config = WebSocketConfig::default()
+        .read_buffer_size(MAX_CLIENT_MESSAGE_BYTES)
+        .max_message_size(Some(MAX_CLIENT_MESSAGE_BYTES))
+        .max_frame_size(Some(MAX_CLIENT_MESSAGE_BYTES))
+        .write_buffer_size(0)
+        .max_write_buffer_size(4 << 20);
+    let handshake = tokio_tungstenite::accept_hdr_async_with_config(stream, select_subprotocol, Some(config));
+    let ws = tokio::select! {
+        done = handshake => match done {
+            Ok(ws) => ws,
+            Err(e) => {
+                client.peers.reject("handshake", || format!("{peer}: handshake: {e}"));
+                return;
+            }
+        },
+        cut = client.slot.cut() => {
+            client.slot.report(cut, &peer.to_string());
             return;
         }
     };
+    client.slot.touch();
     tracing::info!("Foxglove live view: {peer} connected");
+    stream_to(ws, &client, &advertise, rx).await;
+    tracing::info!("Foxglove live view: {peer} disconnected");
+}
+
+async fn send(ws: &mut tokio_tungstenite::WebSocketStream<TcpStream>, m: Message) -> bool {
+    matches!(tokio::time::timeout(SEND_TIMEOUT, ws.send(m)).await, Ok(Ok(())))
+}
+
+async fn stream_to(
+    mut ws: tokio_tungstenite::WebSocketStream<TcpStream>,
+    client: &Client,
+    advertise: &str,
+    mut rx: broadcast::Receiver<Arc<Outgoing>>,
+) {
+    let peer = client.peer.to_string();
     let info = serde_json::json!({
         "op": "serverInfo", "name": format!("impactd {}", env!("CARGO_PKG_VERSION")),
         "capabilities": [], "supportedEncodings": ["json"], "metadata": {},
         "sessionId": crate::daemon::wall_ns().to_string(),
     });
-    if ws.send(Message::text(info.to_string())).await.is_err()
-        || ws.send(Message::text(advertise.as_str())).await.is_err()
-    {
+    if !send(&mut ws, Message::text(info.to_string())).await || !send(&mut ws, Message::text(advertise)).await {
         return;
     }
     let mut subscriptions: HashMap<u32, u32> = HashMap::new();
+    let mut ping = tokio::time::interval(PING_PERIOD);
     loop {
         tokio::select! {
             incoming = ws.next() => match incoming {
-                Some(Ok(Message::Text(t))) => on_client_text(t.as_str(), &mut subscriptions),
-                Some(Ok(Message::Close(_))) | None | Some(Err(_)) => break,
+                Some(Ok(Message::Text(t))) => match on_client_text(t.as_str(), client.channels, &mut subscriptions) {
+                    Ok(()) => client.slot.touch(),
+                    Err(r) => client.peers.reject(r.kind(), || format!("{peer}: client message refused: {r:?}")),
+                },
+                Some(Ok(Message::Pong(_))) => client.slot.touch(),
+                Some(Err(e)) => {
+                    use tokio_tungstenite::tungstenite::protocol::{frame::coding::CloseCode, CloseFrame};
+                    use tokio_tungstenite::tungstenite::Error;
+                    let oversized = matches!(e, Error::Capacity(_));
+                    let kind = if oversized { "oversized" } else { "protocol" };
+                    client.peers.reject(kind, || format!("{peer}: closed: {e}"));
+                    if oversized {
+                        let reason = format!("a client message is at most {MAX_CLIENT_MESSAGE_BYTES} bytes");
+                        let frame = CloseFrame { code: CloseCode::Size, reason: reason.into() };
+                        let _ = tokio::time::timeout(SEND_TIMEOUT, ws.close(Some(frame))).await;
+                    }
+                    break;
+                }
+                Some(Ok(Message::Close(_))) | None => break,
                 Some(Ok(_)) => {}
             },
+            cut = client.slot.cut() => {
+                client.slot.report(cut, &peer);
+                break;
+            }
+            _ = ping.tick() => {
+                if !send(&mut ws, Message::Ping(Vec::new().into())).await {
+                    break;
+                }
+            }
             outgoing = rx.recv() => match outgoing {
                 Ok(m) => {
                     let Some(&subscription) = subscriptions.get(&m.channel) else { continue };
@@ -214,7 +348,7 @@ async fn serve(
                     frame.extend_from_slice(&subscription.to_le_bytes());
                     frame.extend_from_slice(&m.log_time_ns.to_le_bytes());
                     frame.extend_from_slice(&m.data);
-                    if ws.send(Message::binary(frame)).await.is_err() {
+                    if !send(&mut ws, Message::binary(frame)).await {
                         break;
                     }
                 }
@@ -225,5 +359,4 @@ async fn serve(
             },
         }
     }
-    tracing::info!("Foxglove live view: {peer} disconnected");
 }

@@ -6,7 +6,14 @@
 //! number is answered 200 and not published again); a heartbeat is not answered; anything else (not JSON, not
 //! a shot, impossible numbers, over 64 KiB, bytes outside any object) is answered with code 501 and the reason,
 //! counted, and the connection goes on, so one bad message never costs another shot. Every message both ways is
-//! recorded as `OpenConnectTraffic` on `lm/<rig>/open_connect`, each published shot on `lm/<rig>/launch`.
+//! recorded as `OpenConnectTraffic` on `lm/<rig>/open_connect`, each published shot on `lm/<rig>/launch`;
+//! rejected messages and their answers within a budget per second, and the next record recorded after a
+//! refusal notes how many were not.
+//!
+//! What a peer can make the listener keep is bounded ([`crate::daemon::bridges::peers`]): connections (at the cap the
+//! longest-idle one is closed for a newcomer), time to the first shot or heartbeat and between them, a message's
+//! size, a `DeviceID`'s length and the devices remembered for repeats. Rejections are counted by kind in the
+//! status and logged at most once a second per kind.
 //! Received bytes are acknowledged at once (`TCP_QUICKACK`), so a connector's shot split over several writes
 //! is not held back 40 ms by Nagle's algorithm waiting on a delayed ACK (`tests/live_comparison.rs`).
 
@@ -20,7 +27,11 @@ use tokio::net::{TcpListener, TcpStream};
 
 use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
-use super::MAX_MESSAGE_BYTES;
+use super::{LaunchMonitorConfig, MAX_MESSAGE_BYTES};
+use crate::capped::quote;
+use crate::daemon::bridges::peers::{PeerSlot, Peers};
+use crate::daemon::live::stats::Budget;
+use crate::daemon::live::{REJECTED_BYTES_PER_S, REJECTED_RECORDS_PER_S};
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::{wall_ns, DaemonError};
@@ -28,6 +39,11 @@ use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, Open
 
 /// The failure code of the Open Connect v1 replies.
 pub const FAILURE: u16 = 501;
+/// The longest `DeviceID` taken (bytes); connectors name themselves in a few words.
+pub const MAX_DEVICE_ID_BYTES: usize = 128;
+/// Devices whose last shot number is remembered (to answer a repeat without publishing it again); beyond it the
+/// device heard from least recently is forgotten.
+pub const MAX_DEVICES: usize = 64;
 
 /// A running listener; [`LaunchMonitorListener::stop`] ends it and its connections (dropping it aborts them).
 pub struct LaunchMonitorListener {
@@ -37,20 +53,28 @@ pub struct LaunchMonitorListener {
     task: tokio::task::JoinHandle<()>,
 }
 
+/// Per device: its last shot number and when it was last heard from (a sequence number).
+type Devices = HashMap<String, (u64, u64)>;
+
 struct Shared {
     rig: String,
     publisher: zenoh::pubsub::Publisher<'static>,
     recorder: RecorderHandle,
     status: Arc<Mutex<LaunchMonitorStatus>>,
     traffic_key: String,
-    /// The last shot number published per device.
-    last_shot: Mutex<HashMap<String, u64>>,
+    /// The last shot number published per device, with when it was last heard from (a sequence number).
+    last_shot: Mutex<(Devices, u64)>,
+    peers: Peers,
+    /// The recording budget of rejected messages and their answers, and how many it refused since the last
+    /// record (noted on the next one).
+    budget: Mutex<(Budget, u64)>,
 }
 
 impl LaunchMonitorListener {
     /// Binds `address` and serves connectors on the current tokio runtime.
     pub async fn start(
         rig: &str,
+        config: &LaunchMonitorConfig,
         address: &str,
         session: &zenoh::Session,
         recorder: RecorderHandle,
@@ -70,7 +94,9 @@ impl LaunchMonitorListener {
             recorder,
             status: status.clone(),
             traffic_key: keys::launch_monitor_traffic(rig),
-            last_shot: Mutex::new(HashMap::new()),
+            last_shot: Mutex::new((HashMap::new(), 0)),
+            peers: Peers::new(&format!("rig {rig}: Open Connect"), config.peer_limits()),
+            budget: Mutex::new((Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S), 0)),
         });
         tracing::info!("rig {rig}: Open Connect listener on {local_addr}");
         let (stop, mut stopped) = tokio::sync::oneshot::channel::<()>();
@@ -81,7 +107,9 @@ impl LaunchMonitorListener {
                     _ = &mut stopped => break,
                     accepted = listener.accept() => match accepted {
                         Ok((stream, peer)) => {
-                            connections.spawn(shared.clone().serve(stream, peer));
+                            let slot = shared.peers.admit(&peer.to_string());
+                            shared.refresh();
+                            connections.spawn(shared.clone().serve(stream, peer, slot));
                         }
                         Err(e) => {
                             tracing::warn!("rig {}: Open Connect accept: {e}", shared.rig);
@@ -146,6 +174,42 @@ impl Shared {
         }
     }
 
+    /// Copies the connection count and the rejections by kind into the status.
+    fn refresh(&self) {
+        let (open, rejected) = (self.peers.open() as u64, self.peers.rejected());
+        self.update(|s| {
+            s.connections = open;
+            s.rejected = rejected;
+        });
+    }
+
+    /// Records a rejected message or its answer, within the budget.
+    fn record_rejected(&self, peer: &str, direction: TrafficDirection, text: &[u8], note: Option<String>) {
+        if !self.recorder.enabled() {
+            return;
+        }
+        let keep = text.len().min(crate::daemon::live::REJECTED_KEEP_BYTES);
+        let refused_before = {
+            let Ok(mut b) = self.budget.lock() else { return };
+            if !b.0.allow(keep) {
+                b.1 += 1;
+                let refused = b.0.refused;
+                drop(b);
+                self.update(|s| s.traffic_not_recorded = refused);
+                return;
+            }
+            std::mem::take(&mut b.1)
+        };
+        let note = match (refused_before, note) {
+            (0, note) => note,
+            (n, note) => Some(format!(
+                "{}{n} rejected messages and answers before this one not recorded (over the budget)",
+                note.map(|n| format!("{n}; ")).unwrap_or_default()
+            )),
+        };
+        self.record(peer, direction, &text[..keep], note);
+    }
+
     fn record(&self, peer: &str, direction: TrafficDirection, text: &[u8], note: Option<String>) {
         if !self.recorder.enabled() {
             return;
@@ -170,80 +234,134 @@ impl Shared {
         });
     }
 
-    async fn serve(self: Arc<Self>, stream: TcpStream, peer: SocketAddr) {
+    async fn serve(self: Arc<Self>, stream: TcpStream, peer: SocketAddr, slot: PeerSlot) {
         let peer = peer.to_string();
         let _ = stream.set_nodelay(true);
-        self.update(|s| s.connections += 1);
-        tracing::info!("rig {}: Open Connect client {peer} connected", self.rig);
+        tracing::debug!("rig {}: Open Connect client {peer} connected", self.rig);
         quick_ack(&stream);
         let (mut rd, mut wr) = stream.into_split();
         let mut splitter = Splitter::new(MAX_MESSAGE_BYTES);
         let mut buf = vec![0u8; 8192];
         let mut frames = Vec::new();
         'conn: loop {
-            let n = match rd.read(&mut buf).await {
-                Ok(0) | Err(_) => break,
-                Ok(n) => n,
+            let n = tokio::select! {
+                read = rd.read(&mut buf) => match read {
+                    Ok(0) | Err(_) => break,
+                    Ok(n) => n,
+                },
+                cut = slot.cut() => {
+                    slot.report(cut, &peer);
+                    break;
+                }
             };
             quick_ack(rd.as_ref());
             splitter.push(&buf[..n], &mut |f| frames.push(f));
             for frame in std::mem::take(&mut frames) {
-                let Some(reply) = self.on_frame(frame, &peer).await else { continue };
+                let (reply, useful) = self.on_frame(frame, &peer).await;
+                if useful {
+                    slot.touch();
+                }
+                let Some(reply) = reply else { continue };
                 let bytes = serde_json::to_vec(&reply).unwrap_or_default();
-                self.record(&peer, TrafficDirection::Sent, &bytes, None);
+                if useful {
+                    self.record(&peer, TrafficDirection::Sent, &bytes, None);
+                } else {
+                    self.record_rejected(&peer, TrafficDirection::Sent, &bytes, None);
+                }
                 match tokio::time::timeout(Duration::from_secs(2), wr.write_all(&bytes)).await {
                     Ok(Ok(())) => {}
                     _ => break 'conn,
                 }
             }
         }
-        self.update(|s| s.connections = s.connections.saturating_sub(1));
-        tracing::info!("rig {}: Open Connect client {peer} disconnected", self.rig);
+        drop(slot);
+        self.refresh();
+        tracing::debug!("rig {}: Open Connect client {peer} disconnected", self.rig);
     }
 
-    fn reject(&self, peer: &str, reason: &str, message: String) -> Option<Reply> {
-        self.update(|s| *s.rejected.entry(reason.to_string()).or_default() += 1);
-        tracing::warn!("rig {}: Open Connect client {peer}: {message}", self.rig);
-        Some(Reply::new(FAILURE, message))
+    /// Remembers the device's shot number; whether it repeats the last one. At most [`MAX_DEVICES`] devices are
+    /// remembered: a new one beyond them makes the listener forget the device heard from least recently.
+    fn remember(&self, device_id: &str, shot_number: u64) -> bool {
+        let Ok(mut last) = self.last_shot.lock() else { return false };
+        let (devices, heard) = &mut *last;
+        *heard += 1;
+        let repeated = shot_number != 0 && devices.get(device_id).is_some_and(|(shot, _)| *shot == shot_number);
+        if devices.len() >= MAX_DEVICES && !devices.contains_key(device_id) {
+            let least_recent = devices.iter().min_by_key(|(_, (_, seq))| *seq).map(|(id, _)| id.clone());
+            if let Some(id) = least_recent {
+                devices.remove(&id);
+            }
+        }
+        devices.insert(device_id.to_string(), (shot_number, *heard));
+        repeated
     }
 
-    /// The reply to one frame, if it gets one.
-    async fn on_frame(&self, frame: Frame, peer: &str) -> Option<Reply> {
+    /// Counts the rejection by kind (logged at most once a second per kind) and answers it.
+    fn reject(&self, peer: &str, reason: &str, message: String) -> (Option<Reply>, bool) {
+        self.peers.reject(reason, || format!("client {peer}: {message}"));
+        self.refresh();
+        (Some(Reply::new(FAILURE, message)), false)
+    }
+
+    /// The reply to one frame, if it gets one, and whether the frame was a useful message (a shot or a
+    /// heartbeat: it keeps the connection from idling out).
+    async fn on_frame(&self, frame: Frame, peer: &str) -> (Option<Reply>, bool) {
         let text = match frame {
             Frame::Object(text) => text,
             Frame::Oversized { bytes } => {
-                self.record(peer, TrafficDirection::Received, b"", Some(format!("oversized: {bytes} bytes")));
-                let m = format!("message of {bytes} bytes is over the {MAX_MESSAGE_BYTES}-byte limit; discarded");
+                let note = Some(format!("oversized: over {} bytes", bytes.saturating_sub(1)));
+                self.record_rejected(peer, TrafficDirection::Received, b"", note);
+                let m = format!("message over the {MAX_MESSAGE_BYTES}-byte limit; discarded up to its end");
                 return self.reject(peer, "oversized", m);
             }
             Frame::Garbage { bytes } => {
-                self.record(peer, TrafficDirection::Received, b"", Some(format!("{bytes} bytes outside JSON")));
+                self.record_rejected(
+                    peer,
+                    TrafficDirection::Received,
+                    b"",
+                    Some(format!("{bytes} bytes outside JSON")),
+                );
                 return self.reject(peer, "not_json", format!("{bytes} bytes outside any JSON object skipped"));
             }
         };
-        self.record(peer, TrafficDirection::Received, &text, None);
         let message = match serde_json::from_slice::<ShotMessage>(&text) {
             Ok(m) => m,
-            Err(e) => return self.reject(peer, "malformed", format!("not an Open Connect v1 message: {e}")),
+            Err(e) => {
+                self.record_rejected(peer, TrafficDirection::Received, &text, None);
+                let e = e.to_string();
+                return self.reject(peer, "malformed", format!("not an Open Connect v1 message: {}", quote(&e)));
+            }
         };
+        if message.device_id.len() > MAX_DEVICE_ID_BYTES {
+            self.record_rejected(peer, TrafficDirection::Received, &text, None);
+            let m = format!(
+                "DeviceID of {} bytes is over the {MAX_DEVICE_ID_BYTES}-byte limit: {}",
+                message.device_id.len(),
+                quote(&message.device_id)
+            );
+            return self.reject(peer, "device_id", m);
+        }
         if message.is_heartbeat() {
+            self.record(peer, TrafficDirection::Received, &text, None);
             self.update(|s| s.heartbeats += 1);
-            return None;
+            return (None, true);
         }
         let t_ns = wall_ns();
         let measured = match message.to_measured(&self.rig, t_ns) {
-            Ok(m) => m,
-            Err(e) => return self.reject(peer, "invalid", format!("shot {}: {e}", message.shot_number)),
+            Ok(m) => {
+                self.record(peer, TrafficDirection::Received, &text, None);
+                m
+            }
+            Err(e) => {
+                self.record_rejected(peer, TrafficDirection::Received, &text, None);
+                let e = e.to_string();
+                return self.reject(peer, "invalid", format!("shot {}: {}", message.shot_number, quote(&e)));
+            }
         };
-        let repeated = {
-            let mut last = self.last_shot.lock().ok()?;
-            let repeated = message.shot_number != 0 && last.get(&message.device_id) == Some(&message.shot_number);
-            last.insert(message.device_id.clone(), message.shot_number);
-            repeated
-        };
+        let repeated = self.remember(&message.device_id, message.shot_number);
         if repeated {
             self.update(|s| s.duplicates += 1);
-            return Some(Reply::new(200, format!("Shot {} already received", message.shot_number)));
+            return (Some(Reply::new(200, format!("Shot {} already received", message.shot_number))), true);
         }
         // Recorded by the rig's worker, which records every measured launch on the key, whatever its source.
         let data = serde_json::to_vec(&measured).unwrap_or_default();
@@ -251,6 +369,6 @@ impl Shared {
             return self.reject(peer, "publish", format!("shot {} not published: {e}", message.shot_number));
         }
         self.update(|s| s.shots += 1);
-        Some(Reply::new(200, "Shot received successfully"))
+        (Some(Reply::new(200, "Shot received successfully")), true)
     }
 }

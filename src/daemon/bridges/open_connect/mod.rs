@@ -87,7 +87,23 @@ pub struct LaunchMonitorConfig {
     /// `[0.05, 5.0]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pair_window_s: Option<[f64; 2]>,
+    /// Connectors connected at once; at the cap the longest-idle one is closed for a newcomer. Default 16.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_connections: Option<usize>,
+    /// A connection that sends no shot or heartbeat this long after connecting is closed (s). Default 10.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub handshake_timeout_s: Option<f64>,
+    /// A connection with no shot or heartbeat for this long is closed (s). Default 120.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub idle_timeout_s: Option<f64>,
 }
+
+/// Default connectors connected at once.
+pub const DEFAULT_MAX_CONNECTIONS: usize = 16;
+/// Default time to a first shot or heartbeat (s).
+pub const DEFAULT_HANDSHAKE_TIMEOUT_S: f64 = 10.0;
+/// Default longest time between shots or heartbeats (s).
+pub const DEFAULT_IDLE_TIMEOUT_S: f64 = 120.0;
 
 /// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
 pub async fn start_rig(
@@ -100,8 +116,10 @@ pub async fn start_rig(
     let simulator = simulator
         .and_then(|c| SimulatorOptions::from_config(rig, c))
         .map(|o| SimulatorClient::spawn(o, recorder.clone()));
-    let listener = match launch_monitor.and_then(|l| l.open_connect_listen.as_ref()) {
-        Some(address) => Some(LaunchMonitorListener::start(rig, address, session, recorder.clone()).await?),
+    let listener = match launch_monitor.and_then(|l| Some((l, l.open_connect_listen.as_ref()?))) {
+        Some((config, address)) => {
+            Some(LaunchMonitorListener::start(rig, config, address, session, recorder.clone()).await?)
+        }
         None => None,
     };
     Ok((simulator, listener))
@@ -150,6 +168,29 @@ impl LaunchMonitorConfig {
                 Err(("pair_window_s", "must be [min, max] with 0 <= min < max <= 600 s".into()))
             }
             _ => Ok(()),
+        }?;
+        if self.max_connections.is_some_and(|n| !(1..=1024).contains(&n)) {
+            return Err(("max_connections", "must be within 1 and 1024".into()));
+        }
+        for (field, v) in [("handshake_timeout_s", self.handshake_timeout_s), ("idle_timeout_s", self.idle_timeout_s)] {
+            let bad = v.is_some_and(|s| !((0.01..=86_400.0).contains(&s)));
+            if bad {
+                return Err((field, "must be within 0.01 s and 86400 s".into()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The bounds of the listener's connections.
+    pub fn peer_limits(&self) -> crate::daemon::bridges::peers::PeerLimits {
+        let secs = |v: Option<f64>, default: f64| {
+            std::time::Duration::try_from_secs_f64(v.unwrap_or(default))
+                .unwrap_or(std::time::Duration::from_secs_f64(default))
+        };
+        crate::daemon::bridges::peers::PeerLimits {
+            max_connections: self.max_connections.unwrap_or(DEFAULT_MAX_CONNECTIONS),
+            handshake: secs(self.handshake_timeout_s, DEFAULT_HANDSHAKE_TIMEOUT_S),
+            idle: secs(self.idle_timeout_s, DEFAULT_IDLE_TIMEOUT_S),
         }
     }
 

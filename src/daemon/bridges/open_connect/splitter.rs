@@ -3,16 +3,18 @@
 //!
 //! A byte-level scanner tracks the nesting depth outside strings (and escapes inside them), so an object ends at
 //! the brace that closes its first one, whatever the reads. Bytes between objects other than whitespace are
-//! garbage: counted and reported (before the next object, or at the end of the read), then skipped. An object longer than the cap is not kept: its
-//! bytes are counted until it closes, then it is reported as oversized, so one bad message never costs the
-//! next one and memory stays bounded.
+//! garbage: counted and reported (before the next object, or at the end of the read), then skipped. An object
+//! longer than the cap is reported as oversized the moment it crosses the cap (so a peer that never closes it
+//! still gets its answer), then its bytes are skipped until it closes: one bad message never costs the next
+//! one and memory stays bounded.
 
 /// What the stream held.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Frame {
     /// One complete object's bytes, `{` to `}`.
     Object(Vec<u8>),
-    /// An object longer than the cap, discarded (its length in bytes).
+    /// An object that went over the cap, reported when it did (`bytes` = the cap + 1); the rest of it is
+    /// skipped.
     Oversized { bytes: usize },
     /// Bytes outside any object that were not whitespace.
     Garbage { bytes: usize },
@@ -26,7 +28,7 @@ pub struct Splitter {
     depth: usize,
     in_string: bool,
     escape: bool,
-    /// Bytes of the current object when it went over the cap.
+    /// Bytes of the current object since it went over the cap.
     oversized: Option<usize>,
     garbage: usize,
 }
@@ -66,6 +68,7 @@ impl Splitter {
                 None if self.buf.len() >= self.max_bytes => {
                     self.oversized = Some(self.buf.len() + 1);
                     self.buf = Vec::new();
+                    out(Frame::Oversized { bytes: self.max_bytes + 1 });
                 }
                 None => self.buf.push(b),
             }
@@ -84,11 +87,8 @@ impl Splitter {
                 b'{' | b'[' => self.depth += 1,
                 b'}' | b']' => {
                     self.depth -= 1;
-                    if self.depth == 0 {
-                        match self.oversized.take() {
-                            Some(bytes) => out(Frame::Oversized { bytes }),
-                            None => out(Frame::Object(std::mem::take(&mut self.buf))),
-                        }
+                    if self.depth == 0 && self.oversized.take().is_none() {
+                        out(Frame::Object(std::mem::take(&mut self.buf)));
                     }
                 }
                 _ => {}
@@ -147,10 +147,22 @@ mod tests {
     fn an_oversized_object_is_dropped_and_the_next_one_kept() {
         let big = format!(r#"{{"pad":"{}"}}"#, "x".repeat(100));
         let f = split(&[big.as_bytes(), br#"{"Code":200}"#], 64);
-        assert_eq!(f, vec![Frame::Oversized { bytes: big.len() }, obj(r#"{"Code":200}"#)]);
+        assert_eq!(f, vec![Frame::Oversized { bytes: 65 }, obj(r#"{"Code":200}"#)]);
         // The cap counts the whole object: exactly at the cap is kept.
         let exact = r#"{"a":"xx"}"#;
         assert_eq!(split(&[exact.as_bytes()], exact.len()), vec![obj(exact)]);
         assert_eq!(split(&[exact.as_bytes()], exact.len() - 1), vec![Frame::Oversized { bytes: exact.len() }]);
+    }
+
+    #[test]
+    fn an_object_that_never_closes_is_reported_at_the_cap() {
+        let opens = vec![b'{'; 100_000];
+        let mut s = Splitter::new(64);
+        let mut frames = Vec::new();
+        for chunk in opens.chunks(8192) {
+            s.push(chunk, &mut |f| frames.push(f));
+        }
+        assert_eq!(frames, vec![Frame::Oversized { bytes: 65 }]);
+        assert!(s.pending() >= 100_000 - 64 && s.buf.capacity() <= 64);
     }
 }
