@@ -1,6 +1,7 @@
 //! The daemon and its tools: zenoh in and out, MCAP recording, replay, a synthetic rig, Open Connect to golf
 //! simulators and from launch monitors, the Foxglove live view. The only code that touches tokio, zenoh or mcap.
 
+pub mod bridges;
 pub mod bus;
 pub mod config;
 pub mod demo;
