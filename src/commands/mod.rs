@@ -23,6 +23,8 @@ mod schemas;
 mod synth;
 
 #[cfg(feature = "daemon")]
+mod bridge;
+#[cfg(feature = "daemon")]
 mod demo;
 #[cfg(feature = "daemon")]
 mod info;
@@ -74,6 +76,10 @@ pub enum Command {
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
     #[cfg(feature = "daemon")]
     Run(run::RunArgs),
+    /// Motion-capture servers (OptiTrack NatNet, Qualisys QTM) to clubhead samples on zenoh.
+    #[cfg(feature = "daemon")]
+    #[command(subcommand)]
+    Bridge(bridge::BridgeCommand),
     /// The daemon and a simulated rig in one process: zero setup.
     #[cfg(feature = "daemon")]
     Demo(demo::DemoArgs),
@@ -154,6 +160,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Schemas(args) => schemas::run(&args),
         #[cfg(feature = "daemon")]
         Command::Run(args) => run::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Bridge(command) => bridge::run(&command),
         #[cfg(feature = "daemon")]
         Command::Demo(args) => demo::run(&args),
         #[cfg(feature = "daemon")]

@@ -4,6 +4,8 @@
 
 pub mod input;
 pub mod natnet;
+pub mod publish;
 pub mod qtm;
 
 pub use input::{Deliver, InputHandle, MocapInputConfig, Source, StatusSource};
+pub use publish::run_bridge;
