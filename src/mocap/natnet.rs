@@ -79,7 +79,7 @@ impl std::fmt::Display for Version {
 pub enum NatNetError {
     #[error(transparent)]
     Truncated(#[from] Truncated),
-    #[error("the header counts {declared} payload bytes but the datagram holds {actual}")]
+    #[error("the header counts {declared} payload bytes but the datagram holds only {actual}")]
     SizeMismatch { declared: usize, actual: usize },
     #[error("message id {0} is not a NatNet message")]
     UnknownMessage(u16),
@@ -96,7 +96,6 @@ impl NatNetError {
     pub fn reason(&self) -> &'static str {
         match self {
             NatNetError::Truncated(_) => "truncated",
-            NatNetError::SizeMismatch { declared, actual } if actual > declared => "oversized",
             NatNetError::SizeMismatch { .. } => "truncated",
             NatNetError::UnknownMessage(_) => "unknown_message",
             NatNetError::UnsupportedVersion(_) => "unknown_version",
@@ -105,16 +104,17 @@ impl NatNetError {
     }
 }
 
-/// The message id and payload of a datagram, checked against the header's byte count.
+/// The message id and payload of a datagram, checked against the header's byte count. Bytes after the counted
+/// payload are ignored: the NatNet SDK's own requests carry a NUL beyond their count.
 pub fn split(datagram: &[u8]) -> Result<(u16, &[u8]), NatNetError> {
     let mut r = Reader::new(datagram);
     let id = r.u16("message id")?;
     let declared = r.u16("payload size")? as usize;
     let actual = r.remaining();
-    if actual != declared {
+    if actual < declared {
         return Err(NatNetError::SizeMismatch { declared, actual });
     }
-    Ok((id, &datagram[4..]))
+    Ok((id, &datagram[4..4 + declared]))
 }
 
 /// `NAT_SERVERINFO`: `sSender_Server` (the connection fields are absent from servers older than NatNet 3).
