@@ -221,3 +221,130 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     assert!(s.exposure_to_transmit_p99_us.is_some_and(|us| (us - 3500.0).abs() < 1.0), "{s:?}");
     assert_eq!(bridge_status[0].published, samples.len() as u64);
 }
+
+async fn latest(
+    statuses: &common::Collected<StatusMessage>,
+    done: impl Fn(&impactd::wire::MocapInputStatus) -> bool,
+) -> impactd::wire::MocapInputStatus {
+    let ok = wait_until(Duration::from_secs(10), || {
+        statuses.lock().unwrap().last().and_then(|s| s.input.as_ref()).is_some_and(&done)
+    })
+    .await;
+    let last = statuses.lock().unwrap().last().and_then(|s| s.input.clone()).unwrap();
+    assert!(ok, "status never reached the expected state: {last:?}");
+    last
+}
+
+/// Bad input from a NatNet server is counted by reason and never stops the rig: a server not answering yet
+/// (asked again), truncated datagrams, unknown message ids, NaN poses, frame numbers jumping and going back, a
+/// body missing from a frame, a renamed body, and a server announcing a NatNet version the decoder does not
+/// know. (An oversized datagram cannot reach it: UDP carries at most 65,507 bytes, under NatNet's 65,539.)
+#[tokio::test(flavor = "multi_thread")]
+async fn bad_natnet_input_is_counted_by_reason() {
+    use impactd::mocap::natnet::ServerInfo;
+    use impactd::mocap::natnet_encode;
+    let server = NatNetServer::start(Version::V4_1, &[(7, "wand"), (3, "club")]);
+    server.state.lock().unwrap().answering = false;
+    let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
+    let s = latest(&statuses, |s| s.last_error.as_deref().is_some_and(|e| e.contains("no answer"))).await;
+    assert_eq!(s.connects, 0);
+    server.state.lock().unwrap().answering = true;
+    latest(&statuses, |s| s.connects == 1 && s.body_found).await;
+
+    let samples = swing::samples(1, 720.0, 3);
+    let frame = |i: usize| frame_of(&samples[i], 7);
+    let bytes = |f: &Frame| natnet_encode::frame(Version::V4_1, f, "club", &[]).unwrap();
+    server.send_frame(&frame(10));
+    server.send_frame(&frame(14)); // 3 dropped
+    server.send_frame(&frame(12)); // out of order
+    let mut nan = frame(15);
+    nan.rigid_bodies[1].position_m[0] = f32::NAN;
+    server.send_frame(&nan); // tracked, NaN: occluded, nan_pose
+    let mut untracked = frame(16);
+    untracked.rigid_bodies[1].tracking_valid = false;
+    server.send_frame(&untracked); // occluded
+    let mut zero = frame(17);
+    zero.rigid_bodies[1].orientation_xyzw = [0.0; 4];
+    server.send_frame(&zero); // bad_rotation
+    let mut missing = frame(18);
+    missing.rigid_bodies.truncate(1);
+    server.send_frame(&missing); // body_missing_from_frame
+    let whole = bytes(&frame(19));
+    server.send_raw(&whole[..whole.len() / 2]); // truncated
+    server.send_raw(&[77, 0, 0, 0]); // unknown_message
+    server.send_raw(&[7, 0, 0, 0]); // a frame with no payload: truncated
+    server.send_frame(&frame(20));
+    let s = latest(&statuses, |s| s.published >= 6).await;
+    assert_eq!((s.dropped, s.out_of_order, s.occluded), (3 + 2, 1, 3), "{s:?}");
+    for (reason, n) in [("nan_pose", 1), ("bad_rotation", 1), ("body_missing_from_frame", 1), ("truncated", 2), ("unknown_message", 1)] {
+        assert_eq!(s.rejected.get(reason), Some(&n), "{reason}: {s:?}");
+    }
+
+    // Renamed in Motive: the next frame says the models changed; the client asks again and finds no `club`.
+    server.state.lock().unwrap().bodies[1].1 = "club2".into();
+    let mut changed = frame(21);
+    changed.models_changed = true;
+    server.send_frame(&changed);
+    latest(&statuses, |s| !s.body_found).await;
+    server.send_frame(&frame(22));
+    latest(&statuses, |s| s.rejected.get("body_not_in_model").is_some_and(|&n| n >= 1)).await;
+    server.state.lock().unwrap().bodies[1].1 = "club".into();
+
+    // A server announcing NatNet 5.0: counted, its frames refused, the rig goes on; back to 4.1, frames flow.
+    let info = |major| ServerInfo {
+        app_name: "Motive".into(),
+        natnet_version: [major, if major == 4 { 1 } else { 0 }, 0, 0],
+        clock_hz: Some(CLOCK_HZ),
+        ..ServerInfo::default()
+    };
+    server.send_raw(&natnet_encode::server_info(&info(5)));
+    server.send_frame(&frame(23));
+    latest(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 2)).await;
+    server.send_raw(&natnet_encode::server_info(&info(4)));
+    server.send_frame(&changed);
+    latest(&statuses, |s| s.body_found).await;
+    server.send_frame(&frame(30));
+    let s = latest(&statuses, |s| s.published >= 8).await;
+    assert_eq!(s.state, impactd::wire::ConnectionState::Connected);
+    daemon.stop().await;
+}
+
+/// `impactd bridge natnet --help` works, and the bridge exits (0) within a few seconds of SIGINT, printing its
+/// counts, while it reads a server.
+#[tokio::test(flavor = "multi_thread")]
+async fn bridge_binary_helps_and_stops_on_sigint() {
+    let exe = env!("CARGO_BIN_EXE_impactd");
+    let help = std::process::Command::new(exe).args(["bridge", "natnet", "--help"]).output().unwrap();
+    assert!(help.status.success());
+    let text = String::from_utf8_lossy(&help.stdout);
+    for flag in ["--server", "--body <NAME=RIG>", "--command-port", "--data-port", "--unicast", "--multicast-group"] {
+        assert!(text.contains(flag), "{flag} in {text}");
+    }
+    let help = std::process::Command::new(exe).args(["bridge", "qtm", "--help"]).output().unwrap();
+    assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--port"));
+
+    let server = NatNetServer::start(Version::V4_1, &[(3, "club")]);
+    let daemon = start_daemon(RIG, RunOptions::default()).await;
+    let port = server.port.to_string();
+    let child = std::process::Command::new(exe)
+        .args(["bridge", "natnet", "--server", "127.0.0.1", "--command-port", &port, "--data-port", "0", "--unicast"])
+        .args(["--body", "club=rig1", "-e", &daemon.endpoint, "--no-multicast-scouting"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    assert!(wait_until(Duration::from_secs(20), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0).await);
+    let samples = swing::samples(1, 720.0, 3);
+    play(&server, &samples[..50]);
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let t0 = std::time::Instant::now();
+    assert!(std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap().success());
+    let out = child.wait_with_output().unwrap();
+    let took = t0.elapsed();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(took < Duration::from_secs(3), "exited {took:?} after SIGINT");
+    assert!(stderr.contains("club -> rig1: 50 frames, 50 published"), "{stderr}");
+    daemon.stop().await;
+}

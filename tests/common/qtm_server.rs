@@ -25,10 +25,21 @@ pub struct QtmServer {
     conns: Arc<Mutex<Vec<Conn>>>,
     /// `StreamFrames` commands received.
     pub stream_requests: Arc<AtomicU64>,
+    /// Answer `Version` with an error (a QTM that does not speak 1.2x).
+    pub refuse_version: Arc<AtomicBool>,
     stop: Arc<AtomicBool>,
 }
 
-fn handle(mut stream: TcpStream, id: usize, bodies: Arc<Mutex<Vec<String>>>, conns: Arc<Mutex<Vec<Conn>>>, streams: Arc<AtomicU64>, stop: Arc<AtomicBool>) {
+struct Ctx {
+    bodies: Arc<Mutex<Vec<String>>>,
+    conns: Arc<Mutex<Vec<Conn>>>,
+    streams: Arc<AtomicU64>,
+    refuse: Arc<AtomicBool>,
+    stop: Arc<AtomicBool>,
+}
+
+fn handle(mut stream: TcpStream, id: usize, ctx: Ctx) {
+    let Ctx { bodies, conns, streams, refuse, stop } = ctx;
     stream.set_read_timeout(Some(Duration::from_millis(50))).unwrap();
     let reply = |bytes: Vec<u8>| {
         if let Some(c) = conns.lock().unwrap().get_mut(id) {
@@ -54,6 +65,7 @@ fn handle(mut stream: TcpStream, id: usize, bodies: Arc<Mutex<Vec<String>>>, con
             buf.drain(..size);
             let words: Vec<&str> = text.split_whitespace().collect();
             match words.as_slice() {
+                ["version", _] if refuse.load(Ordering::Relaxed) => reply(qtm_encode::error("Version NOT supported")),
                 ["version", v] if ["1.20", "1.21", "1.22", "1.23", "1.24", "1.25"].contains(v) => {
                     reply(qtm_encode::command(&format!("Version set to {v}")))
                 }
@@ -84,14 +96,21 @@ fn handle(mut stream: TcpStream, id: usize, bodies: Arc<Mutex<Vec<String>>>, con
 
 impl QtmServer {
     pub fn start(bodies: &[&str]) -> QtmServer {
-        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+        Self::start_on(0, bodies)
+    }
+
+    /// On a given port of 127.0.0.1 (0: any).
+    pub fn start_on(port: u16, bodies: &[&str]) -> QtmServer {
+        let listener = TcpListener::bind(("127.0.0.1", port)).unwrap();
         listener.set_nonblocking(true).unwrap();
         let port = listener.local_addr().unwrap().port();
         let bodies = Arc::new(Mutex::new(bodies.iter().map(|s| s.to_string()).collect::<Vec<_>>()));
         let conns: Arc<Mutex<Vec<Conn>>> = Default::default();
         let stream_requests = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
-        let (b, c, s, st) = (bodies.clone(), conns.clone(), stream_requests.clone(), stop.clone());
+        let refuse_version = Arc::new(AtomicBool::new(false));
+        let (b, c, s, st, rf) =
+            (bodies.clone(), conns.clone(), stream_requests.clone(), stop.clone(), refuse_version.clone());
         std::thread::spawn(move || {
             while !st.load(Ordering::Relaxed) {
                 match listener.accept() {
@@ -103,14 +122,20 @@ impl QtmServer {
                             conns.push(Conn { stream: stream.try_clone().unwrap(), streaming: None });
                             conns.len() - 1
                         };
-                        let (b, c, s, st) = (b.clone(), c.clone(), s.clone(), st.clone());
-                        std::thread::spawn(move || handle(stream, id, b, c, s, st));
+                        let ctx = Ctx {
+                            bodies: b.clone(),
+                            conns: c.clone(),
+                            streams: s.clone(),
+                            refuse: rf.clone(),
+                            stop: st.clone(),
+                        };
+                        std::thread::spawn(move || handle(stream, id, ctx));
                     }
                     Err(_) => std::thread::sleep(Duration::from_millis(10)),
                 }
             }
         });
-        QtmServer { port, bodies, conns, stream_requests, stop }
+        QtmServer { port, bodies, conns, stream_requests, refuse_version, stop }
     }
 
     /// Sends raw bytes to every streaming client.
