@@ -14,7 +14,7 @@ mod swing;
 use std::time::Duration;
 
 use common::{client, collect, python, start_daemon, wait_until};
-use impactd::daemon::bridges::{run_bridge, Source};
+use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::mocap::natnet::{Frame, RigidBody, Version};

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Subcommand};
-use impactd::daemon::bridges::input::{NATNET_COMMAND_PORT, NATNET_DATA_PORT, NATNET_MULTICAST_GROUP, QTM_PORT};
-use impactd::daemon::bridges::{run_bridge, Source};
+use impactd::daemon::bridges::mocap::input::{NATNET_COMMAND_PORT, NATNET_DATA_PORT, NATNET_MULTICAST_GROUP, QTM_PORT};
+use impactd::daemon::bridges::mocap::{run_bridge, Source};
 
 use super::args::ZenohArgs;
 use super::run::{runtime, shutdown_signal};

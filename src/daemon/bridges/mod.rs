@@ -1,11 +1,6 @@
-//! Native motion-capture inputs: socket clients of OptiTrack's NatNet ([`natnet`]) and Qualisys' QTM
-//! real-time protocol ([`qtm`]) on the pure codecs of [`crate::mocap`], shared by `impactd bridge` and the
-//! daemon's `[rig.input]`.
+//! Bridges between the daemon and other programs: golf simulators and launch monitors over Open Connect, the
+//! Foxglove live view, and motion-capture servers (OptiTrack NatNet, Qualisys QTM) read natively.
 
-pub mod input;
-pub mod natnet;
-pub mod publish;
-pub mod qtm;
-
-pub use input::{Deliver, InputHandle, MocapInputConfig, Source, StatusSource};
-pub use publish::run_bridge;
+pub mod foxglove;
+pub mod mocap;
+pub mod open_connect;

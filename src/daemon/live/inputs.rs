@@ -8,7 +8,7 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
 use super::Incoming;
-use crate::daemon::bridges::{InputHandle, Source, StatusSource};
+use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::wire::MessageType;
 

@@ -65,6 +65,6 @@ pub async fn run_bridge(
         }
     }
     let out = (0..handle.routes()).map(|i| handle.status(i)).collect();
-    tokio::task::spawn_blocking(move || handle.stop()).await.map_err(|e| DaemonError::Task(e.to_string()))?;
+    tokio::task::spawn_blocking(move || handle.stop()).await.map_err(DaemonError::Task)?;
     Ok(out)
 }

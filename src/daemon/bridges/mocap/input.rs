@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
-use crate::daemon::stats::LatencyWindow;
+use crate::daemon::live::stats::LatencyWindow;
 use crate::daemon::DaemonError;
 use crate::mocap::track::BodySample;
 use crate::wire::{ConnectionState, MocapInputStatus};
