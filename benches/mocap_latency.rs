@@ -96,7 +96,8 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     let (stop_bridge, bridge_stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge_task = if bridge {
         let session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
-        let source = Source::NatNet { host: "127.0.0.1".into(), command_port: port, data_port: 0, multicast_group: None };
+        let source =
+            Source::NatNet { host: "127.0.0.1".into(), command_port: port, data_port: 0, multicast_group: None };
         Some(tokio::spawn(async move {
             run_bridge(&session, source, vec![("club".into(), "rig1".into())], async {
                 let _ = bridge_stopped.await;

@@ -9,7 +9,8 @@ use impactd::mocap::qtm::{self, Body6d, Frame6d};
 use impactd::mocap::{natnet_encode, qtm_encode};
 use proptest::prelude::*;
 
-const VERSIONS: [Version; 5] = [Version::V3_0, Version::V3_1, Version::V4_0, Version::V4_1, Version { major: 4, minor: 2 }];
+const VERSIONS: [Version; 5] =
+    [Version::V3_0, Version::V3_1, Version::V4_0, Version::V4_1, Version { major: 4, minor: 2 }];
 
 fn natnet_frame(n: usize, seed: u32) -> Frame {
     let rigid_bodies = (0..n)
@@ -40,7 +41,13 @@ fn qtm_frame(n: usize, seed: u32) -> Frame6d {
             residual_mm: (seed % 2 == 0).then_some(0.3),
         })
         .collect();
-    Frame6d { timestamp_us: i64::from(seed) * 2778, frame_number: seed, bodies, drop_rate_2d: 3, out_of_sync_rate_2d: 1 }
+    Frame6d {
+        timestamp_us: i64::from(seed) * 2778,
+        frame_number: seed,
+        bodies,
+        drop_rate_2d: 3,
+        out_of_sync_rate_2d: 1,
+    }
 }
 
 /// Decodes a datagram as every version; checks the bounds.

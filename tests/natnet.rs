@@ -61,8 +61,10 @@ os._exit(0)   # the SDK's shutdown() waits forever on its unicast data socket, w
 fn frame_of(s: &ClubheadSample, other_id: i32) -> Frame {
     let p = [s.position_m.x as f32, s.position_m.y as f32, s.position_m.z as f32];
     let q = s.orientation_xyzw.map(|v| v as f32);
-    let club = RigidBody { id: 3, position_m: p, orientation_xyzw: q, mean_error_m: 0.0002, tracking_valid: !s.occluded };
-    let other = RigidBody { id: other_id, position_m: [0.5, 1.0, -0.25], orientation_xyzw: [0.0, 0.0, 0.0, 1.0], ..club };
+    let club =
+        RigidBody { id: 3, position_m: p, orientation_xyzw: q, mean_error_m: 0.0002, tracking_valid: !s.occluded };
+    let other =
+        RigidBody { id: other_id, position_m: [0.5, 1.0, -0.25], orientation_xyzw: [0.0, 0.0, 0.0, 1.0], ..club };
     let t_s = s.t_ns as f64 * 1e-9;
     Frame {
         frame_number: s.frame as i32,
@@ -101,9 +103,10 @@ fn optitracks_python_client_reads_the_test_server() {
         }
         let out = child.wait_with_output().unwrap();
         let stdout = String::from_utf8_lossy(&out.stdout);
-        let line = stdout.lines().find_map(|l| l.strip_prefix("RESULT ")).unwrap_or_else(|| {
-            panic!("no result from natnetsdk: {stdout}\n{}", String::from_utf8_lossy(&out.stderr))
-        });
+        let line = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix("RESULT "))
+            .unwrap_or_else(|| panic!("no result from natnetsdk: {stdout}\n{}", String::from_utf8_lossy(&out.stderr)));
         let r: serde_json::Value = serde_json::from_str(line).unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!stderr.contains("Traceback"), "natnetsdk failed: {stderr}");
@@ -173,7 +176,10 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     let session = client(&daemon.endpoint).await;
     let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
-    assert!(wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0).await);
+    assert!(
+        wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
     tokio::time::sleep(Duration::from_millis(200)).await;
     play(&server, &samples);
     assert!(wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= 3).await, "three launches");
@@ -188,7 +194,8 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     let daemon = start_daemon(RIG, RunOptions::default()).await;
     let session = client(&daemon.endpoint).await;
     let (bridged, _b) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
-    let source = Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+    let source =
+        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -199,7 +206,10 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
         .await
         .unwrap()
     });
-    assert!(wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0).await);
+    assert!(
+        wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
     tokio::time::sleep(Duration::from_millis(500)).await;
     play(&server, &samples);
     assert!(wait_until(Duration::from_secs(10), || bridged.lock().unwrap().len() >= 3).await, "three bridged launches");
@@ -278,7 +288,9 @@ async fn bad_natnet_input_is_counted_by_reason() {
     server.send_frame(&frame(20));
     let s = latest(&statuses, |s| s.published >= 6).await;
     assert_eq!((s.dropped, s.out_of_order, s.occluded), (3 + 2, 1, 3), "{s:?}");
-    for (reason, n) in [("nan_pose", 1), ("bad_rotation", 1), ("body_missing_from_frame", 1), ("truncated", 2), ("unknown_message", 1)] {
+    for (reason, n) in
+        [("nan_pose", 1), ("bad_rotation", 1), ("body_missing_from_frame", 1), ("truncated", 2), ("unknown_message", 1)]
+    {
         assert_eq!(s.rejected.get(reason), Some(&n), "{reason}: {s:?}");
     }
 
@@ -334,7 +346,10 @@ async fn bridge_binary_helps_and_stops_on_sigint() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    assert!(wait_until(Duration::from_secs(20), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0).await);
+    assert!(
+        wait_until(Duration::from_secs(20), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
     let samples = swing::samples(1, 720.0, 3);
     play(&server, &samples[..50]);
     tokio::time::sleep(Duration::from_millis(300)).await;
@@ -351,7 +366,11 @@ async fn bridge_binary_helps_and_stops_on_sigint() {
 
 fn rss_kib() -> u64 {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status.lines().find_map(|l| l.strip_prefix("VmRSS:")).and_then(|v| v.trim().trim_end_matches(" kB").trim().parse().ok()).unwrap_or(0)
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.trim().trim_end_matches(" kB").trim().parse().ok())
+        .unwrap_or(0)
 }
 
 /// Ten rigid bodies at 360 Hz through one bridge (ten rigs): every frame that arrived is published, none is
@@ -365,7 +384,8 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
     let bodies: Vec<(i32, &str)> = names.iter().enumerate().map(|(i, n)| (i as i32 + 1, n.as_str())).collect();
     let server = NatNetServer::start(Version::V4_1, &bodies);
     let endpoint = format!("tcp/127.0.0.1:{}", impactd::daemon::bus::free_loopback_port().unwrap());
-    let bridge_session = impactd::daemon::bus::ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+    let bridge_session =
+        impactd::daemon::bus::ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let session = client(&endpoint).await;
     let received = std::sync::Arc::new(std::sync::atomic::AtomicU64::new(0));
     let r = received.clone();
@@ -373,7 +393,8 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
         r.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     }))
     .unwrap();
-    let source = Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+    let source =
+        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
     let routes: Vec<(String, String)> = names.iter().enumerate().map(|(i, n)| (n.clone(), format!("rig{i}"))).collect();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -383,7 +404,10 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
         .await
         .unwrap()
     });
-    assert!(wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0).await);
+    assert!(
+        wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
     tokio::time::sleep(Duration::from_millis(1000)).await;
     let frames = (seconds * 360.0) as u64;
     let (server, rss) = tokio::task::spawn_blocking(move || {

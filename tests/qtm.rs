@@ -19,10 +19,10 @@ use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::math::UnitQuaternion;
-use nalgebra::Quaternion;
 use impactd::mocap::qtm::{Body6d, Frame6d};
 use impactd::mocap::{qtm_encode, track};
 use impactd::wire::{LaunchPrediction, MocapInputStatus, StatusMessage};
+use nalgebra::Quaternion;
 use qtm_server::QtmServer;
 
 const CHECK: &str = r#"
@@ -61,7 +61,11 @@ fn body_of(s: &ClubheadSample) -> Body6d {
 }
 
 fn frame_of(s: &ClubheadSample) -> Frame6d {
-    let other = Body6d { position_mm: [500.0, 1000.0, -250.0], rotation: [1., 0., 0., 0., 1., 0., 0., 0., 1.], residual_mm: None };
+    let other = Body6d {
+        position_mm: [500.0, 1000.0, -250.0],
+        rotation: [1., 0., 0., 0., 1., 0., 0., 0., 1.],
+        residual_mm: None,
+    };
     Frame6d {
         timestamp_us: (s.t_ns / 1000) as i64,
         frame_number: s.frame as u32,
@@ -204,7 +208,10 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!(bridge_status[0].published, samples.len() as u64);
 }
 
-async fn latest(statuses: &common::Collected<StatusMessage>, done: impl Fn(&MocapInputStatus) -> bool) -> MocapInputStatus {
+async fn latest(
+    statuses: &common::Collected<StatusMessage>,
+    done: impl Fn(&MocapInputStatus) -> bool,
+) -> MocapInputStatus {
     let ok = wait_until(Duration::from_secs(10), || {
         statuses.lock().unwrap().last().and_then(|s| s.input.as_ref()).is_some_and(&done)
     })
@@ -266,7 +273,14 @@ async fn bad_qtm_input_is_counted_by_reason() {
     server.send_frame(&frame(21));
     let s = latest(&statuses, |s| s.published >= 6).await;
     assert_eq!((s.dropped, s.out_of_order, s.occluded), (6, 1, 3), "{s:?}");
-    for (reason, n) in [("bad_rotation", 1), ("nan_pose", 1), ("body_missing_from_frame", 1), ("unknown_message", 1), ("no_6d", 1), ("truncated", 1)] {
+    for (reason, n) in [
+        ("bad_rotation", 1),
+        ("nan_pose", 1),
+        ("body_missing_from_frame", 1),
+        ("unknown_message", 1),
+        ("no_6d", 1),
+        ("truncated", 1),
+    ] {
         assert_eq!(s.rejected.get(reason), Some(&n), "{reason}: {s:?}");
     }
 

@@ -300,8 +300,10 @@ mod tests {
         assert!(err("[[rig]]\nname = \"a\"\n[rig.input]\nnatnet = \"h\"\nqtm = \"h\"\nbody = \"c\"")
             .contains("rig[0].input.natnet"));
         assert!(err("[[rig]]\nname = \"a\"\n[rig.input]\nqtm = \"h\"\nbody = \"\"").contains("rig[0].input.body"));
-        assert!(err("[[rig]]\nname = \"a\"\n[rig.input]\nnatnet = \"h\"\nbody = \"c\"\nmulticast_group = \"10.0.0.1\"")
-            .contains("rig[0].input.multicast_group"));
+        assert!(err(
+            "[[rig]]\nname = \"a\"\n[rig.input]\nnatnet = \"h\"\nbody = \"c\"\nmulticast_group = \"10.0.0.1\""
+        )
+        .contains("rig[0].input.multicast_group"));
         assert!(err("[[rig]]\nname = \"a\"\n[rig.launch_monitor]\nopen_connect_listen = \"localhost\"")
             .contains("rig[0].launch_monitor.open_connect_listen"));
         let (mut c, _) = DaemonConfig::parse(

@@ -121,7 +121,10 @@ impl MocapInputConfig {
             }
             (None, Some(h)) => {
                 if self.command_port.is_some() || self.data_port.is_some() || self.multicast_group.is_some() {
-                    return Err(("qtm", "takes `port` only (command_port, data_port, multicast_group are NatNet's)".into()));
+                    return Err((
+                        "qtm",
+                        "takes `port` only (command_port, data_port, multicast_group are NatNet's)".into(),
+                    ));
                 }
                 Ok(Source::Qtm { host: host(h, "qtm")?, port: self.port.unwrap_or(QTM_PORT) })
             }

@@ -222,7 +222,11 @@ impl Client {
                     }
                     if st.version.is_none() {
                         sh.conn.connects += 1;
-                        tracing::info!("NatNet server at {}: {}", self.server, sh.conn.server_version.as_deref().unwrap_or(""));
+                        tracing::info!(
+                            "NatNet server at {}: {}",
+                            self.server,
+                            sh.conn.server_version.as_deref().unwrap_or("")
+                        );
                     }
                     sh.conn.state = ConnectionState::Connected;
                     st.version = Some(v);
@@ -241,7 +245,9 @@ impl Client {
                             let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
                             if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
                                 let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
-                                tracing::warn!("rigid body `{name}` is not in the NatNet server's model (it has {names:?})");
+                                tracing::warn!(
+                                    "rigid body `{name}` is not in the NatNet server's model (it has {names:?})"
+                                );
                             }
                             st.ids[i] = id;
                             sh.bodies[i].body_found = id.is_some();

@@ -204,13 +204,16 @@ impl Session<'_> {
         if kind != qtm::PACKET_COMMAND {
             return Err(End::Lost("QTM did not greet".into()));
         }
-        let reply = self.ask(&format!("Version {}", qtm::PROTOCOL_VERSION), qtm::PACKET_COMMAND).map_err(|e| {
-            if let End::Lost(why) = &e {
-                let mut sh = lock(self.shared);
-                sh.conn.reject("unknown_version");
-                sh.conn.last_error = Some(why.clone());
+        let version = format!("Version {}", qtm::PROTOCOL_VERSION);
+        let reply = self.ask(&version, qtm::PACKET_COMMAND).inspect_err(|e| {
+            // An error packet in answer: this QTM does not speak the version.
+            if let End::Lost(why) = e {
+                if why.starts_with("QTM refused") {
+                    let mut sh = lock(self.shared);
+                    sh.conn.reject("unknown_version");
+                    sh.conn.last_error = Some(why.clone());
+                }
             }
-            e
         })?;
         let xml = self.ask("GetParameters 6D", qtm::PACKET_XML)?;
         self.map_bodies(&xml);
@@ -236,8 +239,13 @@ impl Session<'_> {
                 }
                 qtm::PACKET_EVENT => {
                     let code = self.reader.packet.first().copied().unwrap_or(0);
-                    if [qtm::EVENT_CONNECTION_CLOSED, qtm::EVENT_CAPTURE_STOPPED, qtm::EVENT_RT_FROM_FILE_STOPPED, qtm::EVENT_QTM_SHUTTING_DOWN]
-                        .contains(&code)
+                    if [
+                        qtm::EVENT_CONNECTION_CLOSED,
+                        qtm::EVENT_CAPTURE_STOPPED,
+                        qtm::EVENT_RT_FROM_FILE_STOPPED,
+                        qtm::EVENT_QTM_SHUTTING_DOWN,
+                    ]
+                    .contains(&code)
                     {
                         return Err(End::Lost(format!("QTM's measurement stopped (event {code})")));
                     }
