@@ -191,6 +191,7 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     tokio::time::sleep(Duration::from_millis(500)).await;
     play(&server, &samples);
     assert!(wait_until(Duration::from_secs(10), || bridged.lock().unwrap().len() >= 3).await, "three bridged");
+    tokio::time::sleep(Duration::from_millis(500)).await; // the swing's last frames, after its last shot
     let _ = stop.send(());
     let bridge_status = bridge.await.unwrap();
     daemon.stop().await;
@@ -201,7 +202,8 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!(keys(&bridged), keys(&wire_json), "bridge = the same");
     let d = swing::max_differences(&input, &json);
     eprintln!("QTM wire vs f64 JSON: ball speed {:.2e} mph, launch {:.2e} deg, direction {:.2e} deg, backspin {:.2e} rpm, sidespin {:.2e} rpm", d[0], d[1], d[2], d[3], d[4]);
-    assert!(d[0] < 0.05 && d[1] < 0.05 && d[2] < 0.05 && d[3] < 10.0 && d[4] < 10.0, "{d:?}");
+    // Measured: 8.9e-3 mph, 2.2e-4 deg, 2.7e-4 deg, 0.26 rpm, 0.16 rpm (the microsecond timestamps dominate).
+    assert!(d[0] < 0.03 && d[1] < 2e-3 && d[2] < 2e-3 && d[3] < 1.0 && d[4] < 1.0, "{d:?}");
     let s = status.input.unwrap();
     assert_eq!((s.protocol.as_str(), s.body_found, s.connects, s.dropped, s.out_of_order), ("qtm", true, 1, 0, 0));
     assert_eq!((s.frames, s.published), (samples.len() as u64, samples.len() as u64));
