@@ -13,7 +13,7 @@ mod swing;
 
 use std::time::Duration;
 
-use common::{client, collect, python, start_daemon, wait_until};
+use common::{client, collect, latest_input, python, rss_kib, start_daemon, wait_until};
 use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
@@ -234,19 +234,6 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!(bridge_status[0].published, samples.len() as u64);
 }
 
-async fn latest(
-    statuses: &common::Collected<StatusMessage>,
-    done: impl Fn(&impactd::wire::MocapInputStatus) -> bool,
-) -> impactd::wire::MocapInputStatus {
-    let ok = wait_until(Duration::from_secs(10), || {
-        statuses.lock().unwrap().last().and_then(|s| s.input.as_ref()).is_some_and(&done)
-    })
-    .await;
-    let last = statuses.lock().unwrap().last().and_then(|s| s.input.clone()).unwrap();
-    assert!(ok, "status never reached the expected state: {last:?}");
-    last
-}
-
 /// Bad input from a NatNet server is counted by reason and never stops the rig: a server not answering yet
 /// (asked again), truncated datagrams, unknown message ids, NaN poses, frame numbers jumping and going back, a
 /// body missing from a frame, a renamed body, and a server announcing a NatNet version the decoder does not
@@ -260,10 +247,10 @@ async fn bad_natnet_input_is_counted_by_reason() {
     let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
     let session = client(&daemon.endpoint).await;
     let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
-    let s = latest(&statuses, |s| s.last_error.as_deref().is_some_and(|e| e.contains("no answer"))).await;
+    let s = latest_input(&statuses, |s| s.last_error.as_deref().is_some_and(|e| e.contains("no answer"))).await;
     assert_eq!(s.connects, 0);
     server.state.lock().unwrap().answering = true;
-    latest(&statuses, |s| s.connects == 1 && s.body_found).await;
+    latest_input(&statuses, |s| s.connects == 1 && s.body_found).await;
 
     let samples = swing::samples(1, 720.0, 3);
     let frame = |i: usize| frame_of(&samples[i], 7);
@@ -288,7 +275,7 @@ async fn bad_natnet_input_is_counted_by_reason() {
     server.send_raw(&[77, 0, 0, 0]); // unknown_message
     server.send_raw(&[7, 0, 0, 0]); // a frame with no payload: truncated
     server.send_frame(&frame(20));
-    let s = latest(&statuses, |s| s.published >= 6).await;
+    let s = latest_input(&statuses, |s| s.published >= 6).await;
     assert_eq!((s.dropped, s.out_of_order, s.occluded), (3 + 2, 1, 3), "{s:?}");
     for (reason, n) in
         [("nan_pose", 1), ("bad_rotation", 1), ("body_missing_from_frame", 1), ("truncated", 2), ("unknown_message", 1)]
@@ -301,9 +288,9 @@ async fn bad_natnet_input_is_counted_by_reason() {
     let mut changed = frame(21);
     changed.models_changed = true;
     server.send_frame(&changed);
-    latest(&statuses, |s| !s.body_found).await;
+    latest_input(&statuses, |s| !s.body_found).await;
     server.send_frame(&frame(22));
-    latest(&statuses, |s| s.rejected.get("body_not_in_model").is_some_and(|&n| n >= 1)).await;
+    latest_input(&statuses, |s| s.rejected.get("body_not_in_model").is_some_and(|&n| n >= 1)).await;
     server.state.lock().unwrap().bodies[1].1 = "club".into();
 
     // A server announcing NatNet 5.0: counted, its frames refused, the rig goes on; back to 4.1, frames flow.
@@ -315,12 +302,12 @@ async fn bad_natnet_input_is_counted_by_reason() {
     };
     server.send_raw(&natnet_encode::server_info(&info(5)));
     server.send_frame(&frame(23));
-    latest(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 2)).await;
+    latest_input(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 2)).await;
     server.send_raw(&natnet_encode::server_info(&info(4)));
     server.send_frame(&changed);
-    latest(&statuses, |s| s.body_found).await;
+    latest_input(&statuses, |s| s.body_found).await;
     server.send_frame(&frame(30));
-    let s = latest(&statuses, |s| s.published >= 8).await;
+    let s = latest_input(&statuses, |s| s.published >= 8).await;
     assert_eq!(s.state, impactd::wire::ConnectionState::Connected);
     daemon.stop().await;
 }
@@ -364,15 +351,6 @@ async fn bridge_binary_helps_and_stops_on_sigint() {
     assert!(took < Duration::from_secs(3), "exited {took:?} after SIGINT");
     assert!(stderr.contains("club -> rig1: 50 frames, 50 published"), "{stderr}");
     daemon.stop().await;
-}
-
-fn rss_kib() -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))
-        .and_then(|v| v.trim().trim_end_matches(" kB").trim().parse().ok())
-        .unwrap_or(0)
 }
 
 /// Ten rigid bodies at 360 Hz through one bridge (ten rigs): every frame that arrived is published, none is

@@ -14,7 +14,7 @@ mod swing;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-use common::{client, collect, python, start_daemon, wait_until};
+use common::{client, collect, latest_input, python, start_daemon, wait_until};
 use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
@@ -210,19 +210,6 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!(bridge_status[0].published, samples.len() as u64);
 }
 
-async fn latest(
-    statuses: &common::Collected<StatusMessage>,
-    done: impl Fn(&MocapInputStatus) -> bool,
-) -> MocapInputStatus {
-    let ok = wait_until(Duration::from_secs(10), || {
-        statuses.lock().unwrap().last().and_then(|s| s.input.as_ref()).is_some_and(&done)
-    })
-    .await;
-    let last = statuses.lock().unwrap().last().and_then(|s| s.input.clone()).unwrap();
-    assert!(ok, "status never reached the expected state: {last:?}");
-    last
-}
-
 /// Bad input from QTM is counted by reason and never stops the rig: a server not there yet (retried), a
 /// refused protocol version, NaN and non-rotation poses, frame numbers jumping and going back, unknown packet
 /// types, data without 6D, a truncated 6D component, a renamed body, a stopped measurement and an oversized
@@ -236,12 +223,13 @@ async fn bad_qtm_input_is_counted_by_reason() {
     let daemon = start_daemon(&input_config(port), RunOptions::default()).await;
     let session = client(&daemon.endpoint).await;
     let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
-    let s = latest(&statuses, |s| s.last_error.as_deref().is_some_and(|e| e.contains("no QTM real-time server"))).await;
+    let s = latest_input(&statuses, |s| s.last_error.as_deref().is_some_and(|e| e.contains("no QTM real-time server")))
+        .await;
     assert_eq!(s.connects, 0);
 
     let server = QtmServer::start_on(port, &["wand", "club"]);
     server.refuse_version.store(true, Ordering::Relaxed);
-    latest(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 1)).await;
+    latest_input(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 1)).await;
     server.refuse_version.store(false, Ordering::Relaxed);
     assert!(wait_until(Duration::from_secs(15), || server.streaming() > 0).await);
 
@@ -273,7 +261,7 @@ async fn bad_qtm_input_is_counted_by_reason() {
     cut[8 + 16 + 8..8 + 16 + 12].copy_from_slice(&5u32.to_le_bytes()); // five bodies claimed, two sent
     server.send_raw(&cut);
     server.send_frame(&frame(21));
-    let s = latest(&statuses, |s| s.published >= 6).await;
+    let s = latest_input(&statuses, |s| s.published >= 6).await;
     assert_eq!((s.dropped, s.out_of_order, s.occluded), (6, 1, 3), "{s:?}");
     for (reason, n) in [
         ("bad_rotation", 1),
@@ -289,23 +277,23 @@ async fn bad_qtm_input_is_counted_by_reason() {
     // Renamed: QTM tells of new camera settings, the client asks for the parameters again.
     server.bodies.lock().unwrap()[1] = "club2".into();
     server.send_raw(&qtm_encode::event(11));
-    latest(&statuses, |s| !s.body_found).await;
+    latest_input(&statuses, |s| !s.body_found).await;
     server.send_frame(&frame(22));
-    latest(&statuses, |s| s.rejected.get("body_not_in_model") == Some(&1)).await;
+    latest_input(&statuses, |s| s.rejected.get("body_not_in_model") == Some(&1)).await;
     server.bodies.lock().unwrap()[1] = "club".into();
 
     // The measurement stops: connect again.
     server.send_raw(&qtm_encode::event(4));
-    latest(&statuses, |s| s.connects == 2 && s.body_found).await;
+    latest_input(&statuses, |s| s.connects == 2 && s.body_found).await;
     // An oversized packet: the stream is out of step, connect again.
     assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await);
     let mut huge = qtm_encode::command("x");
     huge[..4].copy_from_slice(&(4u32 << 20).to_le_bytes());
     server.send_raw(&huge);
-    latest(&statuses, |s| s.connects == 3 && s.rejected.get("oversized") == Some(&1)).await;
+    latest_input(&statuses, |s| s.connects == 3 && s.rejected.get("oversized") == Some(&1)).await;
     assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await);
     server.send_frame(&frame(30));
-    let s = latest(&statuses, |s| s.published >= 7).await;
+    let s = latest_input(&statuses, |s| s.published >= 7).await;
     assert_eq!(s.state, impactd::wire::ConnectionState::Connected);
     assert_eq!(server.stream_requests.load(Ordering::Relaxed), 3, "one StreamFrames per session");
     daemon.stop().await;
