@@ -64,6 +64,7 @@ pub mod integrate;
 pub mod jsonl;
 pub mod kinematics;
 pub mod math;
+pub mod mocap;
 pub mod pipeline;
 pub mod plot;
 pub mod predict;

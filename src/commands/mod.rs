@@ -26,6 +26,8 @@ mod schemas;
 mod synth;
 
 #[cfg(feature = "daemon")]
+mod bridge;
+#[cfg(feature = "daemon")]
 mod demo;
 #[cfg(feature = "daemon")]
 mod info;
@@ -79,6 +81,10 @@ pub enum Command {
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
     #[cfg(feature = "daemon")]
     Run(run::RunArgs),
+    /// Motion-capture servers (OptiTrack NatNet, Qualisys QTM) to clubhead samples on zenoh.
+    #[cfg(feature = "daemon")]
+    #[command(subcommand)]
+    Bridge(bridge::BridgeCommand),
     /// The daemon and a simulated rig in one process: zero setup.
     #[cfg(feature = "daemon")]
     Demo(demo::DemoArgs),
@@ -160,6 +166,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Models(args) => models::run(&args),
         #[cfg(feature = "daemon")]
         Command::Run(args) => run::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Bridge(command) => bridge::run(&command),
         #[cfg(feature = "daemon")]
         Command::Demo(args) => demo::run(&args),
         #[cfg(feature = "daemon")]

@@ -23,6 +23,10 @@
 //! [rig.simulator]               # send each shot to a golf simulator over Open Connect v1 (GSPro, OpenGolfSim)
 //! open_connect = "127.0.0.1:921"
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
+//! [rig.input]                   # read the rig's body straight from Motive (natnet) or QTM (qtm)
+//! natnet = "192.168.1.20"
+//! body = "driver"
+//! unicast = true
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"
 //! pair_window_s = [0.05, 5.0]   # a measurement pairs with the prediction it follows by this delay (s)
@@ -32,6 +36,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::daemon::bridges::mocap::MocapInputConfig;
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
 use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
@@ -82,6 +87,9 @@ pub struct RigConfig {
     pub simulator: Option<SimulatorConfig>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub launch_monitor: Option<LaunchMonitorConfig>,
+    /// The rig's samples straight from a NatNet or QTM server (besides `mocap/<rig>/clubhead`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub input: Option<MocapInputConfig>,
 }
 
 fn default_true() -> bool {
@@ -158,6 +166,7 @@ impl Default for DaemonConfig {
                 flight: true,
                 simulator: None,
                 launch_monitor: None,
+                input: None,
             }],
         }
     }
@@ -233,6 +242,9 @@ impl DaemonConfig {
                 if let Some(Err((field, reason))) = r.launch_monitor.as_ref().map(LaunchMonitorConfig::check) {
                     return Err(invalid(f(&format!("launch_monitor.{field}")), reason));
                 }
+                if let Some(Err((field, reason))) = r.input.as_ref().map(MocapInputConfig::source) {
+                    return Err(invalid(f(&format!("input.{field}")), reason));
+                }
                 if r.ball_position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
                     return Err(invalid(f("ball_position_m"), "must be finite and within 50 m"));
                 }
@@ -282,6 +294,13 @@ mod tests {
             .contains("rig[0].simulator.open_connect"));
         assert!(err("[[rig]]\nname = \"a\"\n[rig.simulator]\nmax_shot_age_s = -1.0")
             .contains("rig[0].simulator.max_shot_age_s"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.input]\nnatnet = \"h\"\nqtm = \"h\"\nbody = \"c\"")
+            .contains("rig[0].input.natnet"));
+        assert!(err("[[rig]]\nname = \"a\"\n[rig.input]\nqtm = \"h\"\nbody = \"\"").contains("rig[0].input.body"));
+        assert!(err(
+            "[[rig]]\nname = \"a\"\n[rig.input]\nnatnet = \"h\"\nbody = \"c\"\nmulticast_group = \"10.0.0.1\""
+        )
+        .contains("rig[0].input.multicast_group"));
         assert!(err("[[rig]]\nname = \"a\"\n[rig.launch_monitor]\nopen_connect_listen = \"localhost\"")
             .contains("rig[0].launch_monitor.open_connect_listen"));
         let (mut c, _) = DaemonConfig::parse(

@@ -9,6 +9,11 @@ pub fn clubhead(rig: &str) -> String {
 pub fn rejected(rig: &str) -> String {
     format!("mocap/{rig}/clubhead/rejected")
 }
+/// Out of `impactd bridge natnet|qtm`, once a second: [`MocapInputStatus`](super::MocapInputStatus), the
+/// health of the native input feeding the rig's clubhead samples.
+pub fn mocap_input(rig: &str) -> String {
+    format!("mocap/{rig}/input")
+}
 /// Every rig's clubhead samples.
 pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
 /// Recorded only: [`RejectedInput`](super::RejectedInput)s of samples on the keys of rigs no daemon serves.

@@ -69,6 +69,10 @@ pub struct ClubheadSampleMsg {
     pub orientation: QuaternionMsg,
     #[serde(default)]
     pub occluded: bool,
+    /// The cameras' mid-exposure instant on the capture host's clock (ns), when the motion-capture system
+    /// sends it (NatNet's `CameraMidExposureTimestamp`; QTM's timestamp is itself the capture time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exposure_t_ns: Option<u64>,
 }
 
 impl ClubheadSampleMsg {
@@ -92,6 +96,7 @@ impl ClubheadSampleMsg {
             position_m: [s.position_m.x, s.position_m.y, s.position_m.z],
             orientation: QuaternionMsg { x, y, z, w },
             occluded: s.occluded,
+            exposure_t_ns: None,
         }
     }
 }
@@ -206,6 +211,9 @@ pub struct StatusMessage {
     /// The Open Connect client sending this rig's shots to a golf simulator, when configured.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulator: Option<super::SimulatorStatus>,
+    /// The NatNet or QTM server feeding this rig directly (`[rig.input]`), when configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub input: Option<super::MocapInputStatus>,
     /// The Open Connect listener taking this rig's measured shots, when configured.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub launch_monitor: Option<super::LaunchMonitorStatus>,

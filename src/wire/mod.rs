@@ -11,6 +11,7 @@ mod flight;
 pub mod keys;
 mod measured;
 mod messages;
+mod mocap;
 mod sample;
 mod schema;
 
@@ -25,6 +26,7 @@ pub use messages::{
     ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,
     TruthMessage,
 };
+pub use mocap::MocapInputStatus;
 pub use sample::{parse_sample, InputError};
 pub use schema::{schemas, Message, MessageType};
 

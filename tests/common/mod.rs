@@ -108,3 +108,24 @@ pub fn python() -> std::process::Command {
     });
     std::process::Command::new(exe)
 }
+
+/// Waits for the last status of a rig whose `input` satisfies `done`, and returns that input status.
+pub async fn latest_input(
+    statuses: &Collected<impactd::wire::StatusMessage>,
+    done: impl Fn(&impactd::wire::MocapInputStatus) -> bool,
+) -> impactd::wire::MocapInputStatus {
+    let ok = wait_until(Duration::from_secs(10), || {
+        statuses.lock().unwrap().last().and_then(|s| s.input.as_ref()).is_some_and(&done)
+    })
+    .await;
+    let last = statuses.lock().unwrap().last().and_then(|s| s.input.clone()).unwrap();
+    assert!(ok, "status never reached the expected state: {last:?}");
+    last
+}
+
+/// This process's resident set (KiB), from /proc.
+pub fn rss_kib() -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let line = status.lines().find_map(|l| l.strip_prefix("VmRSS:"));
+    line.and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok()).unwrap_or(0)
+}

@@ -1,6 +1,7 @@
-//! Bridges between the daemon and other programs: golf simulators and launch monitors over Open Connect, and the
-//! Foxglove live view.
+//! Bridges between the daemon and other programs: golf simulators and launch monitors over Open Connect, the
+//! Foxglove live view, and motion-capture servers (OptiTrack NatNet, Qualisys QTM) read natively.
 
 pub mod foxglove;
+pub mod mocap;
 pub mod open_connect;
 pub mod peers;

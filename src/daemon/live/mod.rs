@@ -34,6 +34,7 @@ use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
+mod inputs;
 mod measured;
 pub mod sinks;
 pub mod stats;
@@ -107,6 +108,7 @@ pub async fn run(
     let mut tokens = Vec::new();
     let mut queryables = Vec::new();
     let mut measured_subscribers = Vec::new();
+    let mut input_slots: HashMap<String, InputSlot> = HashMap::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
         let publishers = RigPublishers::declare(session, &name).await?;
@@ -156,6 +158,7 @@ pub async fn run(
             launch_monitor,
             live_view: foxglove.as_ref().map(FoxgloveServer::status_source),
             pairer: Pairer::new(&name, window),
+            input: input_slots.entry(name.clone()).or_default().clone(),
         };
         workers.push(
             std::thread::Builder::new()
@@ -164,6 +167,14 @@ pub async fn run(
                 .map_err(|e| DaemonError::Io { what: "starting a rig worker".into(), source: e })?,
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
+    }
+    let (inputs, input_sources) = inputs::start(&config, &senders)?;
+    for (rig, source) in input_sources {
+        if let Some(slot) = input_slots.get(&rig) {
+            if let Ok(mut s) = slot.lock() {
+                *s = Some(source);
+            }
+        }
     }
     let unknown_cb = unknown.clone();
     let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
@@ -217,6 +228,9 @@ pub async fn run(
         .map_err(DaemonError::zenoh)?;
     shutdown.await;
     tracing::info!("shutting down");
+    for input in inputs {
+        input.stop();
+    }
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
     for s in measured_subscribers {
         s.undeclare().await.map_err(DaemonError::zenoh)?;
@@ -267,7 +281,12 @@ struct Worker {
     live_view: Option<crate::daemon::bridges::foxglove::live::LiveViewSource>,
     /// Measured launches waiting for their prediction and predictions waiting for their measurement.
     pairer: Pairer,
+    /// The NatNet or QTM client feeding this rig (`[rig.input]`), once started.
+    input: InputSlot,
 }
+
+/// Where a worker finds its input's counts (filled once the inputs start, after the workers).
+type InputSlot = Arc<std::sync::Mutex<Option<crate::daemon::bridges::mocap::StatusSource>>>;
 
 /// What a rig's worker leaves behind.
 struct WorkerEnd {
@@ -409,6 +428,7 @@ impl Worker {
         let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
         status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
         status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
+        status.input = self.input.lock().ok().and_then(|s| s.as_ref().map(|s| s.status()));
         status.comparison = Some(self.pairer.status());
         status.live_view = self.live_view.as_ref().map(|v| v.status());
         self.sinks.status(&status);

@@ -250,6 +250,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         rejected_not_recorded: s.rejected_not_recorded,
         recorder_error: s.recorder_error,
         simulator: None,
+        input: None,
         launch_monitor: None,
         comparison: None,
         live_view: None,

@@ -1,0 +1,76 @@
+//! Decoding one motion-capture frame of 10 rigid bodies: NatNet 4.1 and 3.1 (`NAT_FRAMEOFDATA` with a marker
+//! set and labeled markers, as Motive sends it) and a QTM 6D data packet. Budget: 2 us each.
+//! `cargo bench --bench mocap_decode`.
+
+#![allow(clippy::unwrap_used)]
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use impactd::mocap::natnet::{self, Frame, RigidBody, Version};
+use impactd::mocap::qtm::{self, Body6d, Frame6d};
+use impactd::mocap::{natnet_encode, qtm_encode, track};
+
+fn bodies_natnet() -> Frame {
+    Frame {
+        frame_number: 123_456,
+        rigid_bodies: (0..10)
+            .map(|i| RigidBody {
+                id: i + 1,
+                position_m: [0.1 * i as f32, 1.0, -0.3],
+                orientation_xyzw: [0.0, 0.0, 0.6, 0.8],
+                mean_error_m: 2e-4,
+                tracking_valid: true,
+            })
+            .collect(),
+        timestamp_s: 342.9,
+        mid_exposure_ticks: 3_429_000_000,
+        data_received_ticks: 3_429_020_000,
+        transmit_ticks: 3_429_035_000,
+        models_changed: false,
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let frame = bodies_natnet();
+    let markers: Vec<[f32; 3]> = (0..30).map(|i| [i as f32 * 0.01, 1.0, 0.0]).collect();
+    for version in [Version::V4_1, Version::V3_1] {
+        let bytes = natnet_encode::frame(version, &frame, "club", &markers).unwrap();
+        let mut out = Frame::default();
+        c.bench_function(&format!("natnet {version} frame, 10 rigid bodies ({} bytes)", bytes.len()), |b| {
+            b.iter(|| natnet::decode(black_box(&bytes), version, &mut out).unwrap())
+        });
+        c.bench_function(&format!("natnet {version} frame, 10 rigid bodies, decoded to samples"), |b| {
+            b.iter(|| {
+                natnet::decode(black_box(&bytes), version, &mut out).unwrap();
+                out.rigid_bodies.iter().map(|r| track::natnet_sample(r, &out, Some(10_000_000)).0.t_ns).sum::<u64>()
+            })
+        });
+    }
+    let q = Frame6d {
+        timestamp_us: 342_900_000,
+        frame_number: 123_456,
+        bodies: (0..10)
+            .map(|i| Body6d {
+                position_mm: [100.0 * i as f32, 1000.0, -300.0],
+                rotation: [0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+                residual_mm: None,
+            })
+            .collect(),
+        drop_rate_2d: 0,
+        out_of_sync_rate_2d: 0,
+    };
+    let packet = qtm_encode::data(&q);
+    let body = &packet[qtm::HEADER_BYTES..];
+    let mut out = Frame6d::default();
+    c.bench_function(&format!("qtm 6D packet, 10 bodies ({} bytes)", packet.len()), |b| {
+        b.iter(|| qtm::decode_data(black_box(body), &mut out).unwrap())
+    });
+    c.bench_function("qtm 6D packet, 10 bodies, decoded to samples", |b| {
+        b.iter(|| {
+            qtm::decode_data(black_box(body), &mut out).unwrap();
+            out.bodies.iter().map(|r| track::qtm_sample(r, &out).0.t_ns).sum::<u64>()
+        })
+    });
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

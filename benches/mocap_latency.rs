@@ -1,0 +1,176 @@
+//! Datagram to prediction on loopback, through the native NatNet input: a NatNet server in this process sends
+//! a synthetic rig's frames at 720 Hz over UDP on 127.0.0.1; for every shot, the time from sending the frame
+//! that reveals the impact to a zenoh subscriber receiving `golf/rig1/launch`. First through the daemon's
+//! `[rig.input]` (budget: p99 <= 0.5 ms), then through `impactd bridge natnet`'s library (one more zenoh hop:
+//! bridge -> daemon). Prints p50/p99/max. `cargo bench --bench mocap_latency [-- SHOTS]`.
+
+#![allow(clippy::unwrap_used)]
+
+use std::collections::HashMap;
+use std::net::{SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
+use impactd::daemon::sim::{SimOptions, SimRig};
+use impactd::daemon::{DaemonConfig, RunOptions};
+use impactd::mocap::natnet::{self, Frame, RigidBody, ServerInfo, Version};
+use impactd::mocap::natnet_encode;
+use impactd::wire::LaunchPrediction;
+use zenoh::Wait;
+
+fn quantile(v: &mut [f64], q: f64) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[((q * v.len() as f64).ceil() as usize).clamp(1, v.len()) - 1]
+}
+
+/// A NatNet server answering connects and model requests; returns its socket and the clients' addresses.
+fn server(stop: Arc<AtomicBool>) -> (UdpSocket, Arc<Mutex<Vec<SocketAddr>>>) {
+    let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    socket.set_read_timeout(Some(Duration::from_millis(20))).unwrap();
+    let clients: Arc<Mutex<Vec<SocketAddr>>> = Default::default();
+    let (s, c) = (socket.try_clone().unwrap(), clients.clone());
+    std::thread::spawn(move || {
+        let mut buf = vec![0u8; 70_000];
+        while !stop.load(Ordering::Relaxed) {
+            let Ok((n, from)) = s.recv_from(&mut buf) else { continue };
+            match natnet::split(&buf[..n]).map(|m| m.0) {
+                Ok(natnet::NAT_CONNECT) => {
+                    c.lock().unwrap().push(from);
+                    let info = ServerInfo {
+                        app_name: "Motive".into(),
+                        natnet_version: [4, 1, 0, 0],
+                        clock_hz: Some(10_000_000),
+                        ..ServerInfo::default()
+                    };
+                    s.send_to(&natnet_encode::server_info(&info), from).unwrap();
+                }
+                Ok(natnet::NAT_REQUEST_MODELDEF) => {
+                    s.send_to(&natnet_encode::model_def(Version::V4_1, &[(3, "club")]).unwrap(), from).unwrap();
+                }
+                _ => {}
+            }
+        }
+    });
+    (socket, clients)
+}
+
+async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let (socket, clients) = server(stop.clone());
+    let port = socket.local_addr().unwrap().port();
+    let mut text = "[[rig]]\nname = \"rig1\"\n".to_string();
+    if !bridge {
+        text += &format!("[rig.input]\nnatnet = \"127.0.0.1\"\nbody = \"club\"\nunicast = true\ncommand_port = {port}\ndata_port = 0\n");
+    }
+    let (config, setups) = DaemonConfig::parse(&text).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+    let sub_session = ZenohArgs::loopback(vec![], vec![endpoint.clone()]).open().await.unwrap();
+    let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
+    let results: Arc<Mutex<Vec<f64>>> = Default::default();
+    let (s, r) = (sent.clone(), results.clone());
+    let _sub = sub_session
+        .declare_subscriber("golf/rig1/launch")
+        .callback(move |m| {
+            let now = Instant::now();
+            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
+                if let Some(t) = s.lock().unwrap().get(&l.frame) {
+                    r.lock().unwrap().push(now.duration_since(*t).as_secs_f64() * 1e6);
+                }
+            }
+        })
+        .wait()
+        .unwrap();
+    let (stop_daemon, stopped) = tokio::sync::oneshot::channel::<()>();
+    let daemon = tokio::spawn(async move {
+        impactd::daemon::run(config, setups, &daemon_session, RunOptions::default(), async {
+            let _ = stopped.await;
+        })
+        .await
+        .unwrap();
+        daemon_session.close().await.unwrap();
+    });
+    let (stop_bridge, bridge_stopped) = tokio::sync::oneshot::channel::<()>();
+    let bridge_task = if bridge {
+        let session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
+        let source =
+            Source::NatNet { host: "127.0.0.1".into(), command_port: port, data_port: 0, multicast_group: None };
+        Some(tokio::spawn(async move {
+            run_bridge(&session, source, vec![("club".into(), "rig1".into())], async {
+                let _ = bridge_stopped.await;
+            })
+            .await
+            .unwrap();
+            session.close().await.unwrap();
+        }))
+    } else {
+        None
+    };
+    while clients.lock().unwrap().is_empty() {
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    let to = clients.lock().unwrap()[0];
+    let sent_frames = sent.clone();
+    tokio::task::spawn_blocking(move || {
+        let options = SimOptions { shots, interval_s: 0.25, ..SimOptions::default() };
+        let period = Duration::from_secs_f64(1.0 / options.rate_hz);
+        let mut rig = SimRig::new("rig1", &options, 1_000_000_000, 1);
+        let start = Instant::now();
+        let mut k = 0u32;
+        let mut frame = Frame::default();
+        let mut bytes = Vec::new();
+        while !rig.done() {
+            let s = rig.next_sample().0;
+            frame.frame_number = s.frame as i32;
+            frame.timestamp_s = s.t_ns as f64 * 1e-9;
+            frame.rigid_bodies.clear();
+            frame.rigid_bodies.push(RigidBody {
+                id: 3,
+                position_m: [s.position_m.x as f32, s.position_m.y as f32, s.position_m.z as f32],
+                orientation_xyzw: s.orientation_xyzw.map(|v| v as f32),
+                mean_error_m: 2e-4,
+                tracking_valid: true,
+            });
+            bytes.clear();
+            bytes.extend(natnet_encode::frame(Version::V4_1, &frame, "club", &[]).unwrap());
+            let due = start + period * k;
+            if let Some(wait) = due.checked_duration_since(Instant::now()) {
+                std::thread::sleep(wait);
+            }
+            sent_frames.lock().unwrap().insert(s.frame, Instant::now());
+            socket.send_to(&bytes, to).unwrap();
+            k += 1;
+        }
+    })
+    .await
+    .unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    if let Some(task) = bridge_task {
+        let _ = stop_bridge.send(());
+        task.await.unwrap();
+    }
+    let _ = stop_daemon.send(());
+    daemon.await.unwrap();
+    stop.store(true, Ordering::Relaxed);
+    sub_session.close().await.unwrap();
+    let out = results.lock().unwrap().clone();
+    out
+}
+
+fn main() {
+    let shots: u64 = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(100);
+    let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
+    rt.block_on(async {
+        for (name, bridge) in [("daemon [rig.input] natnet", false), ("impactd bridge natnet -> daemon", true)] {
+            let mut v = measure(shots, bridge).await;
+            let n = v.len();
+            let (p50, p99) = (quantile(&mut v, 0.5), quantile(&mut v, 0.99));
+            let max = v.iter().cloned().fold(0.0, f64::max);
+            println!("{name}: {n} of {shots} shots; datagram sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us");
+        }
+    });
+}

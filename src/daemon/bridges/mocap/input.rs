@@ -1,0 +1,303 @@
+//! What the NatNet and QTM clients share: the `[rig.input]` configuration, the server a group of rigs reads
+//! (several rigs, one body each, share one connection), the counts behind each rig's `MocapInputStatus`, and
+//! the handle that stops the client's threads.
+
+use std::collections::BTreeMap;
+use std::net::{Ipv4Addr, SocketAddr, ToSocketAddrs};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use crate::daemon::live::stats::LatencyWindow;
+use crate::daemon::DaemonError;
+use crate::mocap::track::BodySample;
+use crate::wire::{ConnectionState, MocapInputStatus};
+
+pub const NATNET_COMMAND_PORT: u16 = 1510;
+pub const NATNET_DATA_PORT: u16 = 1511;
+/// Motive's default multicast group.
+pub const NATNET_MULTICAST_GROUP: Ipv4Addr = Ipv4Addr::new(239, 255, 42, 99);
+/// QTM's little-endian real-time port.
+pub const QTM_PORT: u16 = 22223;
+
+/// How long a blocking socket read waits before looking at the stop flag: a client stops within this.
+pub const POLL: Duration = Duration::from_millis(100);
+/// Reconnection back-off: from the first to the last, doubling.
+pub const BACKOFF_FIRST: Duration = Duration::from_millis(250);
+pub const BACKOFF_LAST: Duration = Duration::from_secs(4);
+
+/// `[rig.input]`: the rig's samples come straight from a NatNet or QTM server.
+///
+/// ```toml
+/// [rig.input]
+/// natnet = "192.168.1.20"    # or qtm = "192.168.1.20"
+/// body = "driver"            # the rigid body's name in Motive (6DOF body in QTM)
+/// unicast = true             # NatNet: unicast (default: multicast on multicast_group)
+/// # command_port = 1510; data_port = 1511; multicast_group = "239.255.42.99"; port = 22223 (QTM)
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MocapInputConfig {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub natnet: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub qtm: Option<String>,
+    pub body: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub command_port: Option<u16>,
+    /// NatNet data port (0: any free port, for unicast).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub data_port: Option<u16>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multicast_group: Option<String>,
+    #[serde(default)]
+    pub unicast: bool,
+    /// QTM's port.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub port: Option<u16>,
+}
+
+/// The server a client reads.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Source {
+    NatNet { host: String, command_port: u16, data_port: u16, multicast_group: Option<Ipv4Addr> },
+    Qtm { host: String, port: u16 },
+}
+
+impl Source {
+    pub fn protocol(&self) -> &'static str {
+        match self {
+            Source::NatNet { .. } => "natnet",
+            Source::Qtm { .. } => "qtm",
+        }
+    }
+
+    pub fn address(&self) -> String {
+        match self {
+            Source::NatNet { host, command_port, .. } => format!("{host}:{command_port}"),
+            Source::Qtm { host, port } => format!("{host}:{port}"),
+        }
+    }
+}
+
+impl MocapInputConfig {
+    /// The server, or the field that is wrong and why.
+    pub fn source(&self) -> Result<Source, (&'static str, String)> {
+        if self.body.trim().is_empty() {
+            return Err(("body", "must name the rigid body".into()));
+        }
+        let host = |h: &String, field| {
+            if h.trim().is_empty() || h.contains(char::is_whitespace) {
+                Err((field, format!("`{h}` is not a host name or address")))
+            } else {
+                Ok(h.clone())
+            }
+        };
+        match (&self.natnet, &self.qtm) {
+            (Some(h), None) => {
+                if self.port.is_some() {
+                    return Err(("port", "is QTM's; NatNet has command_port and data_port".into()));
+                }
+                let multicast_group = match (&self.multicast_group, self.unicast) {
+                    (Some(_), true) => return Err(("multicast_group", "and unicast = true exclude each other".into())),
+                    (Some(g), false) => Some(
+                        g.parse::<Ipv4Addr>()
+                            .ok()
+                            .filter(Ipv4Addr::is_multicast)
+                            .ok_or(("multicast_group", format!("`{g}` is not an IPv4 multicast address")))?,
+                    ),
+                    (None, false) => Some(NATNET_MULTICAST_GROUP),
+                    (None, true) => None,
+                };
+                Ok(Source::NatNet {
+                    host: host(h, "natnet")?,
+                    command_port: self.command_port.unwrap_or(NATNET_COMMAND_PORT),
+                    data_port: self.data_port.unwrap_or(NATNET_DATA_PORT),
+                    multicast_group,
+                })
+            }
+            (None, Some(h)) => {
+                if self.command_port.is_some() || self.data_port.is_some() || self.multicast_group.is_some() {
+                    return Err((
+                        "qtm",
+                        "takes `port` only (command_port, data_port, multicast_group are NatNet's)".into(),
+                    ));
+                }
+                Ok(Source::Qtm { host: host(h, "qtm")?, port: self.port.unwrap_or(QTM_PORT) })
+            }
+            (Some(_), Some(_)) => Err(("natnet", "and qtm exclude each other".into())),
+            (None, None) => Err(("natnet", "or qtm must name the server".into())),
+        }
+    }
+}
+
+/// The server's first IPv4 address.
+pub fn resolve(host: &str, port: u16) -> Result<SocketAddr, DaemonError> {
+    let io = |source| DaemonError::Io { what: format!("resolving {host}"), source };
+    (host, port)
+        .to_socket_addrs()
+        .map_err(io)?
+        .find(SocketAddr::is_ipv4)
+        .ok_or_else(|| io(std::io::Error::other("no IPv4 address")))
+}
+
+/// Hands a body's sample on (to a rig's queue, or to zenoh); `route` indexes the client's bodies.
+pub type Deliver = Box<dyn FnMut(usize, &BodySample, Instant) + Send>;
+
+/// Connection-wide state and counts.
+#[derive(Debug)]
+pub struct Conn {
+    pub state: ConnectionState,
+    pub connects: u64,
+    pub server_version: Option<String>,
+    pub rejected: BTreeMap<String, u64>,
+    pub last_error: Option<String>,
+    pub exposure_to_transmit_us: LatencyWindow,
+}
+
+impl Conn {
+    pub fn reject(&mut self, reason: &str) {
+        *self.rejected.entry(reason.to_string()).or_default() += 1;
+    }
+}
+
+/// The counts a client keeps; one [`MocapInputStatus`] per body (route).
+pub struct Shared {
+    pub conn: Conn,
+    pub bodies: Vec<MocapInputStatus>,
+    pub deliver: Deliver,
+}
+
+impl Shared {
+    pub fn new(source: &Source, routes: &[(String, String)], deliver: Deliver) -> Self {
+        let bodies = routes
+            .iter()
+            .map(|(body, rig)| MocapInputStatus {
+                rig: rig.clone(),
+                protocol: source.protocol().into(),
+                server: source.address(),
+                body: body.clone(),
+                ..MocapInputStatus::default()
+            })
+            .collect();
+        Shared {
+            conn: Conn {
+                state: ConnectionState::Connecting,
+                connects: 0,
+                server_version: None,
+                rejected: BTreeMap::new(),
+                last_error: None,
+                exposure_to_transmit_us: LatencyWindow::new(1024),
+            },
+            bodies,
+            deliver,
+        }
+    }
+}
+
+/// A running client: its threads, stop flag and counts.
+pub struct InputHandle {
+    pub source: Source,
+    stop: Arc<AtomicBool>,
+    threads: Vec<JoinHandle<()>>,
+    shared: Arc<Mutex<Shared>>,
+}
+
+/// Locks the counts, whatever a panicking holder left (they are counts: still worth reporting).
+pub fn lock(shared: &Mutex<Shared>) -> MutexGuard<'_, Shared> {
+    shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl InputHandle {
+    /// Starts a client of `source` for `routes` (`(body name, rig)`), handing samples to `deliver`.
+    pub fn start(source: Source, routes: Vec<(String, String)>, deliver: Deliver) -> Result<Self, DaemonError> {
+        let stop = Arc::new(AtomicBool::new(false));
+        let bodies: Vec<String> = routes.iter().map(|r| r.0.clone()).collect();
+        let shared = Arc::new(Mutex::new(Shared::new(&source, &routes, deliver)));
+        let threads = match &source {
+            Source::NatNet { host, command_port, data_port, multicast_group } => super::natnet::start(
+                super::natnet::Options {
+                    server: resolve(host, *command_port)?,
+                    data_port: *data_port,
+                    multicast_group: *multicast_group,
+                },
+                bodies,
+                shared.clone(),
+                stop.clone(),
+            )?,
+            Source::Qtm { host, port } => {
+                super::qtm::start(resolve(host, *port)?, bodies, shared.clone(), stop.clone())?
+            }
+        };
+        Ok(InputHandle { source, stop, threads, shared })
+    }
+
+    /// The status of route `i` (its body's counts and the connection's).
+    pub fn status(&self, i: usize) -> MocapInputStatus {
+        status_of(&self.shared, i)
+    }
+
+    /// A cheap handle on the counts, for a rig's status.
+    pub fn status_source(&self, i: usize) -> StatusSource {
+        StatusSource { shared: self.shared.clone(), route: i }
+    }
+
+    pub fn routes(&self) -> usize {
+        lock(&self.shared).bodies.len()
+    }
+
+    /// Stops the threads and waits for them (each within [`POLL`]); drops the delivery (and the rig queues it
+    /// holds), so status sources that outlive the client keep no queue open.
+    pub fn stop(self) {
+        self.stop.store(true, Ordering::Relaxed);
+        for t in self.threads {
+            let _ = t.join();
+        }
+        lock(&self.shared).deliver = Box::new(|_, _, _| {});
+    }
+}
+
+/// One rig's view of a client's counts.
+#[derive(Clone)]
+pub struct StatusSource {
+    shared: Arc<Mutex<Shared>>,
+    route: usize,
+}
+
+impl StatusSource {
+    pub fn status(&self) -> MocapInputStatus {
+        status_of(&self.shared, self.route)
+    }
+}
+
+fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
+    let s = lock(shared);
+    let mut out = s.bodies.get(i).cloned().unwrap_or_default();
+    out.state = s.conn.state;
+    out.connects = s.conn.connects;
+    out.server_version = s.conn.server_version.clone();
+    out.last_error = s.conn.last_error.clone();
+    for (k, v) in &s.conn.rejected {
+        *out.rejected.entry(k.clone()).or_default() += v;
+    }
+    let w = &s.conn.exposure_to_transmit_us;
+    let p99 = w.quantile(0.99);
+    out.exposure_to_transmit_p99_us = (p99 > 0.0).then_some(p99);
+    out
+}
+
+/// Sleeps up to `d`, waking early when `stop` is set; false when stopped.
+pub fn sleep_unless_stopped(d: Duration, stop: &AtomicBool) -> bool {
+    let end = Instant::now() + d;
+    while !stop.load(Ordering::Relaxed) {
+        let now = Instant::now();
+        if now >= end {
+            return true;
+        }
+        std::thread::sleep((end - now).min(POLL));
+    }
+    false
+}

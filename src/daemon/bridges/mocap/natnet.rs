@@ -1,0 +1,303 @@
+//! The NatNet client: `NAT_CONNECT` to Motive's command port (again, with back-off, until the server answers
+//! and whenever it goes quiet for [`QUIET`]), keep-alives, `NAT_REQUEST_MODELDEF` to map body names to ids
+//! (again when a frame says the models changed or a mapped id goes missing), and frames from both the command
+//! socket (where Motive sends unicast frames: to the address the connect came from) and the data socket
+//! (multicast group, or the `data_port` bound for unicast). Two threads, one per socket, share the decoding
+//! state behind one lock; each datagram is decoded into a reused frame (no allocation per frame once warm).
+
+use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use super::input::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
+use crate::daemon::DaemonError;
+use crate::mocap::natnet::{self, Frame, Version};
+use crate::mocap::natnet_encode;
+use crate::mocap::track::{natnet_sample, BodyTrack, Sequence};
+use crate::wire::ConnectionState;
+
+/// A connected server silent this long is connected to again.
+pub const QUIET: Duration = Duration::from_secs(3);
+const KEEPALIVE: Duration = Duration::from_secs(1);
+/// At most one model request per this long.
+const MODEL_REQUEST_EVERY: Duration = Duration::from_secs(1);
+
+pub struct Options {
+    pub server: SocketAddr,
+    pub data_port: u16,
+    pub multicast_group: Option<Ipv4Addr>,
+}
+
+/// The decoding state both sockets' threads share.
+struct State {
+    version: Option<Version>,
+    clock_hz: Option<u64>,
+    bodies: Vec<String>,
+    ids: Vec<Option<i32>>,
+    tracks: Vec<BodyTrack>,
+    frame: Frame,
+    last_rx: Option<Instant>,
+    want_model: bool,
+    model_seen: bool,
+}
+
+struct Client {
+    server: SocketAddr,
+    state: Mutex<State>,
+    shared: Arc<Mutex<Shared>>,
+    stop: Arc<AtomicBool>,
+}
+
+fn io(what: String) -> impl FnOnce(std::io::Error) -> DaemonError {
+    move |source| DaemonError::Io { what, source }
+}
+
+/// Binds the sockets and starts the two threads.
+pub fn start(
+    options: Options,
+    bodies: Vec<String>,
+    shared: Arc<Mutex<Shared>>,
+    stop: Arc<AtomicBool>,
+) -> Result<Vec<JoinHandle<()>>, DaemonError> {
+    let local: Ipv4Addr = if options.server.ip().is_loopback() { Ipv4Addr::LOCALHOST } else { Ipv4Addr::UNSPECIFIED };
+    let command = UdpSocket::bind((local, 0)).map_err(io("binding the NatNet command socket".into()))?;
+    let data = data_socket(local, options.data_port, options.multicast_group)?;
+    for s in [&command, &data] {
+        s.set_read_timeout(Some(POLL)).map_err(io("setting a socket timeout".into()))?;
+    }
+    let n = bodies.len();
+    let client = Arc::new(Client {
+        server: options.server,
+        state: Mutex::new(State {
+            version: None,
+            clock_hz: None,
+            bodies,
+            ids: vec![None; n],
+            tracks: vec![BodyTrack::default(); n],
+            frame: Frame::default(),
+            last_rx: None,
+            want_model: true,
+            model_seen: false,
+        }),
+        shared,
+        stop,
+    });
+    let spawn = |name: &str, f: Box<dyn FnOnce() + Send>| {
+        std::thread::Builder::new().name(name.into()).spawn(f).map_err(io("starting a NatNet thread".into()))
+    };
+    let (c1, c2) = (client.clone(), client);
+    Ok(vec![
+        spawn("natnet-command", Box::new(move || c1.command_loop(command)))?,
+        spawn("natnet-data", Box::new(move || c2.receive_loop(&data)))?,
+    ])
+}
+
+fn data_socket(local: Ipv4Addr, port: u16, group: Option<Ipv4Addr>) -> Result<UdpSocket, DaemonError> {
+    let what = format!("binding the NatNet data port {port}");
+    let Some(group) = group else { return UdpSocket::bind((local, port)).map_err(io(what)) };
+    use socket2::{Domain, Protocol, Socket, Type};
+    let s = Socket::new(Domain::IPV4, Type::DGRAM, Some(Protocol::UDP)).map_err(io(what.clone()))?;
+    s.set_reuse_address(true).map_err(io(what.clone()))?;
+    s.bind(&SocketAddr::from((Ipv4Addr::UNSPECIFIED, port)).into()).map_err(io(what.clone()))?;
+    s.join_multicast_v4(&group, &Ipv4Addr::UNSPECIFIED).map_err(io(format!("joining multicast group {group}")))?;
+    Ok(s.into())
+}
+
+impl Client {
+    fn lock_state(&self) -> std::sync::MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    fn send(&self, socket: &UdpSocket, bytes: &[u8]) {
+        if let Err(e) = socket.send_to(bytes, self.server) {
+            lock(&self.shared).conn.last_error = Some(format!("sending to {}: {e}", self.server));
+        }
+    }
+
+    /// Connects, keeps alive, asks for the model, and reads the command socket.
+    fn command_loop(&self, socket: UdpSocket) {
+        let mut backoff = BACKOFF_FIRST;
+        let mut next_connect = Instant::now();
+        let mut last_keepalive = Instant::now();
+        let mut last_model_request: Option<Instant> = None;
+        let mut attempts = 0u32;
+        let mut buf = vec![0u8; natnet::MAX_DATAGRAM_BYTES + 1];
+        while !self.stop.load(Ordering::Relaxed) {
+            let now = Instant::now();
+            let (connected, want_model) = {
+                let st = self.lock_state();
+                (st.version.is_some() && st.last_rx.is_some_and(|t| now - t < QUIET), st.want_model)
+            };
+            if !connected {
+                if self.lock_state().version.take().is_some() {
+                    let mut sh = lock(&self.shared);
+                    sh.conn.state = ConnectionState::Disconnected;
+                    sh.conn.last_error = Some(format!("NatNet server at {} went quiet; connecting again", self.server));
+                    tracing::warn!("NatNet server at {} went quiet; connecting again", self.server);
+                    backoff = BACKOFF_FIRST;
+                    next_connect = now;
+                }
+                if now >= next_connect {
+                    if attempts > 0 {
+                        let note = format!(
+                            "no answer from a NatNet server at {} yet; asking again in {:.2} s",
+                            self.server,
+                            backoff.as_secs_f64()
+                        );
+                        if attempts == 1 || backoff == BACKOFF_LAST {
+                            tracing::warn!("{note}");
+                        }
+                        lock(&self.shared).conn.last_error = Some(note);
+                    }
+                    self.send(&socket, &natnet_encode::connect("impactd", None));
+                    attempts += 1;
+                    next_connect = now + backoff;
+                    backoff = (backoff * 2).min(BACKOFF_LAST);
+                }
+            } else {
+                attempts = 0;
+                backoff = BACKOFF_FIRST;
+                if now - last_keepalive >= KEEPALIVE {
+                    self.send(&socket, &natnet_encode::request(natnet::NAT_KEEPALIVE));
+                    last_keepalive = now;
+                }
+                if want_model && last_model_request.map_or(true, |t| now - t >= MODEL_REQUEST_EVERY) {
+                    self.send(&socket, &natnet_encode::request(natnet::NAT_REQUEST_MODELDEF));
+                    last_model_request = Some(now);
+                }
+            }
+            self.receive_one(&socket, &mut buf);
+        }
+        self.send(&socket, &natnet_encode::request(natnet::NAT_DISCONNECT));
+    }
+
+    fn receive_loop(&self, socket: &UdpSocket) {
+        let mut buf = vec![0u8; natnet::MAX_DATAGRAM_BYTES + 1];
+        while !self.stop.load(Ordering::Relaxed) {
+            self.receive_one(socket, &mut buf);
+        }
+    }
+
+    fn receive_one(&self, socket: &UdpSocket, buf: &mut [u8]) {
+        match socket.recv_from(buf) {
+            Ok((n, from)) => {
+                let received = Instant::now();
+                if from.ip() != self.server.ip() {
+                    lock(&self.shared).conn.reject("foreign_sender");
+                } else if n > natnet::MAX_DATAGRAM_BYTES {
+                    lock(&self.shared).conn.reject("oversized");
+                } else {
+                    self.on_datagram(&buf[..n], received);
+                }
+            }
+            Err(e) if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {}
+            // An ICMP error from an earlier send (the server's port was closed): retried by the connect loop.
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionRefused => {}
+            Err(e) => {
+                lock(&self.shared).conn.last_error = Some(format!("receiving: {e}"));
+                std::thread::sleep(POLL);
+            }
+        }
+    }
+
+    fn on_datagram(&self, bytes: &[u8], received: Instant) {
+        let mut st = self.lock_state();
+        let mut sh = lock(&self.shared);
+        let (id, payload) = match natnet::split(bytes) {
+            Ok(v) => v,
+            Err(e) => return sh.conn.reject(e.reason()),
+        };
+        st.last_rx = Some(received);
+        match id {
+            natnet::NAT_SERVERINFO => match natnet::decode_server_info(payload) {
+                Ok(info) => {
+                    let v = info.version();
+                    let [a, b, c, d] = info.app_version;
+                    sh.conn.server_version = Some(format!("{} {a}.{b}.{c}.{d}, NatNet {v}", info.app_name));
+                    if !v.supported() {
+                        sh.conn.reject("unknown_version");
+                        sh.conn.last_error = Some(natnet::NatNetError::UnsupportedVersion(v).to_string());
+                    }
+                    if st.version.is_none() {
+                        sh.conn.connects += 1;
+                        tracing::info!(
+                            "NatNet server at {}: {}",
+                            self.server,
+                            sh.conn.server_version.as_deref().unwrap_or("")
+                        );
+                    }
+                    sh.conn.state = ConnectionState::Connected;
+                    st.version = Some(v);
+                    st.clock_hz = info.clock_hz.filter(|&hz| hz > 0);
+                    st.want_model = true;
+                }
+                Err(e) => sh.conn.reject(e.reason()),
+            },
+            natnet::NAT_MODELDEF => {
+                let Some(version) = st.version else { return sh.conn.reject("awaiting_server_info") };
+                match natnet::decode_model_def(payload, version) {
+                    Ok(model) => {
+                        st.want_model = false;
+                        let st = &mut *st;
+                        for (i, name) in st.bodies.iter().enumerate() {
+                            let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
+                            if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
+                                let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
+                                tracing::warn!(
+                                    "rigid body `{name}` is not in the NatNet server's model (it has {names:?})"
+                                );
+                            }
+                            st.ids[i] = id;
+                            sh.bodies[i].body_found = id.is_some();
+                        }
+                        st.model_seen = true;
+                    }
+                    Err(e) => sh.conn.reject(e.reason()),
+                }
+            }
+            natnet::NAT_FRAMEOFDATA => {
+                let Some(version) = st.version else { return sh.conn.reject("awaiting_server_info") };
+                let st = &mut *st;
+                if let Err(e) = natnet::decode_frame(payload, version, &mut st.frame) {
+                    return sh.conn.reject(e.reason());
+                }
+                if st.frame.models_changed {
+                    st.want_model = true;
+                }
+                if let Some(hz) = st.clock_hz {
+                    let f = &st.frame;
+                    if f.mid_exposure_ticks > 0 && f.transmit_ticks > f.mid_exposure_ticks {
+                        let us = (f.transmit_ticks - f.mid_exposure_ticks) as f64 * 1e6 / hz as f64;
+                        sh.conn.exposure_to_transmit_us.push(us);
+                    }
+                }
+                let sh = &mut *sh;
+                for i in 0..st.bodies.len() {
+                    let status = &mut sh.bodies[i];
+                    let Some(id) = st.ids[i] else {
+                        *status.rejected.entry("body_not_in_model".into()).or_default() += 1;
+                        st.want_model = true;
+                        continue;
+                    };
+                    let Some(body) = st.frame.rigid_bodies.iter().find(|b| b.id == id) else {
+                        *status.rejected.entry("body_missing_from_frame".into()).or_default() += 1;
+                        st.want_model = true;
+                        continue;
+                    };
+                    let (sample, bad) = natnet_sample(body, &st.frame, st.clock_hz);
+                    if st.tracks[i].on_frame(&sample, bad, status) == Sequence::Publish {
+                        (sh.deliver)(i, &sample, received);
+                    }
+                }
+            }
+            natnet::NAT_RESPONSE
+            | natnet::NAT_MESSAGESTRING
+            | natnet::NAT_KEEPALIVE
+            | natnet::NAT_UNRECOGNIZED_REQUEST
+            | natnet::NAT_DISCONNECT => {}
+            _ => sh.conn.reject("unknown_message"),
+        }
+    }
+}

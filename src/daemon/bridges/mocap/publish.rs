@@ -1,0 +1,70 @@
+//! `impactd bridge natnet|qtm`: a NatNet or QTM client publishing each mapped body's frames as clubhead
+//! samples on `mocap/<rig>/clubhead` (the JSON any rig publishes) and its health on `mocap/<rig>/input` once
+//! a second. [`run_bridge`] runs until `shutdown` completes, so tests start and stop it in-process.
+
+use std::future::Future;
+use std::time::Duration;
+
+use zenoh::Wait;
+
+use super::{InputHandle, Source};
+use crate::daemon::DaemonError;
+use crate::wire::{keys, MessageType, MocapInputStatus};
+
+/// Runs a bridge from `source` for `routes` (`(body, rig)`) on `session` until `shutdown`; returns each
+/// route's final status.
+pub async fn run_bridge(
+    session: &zenoh::Session,
+    source: Source,
+    routes: Vec<(String, String)>,
+    shutdown: impl Future<Output = ()>,
+) -> Result<Vec<MocapInputStatus>, DaemonError> {
+    let mut samples = Vec::new();
+    let mut statuses = Vec::new();
+    for (_, rig) in &routes {
+        if !keys::valid_rig_name(rig) {
+            return Err(DaemonError::BadRigName(rig.clone()));
+        }
+        samples.push(
+            session
+                .declare_publisher(keys::clubhead(rig))
+                .encoding(MessageType::ClubheadSample.encoding())
+                .await
+                .map_err(DaemonError::zenoh)?,
+        );
+        statuses.push(
+            session
+                .declare_publisher(keys::mocap_input(rig))
+                .encoding(MessageType::MocapInputStatus.encoding())
+                .await
+                .map_err(DaemonError::zenoh)?,
+        );
+    }
+    let rigs: Vec<String> = routes.iter().map(|r| r.1.clone()).collect();
+    let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, _received| {
+        let (Some(publisher), Some(rig)) = (samples.get(i), rigs.get(i)) else { return };
+        if let Err(e) = publisher.put(serde_json::to_vec(&sample.to_msg(rig)).unwrap_or_default()).wait() {
+            tracing::warn!("rig {rig}: publishing a sample: {e}");
+        }
+    });
+    tracing::info!("bridging {} at {} for {:?}", source.protocol(), source.address(), routes);
+    let handle = InputHandle::start(source, routes, deliver)?;
+    tokio::pin!(shutdown);
+    let mut tick = tokio::time::interval(Duration::from_secs(1));
+    loop {
+        tokio::select! {
+            _ = &mut shutdown => break,
+            _ = tick.tick() => {
+                for (i, publisher) in statuses.iter().enumerate() {
+                    let status = handle.status(i);
+                    if let Err(e) = publisher.put(serde_json::to_vec(&status).unwrap_or_default()).await {
+                        tracing::warn!("rig {}: publishing the input status: {e}", status.rig);
+                    }
+                }
+            }
+        }
+    }
+    let out = (0..handle.routes()).map(|i| handle.status(i)).collect();
+    tokio::task::spawn_blocking(move || handle.stop()).await.map_err(DaemonError::Task)?;
+    Ok(out)
+}

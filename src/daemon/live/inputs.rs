@@ -1,0 +1,63 @@
+//! `[rig.input]`: NatNet and QTM clients feeding the rigs' queues directly. Rigs reading the same server share
+//! one client (one body each). Each sample is serialised as the `ClubheadSampleMsg` a bridge would publish and
+//! queued exactly as a zenoh sample is, so the worker parses, records and runs the same bytes either way.
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::SyncSender;
+use std::sync::Arc;
+
+use super::Incoming;
+use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::wire::MessageType;
+
+/// A rig's queue and its count of samples the full queue refused.
+pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
+
+/// Starts one client per server named by the rigs' inputs; gives each such rig its status source.
+pub(super) fn start(
+    config: &DaemonConfig,
+    routes: &HashMap<String, Route>,
+) -> Result<(Vec<InputHandle>, HashMap<String, StatusSource>), DaemonError> {
+    let mut groups: Vec<(Source, Vec<(String, String)>)> = Vec::new();
+    for rig in &config.rigs {
+        let Some(input) = &rig.input else { continue };
+        let source = input.source().map_err(|(field, reason)| DaemonError::Config {
+            field: format!("rig {}: input.{field}", rig.name),
+            reason,
+        })?;
+        let route = (input.body.clone(), rig.name.clone());
+        match groups.iter_mut().find(|g| g.0 == source) {
+            Some(g) => g.1.push(route),
+            None => groups.push((source, vec![route])),
+        }
+    }
+    let mut handles = Vec::new();
+    let mut sources = HashMap::new();
+    for (source, group) in groups {
+        let targets: Vec<(Arc<str>, Option<Route>)> =
+            group.iter().map(|(_, rig)| (Arc::from(rig.as_str()), routes.get(rig).cloned())).collect();
+        let encoding = MessageType::ClubheadSample.encoding();
+        let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
+            let Some((rig, Some((tx, dropped)))) = targets.get(i) else { return };
+            let incoming = Incoming {
+                measured: false,
+                received,
+                log_time_ns: wall_ns(),
+                payload: serde_json::to_vec(&sample.to_msg(rig)).unwrap_or_default(),
+                encoding: encoding.clone(),
+            };
+            if tx.try_send(incoming).is_err() {
+                dropped.fetch_add(1, Ordering::Relaxed);
+            }
+        });
+        tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), group);
+        let handle = InputHandle::start(source, group.clone(), deliver)?;
+        for (i, (_, rig)) in group.iter().enumerate() {
+            sources.insert(rig.clone(), handle.status_source(i));
+        }
+        handles.push(handle);
+    }
+    Ok((handles, sources))
+}

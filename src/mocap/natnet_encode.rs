@@ -1,0 +1,161 @@
+//! NatNet messages as a server (Motive) or a client writes them: the requests the bridge sends, and the server
+//! side the test servers and benchmarks use. The layouts are those [`super::natnet`] reads; OptiTrack's Python
+//! client (`natnetsdk`) checks them in the tests.
+
+use super::bytes::Writer;
+use super::natnet::{
+    Frame, ServerInfo, Version, NAT_CONNECT, NAT_FRAMEOFDATA, NAT_MODELDEF, NAT_SERVERINFO, RIGID_BODY_BYTES,
+};
+
+/// Header + payload; `None` when the payload is over the `u16` count NatNet can describe.
+fn packet(id: u16, payload: &[u8]) -> Option<Vec<u8>> {
+    let n = u16::try_from(payload.len()).ok()?;
+    let mut out = Vec::with_capacity(4 + payload.len());
+    out.put_u16(id);
+    out.put_u16(n);
+    out.extend_from_slice(payload);
+    Some(out)
+}
+
+/// A request without a payload (`NAT_REQUEST_MODELDEF`, `NAT_KEEPALIVE`, ...).
+pub fn request(id: u16) -> Vec<u8> {
+    let mut out = Vec::with_capacity(4);
+    out.put_u16(id);
+    out.put_u16(0);
+    out
+}
+
+/// `NAT_CONNECT` as the NatNet SDK sends it: the client's name in a 256-byte field, two unused version words,
+/// "subscribed data only" and the bitstream version wanted (`[0, 0]`: the server's own), NUL-terminated.
+pub fn connect(client_name: &str, wanted: Option<Version>) -> Vec<u8> {
+    let mut payload = vec![0u8; 271];
+    let name = client_name.as_bytes();
+    let n = name.len().min(255);
+    payload[..n].copy_from_slice(&name[..n]);
+    if let Some(v) = wanted {
+        payload[265] = v.major;
+        payload[266] = v.minor;
+    }
+    packet(NAT_CONNECT, &payload).unwrap_or_default()
+}
+
+/// The version a `NAT_CONNECT` payload asks for (`None`: the server's own).
+pub fn connect_wants(payload: &[u8]) -> Option<Version> {
+    let (major, minor) = (*payload.get(265)?, *payload.get(266)?);
+    (major != 0).then_some(Version { major, minor })
+}
+
+/// `NAT_SERVERINFO` (`sSender_Server`).
+pub fn server_info(info: &ServerInfo) -> Vec<u8> {
+    let mut p = vec![0u8; 256];
+    let name = info.app_name.as_bytes();
+    let n = name.len().min(255);
+    p[..n].copy_from_slice(&name[..n]);
+    p.extend_from_slice(&info.app_version);
+    p.extend_from_slice(&info.natnet_version);
+    p.put_u64(info.clock_hz.unwrap_or(0));
+    p.put_u16(info.data_port.unwrap_or(0));
+    p.push(u8::from(info.multicast.unwrap_or(false)));
+    p.extend_from_slice(&info.multicast_group.unwrap_or([0; 4]));
+    packet(NAT_SERVERINFO, &p).unwrap_or_default()
+}
+
+/// `NAT_MODELDEF` with one marker set (named after the first body, three markers) and the rigid bodies
+/// `(id, name)`, each with no markers of its own.
+pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
+    let mut p = Vec::new();
+    p.put_i32(bodies.len() as i32 + 1);
+    let set_name = bodies.first().map_or("all", |b| b.1);
+    dataset(&mut p, version, 0, |d| {
+        d.put_cstr(set_name);
+        d.put_i32(3);
+        for m in ["m1", "m2", "m3"] {
+            d.put_cstr(m);
+        }
+    });
+    for &(id, name) in bodies {
+        dataset(&mut p, version, 1, |d| {
+            d.put_cstr(name);
+            d.put_i32(id);
+            d.put_i32(-1);
+            for _ in 0..3 {
+                d.put_f32(0.0);
+            }
+            d.put_i32(0);
+        });
+    }
+    packet(NAT_MODELDEF, &p)
+}
+
+fn dataset(p: &mut Vec<u8>, version: Version, kind: i32, body: impl FnOnce(&mut Vec<u8>)) {
+    p.put_i32(kind);
+    let mut d = Vec::new();
+    body(&mut d);
+    if version.sized_sections() {
+        p.put_i32(d.len() as i32);
+    }
+    p.extend_from_slice(&d);
+}
+
+/// Writes a section: its count, (4.1+) its byte size, and its items.
+fn section(p: &mut Vec<u8>, version: Version, count: usize, items: impl FnOnce(&mut Vec<u8>)) {
+    p.put_i32(count as i32);
+    let mut d = Vec::new();
+    items(&mut d);
+    if version.sized_sections() {
+        p.put_i32(d.len() as i32);
+    }
+    p.extend_from_slice(&d);
+}
+
+/// `NAT_FRAMEOFDATA` as Motive lays it out for `version`, with `markers` in one marker set (named `set_name`)
+/// and as labeled markers beside the rigid bodies, as a tracked rigid body's markers appear. `None` when the
+/// frame is over the 64 KiB a NatNet datagram can hold.
+pub fn frame(version: Version, f: &Frame, set_name: &str, markers: &[[f32; 3]]) -> Option<Vec<u8>> {
+    let mut p = Vec::with_capacity(64 + f.rigid_bodies.len() * RIGID_BODY_BYTES + markers.len() * 40);
+    p.put_i32(f.frame_number);
+    section(&mut p, version, 1, |d| {
+        d.put_cstr(set_name);
+        d.put_i32(markers.len() as i32);
+        for m in markers {
+            m.iter().for_each(|&v| d.put_f32(v));
+        }
+    });
+    section(&mut p, version, 0, |_| {});
+    section(&mut p, version, f.rigid_bodies.len(), |d| {
+        for b in &f.rigid_bodies {
+            d.put_i32(b.id);
+            b.position_m.iter().for_each(|&v| d.put_f32(v));
+            b.orientation_xyzw.iter().for_each(|&v| d.put_f32(v));
+            d.put_f32(b.mean_error_m);
+            d.put_i16(i16::from(b.tracking_valid));
+        }
+    });
+    section(&mut p, version, 0, |_| {});
+    if version.sized_sections() {
+        section(&mut p, version, 0, |_| {});
+    }
+    section(&mut p, version, markers.len(), |d| {
+        for (i, m) in markers.iter().enumerate() {
+            d.put_i32(((f.rigid_bodies.first().map_or(0, |b| b.id)) << 16) | (i as i32 + 1));
+            m.iter().for_each(|&v| d.put_f32(v));
+            d.put_f32(0.014);
+            d.put_i16(0);
+            d.put_f32(0.0002);
+        }
+    });
+    section(&mut p, version, 0, |_| {});
+    section(&mut p, version, 0, |_| {});
+    p.put_u32(0);
+    p.put_u32(0);
+    p.put_f64(f.timestamp_s);
+    p.put_u64(f.mid_exposure_ticks);
+    p.put_u64(f.data_received_ticks);
+    p.put_u64(f.transmit_ticks);
+    if version.major >= 4 {
+        p.put_u32(f.timestamp_s as u32);
+        p.put_u32(((f.timestamp_s.fract()) * 4_294_967_296.0) as u32);
+    }
+    p.put_i16(if f.models_changed { 2 } else { 0 });
+    packet(NAT_FRAMEOFDATA, &p)
+}
