@@ -1,0 +1,3 @@
+//! Recordings and captures on disk.
+
+pub mod c3d;
