@@ -19,6 +19,7 @@
 mod numbers;
 pub mod params;
 mod reader;
+mod summary;
 
 use std::fs::File;
 use std::io::BufReader;
@@ -27,6 +28,7 @@ use std::path::Path;
 pub use numbers::Processor;
 pub use params::Parameters;
 pub use reader::C3dReader;
+pub use summary::C3dSummary;
 
 use crate::math::Vector3;
 

@@ -93,7 +93,8 @@ fn layout(header: &[u8], p: Processor, parameters: Parameters, file_bytes: u64) 
     if data_block < 2 {
         return Err(C3dError::Layout(format!("the data start block is {data_block}")));
     }
-    let mut rate_hz = f64::from(p.f32_at(header, 20).unwrap_or(0.0));
+    // The rate as its shortest decimal (25 Hz, not the f32's 25.0000019).
+    let mut rate_hz = shortest(p.f32_at(header, 20).unwrap_or(0.0));
     if !(rate_hz.is_finite() && rate_hz > 0.0) {
         rate_hz = parameters.number("POINT", "RATE").unwrap_or(0.0);
     }
@@ -151,8 +152,14 @@ fn layout(header: &[u8], p: Processor, parameters: Parameters, file_bytes: u64) 
         labels.extend((labels.len()..points).map(|i| format!("P{}", i + 1)));
     }
     labels.truncate(points);
-    let analog_labels = parameters.string_list("ANALOG", "LABELS");
-    let analog_rate_hz = parameters.number("ANALOG", "RATE").unwrap_or(0.0);
+    let mut analog_labels = parameters.string_list("ANALOG", "LABELS");
+    if let Some(used) = parameters.number("ANALOG", "USED").map(|u| u as u16 as usize) {
+        analog_labels.resize_with(used, String::new);
+        for (i, l) in analog_labels.iter_mut().enumerate().filter(|(_, l)| l.is_empty()) {
+            *l = format!("A{}", i + 1);
+        }
+    }
+    let analog_rate_hz = parameters.number("ANALOG", "RATE").map(|r| shortest(r as f32)).unwrap_or(0.0);
     Ok(C3dInfo {
         processor: p,
         rate_hz,
@@ -171,6 +178,10 @@ fn layout(header: &[u8], p: Processor, parameters: Parameters, file_bytes: u64) 
         warnings,
         parameters,
     })
+}
+
+fn shortest(v: f32) -> f64 {
+    v.to_string().parse().unwrap_or(f64::from(v))
 }
 
 /// One frame's points: lab-frame positions in metres and validity from each point's residual word.
