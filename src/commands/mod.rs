@@ -25,6 +25,8 @@ mod synth;
 #[cfg(feature = "daemon")]
 mod demo;
 #[cfg(feature = "daemon")]
+mod import;
+#[cfg(feature = "daemon")]
 mod info;
 #[cfg(feature = "daemon")]
 mod recover;
@@ -86,6 +88,9 @@ pub enum Command {
     /// Channels, counts, duration and shots of a recording.
     #[cfg(feature = "daemon")]
     Info(info::InfoArgs),
+    /// A C3D capture's markers as clubhead samples (JSONL), a marker set fitted to each frame.
+    #[cfg(feature = "daemon")]
+    Import(import::ImportArgs),
     /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
     #[cfg(feature = "daemon")]
     Recover(recover::RecoverArgs),
@@ -162,6 +167,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Replay(args) => replay::run(&args),
         #[cfg(feature = "daemon")]
         Command::Info(args) => info::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Import(args) => import::run(&args),
         #[cfg(feature = "daemon")]
         Command::Recover(args) => recover::run(&args),
     }

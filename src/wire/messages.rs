@@ -69,6 +69,9 @@ pub struct ClubheadSampleMsg {
     pub orientation: QuaternionMsg,
     #[serde(default)]
     pub occluded: bool,
+    /// The RMS distance of the markers from their fitted places when the pose was fitted from markers (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fit_residual_m: Option<f64>,
 }
 
 impl ClubheadSampleMsg {
@@ -92,6 +95,7 @@ impl ClubheadSampleMsg {
             position_m: [s.position_m.x, s.position_m.y, s.position_m.z],
             orientation: QuaternionMsg { x, y, z, w },
             occluded: s.occluded,
+            fit_residual_m: None,
         }
     }
 }

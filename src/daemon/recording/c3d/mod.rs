@@ -19,6 +19,7 @@
 mod numbers;
 pub mod params;
 mod reader;
+mod samples;
 mod summary;
 
 use std::fs::File;
@@ -28,6 +29,7 @@ use std::path::Path;
 pub use numbers::Processor;
 pub use params::Parameters;
 pub use reader::C3dReader;
+pub use samples::{CaptureSamples, ImportCounts};
 pub use summary::C3dSummary;
 
 use crate::math::Vector3;
@@ -47,6 +49,8 @@ pub enum C3dError {
     Parameters(String),
     #[error("the data layout: {0}")]
     Layout(String),
+    #[error("marker `{label}` of the marker set is not in the capture (its markers: {available})")]
+    MissingMarker { label: String, available: String },
     #[error("frame index {index} could not be read: {source}")]
     Frame {
         index: u64,
