@@ -119,7 +119,10 @@ fn layout(header: &[u8], p: Processor, parameters: Parameters, file_bytes: u64) 
         (first_frame, last_frame) = (s, e);
     }
     let mut frames = (last_frame + 1).saturating_sub(first_frame);
-    if let Some(n) = parameters.number("POINT", "FRAMES") {
+    // And POINT:LONG_FRAMES (a float) the frame count past 65535.
+    if let Some(n) = parameters.number("POINT", "LONG_FRAMES").filter(|n| n.is_finite() && *n > 0.0 && *n < 1e12) {
+        frames = frames.max(n as u64);
+    } else if let Some(n) = parameters.number("POINT", "FRAMES") {
         let n = n as i64 as u16 as u64;
         if n > frames && frames == u64::from(u16::MAX) {
             frames = n;
