@@ -1,5 +1,5 @@
 //! `impactd predict` as a library: JSONL deliveries in, JSONL launch conditions out, each bad line answered with
-//! an error that names the field (DESIGN.md section 4) without stopping the others.
+//! an error that names the field (ARCHITECTURE.md section 4) without stopping the others.
 
 use std::io::{BufRead, Write};
 

@@ -32,7 +32,7 @@ pub fn run(args: &InfoArgs) -> Result<ExitCode> {
     if args.json {
         bail!("--json is for C3D captures; {} is read as an MCAP recording", args.file.display());
     }
-    let info = impactd::daemon::info::info(&args.file)?;
+    let info = impactd::daemon::recording::info::info(&args.file)?;
     print!("{}", info.text);
     Ok(if info.intact { ExitCode::SUCCESS } else { ExitCode::from(3) })
 }

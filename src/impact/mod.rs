@@ -1,6 +1,6 @@
 //! Impact models: from the clubhead's state at first contact to the ball's launch.
 //!
-//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, DESIGN.md
+//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, ARCHITECTURE.md
 //! section 2). An [`ImpactModel`] turns it into a [`Launch`]: the ball's velocity and spin and the club's motion
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.

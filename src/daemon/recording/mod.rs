@@ -1,3 +1,11 @@
-//! Recordings and captures on disk.
+//! The recording: the MCAP writer the live loop and replay feed, the bounded reader of possibly damaged files
+//! and its record parser, `info`, `recover`, and the shots a recording holds; and C3D captures (`c3d`).
 
 pub mod c3d;
+pub mod info;
+pub mod reader;
+pub mod record;
+mod records;
+pub mod recover;
+pub mod shots;
+pub mod writer;

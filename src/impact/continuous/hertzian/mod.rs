@@ -128,12 +128,12 @@ impl HertzModel {
         match self.law {
             HertzLaw::Maw(p) => {
                 let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
-                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                p.validate().map_err(|e| bad_section("maw", e))?;
                 run::run(self, state, eq, p.hertz(), &mut MawRings::new(&p), trace_every)
             }
             HertzLaw::Arakawa(p) => {
                 let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
-                p.validate().map_err(|e| Self::not_converged(e.to_string()))?;
+                p.validate().map_err(|e| bad_section("arakawa", e))?;
                 run::run(self, state, eq, p.hertz(), &mut ArakawaLaw::new(&p), trace_every)
             }
         }
