@@ -6,9 +6,10 @@
 
 #![allow(clippy::unwrap_used)]
 
+#[path = "common/c3d_writer.rs"]
+mod c3d_writer;
 mod common;
 
-use std::path::Path;
 use std::process::Command;
 
 use impactd::daemon::DaemonConfig;
@@ -174,36 +175,6 @@ fn launches(stdout: &str) -> Vec<[f64; 5]> {
     stdout.lines().map(|l| numbers(&serde_json::from_str::<LaunchPrediction>(l).unwrap())).collect()
 }
 
-/// Writes the capture with PyPI `c3d` (float data, millimetres, Intel).
-fn write_c3d(set: &MarkerSet, capture: &Capture, path: &Path, dir: &Path) {
-    let rows: Vec<Vec<[f64; 4]>> = capture
-        .frames
-        .iter()
-        .map(|row| row.iter().map(|(p, v)| [p.x * 1e3, p.y * 1e3, p.z * 1e3, if *v { 0.1 } else { -1.0 }]).collect())
-        .collect();
-    let json = dir.join("markers.json");
-    std::fs::write(&json, serde_json::json!({ "rate": RATE_HZ, "labels": set.labels, "frames": rows }).to_string())
-        .unwrap();
-    let script = r#"
-import json, sys
-import numpy as np
-import c3d
-data = json.load(open(sys.argv[1]))
-w = c3d.Writer(point_rate=data["rate"], analog_rate=0.0, point_scale=-0.1)
-w.set_point_labels(data["labels"])
-empty = np.zeros((0, 0), dtype=np.float32)
-for row in data["frames"]:
-    points = np.zeros((len(row), 5), dtype=np.float32)
-    for i, (x, y, z, r) in enumerate(row):
-        points[i] = (x, y, z, r, 1 if r >= 0 else 0)
-    w.add_frames([(points, empty)])
-with open(sys.argv[2], "wb") as h:
-    w.write(h)
-"#;
-    let out = common::python().arg("-c").arg(script).arg(&json).arg(path).output().unwrap();
-    assert!(out.status.success(), "c3d writer: {}", String::from_utf8_lossy(&out.stderr));
-}
-
 #[test]
 fn a_capture_of_markers_gives_the_json_swings_launches() {
     let dir = tempfile::tempdir().unwrap();
@@ -235,7 +206,7 @@ fn a_capture_of_markers_gives_the_json_swings_launches() {
     // The capture through C3D, import and replay.
     let noisy = capture(&set, Some(&mut Rng::new(7)));
     let c3d_path = dir.path().join("capture.c3d");
-    write_c3d(&set, &noisy, &c3d_path, dir.path());
+    c3d_writer::write_c3d(&set.labels, RATE_HZ, &noisy.frames, &c3d_path);
     let info: serde_json::Value =
         serde_json::from_str(&impactd(&["info", c3d_path.to_str().unwrap(), "--json"])).unwrap();
     assert_eq!(info["frames"], noisy.frames.len());

@@ -8,6 +8,8 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod args;
 mod bench;
+#[cfg(feature = "daemon")]
+mod calibrate;
 mod compare;
 mod eval;
 mod fit;
@@ -91,6 +93,10 @@ pub enum Command {
     /// A C3D capture's markers as clubhead samples (JSONL), a marker set fitted to each frame.
     #[cfg(feature = "daemon")]
     Import(import::ImportArgs),
+    /// Calibration from static trials (C3D): a marker set, `club_from_body`, `world_from_lab`.
+    #[cfg(feature = "daemon")]
+    #[command(subcommand)]
+    Calibrate(calibrate::CalibrateCommand),
     /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
     #[cfg(feature = "daemon")]
     Recover(recover::RecoverArgs),
@@ -169,6 +175,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Info(args) => info::run(&args),
         #[cfg(feature = "daemon")]
         Command::Import(args) => import::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Calibrate(command) => calibrate::run(&command),
         #[cfg(feature = "daemon")]
         Command::Recover(args) => recover::run(&args),
     }

@@ -179,9 +179,8 @@ impl DaemonConfig {
 
     /// Parses and validates TOML text.
     pub fn parse(text: &str) -> Result<(Self, Vec<RigSetup>), DaemonError> {
-        let config: DaemonConfig =
-            toml::from_str(text)
-                .map_err(|e| DaemonError::ConfigSyntax { origin: "config".into(), source: Box::new(e) })?;
+        let config: DaemonConfig = toml::from_str(text)
+            .map_err(|e| DaemonError::ConfigSyntax { origin: "config".into(), source: Box::new(e) })?;
         let rigs = config.setups()?;
         Ok((config, rigs))
     }

@@ -126,9 +126,7 @@ impl Recorder {
         self.tx.take();
         match self.join.take().map(|j| j.join()) {
             Some(Ok(r)) => r,
-            Some(Err(_)) => {
-                Err(DaemonError::WriterPanicked { path: self.path.display().to_string() })
-            }
+            Some(Err(_)) => Err(DaemonError::WriterPanicked { path: self.path.display().to_string() }),
             None => Ok(RecorderSummary::default()),
         }
     }

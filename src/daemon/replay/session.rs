@@ -68,10 +68,9 @@ pub fn resolve_config(input: &ReplayInput, path: Option<&Path>) -> Result<(Daemo
     match (path, &input.config_toml) {
         (Some(p), _) => DaemonConfig::load(p),
         (None, Some(text)) => DaemonConfig::parse(text).map_err(|e| match e {
-            DaemonError::ConfigSyntax { source, .. } => DaemonError::ConfigSyntax {
-                origin: "config: the configuration stored in the recording".into(),
-                source,
-            },
+            DaemonError::ConfigSyntax { source, .. } => {
+                DaemonError::ConfigSyntax { origin: "config: the configuration stored in the recording".into(), source }
+            }
             other => other,
         }),
         (None, None) => {

@@ -20,6 +20,7 @@ mod numbers;
 pub mod params;
 mod reader;
 mod samples;
+pub mod static_trial;
 mod summary;
 
 use std::fs::File;
