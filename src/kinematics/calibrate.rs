@@ -95,8 +95,8 @@ pub fn world_from_lab(m: &LabMarkers) -> Result<Isometry3, CalibrationError> {
         BallAt::Marker(p) => p,
         BallAt::RearMarker => {
             // The floor is the plane of the marker centres lowered by a marker radius; the ball rests on it.
-            let floor_height = (m.rear_m - floor_centroid).dot(&up) - m.marker_radius_m;
-            m.rear_m - up * floor_height - up * m.marker_radius_m + up * m.ball_radius_m
+            let above_plane = (m.rear_m - floor_centroid).dot(&up);
+            m.rear_m - up * (above_plane + m.marker_radius_m) + up * m.ball_radius_m
         }
     };
     // Rows: the world axes in lab coordinates, so R p_lab gives world components.
@@ -176,7 +176,9 @@ pub fn club_from_face(
         (Vector3::new(loft.cos(), loft.sin(), 0.0), Vector3::new(-loft.sin(), loft.cos(), 0.0), Vector3::z());
     let measured = Matrix3::from_columns(&[n, u, t]);
     let design = Matrix3::from_columns(&[n0, u0, t0]);
-    let rotation = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix(&(measured * design.transpose())));
+    // Both triads are orthonormal, so their product is a rotation as it stands.
+    let rotation =
+        UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(measured * design.transpose()));
     // Stickers: their centres sit a marker radius off the face.
     let centre = face.centre_m.unwrap_or(centroid) - n * face.marker_radius_m;
     let lab_from_club = Isometry3::from_parts(Translation3::from(centre - rotation * club.face.center_m), rotation);
