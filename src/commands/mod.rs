@@ -10,6 +10,8 @@ mod args;
 mod bench;
 mod bench_baseline;
 mod checked;
+#[cfg(feature = "daemon")]
+mod calibrate;
 mod compare;
 mod eval;
 mod fit;
@@ -29,6 +31,8 @@ mod synth;
 mod bridge;
 #[cfg(feature = "daemon")]
 mod demo;
+#[cfg(feature = "daemon")]
+mod import;
 #[cfg(feature = "daemon")]
 mod info;
 #[cfg(feature = "daemon")]
@@ -97,6 +101,13 @@ pub enum Command {
     /// Channels, counts, duration and shots of a recording.
     #[cfg(feature = "daemon")]
     Info(info::InfoArgs),
+    /// A C3D capture's markers as clubhead samples (JSONL), a marker set fitted to each frame.
+    #[cfg(feature = "daemon")]
+    Import(import::ImportArgs),
+    /// Calibration from static trials (C3D): a marker set, `club_from_body`, `world_from_lab`.
+    #[cfg(feature = "daemon")]
+    #[command(subcommand)]
+    Calibrate(calibrate::CalibrateCommand),
     /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
     #[cfg(feature = "daemon")]
     Recover(recover::RecoverArgs),
@@ -176,6 +187,10 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Replay(args) => replay::run(&args),
         #[cfg(feature = "daemon")]
         Command::Info(args) => info::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Import(args) => import::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Calibrate(command) => calibrate::run(&command),
         #[cfg(feature = "daemon")]
         Command::Recover(args) => recover::run(&args),
     }

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::daemon::replay::{self, PauseControl, Publish, ReplayInput, ReplayOptions, ReplayReport};
 use impactd::pipeline::Event;
@@ -19,8 +19,13 @@ use super::run::runtime;
 
 #[derive(Debug, Args)]
 pub struct ReplayArgs {
-    /// An MCAP recording or a JSONL file of ClubheadSample messages.
+    /// An MCAP recording, a JSONL file of ClubheadSample messages, or a C3D capture (with --markers).
     pub file: PathBuf,
+    /// A C3D capture's marker set (TOML `[markers]`): the tracked body fitted to each frame.
+    #[arg(long)]
+    pub markers: Option<PathBuf>,
+    #[command(flatten)]
+    pub fit: super::import::FitArgs,
     /// Configuration; default: the one stored in the recording, else one rig per rig name found.
     #[arg(short = 'c', long = "config")]
     pub config: Option<PathBuf>,
@@ -83,7 +88,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         bail!("--duration must be a positive number of seconds");
     }
     let started = Instant::now();
-    let mut input = replay::load(&args.file)?;
+    let mut input = load(args)?;
     for d in &input.damage {
         eprintln!("{}: damaged: {d}", args.file.display());
     }
@@ -163,6 +168,35 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         print_throughput(&report, load_s);
         Ok(verdict(&report, changed.then(|| describe(&config, &recorded)), partial))
     })
+}
+
+/// The replay's input: a C3D capture fitted with --markers, else a recording or JSONL samples.
+fn load(args: &ReplayArgs) -> Result<ReplayInput> {
+    if !super::info::is_c3d(&args.file)? {
+        if args.markers.is_some() {
+            bail!("--markers is for C3D captures; {} is not one", args.file.display());
+        }
+        return Ok(replay::load(&args.file)?);
+    }
+    let Some(markers) = &args.markers else {
+        bail!("{} is a C3D capture: --markers SET.toml says which markers are the club", args.file.display());
+    };
+    let fitter = args.fit.fitter(markers)?;
+    // The capture's samples go to the rig named by --rig, else the configuration's first rig.
+    let rig = match (args.rig.first(), &args.config) {
+        (Some(r), _) => r.clone(),
+        (None, Some(path)) => {
+            impactd::daemon::DaemonConfig::load(path)?.0.rigs.first().map(|r| r.name.clone()).unwrap_or_default()
+        }
+        (None, None) => "c3d".to_string(),
+    };
+    let (input, counts, warnings) =
+        replay::load_capture(&args.file, fitter, &rig).with_context(|| format!("{}", args.file.display()))?;
+    for w in &warnings {
+        eprintln!("{}: warning: {w}", args.file.display());
+    }
+    eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts));
+    Ok(input)
 }
 
 /// Keeps the samples of the chosen rigs and capture times; whether anything was left out.

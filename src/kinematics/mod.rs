@@ -3,10 +3,13 @@
 //! contact between the face and the ball.
 
 pub mod arc;
+pub mod calibrate;
 pub mod club_data;
 pub mod detect;
 pub mod estimate;
 pub mod fit;
+pub mod marker_fit;
+pub mod marker_set;
 pub mod sample;
 pub mod so3;
 mod spec;
@@ -14,5 +17,7 @@ pub mod track;
 
 pub use detect::{Detection, DetectorConfig, ImpactDetector};
 pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};
+pub use marker_fit::{BodyFit, FitFailure, MarkerFitter};
+pub use marker_set::{MarkerSet, MarkerSetError};
 pub use sample::{Calibration, ClubPose, ClubheadSample};
 pub use track::{Reject, Track, TrackLimits};

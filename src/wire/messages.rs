@@ -73,6 +73,9 @@ pub struct ClubheadSampleMsg {
     /// sends it (NatNet's `CameraMidExposureTimestamp`; QTM's timestamp is itself the capture time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub exposure_t_ns: Option<u64>,
+    /// The RMS distance of the markers from their fitted places when the pose was fitted from markers (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fit_residual_m: Option<f64>,
 }
 
 impl ClubheadSampleMsg {
@@ -97,6 +100,7 @@ impl ClubheadSampleMsg {
             orientation: QuaternionMsg { x, y, z, w },
             occluded: s.occluded,
             exposure_t_ns: None,
+            fit_residual_m: None,
         }
     }
 }

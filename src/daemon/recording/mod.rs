@@ -1,6 +1,7 @@
 //! The recording: the MCAP writer the live loop and replay feed, the bounded reader of possibly damaged files
-//! and its record parser, `info`, `recover`, and the shots a recording holds.
+//! and its record parser, `info`, `recover`, and the shots a recording holds; and C3D captures (`c3d`).
 
+pub mod c3d;
 pub mod info;
 pub mod reader;
 pub mod record;

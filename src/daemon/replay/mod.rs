@@ -8,11 +8,13 @@ use std::collections::HashMap;
 
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
+mod capture;
 mod load;
 mod pause;
 mod session;
 mod verdict;
 
+pub use capture::load_capture;
 pub(crate) use load::read_file;
 pub use load::{is_mcap, load, ReplayInput};
 pub use pause::PauseControl;

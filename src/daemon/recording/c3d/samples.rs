@@ -1,0 +1,96 @@
+//! A capture's frames as clubhead samples: each frame's markers of the set fitted to a pose (`MarkerFitter`), in
+//! the file's lab axes and metres. `t_ns` is the 0-based frame index over the rate, `frame` the C3D frame number
+//! (first frame + index); a frame with no pose (fewer than 3 valid markers, or 3 that disagree) is `occluded`.
+
+use std::io::{Read, Seek};
+
+use super::{C3dError, C3dReader, Frame};
+use crate::kinematics::{FitFailure, MarkerFitter};
+use crate::math::{Isometry3, Vector3};
+use crate::wire::{ClubheadSampleMsg, QuaternionMsg};
+
+/// What an import saw.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ImportCounts {
+    pub frames: u64,
+    /// Frames with fewer than 3 valid markers of the set.
+    pub occluded: u64,
+    /// Frames whose markers disagreed beyond the rejection limit with no marker left to drop.
+    pub inconsistent: u64,
+    /// Markers dropped by their residual (swaps, ghosts).
+    pub rejected_markers: u64,
+}
+
+/// Samples from a capture, one per frame.
+pub struct CaptureSamples<R> {
+    reader: C3dReader<R>,
+    fitter: MarkerFitter,
+    rig: String,
+    /// For each marker of the set, its point index in the file.
+    indices: Vec<usize>,
+    frame: Frame,
+    lab_m: Vec<Option<Vector3>>,
+    last_pose: Isometry3,
+    pub counts: ImportCounts,
+}
+
+impl<R: Read + Seek> CaptureSamples<R> {
+    pub fn new(reader: C3dReader<R>, fitter: MarkerFitter, rig: &str) -> Result<Self, C3dError> {
+        let indices = fitter
+            .set
+            .indices_in(&reader.info.labels)
+            .map_err(|label| C3dError::MissingMarker { label, available: reader.info.labels.join(", ") })?;
+        Ok(CaptureSamples {
+            reader,
+            lab_m: Vec::with_capacity(indices.len()),
+            fitter,
+            rig: rig.to_string(),
+            indices,
+            frame: Frame::default(),
+            last_pose: Isometry3::identity(),
+            counts: ImportCounts::default(),
+        })
+    }
+
+    pub fn info(&self) -> &super::C3dInfo {
+        &self.reader.info
+    }
+
+    /// The next frame's sample, `None` after the last frame.
+    pub fn next_sample(&mut self) -> Result<Option<ClubheadSampleMsg>, C3dError> {
+        if !self.reader.next_frame(&mut self.frame)? {
+            return Ok(None);
+        }
+        self.counts.frames += 1;
+        self.lab_m.clear();
+        self.lab_m.extend(self.indices.iter().map(|&i| self.frame.points_m.get(i).copied().flatten()));
+        let (pose, occluded, residual) = match self.fitter.fit(&self.lab_m) {
+            Ok(fit) => {
+                self.counts.rejected_markers += u64::from(fit.rejected);
+                self.last_pose = fit.lab_from_body;
+                (fit.lab_from_body, false, Some(fit.residual_m))
+            }
+            Err(FitFailure::TooFew { .. }) => {
+                self.counts.occluded += 1;
+                (self.last_pose, true, None)
+            }
+            Err(FitFailure::Inconsistent { .. }) => {
+                self.counts.inconsistent += 1;
+                (self.last_pose, true, None)
+            }
+        };
+        let info = &self.reader.info;
+        let index = self.frame.index;
+        let t_ns = (index as f64 * 1e9 / info.rate_hz).round() as u64;
+        let p = pose.translation.vector;
+        Ok(Some(ClubheadSampleMsg {
+            rig: self.rig.clone(),
+            frame: info.first_frame + index,
+            t_ns,
+            position_m: [p.x, p.y, p.z],
+            orientation: QuaternionMsg::from(pose.rotation),
+            occluded,
+            fit_residual_m: residual,
+        }))
+    }
+}

@@ -1,0 +1,49 @@
+//! A static trial: each named marker's mean position over a run of frames (lab frame, m), for calibration.
+
+use std::path::Path;
+
+use super::{C3dError, Frame};
+use crate::math::Vector3;
+
+/// The mean position of each of `labels` over the frames `first..first + count` (0-based indices), each over
+/// the frames where it is valid; an error names a marker never valid there.
+pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) -> Result<Vec<Vector3>, C3dError> {
+    let mut reader = super::open(path)?;
+    let info = &reader.info;
+    if first >= info.frames || count == 0 {
+        return Err(C3dError::Layout(format!(
+            "frames {first}..{} asked for, the capture has frame indices 0..{}",
+            first.saturating_add(count),
+            info.frames
+        )));
+    }
+    let indices: Vec<usize> = labels
+        .iter()
+        .map(|want| {
+            info.labels
+                .iter()
+                .position(|l| l == want.trim())
+                .ok_or_else(|| C3dError::MissingMarker { label: want.clone(), available: info.labels.join(", ") })
+        })
+        .collect::<Result<_, _>>()?;
+    let mut sums = vec![(Vector3::zeros(), 0u64); labels.len()];
+    let mut frame = Frame::default();
+    while reader.next_frame(&mut frame)? && frame.index < first.saturating_add(count) {
+        if frame.index < first {
+            continue;
+        }
+        for (sum, &i) in sums.iter_mut().zip(&indices) {
+            if let Some(p) = frame.points_m.get(i).copied().flatten() {
+                sum.0 += p;
+                sum.1 += 1;
+            }
+        }
+    }
+    sums.iter()
+        .zip(labels)
+        .map(|((sum, n), label)| match n {
+            0 => Err(C3dError::Layout(format!("marker `{label}` is not valid in any of the frames asked for"))),
+            n => Ok(sum / *n as f64),
+        })
+        .collect()
+}

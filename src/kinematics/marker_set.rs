@@ -1,0 +1,177 @@
+//! A marker set: the markers of one tracked body and where each sits in the body's frame (m).
+//!
+//! The file is TOML with one table, `[markers]`, mapping each label to its body-frame position in metres:
+//!
+//! ```toml
+//! [markers]
+//! CH1 = [0.03, 0.0, 0.01]
+//! CH2 = [-0.03, 0.0, 0.01]
+//! CH3 = [0.0, 0.02, -0.01]
+//! ```
+//!
+//! Labels are compared after trimming spaces (C3D pads labels with trailing spaces). A set needs at least three
+//! markers that are not all on one line, or no pose can be fitted from them.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::math::{Real, Vector3};
+
+/// Why a marker set could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MarkerSetError {
+    #[error("not a marker set: {0}")]
+    Toml(String),
+    #[error("a marker set needs at least 3 markers, this one has {0}")]
+    TooFew(usize),
+    #[error("a marker set has at most {MAX_MARKERS} markers, this one has {0}")]
+    TooMany(usize),
+    #[error("marker `{label}`: {reason}")]
+    Marker { label: String, reason: String },
+    #[error("the markers lie on one line (spread {spread_mm:.2} mm off it): no orientation can be fitted")]
+    Collinear { spread_mm: Real },
+    #[error("marker labels `{0}` and `{1}` are the same once trailing spaces are trimmed")]
+    Duplicate(String, String),
+}
+
+/// The markers of one body, in the order of the file's labels (sorted).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MarkerSet {
+    /// Trimmed labels.
+    pub labels: Vec<String>,
+    /// Body-frame positions (m), one per label.
+    pub body_m: Vec<Vector3>,
+}
+
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MarkerSetFile {
+    markers: BTreeMap<String, [Real; 3]>,
+}
+
+/// The most markers one body can have (the fit keeps its visible markers in a 64-bit mask).
+pub const MAX_MARKERS: usize = 64;
+/// Markers further than this from the body's origin are a unit mistake (mm typed as m), not a clubhead.
+const MAX_OFFSET_M: Real = 2.0;
+/// The markers must span at least this far off their best line to give an orientation.
+const MIN_SPREAD_M: Real = 1e-3;
+
+impl MarkerSet {
+    /// A set from labels and body-frame positions, checked like a file.
+    pub fn new(markers: impl IntoIterator<Item = (String, Vector3)>) -> Result<Self, MarkerSetError> {
+        let mut labels: Vec<String> = Vec::new();
+        let mut body_m = Vec::new();
+        for (label, p) in markers {
+            let trimmed = label.trim().to_string();
+            if trimmed.is_empty() {
+                return Err(MarkerSetError::Marker { label, reason: "empty label".into() });
+            }
+            if !p.iter().all(|v| v.is_finite()) || p.norm() > MAX_OFFSET_M {
+                return Err(MarkerSetError::Marker {
+                    label: trimmed,
+                    reason: format!("position must be finite metres within {MAX_OFFSET_M} m of the origin"),
+                });
+            }
+            if let Some(other) = labels.iter().find(|l| **l == trimmed) {
+                return Err(MarkerSetError::Duplicate(other.clone(), label));
+            }
+            labels.push(trimmed);
+            body_m.push(p);
+        }
+        if labels.len() < 3 {
+            return Err(MarkerSetError::TooFew(labels.len()));
+        }
+        if labels.len() > MAX_MARKERS {
+            return Err(MarkerSetError::TooMany(labels.len()));
+        }
+        let spread = off_line_spread_m(&body_m);
+        if spread < MIN_SPREAD_M {
+            return Err(MarkerSetError::Collinear { spread_mm: spread * 1e3 });
+        }
+        Ok(MarkerSet { labels, body_m })
+    }
+
+    /// Reads the TOML text of a marker set.
+    pub fn from_toml(text: &str) -> Result<Self, MarkerSetError> {
+        let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(e.to_string()))?;
+        Self::new(file.markers.into_iter().map(|(l, p)| (l, Vector3::from(p))))
+    }
+
+    /// The TOML text of this set (0.1 um resolution).
+    pub fn to_toml(&self) -> String {
+        let mut out = String::from("[markers]\n");
+        for (label, p) in self.labels.iter().zip(&self.body_m) {
+            let key = if label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+                label.clone()
+            } else {
+                format!("{label:?}")
+            };
+            out.push_str(&format!("{key} = [{:.7}, {:.7}, {:.7}]\n", p.x, p.y, p.z));
+        }
+        out
+    }
+
+    pub fn len(&self) -> usize {
+        self.labels.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.labels.is_empty()
+    }
+
+    /// For each marker of the set, its index among `labels` (compared trimmed), or the first label missing.
+    pub fn indices_in<S: AsRef<str>>(&self, labels: &[S]) -> Result<Vec<usize>, String> {
+        self.labels
+            .iter()
+            .map(|want| labels.iter().position(|l| l.as_ref().trim() == want).ok_or_else(|| want.clone()))
+            .collect()
+    }
+}
+
+/// The largest distance of a marker from the line through the two markers furthest apart (m).
+fn off_line_spread_m(points: &[Vector3]) -> Real {
+    let mut best = (0, 0, 0.0);
+    for i in 0..points.len() {
+        for j in i + 1..points.len() {
+            let d = (points[i] - points[j]).norm();
+            if d > best.2 {
+                best = (i, j, d);
+            }
+        }
+    }
+    if best.2 == 0.0 {
+        return 0.0;
+    }
+    let axis = (points[best.1] - points[best.0]) / best.2;
+    points.iter().map(|p| (p - points[best.0]).cross(&axis).norm()).fold(0.0, Real::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_and_writes_a_set() {
+        let text = "[markers]\nCH1 = [0.03, 0.0, 0.01]\nCH2 = [-0.03, 0.0, 0.01]\nCH3 = [0.0, 0.02, -0.01]\n";
+        let set = MarkerSet::from_toml(text).unwrap();
+        assert_eq!(set.labels, ["CH1", "CH2", "CH3"]);
+        assert_eq!(set.body_m[2], Vector3::new(0.0, 0.02, -0.01));
+        assert_eq!(MarkerSet::from_toml(&set.to_toml()).unwrap(), set);
+        assert_eq!(set.indices_in(&["X", "CH3  ", "CH1", "CH2 "]).unwrap(), vec![2, 3, 1]);
+        assert_eq!(set.indices_in(&["CH1", "CH2"]).unwrap_err(), "CH3");
+    }
+
+    #[test]
+    fn refuses_sets_no_pose_can_come_from() {
+        let two = "[markers]\nA = [0.0, 0.0, 0.0]\nB = [0.1, 0.0, 0.0]\n";
+        assert_eq!(MarkerSet::from_toml(two).unwrap_err(), MarkerSetError::TooFew(2));
+        let line = "[markers]\nA = [0.0, 0.0, 0.0]\nB = [0.1, 0.0, 0.0]\nC = [0.05, 0.0, 0.0]\n";
+        assert!(matches!(MarkerSet::from_toml(line).unwrap_err(), MarkerSetError::Collinear { .. }));
+        let mm = "[markers]\nA = [30.0, 0.0, 0.0]\nB = [0.1, 0.0, 0.0]\nC = [0.05, 0.1, 0.0]\n";
+        assert!(matches!(MarkerSet::from_toml(mm).unwrap_err(), MarkerSetError::Marker { .. }));
+        let dup = "[markers]\n\"A \" = [0.0, 0.0, 0.0]\nA = [0.1, 0.0, 0.0]\nC = [0.05, 0.1, 0.0]\n";
+        assert!(matches!(MarkerSet::from_toml(dup).unwrap_err(), MarkerSetError::Duplicate(..)));
+        assert!(matches!(MarkerSet::from_toml("[marker]\n").unwrap_err(), MarkerSetError::Toml(_)));
+    }
+}
