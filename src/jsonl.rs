@@ -46,6 +46,21 @@ pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, ParseError> {
     })
 }
 
+/// Copies the fields of an input line that its reader does not use (`known` are the ones it does) into the
+/// answer, after the answer's own: labels and earlier tools' fields travel down a pipe
+/// (`predict | flight | plot trajectory`). A field the answer already has keeps the answer's value.
+pub fn pass_through(
+    input: serde_json::Map<String, serde_json::Value>,
+    answer: &mut serde_json::Map<String, serde_json::Value>,
+    known: &[&str],
+) {
+    for (key, value) in input {
+        if !known.contains(&key.as_str()) && !answer.contains_key(&key) {
+            answer.insert(key, value);
+        }
+    }
+}
+
 /// Runs `answer` over every non-blank line of `input`, writing one JSON line per input line to `out` and one
 /// message per bad line to `err` (`<tool>: line N: <reason>`).
 pub fn process<I, O, E, F>(

@@ -4,6 +4,7 @@
 use std::io::{BufRead, Write};
 
 use serde::Serialize;
+use serde_json::{Map, Value};
 
 use crate::equipment::ClubSpec;
 use crate::impact::continuous::iron_ground::{GroundSummary, GroundTracePoint};
@@ -65,6 +66,9 @@ pub enum DeliveryError {
     Model(ImpactError),
     #[error("{0}")]
     Implausible(#[from] crate::wire::OutOfBounds),
+    /// The line is JSON but not a delivery (a field of the wrong type).
+    #[error("{0}")]
+    Input(String),
 }
 
 impl DeliveryError {
@@ -133,7 +137,8 @@ fn answer(
 }
 
 /// Answers every line of `input` on `out` (`impactd predict`); a bad line is answered with its error on `out` and
-/// reported on `err`.
+/// reported on `err`. Fields of a line that are not a delivery's (labels such as `player`, `club`, `tags`, a
+/// previous tool's output) are kept: each answer carries them after its own fields.
 pub fn run(
     club: &ClubSpec,
     predictor: Predictor<'_>,
@@ -142,8 +147,17 @@ pub fn run(
     err: impl Write,
 ) -> Result<Tally, JsonlError> {
     let equipment = Equipment::new(club.clone());
-    crate::jsonl::process("impactd predict", input, out, err, |d: DeliveryInput| {
-        answer(&d, club, &equipment, predictor)
+    crate::jsonl::process("impactd predict", input, out, err, |line: Map<String, Value>| {
+        let d: DeliveryInput =
+            serde_json::from_value(Value::Object(line.clone())).map_err(|e| DeliveryError::Input(e.to_string()))?;
+        let answer = answer(&d, club, &equipment, predictor)?;
+        let Value::Object(mut fields) =
+            serde_json::to_value(answer).map_err(|e| DeliveryError::Input(e.to_string()))?
+        else {
+            return Err(DeliveryError::Input("an answer that is not an object".into()));
+        };
+        crate::jsonl::pass_through(line, &mut fields, &DeliveryInput::FIELDS);
+        Ok(fields)
     })
 }
 
@@ -174,5 +188,20 @@ mod tests {
         assert_eq!(lines[2]["line"], 4);
         assert!(lines[2]["error"].as_str().unwrap().starts_with("fields `impact_h_mm`/`impact_v_mm`"));
         assert!(String::from_utf8(err).unwrap().starts_with("impactd predict: line 3: field `club_speed_mph`"));
+    }
+
+    /// Fields that are not a delivery's are kept, not refused; a field the answer writes itself is the answer's.
+    #[test]
+    fn unknown_fields_pass_through() {
+        let input = "{\"club_speed_mph\":113,\"player\":\"ann\",\"tags\":[\"fit\"],\"ball_speed_mph\":1}\n";
+        let model = ImpulseModel::new(ImpulseVariant::Adjusted);
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let tally = run(&ClubSpec::driver(), Predictor::Plain(&model), input.as_bytes(), &mut out, &mut err).unwrap();
+        assert_eq!(tally, Tally { answered: 1, rejected: 0 });
+        let line: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(line["player"], "ann");
+        assert_eq!(line["tags"][0], "fit");
+        assert!(line["ball_speed_mph"].as_f64().unwrap() > 100.0, "{line}");
+        assert!(line.get("club_speed_mph").is_none(), "{line}");
     }
 }

@@ -193,6 +193,12 @@ impl RigSinks {
         self.record::<MeasuredLaunch>(&self.keys.measured, log_time_ns, t_ns, payload);
     }
 
+    /// Records the session labels a put set (`golf/<rig>/session`).
+    pub fn labels(&self, log_time_ns: u64, labels: &crate::wire::ShotLabels) {
+        let data = serde_json::to_vec(labels).unwrap_or_default();
+        self.record::<crate::wire::ShotLabels>(&crate::wire::keys::session(&self.rig), log_time_ns, log_time_ns, data);
+    }
+
     /// Records a measured-launch payload that could not be used, beside the reason.
     pub fn measured_rejected(&self, log_time_ns: u64, rejected: &RejectedInput) {
         let data = serde_json::to_vec(rejected).unwrap_or_default();

@@ -135,6 +135,9 @@ pub struct ImpactMessage {
     pub state: ImpactStateMsg,
     pub delivery: crate::impact::DeliveryMetrics,
     pub quality: Quality,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
 }
 
 /// A predicted launch, on `golf/<rig>/launch`.
@@ -163,6 +166,9 @@ pub struct LaunchPrediction {
     /// other models.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ground: Option<Box<crate::impact::continuous::iron_ground::GroundSummary>>,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.

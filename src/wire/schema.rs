@@ -23,6 +23,7 @@ pub enum MessageType {
     MeasuredLaunch,
     ComparisonMessage,
     OpenConnectTraffic,
+    ShotLabels,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -70,6 +71,7 @@ messages! {
     MeasuredLaunch => MeasuredLaunch,
     ComparisonMessage => ComparisonMessage,
     OpenConnectTraffic => OpenConnectTraffic,
+    ShotLabels => ShotLabels,
 }
 
 impl MessageType {

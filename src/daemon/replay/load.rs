@@ -16,6 +16,9 @@ pub struct ReplayInput {
     pub recorded_launches: Vec<Vec<u8>>,
     /// Recorded latency per (rig, shot).
     pub recorded_latency_us: HashMap<(String, u64, String), f64>,
+    /// Session labels as recorded (`golf/<rig>/session`): `(i, rig, labels)` label that rig's shots from sample
+    /// `i` of `samples` on.
+    pub labels: Vec<(usize, String, crate::wire::ShotLabels)>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
@@ -67,6 +70,13 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 Ok(msg) => input.samples.push(msg),
                 Err(e) => {
                     input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                }
+            }
+        } else if let Some(rig) = keys::rig_of_session(topic) {
+            match crate::wire::ShotLabels::parse(&message.data) {
+                Ok(l) => input.labels.push((input.samples.len(), rig.to_string(), l)),
+                Err(e) => {
+                    input.damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time))
                 }
             }
         } else if keys::rig_of_launch(topic).is_some() {

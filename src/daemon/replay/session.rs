@@ -170,7 +170,14 @@ pub async fn run(
     let period_ns = (config.status_period_s * 1e9) as u64;
     let (start, mut first_t, mut paused) = (Instant::now(), None, Duration::ZERO);
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
-    for msg in &input.samples {
+    let mut labels = input.labels.iter().peekable();
+    for (i, msg) in input.samples.iter().enumerate() {
+        while let Some((_, name, l)) = labels.next_if(|(at, _, _)| *at <= i) {
+            if let Some(rig) = rigs.get_mut(name) {
+                rig.sinks.labels(wall_ns(), l);
+                rig.pipeline.set_labels(l.clone());
+            }
+        }
         stats.samples += 1;
         let Some(rig) = rigs.get_mut(&msg.rig) else {
             stats.unknown_rig += 1;
