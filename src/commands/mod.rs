@@ -35,6 +35,8 @@ mod replay_pause;
 #[cfg(feature = "daemon")]
 mod run;
 #[cfg(feature = "daemon")]
+mod session;
+#[cfg(feature = "daemon")]
 mod sim;
 
 /// Predicts golf ball launch conditions from motion-capture samples of the clubhead.
@@ -89,6 +91,9 @@ pub enum Command {
     /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
     #[cfg(feature = "daemon")]
     Recover(recover::RecoverArgs),
+    /// A fitting session's numbers per club, player or tag: TrackMan's metrics, gapping and mishits.
+    #[cfg(feature = "daemon")]
+    Session(session::SessionArgs),
 }
 
 /// Logs to stderr: at info (zenoh at warn), except for the demo, which prints its own lines; `RUST_LOG` overrides.
@@ -164,6 +169,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Info(args) => info::run(&args),
         #[cfg(feature = "daemon")]
         Command::Recover(args) => recover::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Session(args) => session::run(&args),
     }
 }
 

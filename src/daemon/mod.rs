@@ -13,6 +13,7 @@ mod mcap_records;
 pub mod open_connect;
 pub mod recorded_shots;
 pub mod recorder;
+pub mod recording;
 pub mod recover;
 pub mod replay;
 pub mod sim;
