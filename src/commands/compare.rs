@@ -2,7 +2,8 @@
 //! launches, in the layout of the seed's Tables 3.2-3.7 (measured mean; MAE and STD, absolute and as % of the
 //! mean, per field per model; eq. 3.13 cost; time per shot).
 //!
-//! A FILE is a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
+//! A FILE is a TrackMan Performance Studio CSV export (club data as the delivery, ball data as the measurement), a
+//! JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
 //! recording, without `--models`, the predictions it holds paired live with measurements (its comparisons) are
 //! tabled as recorded; with `--models`, each model is run again on the recorded deliveries.
 
@@ -24,7 +25,7 @@ use impactd::impact::Equipment;
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// JSONL datasets or MCAP recordings.
+    /// JSONL datasets, TrackMan CSV exports or MCAP recordings.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// The models to run, comma-separated (default for a dataset: standard,adjusted,slip,continuous; for a
@@ -86,7 +87,16 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
             bail!("{}: reading recordings needs the daemon feature", path.display());
         } else {
             let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-            loaded.lines.extend(parse_jsonl(&text).with_context(|| path.display().to_string())?);
+            if impactd::session::trackman_csv::is_trackman_csv(&text) {
+                let (lines, skipped) =
+                    impactd::session::trackman_csv::read(&text).with_context(|| path.display().to_string())?;
+                if skipped > 0 {
+                    eprintln!("{}: {skipped} rows without club or ball data skipped", path.display());
+                }
+                loaded.lines.extend(lines);
+            } else {
+                loaded.lines.extend(parse_jsonl(&text).with_context(|| path.display().to_string())?);
+            }
         }
     }
     Ok(loaded)

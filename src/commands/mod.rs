@@ -25,6 +25,8 @@ mod synth;
 #[cfg(feature = "daemon")]
 mod demo;
 #[cfg(feature = "daemon")]
+mod export;
+#[cfg(feature = "daemon")]
 mod info;
 #[cfg(feature = "daemon")]
 mod recover;
@@ -94,6 +96,9 @@ pub enum Command {
     /// A fitting session's numbers per club, player or tag: TrackMan's metrics, gapping and mishits.
     #[cfg(feature = "daemon")]
     Session(session::SessionArgs),
+    /// A recording's shots in another program's layout (TrackMan Performance Studio's CSV).
+    #[cfg(feature = "daemon")]
+    Export(export::ExportArgs),
 }
 
 /// Logs to stderr: at info (zenoh at warn), except for the demo, which prints its own lines; `RUST_LOG` overrides.
@@ -171,6 +176,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Recover(args) => recover::run(&args),
         #[cfg(feature = "daemon")]
         Command::Session(args) => session::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Export(args) => export::run(&args),
     }
 }
 

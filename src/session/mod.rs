@@ -4,6 +4,7 @@
 
 pub mod metrics;
 pub mod stats;
+pub mod trackman_csv;
 
 pub use metrics::{Metric, Quantity, Units, METRICS};
 pub use stats::{summarize, Gap, GroupBy, GroupSummary, MetricStats, Outlier, SessionSummary, ShotId};
