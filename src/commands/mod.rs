@@ -16,6 +16,8 @@ mod flight_fit;
 mod flight_lines;
 mod map;
 mod plot;
+#[cfg(feature = "daemon")]
+mod plot_dispersion;
 mod plot_ground;
 mod predict;
 mod progress;

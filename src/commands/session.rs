@@ -79,6 +79,23 @@ fn exclusions(path: &Path, shots: &BTreeSet<ShotId>, args: &SessionArgs) -> Resu
     kept.excluded.iter().map(|s| s.parse::<ShotId>().map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))).collect()
 }
 
+/// The shots excluded from a recording's summaries, as kept beside it.
+pub fn kept_exclusions(path: &Path) -> Result<BTreeSet<ShotId>> {
+    let file = exclusions_path(path);
+    match std::fs::read_to_string(&file) {
+        Ok(text) => {
+            let kept: Exclusions =
+                serde_json::from_str(&text).with_context(|| format!("reading {}", file.display()))?;
+            kept.excluded
+                .iter()
+                .map(|s| s.parse::<ShotId>().map_err(|e| anyhow::anyhow!("{}: {e}", file.display())))
+                .collect()
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(BTreeSet::new()),
+        Err(e) => Err(e).with_context(|| format!("reading {}", file.display())),
+    }
+}
+
 pub fn run(args: &SessionArgs) -> Result<ExitCode> {
     let mut launches = Vec::new();
     let mut excluded = BTreeSet::new();

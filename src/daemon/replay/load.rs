@@ -12,6 +12,9 @@ use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
 pub struct ReplayInput {
     /// Samples in arrival order.
     pub samples: Vec<ClubheadSampleMsg>,
+    /// When each sample was received (ns since the Unix epoch: the recording's log time; a JSONL sample's
+    /// `t_ns`), so a replay's recording keeps the session's timing.
+    pub log_time_ns: Vec<u64>,
     /// The recorded predictions' bytes, in order.
     pub recorded_launches: Vec<Vec<u8>>,
     /// Recorded latency per (rig, shot).
@@ -48,6 +51,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 Ok(text) if text.trim().is_empty() => continue,
                 Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
                     Ok(msg) => {
+                        input.log_time_ns.push(msg.t_ns);
                         input.samples.push(msg);
                         continue;
                     }
@@ -67,7 +71,10 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         let topic = channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
             match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
-                Ok(msg) => input.samples.push(msg),
+                Ok(msg) => {
+                    input.log_time_ns.push(message.log_time);
+                    input.samples.push(msg);
+                }
                 Err(e) => {
                     input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
                 }
