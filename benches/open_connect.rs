@@ -1,7 +1,7 @@
 //! Shot -> simulator socket on loopback: a rig's Open Connect client is handed each prediction (as the daemon's
 //! worker does, right after publishing it) and a simulator on 127.0.0.1 reads the stream; the time from the hand
 //! over to the simulator holding the shot's whole JSON object. Predictions are real: a synthetic rig's swings
-//! through the pipeline. Prints p50/p99/max and checks the budget (p99 <= 2 ms, DESIGN.md section 5).
+//! through the pipeline. Prints p50/p99/max and checks the budget (p99 <= 2 ms, ARCHITECTURE.md section 5).
 //! `cargo bench --bench open_connect [-- SHOTS]`.
 
 #![allow(clippy::unwrap_used)]
@@ -10,9 +10,9 @@ use std::io::{Read, Write};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
-use impactd::daemon::open_connect::{SimulatorClient, SimulatorOptions};
-use impactd::daemon::recorder::RecorderHandle;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::{SimulatorClient, SimulatorOptions};
+use impactd::daemon::recording::writer::RecorderHandle;
 use impactd::daemon::sim::{SimOptions, SimRig};
 use impactd::pipeline::{Event, Pipeline, RigSetup};
 use impactd::wire::LaunchPrediction;

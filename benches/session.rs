@@ -50,7 +50,7 @@ fn recorded(n: usize) -> Vec<Vec<u8>> {
                 quality: 1.0,
                 latency_us: 100.0,
                 flight: Some(traj),
-                ground: None,
+                reports: Default::default(),
                 labels: ShotLabels::default(),
             }
         })

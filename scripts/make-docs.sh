@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the numeric tables and figures of docs/ from the commands' JSON output:
+# Regenerates the numeric tables and figures of docs/ from the commands' JSON output, and ARCHITECTURE.md's equation index:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json                -> docs/performance.md, region bench
 #   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
@@ -10,10 +10,13 @@
 #   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
+#   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000; about 30 minutes in all on 2 cores, most of it docs-identify.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+python3 scripts/equation-index.py
 
 SHOTS="${SHOTS:-200000}"
 cargo build --release --quiet

@@ -1,6 +1,6 @@
 //! Clubface geometry: the contact point and outward normal for an impact location, and the impact frame.
 //!
-//! Conventions (DESIGN.md section 2). In the club frame (origin at the head's CG, x forward, y up, z toward the
+//! Conventions (ARCHITECTURE.md section 2). In the club frame (origin at the head's CG, x forward, y up, z toward the
 //! toe) the face-centre normal is `n0 = (cos L, sin L, 0)` for static loft `L`, up-the-face `u0 = (-sin L, cos L,
 //! 0)` and toe `t0 = (0, 0, 1)`. An impact location `(h, v)` is the contact point's offset from the face centre
 //! `c` measured in the tangent plane at `c`: `h` toward the toe, `v` up the face.

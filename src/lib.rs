@@ -16,8 +16,9 @@
 //! Frames (TrackMan's): the world has its origin at the ball, x toward the target, y up, z to the right of the
 //! target line; the club frame sits at the head's CG and equals the world at a square address (z toward the toe).
 //! Units are SI inside (m, s, kg, rad); `_mph`, `_rpm`, `_deg` and `_mm` appear only in names that say so.
-//! The physics follows the thesis in `../shared/seed/` ("the seed"), chapters 3 and 4; each model cites its
-//! equations.
+//! The physics follows A. W. Caldwell, "Development and Comparison of 3D Dynamic Models of Golf Clubhead-Ball
+//! Impacts", MASc thesis, University of Waterloo, 2023 ("the seed"), chapters 3 and 4; each model cites its
+//! equations, and ARCHITECTURE.md lists where each one lives.
 //!
 //! The seed's driver with the adjusted impulse-momentum model (its Table 3.1 and 3.3), 113 mph, 13 deg of dynamic
 //! loft and 1.3 deg down, launches the ball at 163.96 mph with 2447 rpm of backspin:

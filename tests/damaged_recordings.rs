@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use impactd::daemon::mcap_read::{scan, OnDamage, RawMessage};
+use impactd::daemon::recording::reader::{scan, OnDamage, RawMessage};
 use impactd::daemon::replay;
 use impactd::daemon::DaemonConfig;
 
@@ -25,12 +25,12 @@ fn keys_of(messages: &[RawMessage], topic: impl Fn(u16) -> String) -> Vec<Key> {
 }
 
 /// Runs `info`, `replay` and `recover` on one file in a thread; fails if it panics or takes over 5 s.
-fn run_all(path: PathBuf, out: PathBuf) -> Option<impactd::daemon::recover::Recovered> {
+fn run_all(path: PathBuf, out: PathBuf) -> Option<impactd::daemon::recording::recover::Recovered> {
     let (tx, rx) = mpsc::channel();
     let name = path.display().to_string();
     let label = name.clone();
     let worker = std::thread::spawn(move || {
-        let _ = impactd::daemon::info::info(&path);
+        let _ = impactd::daemon::recording::info::info(&path);
         if let Ok(input) = replay::load(&path) {
             let setups = match input.config_toml.as_deref().map(DaemonConfig::parse) {
                 Some(Ok((_, s))) => s,
@@ -53,7 +53,7 @@ fn run_all(path: PathBuf, out: PathBuf) -> Option<impactd::daemon::recover::Reco
             }
         }
         // Only a file too short to hold the magic is refused as not MCAP.
-        let r = impactd::daemon::recover::recover(&path, &out);
+        let r = impactd::daemon::recording::recover::recover(&path, &out);
         let short = std::fs::metadata(&path).map(|m| m.len() <= 8).unwrap_or(true);
         assert!(r.is_ok() || short, "{label}: recover: {r:?}");
         let r = r.ok();

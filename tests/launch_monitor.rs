@@ -11,8 +11,8 @@ mod common;
 use std::time::Duration;
 
 use common::{collect, recorded, start_daemon, wait_until};
-use impactd::daemon::open_connect::codec::Reply;
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::codec::Reply;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
 use impactd::daemon::RunOptions;
 use impactd::wire::{MeasuredLaunch, StatusMessage};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -109,7 +109,7 @@ async fn every_shot_is_published_once_and_bad_messages_are_answered_and_survived
     assert_eq!((m.rig.as_str(), m.device.as_str()), ("bay1", "open_connect:LM 1"));
     assert_eq!((m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg), (120.25, 18.0, 1.25));
     assert_eq!((m.total_spin_rpm, m.spin_axis_deg), (Some(2650.0), Some(-3.5)));
-    // back = total cos(axis), side = total sin(axis) (DESIGN.md section 2: axis + = tilted right).
+    // back = total cos(axis), side = total sin(axis) (ARCHITECTURE.md section 2: axis + = tilted right).
     let (back, side) = m.spin_components_rpm().unwrap();
     assert!((back - 2650.0 * 3.5f64.to_radians().cos()).abs() < 1e-9 && side < 0.0);
     assert_eq!(m.club.as_ref().unwrap().club_speed_mph, Some(104.0));

@@ -18,8 +18,8 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use common::{quantile, recorded, start_daemon};
-use impactd::daemon::open_connect::codec::Reply;
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::codec::Reply;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
 use impactd::daemon::sim::{run_sim, SimOptions};
 use impactd::daemon::{wall_ns, RunOptions};
 use impactd::equipment::ClubSpec;

@@ -14,8 +14,8 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use common::{collect, quantile, recorded, start_daemon, wait_until};
-use impactd::daemon::open_connect::codec::ShotMessage;
-use impactd::daemon::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::bridges::open_connect::codec::ShotMessage;
+use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
 use impactd::daemon::sim::{run_sim, SimOptions};
 use impactd::daemon::RunOptions;
 use impactd::equipment::ClubSpec;

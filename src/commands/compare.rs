@@ -72,7 +72,7 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
         if is_mcap(path)? {
             #[cfg(feature = "daemon")]
             {
-                let r = impactd::daemon::recorded_shots::read(path)?;
+                let r = impactd::daemon::recording::shots::read(path)?;
                 for d in &r.damage {
                     eprintln!("{}: {d}", path.display());
                 }

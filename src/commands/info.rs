@@ -14,7 +14,7 @@ pub struct InfoArgs {
 }
 
 pub fn run(args: &InfoArgs) -> Result<ExitCode> {
-    let info = impactd::daemon::info::info(&args.file)?;
+    let info = impactd::daemon::recording::info::info(&args.file)?;
     print!("{}", info.text);
     Ok(if info.intact { ExitCode::SUCCESS } else { ExitCode::from(3) })
 }

@@ -19,7 +19,7 @@ pub fn run(args: &RecoverArgs) -> Result<ExitCode> {
     if args.file == args.output || super::replay::same_file(&args.file, &args.output) {
         bail!("-o {}: that is the input; the output must be a new file", args.output.display());
     }
-    let r = impactd::daemon::recover::recover(&args.file, &args.output)?;
+    let r = impactd::daemon::recording::recover::recover(&args.file, &args.output)?;
     if r.complete {
         eprintln!("{}: complete; {} messages copied to {}", args.file.display(), r.messages, args.output.display());
         return Ok(ExitCode::SUCCESS);

@@ -159,7 +159,7 @@ fn select(input: &mut ReplayInput, args: &ReplayArgs) -> Result<bool> {
     let before = input.samples.len();
     if !args.rig.is_empty() {
         let mut rigs: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
-        rigs.sort_by(|a, b| impactd::daemon::info::natural_cmp(a, b));
+        rigs.sort_by(|a, b| impactd::daemon::recording::info::natural_cmp(a, b));
         rigs.dedup();
         if let Some(missing) = args.rig.iter().find(|r| !rigs.contains(r)) {
             bail!("--rig {missing}: no samples of that rig (rigs: {})", rigs.join(", "));

@@ -42,7 +42,7 @@ impl BridgeArgs {
     /// Applies `--open-connect` to the rigs without a simulator.
     pub(super) fn apply(&self, config: &mut DaemonConfig) -> Result<()> {
         if let Some(a) = self.open_connect.as_deref() {
-            if !impactd::daemon::open_connect::valid_host_port(a) {
+            if !impactd::daemon::bridges::open_connect::valid_host_port(a) {
                 bail!("--open-connect `{a}` is not HOST:PORT");
             }
             config.set_default_open_connect(a);

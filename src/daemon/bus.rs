@@ -5,7 +5,7 @@
 //! Only a configuration file or the flags (`-l tcp/0.0.0.0:7447`, `--multicast-scouting`) open it to a network.
 //! Client mode retries its router with backoff instead of giving up when the router is not up yet.
 
-use super::DaemonError;
+use crate::daemon::DaemonError;
 
 /// zenoh's usual command-line flags.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -65,7 +65,7 @@ impl ZenohArgs {
     pub fn config_for(&self, role: Role) -> Result<zenoh::Config, DaemonError> {
         let mut c = match &self.zenoh_config {
             Some(path) => {
-                let text = crate::capped::read_to_string(path, super::config::MAX_CONFIG_BYTES)
+                let text = crate::capped::read_to_string(path, crate::daemon::config::MAX_CONFIG_BYTES)
                     .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
                 zenoh::Config::from_json5(&text).map_err(DaemonError::zenoh)?
             }

@@ -35,8 +35,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::open_connect::{LaunchMonitorConfig, SimulatorConfig};
-use super::DaemonError;
+use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
+use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
@@ -186,8 +186,8 @@ impl DaemonConfig {
 
     /// Parses and validates TOML text.
     pub fn parse(text: &str) -> Result<(Self, Vec<RigSetup>), DaemonError> {
-        let config: DaemonConfig =
-            toml::from_str(text).map_err(|e| DaemonError::ConfigSyntax(e.message().to_string()))?;
+        let config: DaemonConfig = toml::from_str(text)
+            .map_err(|e| DaemonError::ConfigSyntax { origin: "config".into(), source: Box::new(e) })?;
         let rigs = config.setups()?;
         Ok((config, rigs))
     }

@@ -6,9 +6,9 @@ use std::future::Future;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-use super::bus::{free_loopback_port, ZenohArgs};
-use super::sim::{run_sim, SimOptions};
-use super::{DaemonConfig, DaemonError, RunOptions, RunSummary};
+use crate::daemon::bus::{free_loopback_port, ZenohArgs};
+use crate::daemon::sim::{run_sim, SimOptions};
+use crate::daemon::{DaemonConfig, DaemonError, RunOptions, RunSummary};
 use crate::wire::{LaunchPrediction, TruthMessage};
 
 /// What the demo does.
@@ -97,7 +97,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
             let _ = daemon_stopped.await;
         };
         let options = RunOptions { record, overwrite: true, foxglove };
-        let r = super::run(config, setups, &daemon_session, options, shutdown).await;
+        let r = crate::daemon::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r
     });
@@ -128,7 +128,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let _ = stop_sim_tx.send(());
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon.await.map_err(|e| DaemonError::Task(e.to_string()))??;
+    let summary = daemon.await.map_err(DaemonError::Task)??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

@@ -1,24 +1,14 @@
 //! The daemon and its tools: zenoh in and out, MCAP recording, replay, a synthetic rig, Open Connect to golf
 //! simulators and from launch monitors, the Foxglove live view. The only code that touches tokio, zenoh or mcap.
 
+pub mod bridges;
 pub mod bus;
 pub mod config;
 pub mod demo;
-pub mod foxglove;
-pub mod foxglove_live;
-pub mod info;
 pub mod live;
-pub mod mcap_read;
-mod mcap_records;
-pub mod open_connect;
-pub mod recorded_shots;
-pub mod recorder;
 pub mod recording;
-pub mod recover;
 pub mod replay;
 pub mod sim;
-pub mod sinks;
-pub mod stats;
 
 pub use config::DaemonConfig;
 pub use live::{run, RunOptions, RunSummary};
@@ -26,8 +16,13 @@ pub use live::{run, RunOptions, RunSummary};
 /// Errors of the daemon layer.
 #[derive(Debug, thiserror::Error)]
 pub enum DaemonError {
-    #[error("config: {0}")]
-    ConfigSyntax(String),
+    #[error("{origin}: {}", .source.message())]
+    ConfigSyntax {
+        /// `config`, or which configuration (the one stored in a recording).
+        origin: String,
+        #[source]
+        source: Box<toml::de::Error>,
+    },
     #[error("config field `{field}` {reason}")]
     Config { field: String, reason: String },
     #[error("{what}: {source}")]
@@ -39,9 +34,15 @@ pub enum DaemonError {
     #[error("--mode must be peer, client or router, got {0}")]
     BadMode(String),
     #[error("zenoh: {0}")]
-    Zenoh(String),
-    #[error("recording {path}: {reason}")]
-    Mcap { path: String, reason: String },
+    Zenoh(#[source] zenoh::Error),
+    #[error("recording {path}: {source}")]
+    Mcap {
+        path: String,
+        #[source]
+        source: mcap::McapError,
+    },
+    #[error("recording {path}: the writer thread panicked")]
+    WriterPanicked { path: String },
     #[error("{path} is not an MCAP file")]
     NotMcap { path: String },
     #[error("{path}: {reason}")]
@@ -53,12 +54,12 @@ pub enum DaemonError {
     #[error("{option} {reason}")]
     BadOption { option: &'static str, reason: &'static str },
     #[error("a daemon task failed: {0}")]
-    Task(String),
+    Task(#[source] tokio::task::JoinError),
 }
 
 impl DaemonError {
-    pub(crate) fn zenoh(e: impl std::fmt::Display) -> Self {
-        DaemonError::Zenoh(e.to_string())
+    pub(crate) fn zenoh(e: zenoh::Error) -> Self {
+        DaemonError::Zenoh(e)
     }
 }
 

@@ -12,7 +12,7 @@ use std::time::Duration;
 
 use zenoh::Wait;
 
-use super::{wall_ns, DaemonError};
+use crate::daemon::{wall_ns, DaemonError};
 use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};

@@ -1,5 +1,5 @@
 //! The clubface's outline: where on the face an impact can be, as a polygon of impact locations `(h, v)` (mm;
-//! h toward the toe, v up the face, about the face centre; DESIGN.md section 2).
+//! h toward the toe, v up the face, about the face centre; ARCHITECTURE.md section 2).
 //!
 //! Presets:
 //! - The driver: an ellipse 104 mm heel to toe and 58 mm high about the face centre (a 460 cm³ head's face,

@@ -7,6 +7,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::dataset::{fields_of, Shot};
+use super::params::{BuildFn, ParamSpace};
+use super::IdentifyError;
+use crate::equipment::{BallSpec, LoadedClub};
 use crate::impact::{Equipment, ImpactModel, LaunchMetrics};
 use crate::math::Real;
 
@@ -176,6 +179,32 @@ pub fn recorded_table(name: &str, predictions: &[Option<[Real; 5]>], measured: &
 /// The mean absolute error of a zero-mean normal noise of standard deviation `sigma`: `σ √(2/π)`.
 pub fn normal_mae(sigma: Real) -> Real {
     sigma * (2.0 / std::f64::consts::PI).sqrt()
+}
+
+/// The predictions of the model with `club`'s parameters on `shots` (an error: parameters the model refuses).
+pub fn evaluate(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
+    evaluate_with(space, None, club, ball, shots)
+}
+
+/// The same with the model from `build` (a coarse variant) instead of the exact one.
+pub(super) fn evaluate_with(
+    space: &ParamSpace,
+    build: Option<BuildFn>,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
+    let model = match build {
+        Some(b) => b(club, ball)?,
+        None => space.model.build(club, ball)?,
+    };
+    let equipment = Equipment { club: club.club.clone(), ball: *ball };
+    Ok(predict_all(model.as_ref(), &equipment, shots))
 }
 
 #[cfg(test)]

@@ -18,8 +18,8 @@
 
 use nalgebra::DMatrix;
 
+use super::cost::evaluate;
 use super::dataset::Shot;
-use super::fit::evaluate;
 use super::params::ParamSpace;
 use super::IdentifyError;
 use crate::equipment::{BallSpec, LoadedClub};

@@ -4,14 +4,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::cost::{cost, field_stats, predict_all, CostScales, FieldStats};
+use super::cost::{cost, evaluate, evaluate_with, field_stats, CostScales, FieldStats};
 use super::dataset::Shot;
 use super::fisher;
 use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
 use super::params::{BuildFn, ParamSpace};
 use super::IdentifyError;
 use crate::equipment::{BallSpec, LoadedClub};
-use crate::impact::Equipment;
 use crate::math::Real;
 use crate::rng::Rng;
 
@@ -175,32 +174,6 @@ pub fn fit_once(
         evaluations: global.evaluations + local.evaluations + 1,
         simulations: global.evaluations as u64 * n_global + (local.evaluations as u64 + 1) * n_all,
     })
-}
-
-/// The predictions of the model with `club`'s parameters on `shots` (an error: parameters the model refuses).
-pub fn evaluate(
-    space: &ParamSpace,
-    club: &LoadedClub,
-    ball: &BallSpec,
-    shots: &[Shot],
-) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
-    evaluate_with(space, None, club, ball, shots)
-}
-
-/// The same with the model from `build` (a coarse variant) instead of the exact one.
-fn evaluate_with(
-    space: &ParamSpace,
-    build: Option<BuildFn>,
-    club: &LoadedClub,
-    ball: &BallSpec,
-    shots: &[Shot],
-) -> Result<Vec<Option<[Real; 5]>>, IdentifyError> {
-    let model = match build {
-        Some(b) => b(club, ball)?,
-        None => space.model.build(club, ball)?,
-    };
-    let equipment = Equipment { club: club.club.clone(), ball: *ball };
-    Ok(predict_all(model.as_ref(), &equipment, shots))
 }
 
 /// The fold of each shot: a seeded shuffle dealt round-robin into `k` folds.

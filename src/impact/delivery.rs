@@ -1,4 +1,4 @@
-//! TrackMan-style delivery <-> impact state (DESIGN.md section 2, "Delivery").
+//! TrackMan-style delivery <-> impact state (ARCHITECTURE.md section 2, "Delivery").
 //!
 //! - Club speed, attack angle (up +) and club path (right +) are the speed and direction of the face centre's
 //!   velocity just before impact: `v_face = s (cos a cos p, sin a, cos a sin p)`.

@@ -1,4 +1,4 @@
-//! Launch conditions with TrackMan's definitions (DESIGN.md section 2).
+//! Launch conditions with TrackMan's definitions (ARCHITECTURE.md section 2).
 //!
 //! Launch angle (VLA) is the elevation of the ball velocity, up +; launch direction (HLA) its azimuth, right +.
 //! Spin is split against the launch direction `u`: the horizontal axis `a = normalize(u x y)`, `up = a x u`;

@@ -1,21 +1,24 @@
 //! Impact models: from the clubhead's state at first contact to the ball's launch.
 //!
-//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, DESIGN.md
+//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, ARCHITECTURE.md
 //! section 2). An [`ImpactModel`] turns it into a [`Launch`]: the ball's velocity and spin and the club's motion
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
 
 pub mod continuous;
 mod delivery;
+pub mod identifiable;
 pub mod impulse;
 mod launch;
 pub mod registry;
+pub mod report;
 pub mod sanity;
 
 pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics, SwingArc};
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
+pub use report::{Course, Fields, ModelRun, Report, RunOptions, Trace};
 pub use sanity::LaunchWarning;
 
 use crate::equipment::{BallSpec, ClubSpec};
@@ -119,30 +122,17 @@ pub struct Launch {
     pub impulse_ns: Vector3,
 }
 
-/// A model of the club-ball collision. Choosing a model is configuration: every model implements this.
+/// A model of the club-ball collision. Choosing a model is configuration: every model implements this, with one
+/// method that runs it ([`run`](ImpactModel::run)); what it gives beyond the launch is read by name
+/// ([`report`]), so nothing outside a model knows its type.
 pub trait ImpactModel: Send + Sync + std::fmt::Debug {
-    /// A short name for logs and messages (`impulse/adjusted`).
+    /// The name it publishes under (`impulse/adjusted`).
     fn name(&self) -> &'static str;
-    /// Predicts the launch from the state at first contact.
-    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError>;
-    /// A model resolved in time runs with a trace point every `every` steps; an instantaneous model has no trace
-    /// (`None`).
-    fn trace(
-        &self,
-        _state: &ImpactState,
-        _equipment: &Equipment,
-        _every: usize,
-    ) -> Option<Result<continuous::ContinuousResult, ImpactError>> {
-        None
-    }
-    /// A model of the ball on the turf runs the strike through the ground contact, with a trace point every
-    /// `every` steps (0: none); other models have no ground (`None`).
-    fn ground(
-        &self,
-        _state: &ImpactState,
-        _equipment: &Equipment,
-        _every: usize,
-    ) -> Option<Result<continuous::iron_ground::GroundResult, ImpactError>> {
-        None
+    /// Runs the collision from the state at first contact: the launch, the model's report and, when asked, the
+    /// contact's course.
+    fn run(&self, state: &ImpactState, equipment: &Equipment, options: &RunOptions) -> Result<ModelRun, ImpactError>;
+    /// The launch alone (a run without a course).
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        Ok(self.run(state, equipment, &RunOptions::default())?.launch)
     }
 }

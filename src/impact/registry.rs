@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::continuous::hertzian::HertzModel;
 use super::continuous::{ContinuousModel, TwoLayerParams};
+use super::identifiable::{self, FitModel};
 use super::impulse::{ImpulseModel, ImpulseTuning, ImpulseVariant};
 use super::{ImpactError, ImpactModel};
 use crate::equipment::{BallSpec, LoadedClub};
@@ -38,6 +39,8 @@ pub struct ModelEntry {
     pub sections: &'static [&'static str],
     /// Whether it resolves the contact in time (and so has a trace of forces).
     pub resolved_in_time: bool,
+    /// Its identifiable parameters (`impactd fit`), if it has any.
+    pub fit: Option<FitModel>,
     build: BuildFn,
 }
 
@@ -70,6 +73,7 @@ pub const MODELS: &[ModelEntry] = &[
         summary: "impulse-momentum, rolling (seed 3.1, Table 3.2)",
         sections: &[],
         resolved_in_time: false,
+        fit: None,
         build: |c, o| impulse(ImpulseVariant::Standard, c, o),
     },
     ModelEntry {
@@ -77,6 +81,7 @@ pub const MODELS: &[ModelEntry] = &[
         summary: "impulse-momentum with Danaei's added mass and ball-CG shift (seed 3.1.1, Table 3.3)",
         sections: &["adjusted"],
         resolved_in_time: false,
+        fit: Some(identifiable::ADJUSTED),
         build: |c, o| impulse(ImpulseVariant::Adjusted, c, o),
     },
     ModelEntry {
@@ -84,6 +89,7 @@ pub const MODELS: &[ModelEntry] = &[
         summary: "impulse-momentum with Cross and Dewhurst's tangential restitution (seed 3.1.2, Table 3.4)",
         sections: &["slip"],
         resolved_in_time: false,
+        fit: Some(identifiable::SLIP),
         build: |c, o| impulse(ImpulseVariant::Slip, c, o),
     },
     ModelEntry {
@@ -92,6 +98,7 @@ pub const MODELS: &[ModelEntry] = &[
                   force reversal per contact)",
         sections: &["continuous"],
         resolved_in_time: true,
+        fit: Some(identifiable::CONTINUOUS),
         build: continuous,
     },
     ModelEntry {
@@ -100,6 +107,7 @@ pub const MODELS: &[ModelEntry] = &[
             "rigid ball, Hertz normal force and Maw's stick-slip rings, free head, in time (seed 3.2.2, Table 3.6)",
         sections: &["maw"],
         resolved_in_time: true,
+        fit: Some(identifiable::MAW),
         build: |c, _| Ok(Arc::new(HertzModel::maw_from_sections(&c.sections)?)),
     },
     ModelEntry {
@@ -108,6 +116,7 @@ pub const MODELS: &[ModelEntry] = &[
                   Table 3.7)",
         sections: &["arakawa"],
         resolved_in_time: true,
+        fit: Some(identifiable::ARAKAWA),
         build: |c, _| Ok(Arc::new(HertzModel::arakawa_from_sections(&c.sections)?)),
     },
     ModelEntry {
@@ -116,6 +125,7 @@ pub const MODELS: &[ModelEntry] = &[
                   sole and face ground reaction (seed chapter 4, Tables 4.1-4.3)",
         sections: &["continuous", "soil", "sole", "shaft"],
         resolved_in_time: true,
+        fit: None,
         build: ground,
     },
 ];
@@ -126,6 +136,11 @@ pub const GROUPS: &[(&str, &[&str])] = &[("both", &["adjusted", "continuous"])];
 /// The model names and groups, for help texts and errors: `standard, adjusted, slip, continuous, both`.
 pub fn names() -> String {
     MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.0)).collect::<Vec<_>>().join(", ")
+}
+
+/// The identifiable parameters of every model that has them, in the registry's order.
+pub fn fit_models() -> impl Iterator<Item = &'static FitModel> {
+    MODELS.iter().filter_map(|m| m.fit.as_ref())
 }
 
 /// The entry of a single model.

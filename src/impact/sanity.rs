@@ -1,7 +1,7 @@
 //! Sanity flags on a prediction: numbers no golf shot produces, reported beside the prediction (never dropped
 //! or hidden).
 //!
-//! - `spin_axis_beyond_45_deg`: `|spin_axis| > 45 deg` (TrackMan's spin axis, DESIGN.md section 2). A 45 deg
+//! - `spin_axis_beyond_45_deg`: `|spin_axis| > 45 deg` (TrackMan's spin axis, ARCHITECTURE.md section 2). A 45 deg
 //!   axis is a hard hook or slice; launch monitors report golfers' full shots within about +-30 deg.
 //! - `negative_backspin`: the ball leaves with topspin, which a lofted face cannot give a centred ball.
 //! - `smash_out_of_range`: smash factor outside the club's physical range [`smash_range`]. The upper bound is

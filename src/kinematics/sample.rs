@@ -17,7 +17,7 @@ pub struct ClubheadSample {
     pub occluded: bool,
 }
 
-/// From the lab to the world frame, and from the tracked body to the club frame (CG, DESIGN.md section 2).
+/// From the lab to the world frame, and from the tracked body to the club frame (CG, ARCHITECTURE.md section 2).
 /// Identity by default: the rig reports the club's CG pose in the world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Calibration {

@@ -1,4 +1,4 @@
-//! Every zenoh key expression (no leading `/`, snake_case), each with its payload (DESIGN.md section 4).
+//! Every zenoh key expression (no leading `/`, snake_case), each with its payload (ARCHITECTURE.md section 4).
 
 /// In: [`ClubheadSampleMsg`](super::ClubheadSampleMsg) from the rig, `mocap/<rig>/clubhead`.
 pub fn clubhead(rig: &str) -> String {

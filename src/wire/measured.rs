@@ -2,7 +2,7 @@
 //!
 //! A [`MeasuredLaunch`] arrives on `lm/<rig>/launch` (from any publisher, or from the Open Connect listener); a
 //! [`ComparisonMessage`] pairs it with the rig's prediction of the same swing on `golf/<rig>/comparison`. Signs are
-//! TrackMan's, as everywhere on the wire (DESIGN.md section 2): launch direction (HLA) right +, sidespin + = fade,
+//! TrackMan's, as everywhere on the wire (ARCHITECTURE.md section 2): launch direction (HLA) right +, sidespin + = fade,
 //! spin axis + = tilted right.
 
 use schemars::JsonSchema;

@@ -1,5 +1,5 @@
 //! Messages on the wire: serde types with units in their field names, their key expressions and encodings
-//! (DESIGN.md section 4). Every key expression is built in [`keys`], with its payload documented beside it. Every
+//! (ARCHITECTURE.md section 4). Every key expression is built in [`keys`], with its payload documented beside it. Every
 //! message type is a [`MessageType`] (its name, encoding and JSON Schema in `schemas/`, generated from these
 //! types by [`schemas`]).
 //!

@@ -23,7 +23,7 @@ pub fn read(path: &Path, model: Option<&str>) -> Result<RecordedLaunches, Daemon
     if !crate::daemon::replay::is_mcap(&bytes) {
         return Err(DaemonError::BadOption { option: "FILE", reason: "not an MCAP recording" });
     }
-    let scan = crate::daemon::mcap_read::scan(&bytes, crate::daemon::mcap_read::OnDamage::Stop);
+    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut out = RecordedLaunches { damage: scan.problems(), ..Default::default() };
     let mut seen = std::collections::HashSet::new();
     for m in &scan.messages {

@@ -62,7 +62,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         }
         return Ok(input);
     }
-    let scan = crate::daemon::mcap_read::scan(&bytes, crate::daemon::mcap_read::OnDamage::Stop);
+    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut input = ReplayInput { damage: scan.problems(), ..ReplayInput::default() };
     input.config_toml =
         scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());

@@ -7,10 +7,10 @@ use std::time::{Duration, Instant};
 
 use super::{recorded_latency, ReplayInput, ReplayStats};
 use crate::daemon::config::RigConfig;
-use crate::daemon::recorder::session_metadata;
-use crate::daemon::recorder::{Recorder, RecorderHandle};
-use crate::daemon::sinks::{self, RigPublishers, RigSinks, StatusInputs};
-use crate::daemon::stats::LatencyWindow;
+use crate::daemon::live::sinks::{self, RigPublishers, RigSinks, StatusInputs};
+use crate::daemon::live::stats::LatencyWindow;
+use crate::daemon::recording::writer::session_metadata;
+use crate::daemon::recording::writer::{Recorder, RecorderHandle};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
@@ -68,8 +68,8 @@ pub fn resolve_config(input: &ReplayInput, path: Option<&Path>) -> Result<(Daemo
     match (path, &input.config_toml) {
         (Some(p), _) => DaemonConfig::load(p),
         (None, Some(text)) => DaemonConfig::parse(text).map_err(|e| match e {
-            DaemonError::ConfigSyntax(reason) => {
-                DaemonError::ConfigSyntax(format!("the configuration stored in the recording: {reason}"))
+            DaemonError::ConfigSyntax { source, .. } => {
+                DaemonError::ConfigSyntax { origin: "config: the configuration stored in the recording".into(), source }
             }
             other => other,
         }),

@@ -32,7 +32,7 @@ mod tuning;
 pub(crate) use tuning::section;
 pub use tuning::ImpulseTuning;
 
-use super::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use super::{Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
 use crate::math::{skew, Matrix3, Real, Vector3};
 
 /// The default coefficient of restitution.
@@ -246,6 +246,10 @@ impl ImpactModel for ImpulseModel {
             ImpulseVariant::Adjusted => "impulse/adjusted",
             ImpulseVariant::Slip => "impulse/slip",
         }
+    }
+
+    fn run(&self, state: &ImpactState, equipment: &Equipment, _: &RunOptions) -> Result<ModelRun, ImpactError> {
+        self.predict(state, equipment).map(ModelRun::launch_only)
     }
 
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {

@@ -13,7 +13,7 @@
 //! moves into it (its horizontal velocity along the face's horizontal normal is positive), smoothed by
 //! `tanh(v / v_reg)`.
 
-use super::bekker::{GaussRule, SoleArcWorld};
+use super::sole_arc::{GaussRule, SoleArcWorld};
 use crate::equipment::soil::SoilSpec;
 use crate::math::{Real, Vector3};
 

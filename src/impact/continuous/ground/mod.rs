@@ -5,10 +5,12 @@
 mod bekker;
 pub mod face_pressure;
 pub mod sole;
+mod sole_arc;
 
-pub use bekker::{GaussRule, GroundForces, GroundPhase, SoilGround, SoleArcWorld, MAX_GAUSS};
+pub use bekker::{GroundForces, GroundPhase, SoilGround};
 pub use face_pressure::{face_forces, FacePressure};
 pub use sole::{sole_forces, SoleContact};
+pub use sole_arc::{GaussRule, SoleArcWorld, MAX_GAUSS};
 
 use super::club::Head;
 use crate::math::Vector3;

@@ -24,7 +24,7 @@
 //! Assumptions (the seed's): the soil has no memory (sinkage is measured from the undisturbed surface, the
 //! pressure follows the sinkage up and down), no grass, no cohesion.
 
-use super::bekker::{GaussRule, SoleArcWorld};
+use super::sole_arc::{GaussRule, SoleArcWorld};
 use crate::equipment::soil::SoilSpec;
 use crate::math::{Real, Vector3};
 
@@ -65,7 +65,7 @@ pub fn sole_forces(
     };
     // First pass: each strip's wetted arc, for the patch's smaller dimension b.
     let (gs, gw) = (&strips.x, &strips.w);
-    let mut intervals = [(0.0, 0.0, 0.0, 0.0); super::bekker::MAX_GAUSS];
+    let mut intervals = [(0.0, 0.0, 0.0, 0.0); super::sole_arc::MAX_GAUSS];
     let n = strips.n;
     let mut arc_len_sum = 0.0;
     let mut weight_sum = 0.0;

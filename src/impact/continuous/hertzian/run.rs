@@ -199,7 +199,10 @@ pub(super) fn run(
         return Err(ImpactError::OffFace { h_mm: state.impact_h_m * 1e3, v_mm: state.impact_v_m * 1e3 });
     }
     if !(model.step_s.is_finite() && model.step_s > 0.0) {
-        return Err(HertzModel::not_converged(format!("step {} s must be positive", model.step_s)));
+        return Err(ImpactError::InvalidParameter {
+            field: "step_s".into(),
+            reason: format!("{} s must be positive", model.step_s),
+        });
     }
     let surface = FaceSurface::of_club(club);
     let r_eq = equivalent_radius(eq.ball.radius_m, &club.face.shape);

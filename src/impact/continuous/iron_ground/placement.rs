@@ -1,4 +1,4 @@
-//! Where the ground is (seed section 4.3, DESIGN.md section 2): the ball rests on the turf, so the ground is the
+//! Where the ground is (seed section 4.3, ARCHITECTURE.md section 2): the ball rests on the turf, so the ground is the
 //! plane one ball radius below the ball's centre; the impact location on the face fixes the ball's centre
 //! relative to the club ("changing the ball's position and ground height", seed 4.3), hence where the club's
 //! sole meets the ground along the swing's undisturbed motion.
@@ -96,7 +96,7 @@ mod tests {
         }
     }
 
-    /// The ball of a delivery rests at the world origin, so the ground is the plane y = −21.3 mm (DESIGN.md 2).
+    /// The ball of a delivery rests at the world origin, so the ground is the plane y = −21.3 mm (ARCHITECTURE.md 2).
     #[test]
     fn the_ground_is_one_radius_below_the_ball() {
         let eq = Equipment::new(ClubSpec::iron7());

@@ -91,17 +91,17 @@ pub struct LaunchMonitorConfig {
 
 /// Starts what a rig's configuration asks for: its simulator client and its launch-monitor listener.
 pub async fn start_rig(
-    rig: &crate::daemon::config::RigConfig,
+    rig: &str,
+    simulator: Option<&SimulatorConfig>,
+    launch_monitor: Option<&LaunchMonitorConfig>,
     session: &zenoh::Session,
-    recorder: &crate::daemon::recorder::RecorderHandle,
+    recorder: &crate::daemon::recording::writer::RecorderHandle,
 ) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
-    let simulator = rig
-        .simulator
-        .as_ref()
-        .and_then(|c| SimulatorOptions::from_config(&rig.name, c))
+    let simulator = simulator
+        .and_then(|c| SimulatorOptions::from_config(rig, c))
         .map(|o| SimulatorClient::spawn(o, recorder.clone()));
-    let listener = match rig.launch_monitor.as_ref().and_then(|l| l.open_connect_listen.as_ref()) {
-        Some(address) => Some(LaunchMonitorListener::start(&rig.name, address, session, recorder.clone()).await?),
+    let listener = match launch_monitor.and_then(|l| l.open_connect_listen.as_ref()) {
+        Some(address) => Some(LaunchMonitorListener::start(rig, address, session, recorder.clone()).await?),
         None => None,
     };
     Ok((simulator, listener))

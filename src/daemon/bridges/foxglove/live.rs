@@ -1,11 +1,11 @@
 //! `--foxglove HOST:PORT`: the live view, a server of the Foxglove WebSocket protocol (`foxglove.websocket.v1`,
 //! github.com/foxglove/ws-protocol) that Foxglove opens with "Open connection" -> "Foxglove WebSocket".
 //!
-//! It advertises every rig's channels ([`super::foxglove::rig_channels`]: clubhead samples, impact, launch,
+//! It advertises every rig's channels ([`crate::daemon::bridges::foxglove::server::rig_channels`]: clubhead samples, impact, launch,
 //! status, measured launches, club pose, impact scene and the predicted ball flight) with their JSON Schemas and
 //! streams the messages of the channels a client subscribes to: server info and advertise as JSON text, data
 //! as binary frames (opcode 1, subscription id u32 LE, log time ns u64 LE, the JSON payload). The records come
-//! from the daemon's [`RecorderHandle`](super::recorder::RecorderHandle) through a [`LiveTap`], a non-blocking
+//! from the daemon's [`RecorderHandle`](crate::daemon::recording::writer::RecorderHandle) through a [`LiveTap`], a non-blocking
 //! bounded queue: the view is encoded on its own task (the same encoder as the recording), a slow or absent
 //! viewer never delays a prediction, and a viewer that falls behind skips messages rather than grow memory.
 
@@ -21,9 +21,9 @@ use tokio_tungstenite::tungstenite::handshake::server::{ErrorResponse, Request, 
 use tokio_tungstenite::tungstenite::http::{HeaderValue, StatusCode};
 use tokio_tungstenite::tungstenite::Message;
 
-use super::foxglove::{encode, rig_channels};
-use super::recorder::Record;
-use super::DaemonError;
+use crate::daemon::bridges::foxglove::server::{encode, rig_channels};
+use crate::daemon::recording::record::Record;
+use crate::daemon::DaemonError;
 
 /// The WebSocket subprotocol.
 pub const SUBPROTOCOL: &str = "foxglove.websocket.v1";
@@ -71,7 +71,7 @@ struct Outgoing {
 
 impl FoxgloveServer {
     /// Binds `address` and serves the channels of the configuration's rigs on the current tokio runtime.
-    pub async fn start(address: &str, config: &super::DaemonConfig) -> Result<Self, DaemonError> {
+    pub async fn start(address: &str, config: &crate::daemon::DaemonConfig) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("serving the Foxglove live view on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
         let local_addr = listener.local_addr().map_err(io)?;
@@ -191,7 +191,7 @@ async fn serve(
     let info = serde_json::json!({
         "op": "serverInfo", "name": format!("impactd {}", env!("CARGO_PKG_VERSION")),
         "capabilities": [], "supportedEncodings": ["json"], "metadata": {},
-        "sessionId": super::wall_ns().to_string(),
+        "sessionId": crate::daemon::wall_ns().to_string(),
     });
     if ws.send(Message::text(info.to_string())).await.is_err()
         || ws.send(Message::text(advertise.as_str())).await.is_err()

@@ -1,7 +1,7 @@
 //! `impactd recover`: copies everything readable from a cut-off or damaged recording into a new, finished MCAP
 //! file, and says exactly what it could not copy.
 //!
-//! The input is read by [`mcap_read`](super::mcap_read) with resynchronisation: every chunk whose bytes are
+//! The input is read by [`mcap_read`](crate::daemon::recording::reader) with resynchronisation: every chunk whose bytes are
 //! intact is kept, wherever the damage is. Schemas and channels come from wherever they can be read (a chunk or
 //! the summary), so an intact chunk's messages are kept even when the chunk that first declared their channel
 //! is lost. What is lost is reported per channel (when the summary's statistics say how many there were) and as
@@ -10,8 +10,8 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use super::mcap_read::{scan, OnDamage, Scan};
-use super::DaemonError;
+use crate::daemon::recording::reader::{scan, OnDamage, Scan};
+use crate::daemon::DaemonError;
 
 /// Messages of one channel: kept, and lost when the file says how many there were.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -71,8 +71,8 @@ impl Recovered {
     }
 }
 
-fn mcap_err(path: &Path, e: impl std::fmt::Display) -> DaemonError {
-    DaemonError::Mcap { path: path.display().to_string(), reason: e.to_string() }
+fn mcap_err(path: &Path, e: mcap::McapError) -> DaemonError {
+    DaemonError::Mcap { path: path.display().to_string(), source: e }
 }
 
 /// The losses a scan found, with time ranges.

@@ -20,7 +20,8 @@ use tokio::sync::mpsc;
 use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
 use super::{SimulatorConfig, MAX_MESSAGE_BYTES};
-use crate::daemon::recorder::{Record, RecorderHandle};
+use crate::daemon::recording::record::Record;
+use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::wall_ns;
 use crate::wire::{
     keys, ConnectionState, LaunchPrediction, Message, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,

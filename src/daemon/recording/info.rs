@@ -1,6 +1,6 @@
 //! `impactd info`: what `mcap info` says of a recording (start and end dates in UTC, duration, compression,
 //! messages and rate per topic) and what only impactd knows (shots per rig, the session's metadata, whether the
-//! file was recovered), read by the bounded reader ([`mcap_read`](super::mcap_read)) up to the first damage it
+//! file was recovered), read by the bounded reader ([`mcap_read`](crate::daemon::recording::reader)) up to the first damage it
 //! cannot step over, which it names. Topics and rigs are listed in natural order (rig1, rig2, rig10).
 
 use std::cmp::Ordering;
@@ -8,9 +8,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, UNIX_EPOCH};
 
-use super::recover::RECOVERED_METADATA;
-use super::replay::{is_mcap, read_file};
-use super::DaemonError;
+use crate::daemon::recording::recover::RECOVERED_METADATA;
+use crate::daemon::replay::{is_mcap, read_file};
+use crate::daemon::DaemonError;
 
 /// A description of a recording for `impactd info`, and whether it could be read whole.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -26,7 +26,7 @@ pub fn info(path: &Path) -> Result<Info, DaemonError> {
     if !is_mcap(&bytes) {
         return Err(DaemonError::NotMcap { path: path.display().to_string() });
     }
-    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
+    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
     let mut shots: BTreeMap<String, u64> = BTreeMap::new();

@@ -21,7 +21,8 @@ use tokio::net::{TcpListener, TcpStream};
 use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
 use super::MAX_MESSAGE_BYTES;
-use crate::daemon::recorder::{Record, RecorderHandle};
+use crate::daemon::recording::record::Record;
+use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::{wall_ns, DaemonError};
 use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, OpenConnectTraffic, TrafficDirection};
 

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::DaemonError;
+use crate::daemon::DaemonError;
 use crate::identify::DatasetLine;
 use crate::wire::{ComparisonMessage, DeliveryInput, LaunchPrediction};
 
@@ -42,7 +42,7 @@ pub fn delivery_input(p: &LaunchPrediction) -> DeliveryInput {
 pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
     let bytes =
         std::fs::read(path).map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
-    let scan = super::mcap_read::scan(&bytes, super::mcap_read::OnDamage::Stop);
+    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut out = RecordedShots { damage: scan.problems(), ..Default::default() };
     let mut predictions: BTreeMap<(String, u64), LaunchPrediction> = BTreeMap::new();
     for m in &scan.messages {

@@ -13,38 +13,12 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-pub use super::mcap_records::MAX_CHUNK_BYTES;
-use super::mcap_records::{op, parse, unpack, Rec};
+pub use crate::daemon::recording::records::MAX_CHUNK_BYTES;
+use crate::daemon::recording::records::{op, parse, unpack, Rec};
+pub use crate::daemon::recording::records::{ChannelDef, RawMessage, SchemaDef};
 
 /// The MCAP magic that starts and ends a file.
 pub const MAGIC: &[u8; 8] = b"\x89MCAP0\r\n";
-
-/// A schema record.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SchemaDef {
-    pub name: String,
-    pub encoding: String,
-    pub data: Vec<u8>,
-}
-
-/// A channel record.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ChannelDef {
-    pub schema_id: u16,
-    pub topic: String,
-    pub message_encoding: String,
-    pub metadata: BTreeMap<String, String>,
-}
-
-/// A message as read.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct RawMessage {
-    pub channel_id: u16,
-    pub sequence: u32,
-    pub log_time: u64,
-    pub publish_time: u64,
-    pub data: Vec<u8>,
-}
 
 /// Something the scan could not read.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -6,10 +6,10 @@
 //! `/foxglove/<rig>/club_pose` (`foxglove.PoseInFrame`, the club in the world at each sample),
 //! `/foxglove/<rig>/impact_scene` (`foxglove.SceneUpdate`, ball and club at impact) and
 //! `/foxglove/<rig>/ball_flight` (`foxglove.SceneUpdate`, the predicted flight as a line strip, sampled every
-//! 50 ms). Positions are in the world frame (DESIGN.md section 2: x to the target, y up, z right), `frame_id`
+//! 50 ms). Positions are in the world frame (ARCHITECTURE.md section 2: x to the target, y up, z right), `frame_id`
 //! `world`.
 
-use super::recorder::Record;
+use crate::daemon::recording::record::Record;
 use crate::wire::{
     keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType, StatusMessage,
 };
@@ -180,7 +180,7 @@ mod tests {
 
     #[test]
     fn the_flight_line_follows_the_predicted_flight() {
-        // A 7-iron-like launch: 54 m/s, 17 deg up, 7000 rpm of backspin (about +z: DESIGN.md's spin axis
+        // A 7-iron-like launch: 54 m/s, 17 deg up, 7000 rpm of backspin (about +z: ARCHITECTURE.md's spin axis
         // a = u x y for u along x). The line starts at the ball and ends where the flight model stops the same
         // launch through its bounce and roll.
         let flight = crate::flight::Flight::default();

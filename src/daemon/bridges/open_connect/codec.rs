@@ -4,7 +4,7 @@
 //! `BallData`, `ClubData` and `ShotDataOptions`; a heartbeat is the same object with `IsHeartBeat` true and no
 //! ball data. The simulator answers with `{"Code": 200, "Message": ...}` (shot received), 201 with `Player`
 //! (handedness and club) when the player changes, and 5xx on failure. Units and signs are the specification's,
-//! which are TrackMan's (DESIGN.md section 2), so no sign flips at this boundary: speeds in mph, angles in
+//! which are TrackMan's (ARCHITECTURE.md section 2), so no sign flips at this boundary: speeds in mph, angles in
 //! degrees, spin in rpm, HLA right +, spin axis and side spin + = tilted right (fade), VLA up +, carry in yards.
 //! The face impact location (no unit in the specification) goes out in mm, toe + and up +.
 

@@ -1,9 +1,9 @@
-//! MCAP recording on a writer thread behind a bounded queue (DESIGN.md section 4).
+//! MCAP recording on a writer thread behind a bounded queue (ARCHITECTURE.md section 4).
 //!
 //! Every zenoh message in and out is a record with `log_time` = receive (or publish) wall time and
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding
 //! `jsonschema`. Foxglove's well-known `foxglove.PoseInFrame` (the club in the world) and `foxglove.SceneUpdate`
-//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`super::foxglove`], shared
+//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`crate::daemon::bridges::foxglove::server`], shared
 //! with the live view), and a `session` metadata record holds versions and the configuration. Chunks are
 //! zstd-compressed and closed (flushed to the file) after every shot and at least once a second, so a killed
 //! daemon loses at most the last second. Sending never blocks: a full queue drops the record and counts it.
@@ -16,10 +16,9 @@ use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TryS
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use super::foxglove::Schema;
-use super::{wall_ns, DaemonConfig, DaemonError};
-use crate::math::Isometry3;
-use crate::wire::{ImpactStateMsg, MessageType};
+use crate::daemon::bridges::foxglove::server::Schema;
+pub use crate::daemon::recording::record::Record;
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 
 /// The `session` metadata of a recording: versions and the configuration.
 pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
@@ -33,35 +32,6 @@ pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
 
 /// Queue length between the prediction path and the writer.
 pub const QUEUE_CAPACITY: usize = 1 << 16;
-
-/// One thing to record.
-#[derive(Debug, Clone)]
-pub enum Record {
-    /// A zenoh message: its key (without the leading `/`), its wire type, and its JSON bytes.
-    Message { key: String, message_type: MessageType, log_time_ns: u64, publish_time_ns: u64, data: Vec<u8> },
-    /// The club's pose in the world at a sample (Foxglove `PoseInFrame` on `/foxglove/<rig>/club_pose`).
-    ClubPose { rig: String, t_ns: u64, log_time_ns: u64, world_from_club: Isometry3 },
-    /// Ball and club at an impact (Foxglove `SceneUpdate` on `/foxglove/<rig>/impact_scene`).
-    ImpactScene {
-        rig: String,
-        t_ns: u64,
-        log_time_ns: u64,
-        ball_position_m: [f64; 3],
-        ball_radius_m: f64,
-        club: ImpactStateMsg,
-    },
-    /// The predicted ball flight as a line (Foxglove `SceneUpdate` on `/foxglove/<rig>/ball_flight`), flown
-    /// from `launch` by `flight` on the consumer's thread, off the prediction path.
-    Flight {
-        rig: String,
-        t_ns: u64,
-        log_time_ns: u64,
-        flight: crate::flight::Flight,
-        launch: crate::flight::LaunchState,
-    },
-    /// Close the current chunk and push it to the file.
-    Flush,
-}
 
 /// What was written.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -156,9 +126,7 @@ impl Recorder {
         self.tx.take();
         match self.join.take().map(|j| j.join()) {
             Some(Ok(r)) => r,
-            Some(Err(_)) => {
-                Err(DaemonError::Mcap { path: self.path.display().to_string(), reason: "writer panicked".into() })
-            }
+            Some(Err(_)) => Err(DaemonError::WriterPanicked { path: self.path.display().to_string() }),
             None => Ok(RecorderSummary::default()),
         }
     }
@@ -170,7 +138,7 @@ pub struct RecorderHandle {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
     error: Arc<OnceLock<String>>,
-    live: Option<super::foxglove_live::LiveTap>,
+    live: Option<crate::daemon::bridges::foxglove::live::LiveTap>,
 }
 
 impl RecorderHandle {
@@ -180,7 +148,7 @@ impl RecorderHandle {
     }
 
     /// This handle, also feeding the live view.
-    pub fn with_live(mut self, live: Option<super::foxglove_live::LiveTap>) -> Self {
+    pub fn with_live(mut self, live: Option<crate::daemon::bridges::foxglove::live::LiveTap>) -> Self {
         self.live = live;
         self
     }
@@ -258,7 +226,7 @@ fn write_all(
     let mut end = BTreeMap::new();
     end.insert("messages".to_string(), summary.messages.to_string());
     end.insert("dropped".to_string(), dropped.load(Ordering::Relaxed).to_string());
-    end.insert("end_ns".to_string(), super::wall_ns().to_string());
+    end.insert("end_ns".to_string(), crate::daemon::wall_ns().to_string());
     w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })?;
     w.finish()?;
     Ok(())
@@ -305,7 +273,7 @@ impl Channels {
         w: &mut mcap::Writer<W>,
         record: Record,
     ) -> Result<(), mcap::McapError> {
-        let Some(e) = super::foxglove::encode(record) else { return Ok(()) };
+        let Some(e) = crate::daemon::bridges::foxglove::server::encode(record) else { return Ok(()) };
         let channel_id = self.channel(w, &e.topic, e.schema)?;
         self.sequence = self.sequence.wrapping_add(1);
         let header = mcap::records::MessageHeader {

@@ -1,10 +1,35 @@
 //! The records of an MCAP file, parsed within bounds: every length is checked against the bytes that hold it,
 //! and a chunk is decompressed only to a size its zstd frame and the largest zstd ratio allow, then checked
-//! against its CRC. Used by [`mcap_read`](super::mcap_read).
+//! against its CRC. Used by the [`reader`](crate::daemon::recording::reader).
 
 use std::collections::BTreeMap;
 
-use super::mcap_read::{ChannelDef, RawMessage, SchemaDef};
+/// A schema record.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SchemaDef {
+    pub name: String,
+    pub encoding: String,
+    pub data: Vec<u8>,
+}
+
+/// A channel record.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ChannelDef {
+    pub schema_id: u16,
+    pub topic: String,
+    pub message_encoding: String,
+    pub metadata: BTreeMap<String, String>,
+}
+
+/// A message as read.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RawMessage {
+    pub channel_id: u16,
+    pub sequence: u32,
+    pub log_time: u64,
+    pub publish_time: u64,
+    pub data: Vec<u8>,
+}
 
 /// The largest chunk (uncompressed) this reader will allocate.
 pub const MAX_CHUNK_BYTES: u64 = 1 << 30;

@@ -7,7 +7,7 @@
 //! being handed to zenoh. Status goes out once per `status_period_s`.
 //!
 //! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
-//! listener ([`super::open_connect`]) and the Foxglove live view ([`super::foxglove_live`]).
+//! listener ([`crate::daemon::bridges::open_connect`]) and the Foxglove live view ([`crate::daemon::bridges::foxglove::live`]).
 //!
 //! Measured launches (`lm/<rig>/launch`, from the Open Connect listener or any publisher) go through the same
 //! queue to the same worker, which records them, pairs them with its predictions ([`crate::identify::pairing`])
@@ -24,18 +24,20 @@ use std::time::{Duration, Instant};
 
 use zenoh::Wait;
 
-use super::foxglove_live::FoxgloveServer;
-use super::open_connect::{self, LaunchMonitorListener, SimulatorClient};
-use super::recorder::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
-use super::sinks::{self, RigPublishers, RigSinks, StatusInputs};
-use super::stats::{Budget, LatencyWindow, RateLimiter};
-use super::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::bridges::foxglove::live::FoxgloveServer;
+use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
+use crate::daemon::live::sinks::{RigPublishers, RigSinks, StatusInputs};
+use crate::daemon::live::stats::{Budget, LatencyWindow, RateLimiter};
+use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod labels;
 mod measured;
+pub mod sinks;
+pub mod stats;
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -135,7 +137,14 @@ pub async fn run(
                 .await
                 .map_err(DaemonError::zenoh)?,
         );
-        let (simulator, listener) = open_connect::start_rig(rig_config, session, &handle).await?;
+        let (simulator, listener) = open_connect::start_rig(
+            &rig_config.name,
+            rig_config.simulator.as_ref(),
+            rig_config.launch_monitor.as_ref(),
+            session,
+            &handle,
+        )
+        .await?;
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
@@ -193,7 +202,7 @@ pub async fn run(
                         payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
                     };
                     let now = wall_ns();
-                    unknown_recorder.send(super::recorder::Record::Message {
+                    unknown_recorder.send(crate::daemon::recording::record::Record::Message {
                         key: keys::UNKNOWN_RIG_REJECTED.to_string(),
                         message_type: <wire::RejectedInput as wire::Message>::TYPE,
                         log_time_ns: now,
