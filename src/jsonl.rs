@@ -66,6 +66,23 @@ pub fn pass_through(
 pub fn process<I, O, E, F>(
     tool: &str,
     input: impl BufRead,
+    out: impl Write,
+    err: impl Write,
+    mut answer: F,
+) -> Result<Tally, JsonlError>
+where
+    I: DeserializeOwned,
+    O: Serialize,
+    E: std::fmt::Display,
+    F: FnMut(I) -> Result<O, E>,
+{
+    process_many(tool, input, out, err, |i| answer(i).map(|o| vec![o]))
+}
+
+/// As [`process`], with each good line answered by as many lines as `answer` gives.
+pub fn process_many<I, O, E, F>(
+    tool: &str,
+    input: impl BufRead,
     mut out: impl Write,
     mut err: impl Write,
     mut answer: F,
@@ -74,7 +91,7 @@ where
     I: DeserializeOwned,
     O: Serialize,
     E: std::fmt::Display,
-    F: FnMut(I) -> Result<O, E>,
+    F: FnMut(I) -> Result<Vec<O>, E>,
 {
     let mut tally = Tally::default();
     let mut input = input;
@@ -93,19 +110,22 @@ where
             },
             Err(e) => Err(format!("not UTF-8 text: {e}")),
         };
-        let text = match result {
-            Ok(o) => {
+        match result {
+            Ok(answers) => {
                 tally.answered += 1;
-                serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                for o in answers {
+                    let text = serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?;
+                    writeln!(out, "{text}").map_err(JsonlError::Write)?;
+                }
             }
             Err(reason) => {
                 tally.rejected += 1;
                 writeln!(err, "{tool}: line {n}: {reason}").map_err(JsonlError::Write)?;
-                serde_json::to_string(&LineError { line: n, error: &reason })
-                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                let text = serde_json::to_string(&LineError { line: n, error: &reason })
+                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?;
+                writeln!(out, "{text}").map_err(JsonlError::Write)?;
             }
-        };
-        writeln!(out, "{text}").map_err(JsonlError::Write)?;
+        }
     }
     out.flush().map_err(JsonlError::Write)?;
     Ok(tally)
