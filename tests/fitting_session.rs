@@ -211,6 +211,12 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     let expected = CLUBS.len() as u64 * PLAYERS.len() as u64 * SHOTS_PER_PLAYER;
     assert_eq!(predicted, expected, "{:?}", summary.rigs);
 
+    // The synthetic rig's truth is recorded beside the predictions, so the session can be scored afterwards.
+    let topics = common::recorded(&recording);
+    let truths: usize = topics.iter().filter(|(t, _)| t.starts_with("/sim/")).map(|(_, m)| m.len()).sum();
+    assert_eq!(truths as u64, expected, "{:?}", topics.keys().collect::<Vec<_>>());
+    let labels: usize = topics.iter().filter(|(t, _)| t.ends_with("/session")).map(|(_, m)| m.len()).sum();
+    assert_eq!(labels, CLUBS.len() * PLAYERS.len(), "every put recorded");
     let rec = recording.to_str().unwrap();
     let by_club = dir.path().join("by_club.json");
     std::fs::write(&by_club, impactd(&["session", rec, "--json"])).unwrap();
@@ -236,4 +242,15 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     assert!(gaps.trim_start().starts_with("Driver"), "{table}");
     let compared = impactd(&["compare", csv.to_str().unwrap(), "--models", "adjusted", "--club", "iron7", "--json"]);
     assert!(compared.contains("adjusted"), "{compared}");
+
+    // `plot dispersion` draws every club, the target line and the axes' units.
+    let svg = dir.path().join("dispersion.svg");
+    impactd(&["plot", "dispersion", rec, "--units", "metric", "-o", svg.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(svg).unwrap();
+    for (_, name, _, _) in CLUBS {
+        assert!(svg.contains(&format!("{name} ({} shots)", PLAYERS.len() as u64 * SHOTS_PER_PLAYER)), "{name}");
+    }
+    assert!(
+        svg.contains("target line") && svg.contains("carry (m)") && svg.contains("side (m; right of the target +)")
+    );
 }

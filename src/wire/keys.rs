@@ -82,6 +82,12 @@ pub fn rig_of_session(key: &str) -> Option<&str> {
     let rig = rest.strip_suffix("/session")?;
     (!rig.is_empty() && !rig.contains('/')).then_some(rig)
 }
+/// The rig name of a `sim/<rig>/truth` key.
+pub fn rig_of_truth(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("sim/")?;
+    let rig = rest.strip_suffix("/truth")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
 /// The rig name of a `golf/<rig>/launch` key.
 pub fn rig_of_launch(key: &str) -> Option<&str> {
     let rest = key.strip_prefix("golf/")?;

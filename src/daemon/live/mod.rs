@@ -38,6 +38,7 @@ mod labels;
 mod measured;
 pub mod sinks;
 pub mod stats;
+mod truth;
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -81,6 +82,8 @@ enum InputKind {
     Measured,
     /// Session labels (`golf/<rig>/session`).
     Labels,
+    /// A synthetic rig's truth (`sim/<rig>/truth`).
+    Truth,
 }
 
 struct Incoming {
@@ -151,7 +154,8 @@ pub async fn run(
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
         measured_subscribers.push(measured::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
-        measured_subscribers.push(labels::subscribe(session, &name, tx, queue_dropped.clone()).await?);
+        measured_subscribers.push(labels::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
+        measured_subscribers.push(truth::subscribe(session, &name, tx, queue_dropped.clone()).await?);
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
@@ -336,6 +340,7 @@ impl Worker {
             InputKind::Sample => {}
             InputKind::Measured => return self.on_measured(incoming),
             InputKind::Labels => return self.on_labels(incoming),
+            InputKind::Truth => return self.on_truth(incoming),
         }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
