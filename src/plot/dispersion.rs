@@ -13,8 +13,15 @@ pub struct DispersionGroup {
     pub points: Vec<(f64, f64)>,
 }
 
-/// Mean and covariance `[[sxx, sxy], [sxy, syy]]` of points (sample covariance; `None` below 3 points).
-pub fn mean_covariance(points: &[(f64, f64)]) -> Option<((f64, f64), [[f64; 2]; 2])> {
+/// A point `(side, carry)`.
+pub type Point = (f64, f64);
+/// A 2x2 covariance `[[sxx, sxy], [sxy, syy]]`.
+pub type Covariance = [[f64; 2]; 2];
+/// A club's 1 and 2 SD ellipses, as points.
+type Ellipses = [Vec<Point>; 2];
+
+/// Mean and covariance of points (sample covariance; `None` below 3 points).
+pub fn mean_covariance(points: &[Point]) -> Option<(Point, Covariance)> {
     let n = points.len();
     if n < 3 {
         return None;
@@ -51,7 +58,7 @@ pub fn ellipse(mean: (f64, f64), cov: [[f64; 2]; 2], k: f64, samples: usize) -> 
 /// The chart (SVG). `unit` names the distance unit (`yd`, `m`); `note` goes under the title.
 pub fn dispersion_svg(groups: &[DispersionGroup], unit: &str, title: &str, note: Option<&str>) -> String {
     let (width, height) = (900.0, 760.0);
-    let shapes: Vec<(Option<[Vec<(f64, f64)>; 2]>, &DispersionGroup)> = groups
+    let shapes: Vec<(Option<Ellipses>, &DispersionGroup)> = groups
         .iter()
         .map(|g| (mean_covariance(&g.points).map(|(m, c)| [ellipse(m, c, 1.0, 72), ellipse(m, c, 2.0, 72)]), g))
         .collect();
