@@ -90,9 +90,41 @@ pub fn parse_line<T: DeserializeOwned>(line: &str) -> Result<T, ParseError> {
     })
 }
 
+/// Copies the fields of an input line that its reader does not use (`known` are the ones it does) into the
+/// answer, after the answer's own: labels and earlier tools' fields travel down a pipe
+/// (`predict | flight | plot trajectory`). A field the answer already has keeps the answer's value.
+pub fn pass_through(
+    input: serde_json::Map<String, serde_json::Value>,
+    answer: &mut serde_json::Map<String, serde_json::Value>,
+    known: &[&str],
+) {
+    for (key, value) in input {
+        if !known.contains(&key.as_str()) && !answer.contains_key(&key) {
+            answer.insert(key, value);
+        }
+    }
+}
+
 /// Runs `answer` over every non-blank line of `input`, writing one JSON line per input line to `out` and one
 /// message per bad line to `err` (`<tool>: line N: <reason>`).
 pub fn process<I, O, E, F>(
+    tool: &str,
+    input: impl BufRead,
+    out: impl Write,
+    err: impl Write,
+    mut answer: F,
+) -> Result<Tally, JsonlError>
+where
+    I: DeserializeOwned,
+    O: Serialize,
+    E: std::fmt::Display,
+    F: FnMut(I) -> Result<O, E>,
+{
+    process_many(tool, input, out, err, |i| answer(i).map(|o| vec![o]))
+}
+
+/// As [`process`], with each good line answered by as many lines as `answer` gives.
+pub fn process_many<I, O, E, F>(
     tool: &str,
     input: impl BufRead,
     mut out: impl Write,
@@ -103,7 +135,7 @@ where
     I: DeserializeOwned,
     O: Serialize,
     E: std::fmt::Display,
-    F: FnMut(I) -> Result<O, E>,
+    F: FnMut(I) -> Result<Vec<O>, E>,
 {
     let mut tally = Tally::default();
     let mut input = input;
@@ -121,19 +153,22 @@ where
             },
             Err(e) => Err(format!("not UTF-8 text: {e}")),
         };
-        let text = match result {
-            Ok(o) => {
+        match result {
+            Ok(answers) => {
                 tally.answered += 1;
-                serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                for o in answers {
+                    let text = serde_json::to_string(&o).map_err(|e| JsonlError::Write(std::io::Error::other(e)))?;
+                    writeln!(out, "{text}").map_err(JsonlError::Write)?;
+                }
             }
             Err(reason) => {
                 tally.rejected += 1;
                 writeln!(err, "{tool}: line {n}: {reason}").map_err(JsonlError::Write)?;
-                serde_json::to_string(&LineError { line: n, error: &reason })
-                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?
+                let text = serde_json::to_string(&LineError { line: n, error: &reason })
+                    .map_err(|e| JsonlError::Write(std::io::Error::other(e)))?;
+                writeln!(out, "{text}").map_err(JsonlError::Write)?;
             }
-        };
-        writeln!(out, "{text}").map_err(JsonlError::Write)?;
+        }
     }
     out.flush().map_err(JsonlError::Write)?;
     Ok(tally)

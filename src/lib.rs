@@ -69,6 +69,7 @@ pub mod pipeline;
 pub mod plot;
 pub mod predict;
 pub mod rng;
+pub mod session;
 pub mod stages;
 pub mod swing;
 pub mod units;

@@ -11,7 +11,7 @@ use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
-use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput};
+use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
@@ -26,6 +26,8 @@ pub struct RigSetup {
     pub track: TrackLimits,
     /// The ball flight added to each prediction (`None`: no flight).
     pub flight: Option<crate::flight::Flight>,
+    /// The labels of the rig's shots (from its configuration; [`Pipeline::set_labels`] replaces them).
+    pub labels: ShotLabels,
 }
 
 impl RigSetup {
@@ -41,6 +43,7 @@ impl RigSetup {
             detector: DetectorConfig::default(),
             track: TrackLimits::default(),
             flight: Some(crate::flight::Flight::default()),
+            labels: ShotLabels::default(),
         }
     }
 }
@@ -97,6 +100,11 @@ impl Pipeline {
             setup,
             counts: Counts::default(),
         }
+    }
+
+    /// The labels of the shots from now on (a put on `golf/<rig>/session`).
+    pub fn set_labels(&mut self, labels: ShotLabels) {
+        self.setup.labels = labels;
     }
 
     /// Feeds one sample; events are appended to `out`.
@@ -166,6 +174,7 @@ impl Pipeline {
             state: (&est.state).into(),
             delivery,
             quality: est.quality,
+            labels: self.setup.labels.clone(),
         }));
         for i in 0..self.setup.models.len() {
             let m = Arc::clone(&self.setup.models[i]);
@@ -200,6 +209,7 @@ impl Pipeline {
                             )
                         }),
                         reports: report.into(),
+                        labels: self.setup.labels.clone(),
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),

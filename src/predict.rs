@@ -4,6 +4,7 @@
 use std::io::{BufRead, Write};
 
 use serde::Serialize;
+use serde_json::{Map, Value};
 
 use crate::equipment::ClubSpec;
 use crate::impact::report::WireReports;
@@ -49,6 +50,9 @@ pub enum DeliveryError {
     Model(ImpactError),
     #[error("{0}")]
     Implausible(#[from] crate::wire::OutOfBounds),
+    /// The line is JSON but not a delivery (a field of the wrong type).
+    #[error("{0}")]
+    Input(String),
 }
 
 impl DeliveryError {
@@ -101,7 +105,8 @@ fn answer(
 }
 
 /// Answers every line of `input` on `out` (`impactd predict`); a bad line is answered with its error on `out` and
-/// reported on `err`.
+/// reported on `err`. Fields of a line that are not a delivery's (labels such as `player`, `club`, `tags`, a
+/// previous tool's output) are kept: each answer carries them after its own fields.
 pub fn run(
     club: &ClubSpec,
     predictor: Predictor<'_>,
@@ -109,10 +114,47 @@ pub fn run(
     out: impl Write,
     err: impl Write,
 ) -> Result<Tally, JsonlError> {
+    run_models(club, &[predictor], input, out, err)
+}
+
+/// As [`run`], with each line answered by every model in turn (`predict --model both`): one answer line per
+/// model, each naming its `model`, when there is more than one.
+pub fn run_models(
+    club: &ClubSpec,
+    predictors: &[Predictor<'_>],
+    input: impl BufRead,
+    out: impl Write,
+    err: impl Write,
+) -> Result<Tally, JsonlError> {
     let equipment = Equipment::new(club.clone());
-    crate::jsonl::process("impactd predict", input, out, err, |d: DeliveryInput| {
-        answer(&d, club, &equipment, predictor)
+    crate::jsonl::process_many("impactd predict", input, out, err, |line: Map<String, Value>| {
+        let d: DeliveryInput =
+            serde_json::from_value(Value::Object(line.clone())).map_err(|e| DeliveryError::Input(e.to_string()))?;
+        let mut answers = Vec::with_capacity(predictors.len());
+        for &predictor in predictors {
+            let answer = answer(&d, club, &equipment, predictor)?;
+            let Value::Object(mut fields) =
+                serde_json::to_value(answer).map_err(|e| DeliveryError::Input(e.to_string()))?
+            else {
+                return Err(DeliveryError::Input("an answer that is not an object".into()));
+            };
+            if predictors.len() > 1 {
+                fields.insert("model".into(), Value::String(predictor.model().name().to_string()));
+            }
+            crate::jsonl::pass_through(line.clone(), &mut fields, &DeliveryInput::FIELDS);
+            answers.push(fields);
+        }
+        Ok(answers)
     })
+}
+
+impl Predictor<'_> {
+    /// The model that answers.
+    pub fn model(&self) -> &dyn ImpactModel {
+        match *self {
+            Predictor::Plain(m) | Predictor::Traced(m) => m,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -142,5 +184,41 @@ mod tests {
         assert_eq!(lines[2]["line"], 4);
         assert!(lines[2]["error"].as_str().unwrap().starts_with("fields `impact_h_mm`/`impact_v_mm`"));
         assert!(String::from_utf8(err).unwrap().starts_with("impactd predict: line 3: field `club_speed_mph`"));
+    }
+
+    /// Fields that are not a delivery's are kept, not refused; a field the answer writes itself is the answer's.
+    #[test]
+    fn unknown_fields_pass_through() {
+        let input = "{\"club_speed_mph\":113,\"player\":\"ann\",\"tags\":[\"fit\"],\"ball_speed_mph\":1}\n";
+        let model = ImpulseModel::new(ImpulseVariant::Adjusted);
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let tally = run(&ClubSpec::driver(), Predictor::Plain(&model), input.as_bytes(), &mut out, &mut err).unwrap();
+        assert_eq!(tally, Tally { answered: 1, rejected: 0 });
+        let line: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(line["player"], "ann");
+        assert_eq!(line["tags"][0], "fit");
+        assert!(line["ball_speed_mph"].as_f64().unwrap() > 100.0, "{line}");
+        assert!(line.get("club_speed_mph").is_none(), "{line}");
+    }
+
+    /// Regression: `predict --model both` was refused while listed. Each line is answered once per model, each
+    /// answer naming its model.
+    #[test]
+    fn each_line_is_answered_by_each_model() {
+        let (standard, adjusted) =
+            (ImpulseModel::new(ImpulseVariant::Standard), ImpulseModel::new(ImpulseVariant::Adjusted));
+        let predictors = [Predictor::Plain(&standard), Predictor::Plain(&adjusted)];
+        let input = "{\"club_speed_mph\":113,\"player\":\"ann\"}\n{\"club_speed_mph\":500}\n";
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let tally = run_models(&ClubSpec::driver(), &predictors, input.as_bytes(), &mut out, &mut err).unwrap();
+        assert_eq!(tally, Tally { answered: 1, rejected: 1 });
+        let text = String::from_utf8(out).unwrap();
+        let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        assert_eq!(lines.len(), 3, "{text}");
+        assert_eq!(lines[0]["model"], standard.name());
+        assert_eq!(lines[1]["model"], adjusted.name());
+        assert_eq!(lines[1]["player"], "ann");
+        assert_ne!(lines[0]["ball_speed_mph"], lines[1]["ball_speed_mph"]);
+        assert_eq!(lines[2]["line"], 2);
     }
 }

@@ -40,6 +40,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         latency_us: 100.0,
         flight: None,
         reports: Default::default(),
+        labels: Default::default(),
     }
 }
 

@@ -157,7 +157,6 @@ pub fn exit_code(tally: impactd::jsonl::Tally) -> ExitCode {
     }
 }
 
-/// Writes `text` to `path` and says so on stderr.
 /// Writes `text` to `path`, replacing an existing file only with `overwrite` (`run --record`'s rule).
 pub fn write_new_output(path: &Path, text: &str, overwrite: bool) -> Result<()> {
     use std::io::Write;
@@ -181,7 +180,11 @@ pub fn write_new_output(path: &Path, text: &str, overwrite: bool) -> Result<()> 
     Ok(())
 }
 
+/// Writes `text` to `path` (making its directory when it is not there) and says so on stderr.
 pub fn write_output(path: &Path, text: &str) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.exists()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("making {}", dir.display()))?;
+    }
     std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
     eprintln!("wrote {}", path.display());
     Ok(())

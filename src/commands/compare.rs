@@ -2,7 +2,8 @@
 //! launches, in the layout of the seed's Tables 3.2-3.7 (measured mean; MAE and STD, absolute and as % of the
 //! mean, per field per model; eq. 3.13 cost; time per shot).
 //!
-//! A FILE is a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
+//! A FILE is a TrackMan Performance Studio CSV export (club data as the delivery, ball data as the measurement), a
+//! JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
 //! recording, without `--models`, the predictions it holds paired live with measurements (its comparisons) are
 //! tabled as recorded; with `--models`, each model is run again on the recorded deliveries.
 
@@ -24,7 +25,7 @@ use impactd::impact::Equipment;
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// JSONL datasets or MCAP recordings.
+    /// JSONL datasets, TrackMan CSV exports or MCAP recordings.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// The models to run, comma-separated (default for a dataset: standard,adjusted,slip,continuous; for a
@@ -86,8 +87,24 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
             bail!("{}: reading recordings needs the daemon feature", path.display());
         } else {
             let file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
-            let lines = read_jsonl(std::io::BufReader::new(file)).with_context(|| path.display().to_string())?;
-            loaded.lines.extend(lines);
+            let mut input = std::io::BufReader::new(file);
+            // A TrackMan export says so on its first line; anything else is streamed as JSONL, a bounded line at a
+            // time.
+            let head = std::io::BufRead::fill_buf(&mut input).with_context(|| format!("reading {}", path.display()))?;
+            if impactd::session::trackman_csv::is_trackman_csv(&String::from_utf8_lossy(head)) {
+                let mut text = String::new();
+                std::io::Read::read_to_string(&mut input, &mut text)
+                    .with_context(|| format!("reading {}", path.display()))?;
+                let (lines, skipped) =
+                    impactd::session::trackman_csv::read(&text).with_context(|| path.display().to_string())?;
+                if skipped > 0 {
+                    eprintln!("{}: {skipped} rows without club or ball data skipped", path.display());
+                }
+                loaded.lines.extend(lines);
+            } else {
+                let lines = read_jsonl(input).with_context(|| path.display().to_string())?;
+                loaded.lines.extend(lines);
+            }
         }
     }
     Ok(loaded)

@@ -119,6 +119,10 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
+    // Regression: `fit --model maw` ended at its bounds and said nothing.
+    for warning in at_bounds(&report) {
+        eprintln!("impactd fit: warning: {warning}");
+    }
     if let Some(path) = &args.output {
         let comment = format!(
             "{} parameters fitted by `impactd fit` (eq. 3.13 over {} shots: {:.5} -> {:.5}, seed {})",
@@ -132,6 +136,29 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
         print!("{}", render(&report));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The parameters that ended on (within 0.1 % of the span of) a bound: the data would have moved them further,
+/// so the fit is the bound's, not the data's.
+fn at_bounds(r: &FitReport) -> Vec<String> {
+    r.params
+        .iter()
+        .filter_map(|p| {
+            let tolerance = 1e-3 * (p.hi - p.lo).abs();
+            let side = if (p.fitted - p.lo).abs() <= tolerance {
+                "lower"
+            } else if (p.hi - p.fitted).abs() <= tolerance {
+                "upper"
+            } else {
+                return None;
+            };
+            Some(format!(
+                "{} ended at its {side} bound ({:.5} {}, bounds [{:.4}, {:.4}]): the fit is the bound's, not the data's; \
+                 widen the bounds or question the model",
+                p.name, p.fitted, p.unit, p.lo, p.hi
+            ))
+        })
+        .collect()
 }
 
 fn render(r: &FitReport) -> String {

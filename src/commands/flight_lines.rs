@@ -8,15 +8,11 @@ use impactd::flight::Flight;
 use impactd::wire::FlightInput;
 use serde_json::{Map, Value};
 
-/// Fields `impactd predict` writes beside the launch (sanity flags, the contact's course, the turf): carried
-/// through to the output, not read as the launch. Any other unknown field is an error naming it.
-const PREDICT_EXTRAS: [&str; 5] = ["warnings", "contact_time_us", "peak_normal_force_n", "trace", "ground"];
-
-/// A launch line (`impactd predict`'s fields) with its flight's fields added; an error names the field.
+/// A launch line (`impactd predict`'s fields) with its flight's fields added; an error names the field. Fields
+/// the flight does not read (sanity flags, the contact's course, labels, ...) are carried through; the flight's
+/// own fields replace those of an earlier flight.
 pub fn with_flight(mut line: Map<String, Value>, flight: &Flight, every_s: f64) -> Result<Map<String, Value>, String> {
-    let mut launch_fields = line.clone();
-    launch_fields.retain(|key, _| !PREDICT_EXTRAS.contains(&key.as_str()));
-    let input: FlightInput = serde_json::from_value(Value::Object(launch_fields)).map_err(|e| e.to_string())?;
+    let input: FlightInput = serde_json::from_value(Value::Object(line.clone())).map_err(|e| e.to_string())?;
     let launch = input.to_launch().map_err(|e| e.to_string())?;
     let trajectory = flight.fly(&launch, every_s);
     physical(&trajectory)?;

@@ -21,6 +21,8 @@ mod flight_lines;
 mod map;
 mod models;
 mod plot;
+#[cfg(feature = "daemon")]
+mod plot_dispersion;
 mod plot_ground;
 mod predict;
 mod progress;
@@ -33,6 +35,7 @@ mod bridge;
 mod demo;
 #[cfg(feature = "daemon")]
 mod import;
+mod export;
 #[cfg(feature = "daemon")]
 mod info;
 #[cfg(feature = "daemon")]
@@ -43,6 +46,8 @@ mod replay;
 mod replay_pause;
 #[cfg(feature = "daemon")]
 mod run;
+#[cfg(feature = "daemon")]
+mod session;
 #[cfg(feature = "daemon")]
 mod sim;
 
@@ -111,6 +116,12 @@ pub enum Command {
     /// Salvage a recording cut off by a crash (exit 0: nothing lost, 3: data lost).
     #[cfg(feature = "daemon")]
     Recover(recover::RecoverArgs),
+    /// A fitting session's numbers per club, player or tag: TrackMan's metrics, gapping and mishits.
+    #[cfg(feature = "daemon")]
+    Session(session::SessionArgs),
+    /// A recording's shots in another program's layout (TrackMan Performance Studio's CSV).
+    #[cfg(feature = "daemon")]
+    Export(export::ExportArgs),
 }
 
 /// Logs to stderr: at info (zenoh at warn), except for the demo, which prints its own lines; `RUST_LOG` overrides.
@@ -193,6 +204,10 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Calibrate(command) => calibrate::run(&command),
         #[cfg(feature = "daemon")]
         Command::Recover(args) => recover::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Session(args) => session::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Export(args) => export::run(&args),
     }
 }
 

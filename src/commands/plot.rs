@@ -22,6 +22,9 @@ pub enum PlotCommand {
     MawPlate(MawPlateArgs),
     /// The ground model's force on the head for a fat and a good strike, and the face angle and loft over time.
     Ground(super::plot_ground::GroundPlotArgs),
+    /// Carry against side per club of recordings, with 1 and 2 SD ellipses and the target line.
+    #[cfg(feature = "daemon")]
+    Dispersion(super::plot_dispersion::DispersionArgs),
 }
 
 #[derive(Debug, Args)]
@@ -76,6 +79,8 @@ pub fn run(command: &PlotCommand) -> Result<ExitCode> {
         PlotCommand::Trajectory(args) => trajectory(args),
         PlotCommand::MawPlate(args) => maw_plate(args),
         PlotCommand::Ground(args) => super::plot_ground::run(args),
+        #[cfg(feature = "daemon")]
+        PlotCommand::Dispersion(args) => super::plot_dispersion::run(args),
     }
 }
 

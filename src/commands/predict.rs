@@ -7,14 +7,15 @@ use anyhow::{bail, Result};
 use clap::Args;
 use impactd::predict::Predictor;
 
-use super::args::{exit_code, load_club, model_name, one_model, open_input, resolved_in_time, ConditionArgs};
+use super::args::{exit_code, load_club, model_name, open_input, resolved_in_time, ConditionArgs};
 
 #[derive(Debug, Args)]
 pub struct PredictArgs {
     /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
-    /// Impact model (standard, adjusted, slip, continuous, ...: `impact::registry`).
+    /// Impact model (standard, adjusted, slip, continuous, ...: `impact::registry`); a group (`both`) or a
+    /// comma-separated list answers each line once per model, each answer naming its `model`.
     #[arg(long, default_value = "adjusted", value_parser = model_name)]
     pub model: String,
     /// Coefficient of restitution along the face normal (seed eq. 3.6).
@@ -48,15 +49,20 @@ pub fn run(args: &PredictArgs) -> Result<ExitCode> {
     if args.trace && !resolved_in_time(&args.model) {
         bail!("--trace needs a model resolved in time (continuous, ground), not {}", args.model);
     }
-    let model = one_model(&args.model, &loaded, args.cor)?;
-    let predictor = if args.trace { Predictor::Traced(model.as_ref()) } else { Predictor::Plain(model.as_ref()) };
+    // One model, or a group or list of them (`both`): each line is answered by each, naming it.
+    let options = impactd::impact::registry::BuildOptions { cor: args.cor, ..Default::default() };
+    let models = impactd::impact::registry::build(&args.model, &loaded, &options)?;
+    let predictors: Vec<Predictor<'_>> = models
+        .iter()
+        .map(|m| if args.trace { Predictor::Traced(m.as_ref()) } else { Predictor::Plain(m.as_ref()) })
+        .collect();
     let input = open_input(args.input.as_deref())?;
     let (out, err) = (std::io::stdout().lock(), std::io::stderr().lock());
     let tally = if args.flight {
         let lines = super::flight_lines::FlightLines::new(out, args.conditions.flight(args.firmness)?);
-        impactd::predict::run(&loaded.club, predictor, input, lines, err)?
+        impactd::predict::run_models(&loaded.club, &predictors, input, lines, err)?
     } else {
-        impactd::predict::run(&loaded.club, predictor, input, out, err)?
+        impactd::predict::run_models(&loaded.club, &predictors, input, out, err)?
     };
     Ok(exit_code(tally))
 }

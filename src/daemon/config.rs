@@ -20,6 +20,9 @@
 //! [rig.club_from_body]          # the tracked body's pose in the club frame; default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
+//! [rig.labels]                 # the labels of the shots until a put on golf/<rig>/session replaces them
+//! player = "ann"
+//! tags = ["fitting"]
 //! [rig.simulator]               # send each shot to a golf simulator over Open Connect v1 (GSPro, OpenGolfSim)
 //! open_connect = "127.0.0.1:921"
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
@@ -90,6 +93,9 @@ pub struct RigConfig {
     /// The rig's samples straight from a NatNet or QTM server (besides `mocap/<rig>/clubhead`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub input: Option<MocapInputConfig>,
+    /// The labels of the rig's shots until a put on `golf/<rig>/session` replaces them.
+    #[serde(default, skip_serializing_if = "crate::wire::ShotLabels::is_empty")]
+    pub labels: crate::wire::ShotLabels,
 }
 
 fn default_true() -> bool {
@@ -167,6 +173,7 @@ impl Default for DaemonConfig {
                 simulator: None,
                 launch_monitor: None,
                 input: None,
+                labels: Default::default(),
             }],
         }
     }
@@ -268,6 +275,8 @@ impl DaemonConfig {
                 setup.estimator = estimator;
                 setup.calibration = calibration;
                 setup.detector.ball_position_m = Vector3::from(r.ball_position_m);
+                r.labels.check().map_err(|e| invalid(f("labels"), e.to_string()))?;
+                setup.labels = r.labels.clone();
                 Ok(setup)
             })
             .collect()

@@ -10,9 +10,8 @@ use crate::impact::{Equipment, ImpactState, LaunchMetrics};
 use crate::math::Real;
 use crate::wire::{DeliveryInput, Handedness, LaunchFields, MeasuredLaunch};
 
-/// One line of a dataset.
+/// One line of a dataset. Other fields (labels, notes) are not read.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct DatasetLine {
     pub delivery: DeliveryInput,
     pub measured: LaunchFields,

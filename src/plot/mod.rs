@@ -3,11 +3,13 @@
 
 use std::fmt::Write;
 
+mod dispersion;
 mod face_map;
 mod figures;
 mod ground;
 mod heatmap;
 mod line;
+pub use dispersion::{dispersion_svg, ellipse, mean_covariance, DispersionGroup};
 pub use face_map::{face_map, MapMetric};
 pub use figures::{
     delivery_conditions, delivery_title, forces_chart, maw_plate_chart, trajectories_figure, trajectories_svg,

@@ -20,9 +20,9 @@ pub enum Handedness {
 }
 
 /// A TrackMan-style delivery as read by `impactd predict`: flat fields with units in their names. Missing numbers
-/// default to 0, except `dynamic_loft_deg`, which defaults to the club's static loft.
+/// default to 0, except `dynamic_loft_deg`, which defaults to the club's static loft. Other fields are not read
+/// (`impactd predict` passes them through to its answer).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
 pub struct DeliveryInput {
     #[serde(default)]
     pub club_speed_mph: Real,
@@ -60,6 +60,19 @@ pub struct OutOfBounds {
 }
 
 impl DeliveryInput {
+    /// The fields a delivery reads (the others of a line pass through `impactd predict`).
+    pub const FIELDS: [&'static str; 9] = [
+        "club_speed_mph",
+        "attack_angle_deg",
+        "club_path_deg",
+        "face_angle_deg",
+        "dynamic_loft_deg",
+        "impact_h_mm",
+        "impact_v_mm",
+        "club_angular_velocity_radps",
+        "handedness",
+    ];
+
     /// Every angle and the angular velocity within plausible bounds (a model would answer nonsense beyond them;
     /// club speed and impact location are checked by the models, which name them).
     pub fn check_plausible(&self) -> Result<(), OutOfBounds> {
@@ -174,5 +187,27 @@ impl PredictOutput {
             ball_velocity_mps: [v.x, v.y, v.z],
             ball_spin_radps: [w.x, w.y, w.z],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `DeliveryInput::FIELDS` names every field of the struct, so none is passed through as unknown.
+    #[test]
+    fn fields_name_every_field() {
+        let full = DeliveryInput {
+            dynamic_loft_deg: Some(1.0),
+            club_angular_velocity_radps: Some([0.0; 3]),
+            handedness: Some(Handedness::Left),
+            ..Default::default()
+        };
+        let value = serde_json::to_value(full).unwrap();
+        let mut keys: Vec<&str> = value.as_object().unwrap().keys().map(String::as_str).collect();
+        keys.sort_unstable();
+        let mut fields = DeliveryInput::FIELDS.to_vec();
+        fields.sort_unstable();
+        assert_eq!(keys, fields);
     }
 }

@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 use crate::math::{Real, Vector3};
 
 /// A launch as read by `impactd flight`: the fields `impactd predict` writes. The vectors, when present, are used
-/// as they are; otherwise speed, angles and spins (backspin and sidespin, or total spin and spin axis).
+/// as they are; otherwise speed, angles and spins (backspin and sidespin, or total spin and spin axis). Other fields
+/// (labels, `warnings`, an earlier flight's `apex_m`) are not read: `impactd flight` passes them through.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
 pub struct FlightInput {
     pub ball_speed_mps: Option<Real>,
     pub ball_speed_mph: Option<Real>,

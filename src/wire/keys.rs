@@ -74,6 +74,25 @@ pub fn foxglove_impact_scene(rig: &str) -> String {
 pub fn foxglove_ball_flight(rig: &str) -> String {
     format!("foxglove/{rig}/ball_flight")
 }
+/// In: [`ShotLabels`](super::ShotLabels), the labels (player, club, tags, note) of the rig's shots from now on;
+/// each put replaces the labels before it. Recorded.
+pub fn session(rig: &str) -> String {
+    format!("golf/{rig}/session")
+}
+/// Every rig's session labels.
+pub const SESSION_ALL: &str = "golf/*/session";
+/// The rig name of a `golf/<rig>/session` key.
+pub fn rig_of_session(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("golf/")?;
+    let rig = rest.strip_suffix("/session")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
+/// The rig name of a `sim/<rig>/truth` key.
+pub fn rig_of_truth(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("sim/")?;
+    let rig = rest.strip_suffix("/truth")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
 /// The rig name of a `golf/<rig>/launch` key.
 pub fn rig_of_launch(key: &str) -> Option<&str> {
     let rest = key.strip_prefix("golf/")?;

@@ -144,6 +144,9 @@ pub struct ImpactMessage {
     pub state: ImpactStateMsg,
     pub delivery: crate::impact::DeliveryMetrics,
     pub quality: Quality,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
 }
 
 /// A predicted launch, on `golf/<rig>/launch`.
@@ -172,6 +175,9 @@ pub struct LaunchPrediction {
     /// turf, seed chapter 4); none for the other models.
     #[serde(default, flatten, skip_serializing_if = "crate::impact::report::WireReports::is_empty")]
     pub reports: crate::impact::report::WireReports,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.

@@ -9,6 +9,7 @@ mod bridge;
 mod delivery;
 mod flight;
 pub mod keys;
+mod labels;
 mod measured;
 mod messages;
 mod mocap;
@@ -21,6 +22,7 @@ pub use bridge::{
 };
 pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
 pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
+pub use labels::{LabelsError, ShotLabels, MAX_LABEL_BYTES, MAX_TAGS};
 pub use measured::{ComparisonMessage, ComparisonStatus, LaunchFields, MeasuredClubData, MeasuredLaunch};
 pub use messages::{
     ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,

@@ -24,6 +24,7 @@ pub enum MessageType {
     ComparisonMessage,
     OpenConnectTraffic,
     MocapInputStatus,
+    ShotLabels,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -72,6 +73,7 @@ messages! {
     ComparisonMessage => ComparisonMessage,
     OpenConnectTraffic => OpenConnectTraffic,
     MocapInputStatus => MocapInputStatus,
+    ShotLabels => ShotLabels,
 }
 
 impl MessageType {

@@ -6,7 +6,7 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 use std::time::Instant;
 
-use super::{Incoming, Worker};
+use super::{Incoming, InputKind, Worker};
 use crate::daemon::{wall_ns, DaemonError};
 use crate::wire::{self, keys, ComparisonMessage, MeasuredLaunch};
 
@@ -21,7 +21,7 @@ pub(super) async fn subscribe(
         .declare_subscriber(keys::measured_launch(rig))
         .callback(move |sample| {
             let incoming = Incoming {
-                measured: true,
+                kind: InputKind::Measured,
                 received: Instant::now(),
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),

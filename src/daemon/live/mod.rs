@@ -35,9 +35,11 @@ use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod inputs;
+mod labels;
 mod measured;
 pub mod sinks;
 pub mod stats;
+mod truth;
 
 /// Length of each rig's input queue.
 pub const RIG_QUEUE: usize = 1 << 14;
@@ -72,9 +74,21 @@ pub struct RunSummary {
     pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
 }
 
+/// What a queued payload is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum InputKind {
+    /// A clubhead sample (`mocap/<rig>/clubhead`).
+    Sample,
+    /// A measured launch (`lm/<rig>/launch`).
+    Measured,
+    /// Session labels (`golf/<rig>/session`).
+    Labels,
+    /// A synthetic rig's truth (`sim/<rig>/truth`).
+    Truth,
+}
+
 struct Incoming {
-    /// A measured launch (`lm/<rig>/launch`) rather than a clubhead sample.
-    measured: bool,
+    kind: InputKind,
     received: Instant,
     log_time_ns: u64,
     payload: Vec<u8>,
@@ -141,7 +155,9 @@ pub async fn run(
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
-        measured_subscribers.push(measured::subscribe(session, &name, tx, queue_dropped.clone()).await?);
+        measured_subscribers.push(measured::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
+        measured_subscribers.push(labels::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
+        measured_subscribers.push(truth::subscribe(session, &name, tx, queue_dropped.clone()).await?);
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
@@ -214,7 +230,7 @@ pub async fn run(
                 return;
             };
             let incoming = Incoming {
-                measured: false,
+                kind: InputKind::Sample,
                 received,
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),
@@ -342,8 +358,11 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
-        if incoming.measured {
-            return self.on_measured(incoming);
+        match incoming.kind {
+            InputKind::Sample => {}
+            InputKind::Measured => return self.on_measured(incoming),
+            InputKind::Labels => return self.on_labels(incoming),
+            InputKind::Truth => return self.on_truth(incoming),
         }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {

@@ -194,6 +194,22 @@ impl RigSinks {
         self.record::<MeasuredLaunch>(&self.keys.measured, log_time_ns, t_ns, payload);
     }
 
+    /// Records a synthetic rig's truth as it arrived (`sim/<rig>/truth`).
+    pub fn truth(&self, log_time_ns: u64, t_impact_ns: u64, payload: Vec<u8>) {
+        self.record::<crate::wire::TruthMessage>(
+            &crate::wire::keys::truth(&self.rig),
+            log_time_ns,
+            t_impact_ns,
+            payload,
+        );
+    }
+
+    /// Records the session labels a put set (`golf/<rig>/session`).
+    pub fn labels(&self, log_time_ns: u64, labels: &crate::wire::ShotLabels) {
+        let data = serde_json::to_vec(labels).unwrap_or_default();
+        self.record::<crate::wire::ShotLabels>(&crate::wire::keys::session(&self.rig), log_time_ns, log_time_ns, data);
+    }
+
     /// Records a measured-launch payload that could not be used, beside the reason.
     pub fn measured_rejected(&self, log_time_ns: u64, rejected: &RejectedInput) {
         let data = serde_json::to_vec(rejected).unwrap_or_default();

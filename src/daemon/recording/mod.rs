@@ -1,8 +1,10 @@
 //! The recording: the MCAP writer the live loop and replay feed, the bounded reader of possibly damaged files
-//! and its record parser, `info`, `recover`, and the shots a recording holds; and C3D captures (`c3d`).
+//! and its record parser, `info`, `recover`, the shots and predicted launches a recording holds; and C3D
+//! captures (`c3d`).
 
 pub mod c3d;
 pub mod info;
+pub mod launches;
 pub mod reader;
 pub mod record;
 mod records;

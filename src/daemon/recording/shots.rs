@@ -18,6 +18,8 @@ pub struct RecordedShots {
     pub comparisons: Vec<ComparisonMessage>,
     /// The club the predictions were made with (the first prediction's).
     pub club: Option<String>,
+    /// How many of `lines` are measured by a synthetic rig's recorded truth (`sim/<rig>/truth`).
+    pub truths: usize,
     /// What could not be read.
     pub damage: Vec<String>,
 }
@@ -38,15 +40,25 @@ pub fn delivery_input(p: &LaunchPrediction) -> DeliveryInput {
     }
 }
 
+/// The widest gap between a prediction's impact time and the synthetic truth it is paired with (ns).
+pub const TRUTH_WINDOW_NS: u64 = 5_000_000;
+
 /// Reads the comparisons and predictions of an MCAP recording.
 pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
     let bytes = crate::daemon::replay::read_file(path)?;
     let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut out = RecordedShots { damage: scan.problems(), ..Default::default() };
     let mut predictions: BTreeMap<(String, u64), LaunchPrediction> = BTreeMap::new();
+    let mut truths: Vec<crate::wire::TruthMessage> = Vec::new();
     for m in &scan.messages {
         let Some(channel) = scan.channels.get(&m.channel_id) else { continue };
         let topic = channel.topic.as_str();
+        if crate::wire::keys::rig_of_truth(topic.trim_start_matches('/')).is_some() {
+            if let Ok(t) = serde_json::from_slice::<crate::wire::TruthMessage>(&m.data) {
+                truths.push(t);
+            }
+            continue;
+        }
         if !topic.starts_with("/golf/") {
             continue;
         }
@@ -71,6 +83,30 @@ pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
             let mut measured = c.measured.clone();
             measured.carry_yd = None;
             seen.insert(key, DatasetLine { delivery: delivery_input(p), measured });
+        }
+    }
+    // A synthetic rig's shots: each prediction measured against the truth of its impact (the same rig, impact
+    // times within TRUTH_WINDOW_NS), when no launch monitor measured it.
+    for (key, p) in &predictions {
+        if seen.contains_key(key) {
+            continue;
+        }
+        let truth = truths
+            .iter()
+            .filter(|t| t.rig == p.rig && t.t_impact_ns.abs_diff(p.t_impact_ns) <= TRUTH_WINDOW_NS)
+            .min_by_key(|t| t.t_impact_ns.abs_diff(p.t_impact_ns));
+        if let Some(t) = truth {
+            let m = &t.launch.launch;
+            let measured = crate::wire::LaunchFields {
+                ball_speed_mph: m.ball_speed_mph,
+                launch_angle_deg: m.launch_angle_deg,
+                launch_direction_deg: m.launch_direction_deg,
+                backspin_rpm: m.backspin_rpm,
+                sidespin_rpm: m.sidespin_rpm,
+                carry_yd: None,
+            };
+            seen.insert(key.clone(), DatasetLine { delivery: delivery_input(p), measured });
+            out.truths += 1;
         }
     }
     out.lines = seen.into_values().collect();

@@ -12,10 +12,16 @@ use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
 pub struct ReplayInput {
     /// Samples in arrival order.
     pub samples: Vec<ClubheadSampleMsg>,
+    /// When each sample was received (ns since the Unix epoch: the recording's log time; a JSONL sample's
+    /// `t_ns`), so a replay's recording keeps the session's timing.
+    pub log_time_ns: Vec<u64>,
     /// The recorded predictions' bytes, in order.
     pub recorded_launches: Vec<Vec<u8>>,
     /// Recorded latency per (rig, shot).
     pub recorded_latency_us: HashMap<(String, u64, String), f64>,
+    /// Session labels as recorded (`golf/<rig>/session`): `(i, rig, labels)` label that rig's shots from sample
+    /// `i` of `samples` on.
+    pub labels: Vec<(usize, String, crate::wire::ShotLabels)>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
@@ -93,6 +99,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 Ok(text) if text.trim().is_empty() => continue,
                 Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
                     Ok(msg) => {
+                        input.log_time_ns.push(msg.t_ns);
                         input.samples.push(msg);
                         continue;
                     }
@@ -117,9 +124,19 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         let topic = channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
             match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
-                Ok(msg) => input.samples.push(msg),
+                Ok(msg) => {
+                    input.log_time_ns.push(message.log_time);
+                    input.samples.push(msg);
+                }
                 Err(e) => {
                     input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                }
+            }
+        } else if let Some(rig) = keys::rig_of_session(topic) {
+            match crate::wire::ShotLabels::parse(&message.data) {
+                Ok(l) => input.labels.push((input.samples.len(), rig.to_string(), l)),
+                Err(e) => {
+                    input.damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time))
                 }
             }
         } else if keys::rig_of_launch(topic).is_some() {

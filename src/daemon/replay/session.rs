@@ -100,13 +100,14 @@ struct ReplayRig {
 }
 
 impl ReplayRig {
-    fn publish_status(&self, t_ns: u64) {
+    /// `t_ns` on the rig's clock (for the uptime), stamped `log_time_ns` (the recording's receive time).
+    fn publish_status(&self, t_ns: u64, log_time_ns: u64) {
         let inputs = StatusInputs {
             counts: &self.pipeline.counts,
             queue_dropped: 0,
             latency: &self.latency,
             uptime_s: t_ns.saturating_sub(self.first_t_ns.unwrap_or(t_ns)) as f64 * 1e-9,
-            t_ns: wall_ns(),
+            t_ns: log_time_ns,
             unknown_rig_samples: 0,
             rejected_not_recorded: 0,
             recorder_error: self.sinks.recorder().error(),
@@ -175,7 +176,14 @@ pub async fn run(
     let period_ns = (config.status_period_s * 1e9) as u64;
     let (start, mut first_t, mut paused) = (Instant::now(), None, Duration::ZERO);
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
-    for msg in &input.samples {
+    let mut labels = input.labels.iter().peekable();
+    for (i, msg) in input.samples.iter().enumerate() {
+        while let Some((_, name, l)) = labels.next_if(|(at, _, _)| *at <= i) {
+            if let Some(rig) = rigs.get_mut(name) {
+                rig.sinks.labels(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), l);
+                rig.pipeline.set_labels(l.clone());
+            }
+        }
         stats.samples += 1;
         let Some(rig) = rigs.get_mut(&msg.rig) else {
             stats.unknown_rig += 1;
@@ -195,7 +203,8 @@ pub async fn run(
         if let Some(publisher) = sample_publishers.get(&msg.rig) {
             publisher.put(serde_json::to_vec(msg).unwrap_or_default()).await.map_err(DaemonError::zenoh)?;
         }
-        let log_time_ns = wall_ns();
+        // The recording's own receive time: a replay's recording has the session's timing, not the replay's.
+        let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
         let sample = msg.to_sample();
         if handle.enabled() {
             rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(msg).unwrap_or_default());
@@ -208,12 +217,12 @@ pub async fn run(
                     l.latency_us = recorded_latency(input, l);
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
-                    let bytes = rig.sinks.launch(l, wall_ns());
+                    let bytes = rig.sinks.launch(l, log_time_ns);
                     on_event(e, &bytes);
                     produced.push(bytes);
                 }
                 Event::Impact(m) => {
-                    rig.sinks.impact(m, wall_ns());
+                    rig.sinks.impact(m, log_time_ns);
                     on_event(e, &[]);
                 }
                 Event::Failed { .. } => {
@@ -234,12 +243,15 @@ pub async fn run(
             rig.next_status_ns = t0.saturating_add(period_ns);
         }
         if msg.t_ns >= rig.next_status_ns {
-            rig.publish_status(msg.t_ns);
+            rig.publish_status(msg.t_ns, log_time_ns);
             rig.next_status_ns = rig.next_status_ns.saturating_add(period_ns);
         }
     }
     for rig in rigs.values() {
-        rig.publish_status(input.samples.iter().rev().find(|m| m.rig == rig.pipeline.setup.name).map_or(0, |m| m.t_ns));
+        let last = input.samples.iter().enumerate().rev().find(|(_, m)| m.rig == rig.pipeline.setup.name);
+        let (t_ns, log_time_ns) =
+            last.map_or((0, wall_ns()), |(i, m)| (m.t_ns, input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns)));
+        rig.publish_status(t_ns, log_time_ns);
     }
     // The writer finishes once every sink's handle is gone.
     drop(rigs);

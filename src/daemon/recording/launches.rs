@@ -1,0 +1,60 @@
+//! The predicted launches of MCAP recordings (`golf/<rig>/launch`), one per shot: the first model's (the one
+//! published first), or the named model's.
+
+use std::path::Path;
+
+use crate::daemon::DaemonError;
+use crate::wire::{keys, LaunchPrediction};
+
+/// The launches of one recording.
+#[derive(Debug, Default)]
+pub struct RecordedLaunches {
+    /// One prediction per (rig, shot), in recording order.
+    pub launches: Vec<LaunchPrediction>,
+    /// Every model the recording holds predictions of, in order of first appearance.
+    pub models: Vec<String>,
+    /// What could not be read (a damaged tail, a prediction that does not parse).
+    pub damage: Vec<String>,
+}
+
+/// Reads the launches of `path`; with `model`, only that model's (an error when the recording has none of it).
+pub fn read(path: &Path, model: Option<&str>) -> Result<RecordedLaunches, DaemonError> {
+    let bytes = crate::daemon::replay::read_file(path)?;
+    if !crate::daemon::replay::is_mcap(&bytes) {
+        return Err(DaemonError::BadOption { option: "FILE", reason: "not an MCAP recording" });
+    }
+    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
+    let mut out = RecordedLaunches { damage: scan.problems(), ..Default::default() };
+    let mut seen = std::collections::HashSet::new();
+    for m in &scan.messages {
+        let Some(channel) = scan.channels.get(&m.channel_id) else { continue };
+        if keys::rig_of_launch(channel.topic.trim_start_matches('/')).is_none() {
+            continue;
+        }
+        let p = match serde_json::from_slice::<LaunchPrediction>(&m.data) {
+            Ok(p) => p,
+            Err(e) => {
+                out.damage.push(format!("a prediction at log time {} does not parse: {e}", m.log_time));
+                continue;
+            }
+        };
+        if !out.models.contains(&p.model) {
+            out.models.push(p.model.clone());
+        }
+        if model.is_some_and(|name| name != p.model) {
+            continue;
+        }
+        if seen.insert((p.rig.clone(), p.shot)) {
+            out.launches.push(p);
+        }
+    }
+    if let Some(name) = model {
+        if out.launches.is_empty() && !out.models.is_empty() {
+            return Err(DaemonError::Config {
+                field: "--model".into(),
+                reason: format!("{} holds predictions of {} only, not {name}", path.display(), out.models.join(", ")),
+            });
+        }
+    }
+    Ok(out)
+}

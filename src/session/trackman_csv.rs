@@ -1,0 +1,315 @@
+//! TrackMan Performance Studio's CSV layout, out and in: a `sep=,` line, the header, a units row, then one row
+//! per shot, every value quoted; right positive for club path, face angle and launch direction (as on the wire).
+//! Out: a recorded prediction per row (club data from the rig's delivery, ball data from the launch and its
+//! flight). In: rows with club and ball data as measured shots for `compare` and `fit` (the club data is the
+//! delivery, the ball data the measurement), in imperial or metric units as the units row says.
+
+use crate::identify::DatasetLine;
+use crate::math::Real;
+use crate::units::{MPS_PER_MPH, M_PER_YD};
+use crate::wire::{DeliveryInput, LaunchFields, LaunchPrediction};
+
+/// The columns of an export, with their units row (empty for text).
+pub const COLUMNS: [(&str, &str); 61] = [
+    ("Date", ""),
+    ("TMD No", ""),
+    ("TMD Filename", ""),
+    ("Player", ""),
+    ("Club", ""),
+    ("Ball", ""),
+    ("Club Speed", "[mph]"),
+    ("Attack Angle", "[deg]"),
+    ("Club Path", "[deg]"),
+    ("Low Point", "[in]"),
+    ("Swing Plane", "[deg]"),
+    ("Swing Direction", "[deg]"),
+    ("Dyn. Loft", "[deg]"),
+    ("Face Angle", "[deg]"),
+    ("Face To Path", "[deg]"),
+    ("Ball Speed", "[mph]"),
+    ("Smash Factor", "[]"),
+    ("Launch Angle", "[deg]"),
+    ("Launch Direction", "[deg]"),
+    ("Spin Rate", "[rpm]"),
+    ("Spin Rate Type", ""),
+    ("Spin Axis", "[deg]"),
+    ("Max Height - Dist.", "[yds]"),
+    ("Max Height - Height", "[ft]"),
+    ("Max Height - Side", "[ft]"),
+    ("Last data Point - Length", "[yds]"),
+    ("Last data Point - Side", "[ft]"),
+    ("Last data Point - Height", "[ft]"),
+    ("Last data Point - Time", "[s]"),
+    ("Carry Flat - Length", "[yds]"),
+    ("Carry Flat - Side", "[yds]"),
+    ("Carry Flat - Land. Angle", "[deg]"),
+    ("Carry Flat - Ball Speed", "[mph]"),
+    ("Carry Flat - Time", "[s]"),
+    ("Est. Total Flat - Length", "[yds]"),
+    ("Est. Total Flat - Side", "[yds]"),
+    ("Dynamic Lie", "[deg]"),
+    ("Impact Offset", "[mm]"),
+    ("Impact Height", "[mm]"),
+    ("Curve", "[ft]"),
+    ("Spin Axis (Sim)", "[deg]"),
+    ("Curve (Sim)", "[ft]"),
+    ("Carry (Sim)", "[yds]"),
+    ("Total (Sim)", "[yds]"),
+    ("Carry Side (Sim)", "[ft]"),
+    ("Total side (Sim)", "[ft]"),
+    ("Landing Angle (Sim)", "[deg]"),
+    ("Spin Loft", "[deg]"),
+    ("Swing Radius", "[in]"),
+    ("Low Point Height", "[mm]"),
+    ("Low Point Side", "[mm]"),
+    ("D Plane Tilt", "[deg]"),
+    ("Ball Speed Diff", "[mph]"),
+    ("Smash Index", "[]"),
+    ("Spin Rate Diff", "[rpm]"),
+    ("Spin Index", "[]"),
+    ("Gyro Angle", "[deg]"),
+    ("Use In Stat", ""),
+    ("Tags", ""),
+    ("Condition", ""),
+    ("Email", ""),
+];
+
+/// Why a TrackMan CSV cannot be read; each names the row (1-based, as a spreadsheet counts) and column.
+#[derive(Debug, thiserror::Error)]
+pub enum TrackmanCsvError {
+    #[error("not a TrackMan export: {0}")]
+    Layout(String),
+    #[error("row {row}: {source}")]
+    Csv {
+        row: usize,
+        #[source]
+        source: csv::Error,
+    },
+    #[error("row {row}, column `{column}`: `{value}` is not a number")]
+    Number { row: usize, column: String, value: String },
+    #[error("row {row}: column `{column}` is empty (a measured shot needs it)")]
+    Missing { row: usize, column: &'static str },
+    #[error("column `{column}`: unit `{unit}` is not one impactd reads")]
+    Unit { column: String, unit: String },
+    #[error("writing: {0}")]
+    Write(#[source] csv::Error),
+}
+
+fn num(v: Real, decimals: usize) -> String {
+    if v.is_finite() {
+        format!("{v:.decimals$}")
+    } else {
+        String::new()
+    }
+}
+
+/// The row of one prediction (imperial, as [`COLUMNS`]'s units row). `file` names the recording.
+pub fn row(p: &LaunchPrediction, file: &str, date: &str) -> Vec<String> {
+    let d = &p.delivery;
+    let l = &p.launch;
+    let arc = d.swing_arc;
+    let f = p.flight.as_ref();
+    let yd = |m: Real| m / M_PER_YD;
+    let ft = |m: Real| m / 0.3048;
+    let opt = |v: Option<Real>, decimals| v.map_or(String::new(), |v| num(v, decimals));
+    let mut cells = vec![String::new(); COLUMNS.len()];
+    let mut set = |name: &str, value: String| {
+        if let Some(i) = COLUMNS.iter().position(|(n, _)| *n == name) {
+            cells[i] = value;
+        }
+    };
+    set("Date", date.to_string());
+    set("TMD No", p.shot.to_string());
+    set("TMD Filename", file.to_string());
+    set("Player", p.labels.player.clone().unwrap_or_default());
+    set("Club", super::club_of(p).to_string());
+    set("Club Speed", num(d.club_speed_mph, 6));
+    set("Attack Angle", num(d.attack_angle_deg, 6));
+    set("Club Path", num(d.club_path_deg, 6));
+    set("Low Point", opt(arc.map(|a| a.low_point_distance_mm / 25.4), 6));
+    set("Swing Plane", opt(arc.map(|a| a.swing_plane_deg), 6));
+    set("Swing Direction", opt(arc.map(|a| a.swing_direction_deg), 6));
+    set("Dyn. Loft", num(d.dynamic_loft_deg, 6));
+    set("Face Angle", num(d.face_angle_deg, 6));
+    set("Face To Path", num(d.face_to_path_deg, 6));
+    set("Ball Speed", num(l.launch.ball_speed_mph, 6));
+    set("Smash Factor", num(l.smash_factor, 6));
+    set("Launch Angle", num(l.launch.launch_angle_deg, 6));
+    set("Launch Direction", num(l.launch.launch_direction_deg, 6));
+    set("Spin Rate", num(l.launch.total_spin_rpm, 3));
+    set("Spin Rate Type", "Estimated".into());
+    set("Spin Axis", num(l.launch.spin_axis_deg, 6));
+    set("Max Height - Height", opt(f.map(|f| ft(f.apex_m)), 6));
+    set("Carry Flat - Length", opt(f.map(|f| yd(f.carry_m)), 6));
+    set("Carry Flat - Side", opt(f.map(|f| yd(f.offline_m)), 6));
+    set("Carry Flat - Land. Angle", opt(f.map(|f| f.land_angle_deg), 6));
+    set("Carry Flat - Ball Speed", opt(f.map(|f| f.land_speed_mps / MPS_PER_MPH), 6));
+    set("Carry Flat - Time", opt(f.map(|f| f.hang_time_s), 6));
+    set("Est. Total Flat - Length", opt(f.map(|f| yd(f.total_m)), 6));
+    set("Dynamic Lie", num(d.dynamic_lie_deg, 6));
+    set("Impact Offset", num(d.impact_h_mm, 6));
+    set("Impact Height", num(d.impact_v_mm, 6));
+    set("Spin Loft", num(d.spin_loft_deg, 6));
+    set("Low Point Height", opt(arc.map(|a| a.low_point_height_mm), 6));
+    set("Use In Stat", "TRUE".into());
+    set("Tags", p.labels.tags.join(";"));
+    cells
+}
+
+/// Writes the `sep=,` line, the header and the units row, then `rows`.
+pub fn write(out: impl std::io::Write, rows: &[Vec<String>]) -> Result<(), TrackmanCsvError> {
+    let mut out = out;
+    out.write_all(b"sep=,\r\n").map_err(|e| TrackmanCsvError::Write(e.into()))?;
+    let mut w = csv::WriterBuilder::new()
+        .quote_style(csv::QuoteStyle::Always)
+        .terminator(csv::Terminator::CRLF)
+        .from_writer(out);
+    w.write_record(COLUMNS.iter().map(|c| c.0)).map_err(TrackmanCsvError::Write)?;
+    w.write_record(COLUMNS.iter().map(|c| c.1)).map_err(TrackmanCsvError::Write)?;
+    for r in rows {
+        w.write_record(r).map_err(TrackmanCsvError::Write)?;
+    }
+    w.flush().map_err(|e| TrackmanCsvError::Write(e.into()))
+}
+
+/// Whether `text` looks like a TrackMan export (a `sep=` line, or a header with `Club Speed` and `Ball Speed`).
+pub fn is_trackman_csv(text: &str) -> bool {
+    let first = text.trim_start_matches('\u{feff}').lines().next().unwrap_or("");
+    first.trim().starts_with("sep=") || (first.contains("Club Speed") && first.contains("Ball Speed"))
+}
+
+/// How many base units (mph, deg, rpm, yd, mm) one of `unit` is.
+fn factor(column: &str, unit: &str) -> Result<Real, TrackmanCsvError> {
+    let f = match unit {
+        "" | "[]" | "[mph]" | "[deg]" | "[rpm]" | "[yds]" | "[mm]" => 1.0,
+        "[km/h]" => 1.0 / 1.609344,
+        "[m/s]" => 1.0 / MPS_PER_MPH,
+        "[m]" if column.contains("Length") => 1.0 / M_PER_YD,
+        "[cm]" => 10.0,
+        _ => return Err(TrackmanCsvError::Unit { column: column.into(), unit: unit.into() }),
+    };
+    Ok(f)
+}
+
+/// The measured shots of a TrackMan export: rows with club data (club speed) and ball data (ball speed, launch
+/// angle and direction, spin rate and axis). Rows without club or ball data are skipped and counted.
+pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
+    let text = text.trim_start_matches('\u{feff}');
+    let (body, first_row) = match text.lines().next() {
+        Some(l) if l.trim().starts_with("sep=") => (&text[l.len()..], 2),
+        _ => (text, 1),
+    };
+    let mut rows =
+        csv::ReaderBuilder::new().has_headers(false).flexible(true).from_reader(body.trim_start().as_bytes());
+    let mut records = rows.records();
+    let header = match records.next() {
+        Some(r) => r.map_err(|source| TrackmanCsvError::Csv { row: first_row, source })?,
+        None => return Err(TrackmanCsvError::Layout("no header row".into())),
+    };
+    let col = |name: &str| header.iter().position(|h| h.trim() == name);
+    let need = [
+        "Club Speed",
+        "Attack Angle",
+        "Club Path",
+        "Face Angle",
+        "Ball Speed",
+        "Launch Angle",
+        "Launch Direction",
+        "Spin Rate",
+        "Spin Axis",
+    ];
+    for n in need {
+        if col(n).is_none() {
+            return Err(TrackmanCsvError::Layout(format!("no column `{n}` in the header")));
+        }
+    }
+    let units = match records.next() {
+        Some(r) => r.map_err(|source| TrackmanCsvError::Csv { row: first_row + 1, source })?,
+        None => return Ok((Vec::new(), 0)),
+    };
+    let has_units = units.iter().any(|u| u.trim().starts_with('['));
+    let mut lines = Vec::new();
+    let mut skipped = 0;
+    let data = if has_units { None } else { Some(Ok(units.clone())) };
+    let first_data = first_row + if has_units { 2 } else { 1 };
+    for (k, rec) in data.into_iter().chain(records).enumerate() {
+        let row = first_data + k;
+        let rec = rec.map_err(|source| TrackmanCsvError::Csv { row, source })?;
+        let value = |name: &'static str| -> Result<Option<Real>, TrackmanCsvError> {
+            let Some(i) = col(name) else { return Ok(None) };
+            let cell = rec.get(i).unwrap_or("").trim();
+            if cell.is_empty() {
+                return Ok(None);
+            }
+            let v: Real =
+                cell.parse().map_err(|_| TrackmanCsvError::Number { row, column: name.into(), value: cell.into() })?;
+            let unit = if has_units { units.get(i).unwrap_or("").trim() } else { "" };
+            Ok(Some(v * factor(name, unit)?))
+        };
+        let (Some(club_speed), Some(ball_speed)) = (value("Club Speed")?, value("Ball Speed")?) else {
+            skipped += 1;
+            continue;
+        };
+        let must = |name: &'static str| value(name)?.ok_or(TrackmanCsvError::Missing { row, column: name });
+        let (spin, axis) = (must("Spin Rate")?, value("Spin Axis")?.unwrap_or(0.0));
+        let delivery = DeliveryInput {
+            club_speed_mph: club_speed,
+            attack_angle_deg: value("Attack Angle")?.unwrap_or(0.0),
+            club_path_deg: value("Club Path")?.unwrap_or(0.0),
+            face_angle_deg: value("Face Angle")?.unwrap_or(0.0),
+            dynamic_loft_deg: value("Dyn. Loft")?,
+            impact_h_mm: value("Impact Offset")?.unwrap_or(0.0),
+            impact_v_mm: value("Impact Height")?.unwrap_or(0.0),
+            club_angular_velocity_radps: None,
+            handedness: None,
+        };
+        let axis_rad = axis.to_radians();
+        let measured = LaunchFields {
+            ball_speed_mph: ball_speed,
+            launch_angle_deg: must("Launch Angle")?,
+            launch_direction_deg: must("Launch Direction")?,
+            backspin_rpm: spin * axis_rad.cos(),
+            sidespin_rpm: spin * axis_rad.sin(),
+            carry_yd: value("Carry Flat - Length")?,
+        };
+        lines.push(DatasetLine { delivery, measured });
+    }
+    Ok((lines, skipped))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A hand-made export in TrackMan's layout (metric units row) reads as measured shots; a row without club data
+    /// is skipped; a bad number names its row and column.
+    #[test]
+    fn an_export_reads_as_measured_shots() {
+        let header: Vec<&str> = COLUMNS.iter().map(|c| c.0).collect();
+        let mut units: Vec<&str> = COLUMNS.iter().map(|c| c.1).collect();
+        units[6] = "[km/h]";
+        units[15] = "[km/h]";
+        let mut row = vec![""; COLUMNS.len()];
+        row[6] = "160.934";
+        row[7] = "-2";
+        row[15] = "241.4016";
+        row[17] = "12";
+        row[18] = "1.5";
+        row[19] = "3000";
+        row[21] = "10";
+        let empty = vec![""; COLUMNS.len()];
+        let q = |r: &[&str]| r.iter().map(|c| format!("\"{c}\"")).collect::<Vec<_>>().join(",");
+        let text = format!("sep=,\n{}\n{}\n{}\n{}\n", q(&header), q(&units), q(&row), q(&empty));
+        assert!(is_trackman_csv(&text));
+        let (lines, skipped) = read(&text).unwrap();
+        assert_eq!((lines.len(), skipped), (1, 1));
+        let l = &lines[0];
+        assert!((l.delivery.club_speed_mph - 100.0).abs() < 1e-3, "{l:?}");
+        assert!((l.measured.ball_speed_mph - 150.0).abs() < 1e-3);
+        assert!((l.measured.sidespin_rpm - 3000.0 * 10f64.to_radians().sin()).abs() < 1e-9);
+        row[17] = "twelve";
+        let bad = format!("sep=,\n{}\n{}\n{}\n", q(&header), q(&units), q(&row));
+        let e = read(&bad).unwrap_err().to_string();
+        assert!(e.contains("row 4") && e.contains("Launch Angle"), "{e}");
+    }
+}
