@@ -40,6 +40,7 @@ impl BodySample {
             orientation: QuaternionMsg { x, y, z, w },
             occluded: self.occluded,
             exposure_t_ns: self.exposure_t_ns,
+            fit_residual_m: None,
         }
     }
 }

@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
-use super::Incoming;
+use super::{Incoming, InputKind};
 use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::wire::MessageType;
@@ -42,7 +42,7 @@ pub(super) fn start(
         let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
             let Some((rig, Some((tx, dropped)))) = targets.get(i) else { return };
             let incoming = Incoming {
-                measured: false,
+                kind: InputKind::Sample,
                 received,
                 log_time_ns: wall_ns(),
                 payload: serde_json::to_vec(&sample.to_msg(rig)).unwrap_or_default(),

@@ -91,6 +91,7 @@ impl<R: Read + Seek> CaptureSamples<R> {
             orientation: QuaternionMsg::from(pose.rotation),
             occluded,
             fit_residual_m: residual,
+            exposure_t_ns: None,
         }))
     }
 }
