@@ -28,8 +28,12 @@ struct Daemon {
 
 impl Daemon {
     /// `impactd run` with one rig `bay1`, its Open Connect listener (cap 8, short timeouts) and the Foxglove
-    /// live view, under `prlimit --nofile` when given.
+    /// live view, under `prlimit --nofile` when given, recording to `record` when given.
     fn start(nofile: Option<u64>) -> Daemon {
+        Daemon::start_recording(nofile, None)
+    }
+
+    fn start_recording(nofile: Option<u64>, record: Option<&std::path::Path>) -> Daemon {
         let dir = std::env::temp_dir().join(format!(
             "impactd-hostile-{}-{}",
             std::process::id(),
@@ -61,6 +65,7 @@ impl Daemon {
             .args(["run", "-c"])
             .arg(&config)
             .args(["-l", &zenoh, "--no-multicast-scouting", "--foxglove", &foxglove])
+            .args(record.map(|r| vec!["--record".as_ref(), r.as_os_str()]).unwrap_or_default())
             .env("RUST_LOG", "warn")
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -180,7 +185,10 @@ impl Rig {
 
 #[tokio::test(flavor = "multi_thread")]
 async fn open_connect_probes_are_answered_bounded_and_counted() {
-    let d = Daemon::start(None);
+    let dir = tempfile::tempdir().unwrap();
+    let recording = dir.path().join("hostile.mcap");
+    let d = Daemon::start_recording(None, Some(&recording));
+    let started = Instant::now();
     let rss0 = d.rss_kb();
     let rig = Rig::start(&d, 6).await;
     let oc = d.open_connect.clone();
@@ -262,7 +270,15 @@ async fn open_connect_probes_are_answered_bounded_and_counted() {
         assert!(lm.rejected.get(kind).copied().unwrap_or(0) > 0, "no {kind} in {:?}", lm.rejected);
     }
     assert!(lm.connections <= 8, "{lm:?}");
+    let elapsed_s = started.elapsed().as_secs_f64();
     assert!(d.stop().success());
+    // Thousands of rejected messages and heartbeats: recorded within the budget (20 a second), with the count
+    // of those not recorded noted on the next record.
+    let traffic = common::recorded(&recording).remove("/lm/bay1/open_connect").unwrap_or_default();
+    let noted = traffic.iter().filter(|t| t["note"].as_str().is_some_and(|n| n.contains("not recorded"))).count();
+    eprintln!("{} traffic records in {elapsed_s:.1} s, {noted} noting what was not recorded", traffic.len());
+    assert!((traffic.len() as f64) < 20.0 * (elapsed_s + 1.0) + 10.0, "{} records", traffic.len());
+    assert!(noted > 0);
 }
 
 #[tokio::test(flavor = "multi_thread")]

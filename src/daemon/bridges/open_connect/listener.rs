@@ -7,8 +7,8 @@
 //! a shot, impossible numbers, over 64 KiB, bytes outside any object) is answered with code 501 and the reason,
 //! counted, and the connection goes on, so one bad message never costs another shot. Every message both ways is
 //! recorded as `OpenConnectTraffic` on `lm/<rig>/open_connect`, each published shot on `lm/<rig>/launch`;
-//! rejected messages and their answers within a budget per second, and the next record recorded after a
-//! refusal notes how many were not.
+//! heartbeats, rejected messages and their answers within a budget per second, and the next record recorded
+//! after a refusal notes how many were not.
 //!
 //! What a peer can make the listener keep is bounded ([`crate::daemon::bridges::peers`]): connections (at the cap the
 //! longest-idle one is closed for a newcomer), time to the first shot or heartbeat and between them, a message's
@@ -183,8 +183,8 @@ impl Shared {
         });
     }
 
-    /// Records a rejected message or its answer, within the budget.
-    fn record_rejected(&self, peer: &str, direction: TrafficDirection, text: &[u8], note: Option<String>) {
+    /// Records a rejected message, its answer or a heartbeat, within the budget.
+    fn record_budgeted(&self, peer: &str, direction: TrafficDirection, text: &[u8], note: Option<String>) {
         if !self.recorder.enabled() {
             return;
         }
@@ -266,7 +266,7 @@ impl Shared {
                 if useful {
                     self.record(&peer, TrafficDirection::Sent, &bytes, None);
                 } else {
-                    self.record_rejected(&peer, TrafficDirection::Sent, &bytes, None);
+                    self.record_budgeted(&peer, TrafficDirection::Sent, &bytes, None);
                 }
                 match tokio::time::timeout(Duration::from_secs(2), wr.write_all(&bytes)).await {
                     Ok(Ok(())) => {}
@@ -310,12 +310,12 @@ impl Shared {
             Frame::Object(text) => text,
             Frame::Oversized { bytes } => {
                 let note = Some(format!("oversized: over {} bytes", bytes.saturating_sub(1)));
-                self.record_rejected(peer, TrafficDirection::Received, b"", note);
+                self.record_budgeted(peer, TrafficDirection::Received, b"", note);
                 let m = format!("message over the {MAX_MESSAGE_BYTES}-byte limit; discarded up to its end");
                 return self.reject(peer, "oversized", m);
             }
             Frame::Garbage { bytes } => {
-                self.record_rejected(
+                self.record_budgeted(
                     peer,
                     TrafficDirection::Received,
                     b"",
@@ -327,13 +327,13 @@ impl Shared {
         let message = match serde_json::from_slice::<ShotMessage>(&text) {
             Ok(m) => m,
             Err(e) => {
-                self.record_rejected(peer, TrafficDirection::Received, &text, None);
+                self.record_budgeted(peer, TrafficDirection::Received, &text, None);
                 let e = e.to_string();
                 return self.reject(peer, "malformed", format!("not an Open Connect v1 message: {}", quote(&e)));
             }
         };
         if message.device_id.len() > MAX_DEVICE_ID_BYTES {
-            self.record_rejected(peer, TrafficDirection::Received, &text, None);
+            self.record_budgeted(peer, TrafficDirection::Received, &text, None);
             let m = format!(
                 "DeviceID of {} bytes is over the {MAX_DEVICE_ID_BYTES}-byte limit: {}",
                 message.device_id.len(),
@@ -342,7 +342,8 @@ impl Shared {
             return self.reject(peer, "device_id", m);
         }
         if message.is_heartbeat() {
-            self.record(peer, TrafficDirection::Received, &text, None);
+            // Heartbeats are recorded within the budget too: a flood of them is a flood.
+            self.record_budgeted(peer, TrafficDirection::Received, &text, None);
             self.update(|s| s.heartbeats += 1);
             return (None, true);
         }
@@ -353,7 +354,7 @@ impl Shared {
                 m
             }
             Err(e) => {
-                self.record_rejected(peer, TrafficDirection::Received, &text, None);
+                self.record_budgeted(peer, TrafficDirection::Received, &text, None);
                 let e = e.to_string();
                 return self.reject(peer, "invalid", format!("shot {}: {}", message.shot_number, quote(&e)));
             }
