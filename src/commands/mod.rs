@@ -9,9 +9,9 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 mod args;
 mod bench;
 mod bench_baseline;
-mod checked;
 #[cfg(feature = "daemon")]
 mod calibrate;
+mod checked;
 mod compare;
 mod eval;
 mod fit;
@@ -33,9 +33,9 @@ mod synth;
 mod bridge;
 #[cfg(feature = "daemon")]
 mod demo;
+mod export;
 #[cfg(feature = "daemon")]
 mod import;
-mod export;
 #[cfg(feature = "daemon")]
 mod info;
 #[cfg(feature = "daemon")]

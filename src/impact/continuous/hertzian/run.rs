@@ -16,40 +16,40 @@ const REFINE: usize = 8;
 
 #[derive(Debug, Clone, Copy)]
 struct State {
-    p_c: Vector3,
-    v_c: Vector3,
+    p_c_m: Vector3,
+    v_c_mps: Vector3,
     q_c: UnitQuaternion,
-    w_c_body: Vector3,
-    p_b: Vector3,
-    v_b: Vector3,
-    w_b: Vector3,
+    w_c_body_radps: Vector3,
+    p_b_m: Vector3,
+    v_b_mps: Vector3,
+    w_b_radps: Vector3,
     /// Tangential slip of the ball's contact point relative to the face's, integrated (m).
-    s: Vector3,
+    slip_m: Vector3,
 }
 
 /// Time derivatives, in the same layout.
 #[derive(Debug, Clone, Copy)]
 struct Rates {
-    v_c: Vector3,
-    a_c: Vector3,
+    v_c_mps: Vector3,
+    a_c_mps2: Vector3,
     q_dot: nalgebra::Quaternion<Real>,
-    alpha_c_body: Vector3,
-    v_b: Vector3,
-    a_b: Vector3,
-    alpha_b: Vector3,
-    s_dot: Vector3,
+    alpha_c_body_radps2: Vector3,
+    v_b_mps: Vector3,
+    a_b_mps2: Vector3,
+    alpha_b_radps2: Vector3,
+    slip_rate_mps: Vector3,
 }
 
 struct Setup {
     k: Real,
     hertz: Hertz,
     surface: FaceSurface,
-    r_ball: Real,
-    m_b: Real,
-    i_b: Real,
-    m_c: Real,
-    i_c: nalgebra::Matrix3<Real>,
-    i_c_inv: nalgebra::Matrix3<Real>,
+    r_ball_m: Real,
+    m_b_kg: Real,
+    i_b_kgm2: Real,
+    m_c_kg: Real,
+    i_c_kgm2: nalgebra::Matrix3<Real>,
+    i_c_inv_per_kgm2: nalgebra::Matrix3<Real>,
 }
 
 /// The contact at a state: kinematics for the law, the contact point's lever arms, the normal force.
@@ -65,13 +65,13 @@ impl Setup {
     }
 
     fn contact_rot(&self, s: &State, rot: &Rotation3, s_step: &Vector3) -> Option<Contact> {
-        let ball = rot.inverse_transform_vector(&(s.p_b - s.p_c));
+        let ball = rot.inverse_transform_vector(&(s.p_b_m - s.p_c_m));
         let (x, normal) = match self.surface {
-            FaceSurface::Plane { point, normal } => (self.r_ball - normal.dot(&(ball - point)), normal),
+            FaceSurface::Plane { point, normal } => (self.r_ball_m - normal.dot(&(ball - point)), normal),
             FaceSurface::Sphere { centre, radius_m } => {
                 let d = ball - centre;
                 let dn = d.norm();
-                (self.r_ball + radius_m - dn, d / dn)
+                (self.r_ball_m + radius_m - dn, d / dn)
             }
         };
         if x < -1e-12 {
@@ -79,15 +79,15 @@ impl Setup {
         }
         let x = x.max(0.0);
         let n = rot * normal;
-        let point = s.p_b - (self.r_ball - 0.5 * x) * n;
-        let (r_b, r_c) = (point - s.p_b, point - s.p_c);
-        let w_c = rot * s.w_c_body;
-        let v_rel = (s.v_b + s.w_b.cross(&r_b)) - (s.v_c + w_c.cross(&r_c));
+        let point = s.p_b_m - (self.r_ball_m - 0.5 * x) * n;
+        let (r_b, r_c) = (point - s.p_b_m, point - s.p_c_m);
+        let w_c = rot * s.w_c_body_radps;
+        let v_rel = (s.v_b_mps + s.w_b_radps.cross(&r_b)) - (s.v_c_mps + w_c.cross(&r_c));
         let xdot = -v_rel.dot(&n);
         if x == 0.0 && xdot <= 0.0 {
             return None; // touching, not pressing
         }
-        let ds = s.s - s_step;
+        let ds = s.slip_m - s_step;
         let kin = ContactKinematics {
             normal: n,
             x_m: x,
@@ -113,76 +113,76 @@ impl Setup {
 
     /// The rates at `s` with the contact and tangential force found there (`None`: apart).
     fn rates_with(&self, s: &State, rot: &Rotation3, cf: Option<(&Contact, &Vector3)>) -> Rates {
-        let w = s.w_c_body;
+        let w = s.w_c_body_radps;
         let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
         // The head's torque in its body frame: gyroscopic, plus the contact's.
-        let mut torque_body = -w.cross(&(self.i_c * w));
+        let mut torque_body = -w.cross(&(self.i_c_kgm2 * w));
         let mut r = Rates {
-            v_c: s.v_c,
-            a_c: Vector3::zeros(),
+            v_c_mps: s.v_c_mps,
+            a_c_mps2: Vector3::zeros(),
             q_dot,
-            alpha_c_body: Vector3::zeros(),
-            v_b: s.v_b,
-            a_b: Vector3::zeros(),
-            alpha_b: Vector3::zeros(),
-            s_dot: Vector3::zeros(),
+            alpha_c_body_radps2: Vector3::zeros(),
+            v_b_mps: s.v_b_mps,
+            a_b_mps2: Vector3::zeros(),
+            alpha_b_radps2: Vector3::zeros(),
+            slip_rate_mps: Vector3::zeros(),
         };
         if let Some((c, f_t)) = cf {
             let f = c.kin.normal_force_n * c.kin.normal + *f_t;
-            r.a_b = f / self.m_b;
-            r.alpha_b = c.r_b.cross(&f) / self.i_b;
-            r.a_c = -f / self.m_c;
+            r.a_b_mps2 = f / self.m_b_kg;
+            r.alpha_b_radps2 = c.r_b.cross(&f) / self.i_b_kgm2;
+            r.a_c_mps2 = -f / self.m_c_kg;
             torque_body += rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
-            r.s_dot = c.kin.slip_velocity_mps;
+            r.slip_rate_mps = c.kin.slip_velocity_mps;
         }
-        r.alpha_c_body = self.i_c_inv * torque_body;
+        r.alpha_c_body_radps2 = self.i_c_inv_per_kgm2 * torque_body;
         r
     }
 
     fn momentum(&self, s: &State) -> (Vector3, Vector3) {
         let rot = s.q_c.to_rotation_matrix();
-        let linear = self.m_c * s.v_c + self.m_b * s.v_b;
-        let angular = self.m_c * s.p_c.cross(&s.v_c)
-            + rot * (self.i_c * s.w_c_body)
-            + self.m_b * s.p_b.cross(&s.v_b)
-            + self.i_b * s.w_b;
+        let linear = self.m_c_kg * s.v_c_mps + self.m_b_kg * s.v_b_mps;
+        let angular = self.m_c_kg * s.p_c_m.cross(&s.v_c_mps)
+            + rot * (self.i_c_kgm2 * s.w_c_body_radps)
+            + self.m_b_kg * s.p_b_m.cross(&s.v_b_mps)
+            + self.i_b_kgm2 * s.w_b_radps;
         (linear, angular)
     }
 
     fn energy(&self, s: &State, law: &dyn TangentialLaw) -> Real {
-        let ke = 0.5 * self.m_c * s.v_c.norm_squared()
-            + 0.5 * s.w_c_body.dot(&(self.i_c * s.w_c_body))
-            + 0.5 * self.m_b * s.v_b.norm_squared()
-            + 0.5 * self.i_b * s.w_b.norm_squared();
-        let x = self.contact(s, &s.s).map(|c| c.kin.x_m).unwrap_or(0.0);
+        let ke = 0.5 * self.m_c_kg * s.v_c_mps.norm_squared()
+            + 0.5 * s.w_c_body_radps.dot(&(self.i_c_kgm2 * s.w_c_body_radps))
+            + 0.5 * self.m_b_kg * s.v_b_mps.norm_squared()
+            + 0.5 * self.i_b_kgm2 * s.w_b_radps.norm_squared();
+        let x = self.contact(s, &s.slip_m).map(|c| c.kin.x_m).unwrap_or(0.0);
         ke + elastic_energy(self.k, x) + law.stored_energy_j()
     }
 }
 
 fn advance(s: &State, r: &Rates, h: Real) -> State {
     State {
-        p_c: s.p_c + r.v_c * h,
-        v_c: s.v_c + r.a_c * h,
+        p_c_m: s.p_c_m + r.v_c_mps * h,
+        v_c_mps: s.v_c_mps + r.a_c_mps2 * h,
         q_c: UnitQuaternion::new_unchecked(s.q_c.quaternion() + r.q_dot * h),
-        w_c_body: s.w_c_body + r.alpha_c_body * h,
-        p_b: s.p_b + r.v_b * h,
-        v_b: s.v_b + r.a_b * h,
-        w_b: s.w_b + r.alpha_b * h,
-        s: s.s + r.s_dot * h,
+        w_c_body_radps: s.w_c_body_radps + r.alpha_c_body_radps2 * h,
+        p_b_m: s.p_b_m + r.v_b_mps * h,
+        v_b_mps: s.v_b_mps + r.a_b_mps2 * h,
+        w_b_radps: s.w_b_radps + r.alpha_b_radps2 * h,
+        slip_m: s.slip_m + r.slip_rate_mps * h,
     }
 }
 
 fn combine(k: [&Rates; 4]) -> Rates {
     let c = |f: fn(&Rates) -> Vector3| (f(k[0]) + 2.0 * f(k[1]) + 2.0 * f(k[2]) + f(k[3])) / 6.0;
     Rates {
-        v_c: c(|r| r.v_c),
-        a_c: c(|r| r.a_c),
+        v_c_mps: c(|r| r.v_c_mps),
+        a_c_mps2: c(|r| r.a_c_mps2),
         q_dot: (k[0].q_dot + k[1].q_dot * 2.0 + k[2].q_dot * 2.0 + k[3].q_dot) / 6.0,
-        alpha_c_body: c(|r| r.alpha_c_body),
-        v_b: c(|r| r.v_b),
-        a_b: c(|r| r.a_b),
-        alpha_b: c(|r| r.alpha_b),
-        s_dot: c(|r| r.s_dot),
+        alpha_c_body_radps2: c(|r| r.alpha_c_body_radps2),
+        v_b_mps: c(|r| r.v_b_mps),
+        a_b_mps2: c(|r| r.a_b_mps2),
+        alpha_b_radps2: c(|r| r.alpha_b_radps2),
+        slip_rate_mps: c(|r| r.slip_rate_mps),
     }
 }
 
@@ -210,12 +210,12 @@ pub(super) fn run(
         k: hertz.stiffness(r_eq),
         hertz,
         surface,
-        r_ball: eq.ball.radius_m,
-        m_b: eq.ball.mass_kg,
-        i_b: eq.ball.inertia_kg_m2,
-        m_c: club.mass_kg,
-        i_c: club.inertia_kg_m2,
-        i_c_inv: club.inertia_inv_kg_m2,
+        r_ball_m: eq.ball.radius_m,
+        m_b_kg: eq.ball.mass_kg,
+        i_b_kgm2: eq.ball.inertia_kg_m2,
+        m_c_kg: club.mass_kg,
+        i_c_kgm2: club.inertia_kg_m2,
+        i_c_inv_per_kgm2: club.inertia_inv_kg_m2,
     };
     let contact = club.face.contact(state.impact_h_m, state.impact_v_m)?;
     let ball_club = match surface {
@@ -227,16 +227,16 @@ pub(super) fn run(
     let iso = state.world_from_club;
     let rot = iso.rotation;
     let mut s = State {
-        p_c: iso.translation.vector,
-        v_c: state.cg_velocity_mps,
+        p_c_m: iso.translation.vector,
+        v_c_mps: state.cg_velocity_mps,
         q_c: rot,
-        w_c_body: rot.inverse_transform_vector(&state.angular_velocity_radps),
-        p_b: iso.translation.vector + rot * ball_club,
-        v_b: Vector3::zeros(),
-        w_b: Vector3::zeros(),
-        s: Vector3::zeros(),
+        w_c_body_radps: rot.inverse_transform_vector(&state.angular_velocity_radps),
+        p_b_m: iso.translation.vector + rot * ball_club,
+        v_b_mps: Vector3::zeros(),
+        w_b_radps: Vector3::zeros(),
+        slip_m: Vector3::zeros(),
     };
-    let n0 = (s.p_b - s.p_c - rot * contact.point_m).normalize();
+    let n0 = (s.p_b_m - s.p_c_m - rot * contact.point_m).normalize();
     let v_face0 = state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
     let xdot0 = v_face0.dot(&n0);
     if xdot0 <= 0.0 {
@@ -245,7 +245,7 @@ pub(super) fn run(
     // The ball slips against the face's tangential motion; Figure 3.5's tangential axis.
     let face_t = v_face0 - xdot0 * n0;
     let face_dir = if face_t.norm() > 1e-9 { face_t.normalize() } else { rot * club.face.u0() };
-    let reduced_mass = setup.m_b * setup.m_c / (setup.m_b + setup.m_c);
+    let reduced_mass = setup.m_b_kg * setup.m_c_kg / (setup.m_b_kg + setup.m_c_kg);
     law.begin(-face_dir, xdot0, setup.k, r_eq, reduced_mass);
     let spin_axis = face_dir.cross(&n0);
 
@@ -259,7 +259,7 @@ pub(super) fn run(
     // The contact and tangential force found when the last step was committed: the next step's first stage.
     let mut committed: Option<Option<(Contact, Vector3)>> = None;
     loop {
-        let s0 = s.s;
+        let s0 = s.slip_m;
         let rot = s.q_c.to_rotation_matrix();
         let c1 = match committed.take() {
             Some(cf) => cf,
@@ -283,7 +283,7 @@ pub(super) fn run(
                 t_us: t_s * 1e6,
                 normal_force_n: fn_,
                 tangential_force_n: ft,
-                ball_spin_rpm: crate::units::radps_to_rpm(s.w_b.dot(&spin_axis)),
+                ball_spin_rpm: crate::units::radps_to_rpm(s.w_b_radps.dot(&spin_axis)),
                 compression_mm: x * 1e3,
                 stuck_rings: law.stuck_rings(),
             });
@@ -365,11 +365,11 @@ pub(super) fn run(
     let size = ft_max.max(-ft_min);
     Ok(HertzResult {
         launch: Launch {
-            ball_velocity_mps: s.v_b,
-            ball_spin_radps: s.w_b,
-            club_velocity_mps: s.v_c,
-            club_angular_velocity_radps: rot * s.w_c_body,
-            impulse_ns: setup.m_b * s.v_b,
+            ball_velocity_mps: s.v_b_mps,
+            ball_spin_radps: s.w_b_radps,
+            club_velocity_mps: s.v_c_mps,
+            club_angular_velocity_radps: rot * s.w_c_body_radps,
+            impulse_ns: setup.m_b_kg * s.v_b_mps,
         },
         contact_time_s: contact_time,
         peak_normal_force_n: peak,
@@ -387,10 +387,10 @@ pub(super) fn run(
 /// The overlap along the normal, negative when apart (m).
 fn signed_overlap(setup: &Setup, st: &State) -> Real {
     let rot = st.q_c.to_rotation_matrix();
-    let ball = rot.inverse_transform_vector(&(st.p_b - st.p_c));
+    let ball = rot.inverse_transform_vector(&(st.p_b_m - st.p_c_m));
     match setup.surface {
-        FaceSurface::Plane { point, normal } => setup.r_ball - normal.dot(&(ball - point)),
-        FaceSurface::Sphere { centre, radius_m } => setup.r_ball + radius_m - (ball - centre).norm(),
+        FaceSurface::Plane { point, normal } => setup.r_ball_m - normal.dot(&(ball - point)),
+        FaceSurface::Sphere { centre, radius_m } => setup.r_ball_m + radius_m - (ball - centre).norm(),
     }
 }
 
