@@ -21,7 +21,7 @@ use impactd::kinematics::ClubheadSample;
 use impactd::math::UnitQuaternion;
 use impactd::mocap::qtm::{Body6d, Frame6d};
 use impactd::mocap::{qtm_encode, track};
-use impactd::wire::{LaunchPrediction, MocapInputStatus, StatusMessage};
+use impactd::wire::{LaunchPrediction, StatusMessage};
 use nalgebra::Quaternion;
 use qtm_server::QtmServer;
 
