@@ -26,15 +26,15 @@ pub struct State {
     /// Time from the ball's first contact on the undisturbed swing (s).
     pub t_s: Real,
     pub shaft: ModalState,
-    pub p_b: Vector3,
-    pub v_b: Vector3,
-    pub w_core: Vector3,
-    pub w_cover: Vector3,
-    pub theta: Vector3,
+    pub p_b_m: Vector3,
+    pub v_b_mps: Vector3,
+    pub w_core_radps: Vector3,
+    pub w_cover_radps: Vector3,
+    pub theta_rad: Vector3,
     /// Impulses on the club (N s, world): from the ball, the ground and the grip.
-    pub j_ball: Vector3,
-    pub j_ground: Vector3,
-    pub j_grip: Vector3,
+    pub j_ball_ns: Vector3,
+    pub j_ground_ns: Vector3,
+    pub j_grip_ns: Vector3,
 }
 
 /// Time derivatives.
@@ -128,23 +128,23 @@ impl System<'_> {
     pub fn eval(&self, s: &State, ground: Option<&GroundForces>) -> Eval {
         let (head, rigid) = self.head_and_rigid(s);
         let ball_motion = BodyMotion {
-            position_m: s.p_b,
+            position_m: s.p_b_m,
             world_from_club: Rotation3::identity(),
-            velocity_mps: s.v_b,
-            angular_velocity_radps: s.w_cover,
+            velocity_mps: s.v_b_mps,
+            angular_velocity_radps: s.w_cover_radps,
         };
         let contact = two_layer_contact(&self.params, self.ball.radius_m, &self.surface, &head, &ball_motion);
         let (f_on_ball, r_b) = contact.map_or((Vector3::zeros(), Vector3::zeros()), |(_, f, r)| (f, r));
         let ground = ground.copied().unwrap_or_else(|| self.ground_forces_on(&head));
-        let lever = s.p_b + r_b - head.position_m;
+        let lever = s.p_b_m + r_b - head.position_m;
         let force = ground.force_n() - f_on_ball;
         let torque = ground.torque_nm() + lever.cross(&(-f_on_ball));
         let fi = self.elastic_frame.inverse();
         let eta_ddot = self.modal.acceleration(&s.shaft, &(fi * force), &(fi * torque));
         let f_grip =
             self.elastic_frame * self.modal.grip_force(&s.shaft, &eta_ddot) + self.rigid_momentum_and_force(&rigid).1;
-        let w_rel = s.w_cover - s.w_core;
-        let spring = self.ball.k_ball_nm_per_rad * s.theta + self.ball.c_ball_nms_per_rad * w_rel;
+        let w_rel = s.w_cover_radps - s.w_core_radps;
+        let spring = self.ball.k_ball_nm_per_rad * s.theta_rad + self.ball.c_ball_nms_per_rad * w_rel;
         Eval {
             rates: Rates {
                 eta_ddot,
@@ -185,14 +185,19 @@ impl System<'_> {
         next.shaft.eta +=
             (s.shaft.eta_dot + 2.0 * s2.shaft.eta_dot + 2.0 * s3.shaft.eta_dot + s4.shaft.eta_dot) * (h / 6.0);
         next.shaft.eta_dot += (r1.eta_ddot + 2.0 * r2.eta_ddot + 2.0 * r3.eta_ddot + r4.eta_ddot) * (h / 6.0);
-        next.p_b += c(s.v_b, s2.v_b, s3.v_b, s4.v_b);
-        next.v_b += c(r1.a_b, r2.a_b, r3.a_b, r4.a_b);
-        next.w_core += c(r1.alpha_core, r2.alpha_core, r3.alpha_core, r4.alpha_core);
-        next.w_cover += c(r1.alpha_cover, r2.alpha_cover, r3.alpha_cover, r4.alpha_cover);
-        next.theta += c(s.w_cover - s.w_core, s2.w_cover - s2.w_core, s3.w_cover - s3.w_core, s4.w_cover - s4.w_core);
-        next.j_ball += c(r1.f_ball, r2.f_ball, r3.f_ball, r4.f_ball);
-        next.j_ground += c(r1.f_ground, r2.f_ground, r3.f_ground, r4.f_ground);
-        next.j_grip += c(r1.f_grip, r2.f_grip, r3.f_grip, r4.f_grip);
+        next.p_b_m += c(s.v_b_mps, s2.v_b_mps, s3.v_b_mps, s4.v_b_mps);
+        next.v_b_mps += c(r1.a_b, r2.a_b, r3.a_b, r4.a_b);
+        next.w_core_radps += c(r1.alpha_core, r2.alpha_core, r3.alpha_core, r4.alpha_core);
+        next.w_cover_radps += c(r1.alpha_cover, r2.alpha_cover, r3.alpha_cover, r4.alpha_cover);
+        next.theta_rad += c(
+            s.w_cover_radps - s.w_core_radps,
+            s2.w_cover_radps - s2.w_core_radps,
+            s3.w_cover_radps - s3.w_core_radps,
+            s4.w_cover_radps - s4.w_core_radps,
+        );
+        next.j_ball_ns += c(r1.f_ball, r2.f_ball, r3.f_ball, r4.f_ball);
+        next.j_ground_ns += c(r1.f_ground, r2.f_ground, r3.f_ground, r4.f_ground);
+        next.j_grip_ns += c(r1.f_grip, r2.f_grip, r3.f_grip, r4.f_grip);
         (next, e1)
     }
 }
@@ -243,10 +248,10 @@ fn advance(base: &State, at: &State, r: &Rates, h: Real) -> State {
     s.t_s = base.t_s + h;
     s.shaft.eta = base.shaft.eta + at.shaft.eta_dot * h;
     s.shaft.eta_dot = base.shaft.eta_dot + r.eta_ddot * h;
-    s.p_b = base.p_b + at.v_b * h;
-    s.v_b = base.v_b + r.a_b * h;
-    s.w_core = base.w_core + r.alpha_core * h;
-    s.w_cover = base.w_cover + r.alpha_cover * h;
-    s.theta = base.theta + (at.w_cover - at.w_core) * h;
+    s.p_b_m = base.p_b_m + at.v_b_mps * h;
+    s.v_b_mps = base.v_b_mps + r.a_b * h;
+    s.w_core_radps = base.w_core_radps + r.alpha_core * h;
+    s.w_cover_radps = base.w_cover_radps + r.alpha_cover * h;
+    s.theta_rad = base.theta_rad + (at.w_cover_radps - at.w_core_radps) * h;
     s
 }

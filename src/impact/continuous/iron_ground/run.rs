@@ -81,14 +81,14 @@ pub(super) fn simulate(
     let mut s = State {
         t_s: t0,
         shaft: ModalState::default(),
-        p_b: ball_centre,
-        v_b: Vector3::zeros(),
-        w_core: Vector3::zeros(),
-        w_cover: Vector3::zeros(),
-        theta: Vector3::zeros(),
-        j_ball: Vector3::zeros(),
-        j_ground: Vector3::zeros(),
-        j_grip: Vector3::zeros(),
+        p_b_m: ball_centre,
+        v_b_mps: Vector3::zeros(),
+        w_core_radps: Vector3::zeros(),
+        w_cover_radps: Vector3::zeros(),
+        theta_rad: Vector3::zeros(),
+        j_ball_ns: Vector3::zeros(),
+        j_ground_ns: Vector3::zeros(),
+        j_grip_ns: Vector3::zeros(),
     };
     let momentum_start = sys.club_momentum(&s);
     let r_ball = p.equipment.ball.radius_m;
@@ -101,7 +101,7 @@ pub(super) fn simulate(
     let mut held: Option<(GroundForces, Real)> = None;
     loop {
         let head = sys.head(&s);
-        let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b - head.position_m));
+        let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b_m - head.position_m));
         let gap = face_normal.dot(&(ball_club - face_point)) - r_ball;
         // The ball's contact is an event: approaching it, each step covers at most half the time the face
         // needs to reach the ball at its first approach speed, so the steps shrink geometrically from the
@@ -137,7 +137,7 @@ pub(super) fn simulate(
             if !out.ball_touched {
                 out.ball_touched = true;
                 out.t_ball_s = s.t_s;
-                out.ground_impulse_before_ball = s.j_ground;
+                out.ground_impulse_before_ball = s.j_ground_ns;
                 let fc = club.face.center_m;
                 let v_fc = |b: &BodyMotion| {
                     (b.velocity_mps + b.angular_velocity_radps.cross(&(b.world_from_club * fc))).norm()
@@ -153,14 +153,14 @@ pub(super) fn simulate(
             out.peak_ball_n = out.peak_ball_n.max(c.normal_n);
         } else if out.ball_touched && launch.is_none() {
             let b = &sys.ball;
-            let spin = (b.core_inertia_kg_m2 * s.w_core + b.cover_inertia_kg_m2 * s.w_cover)
+            let spin = (b.core_inertia_kg_m2 * s.w_core_radps + b.cover_inertia_kg_m2 * s.w_cover_radps)
                 / (b.core_inertia_kg_m2 + b.cover_inertia_kg_m2);
             launch = Some(Launch {
-                ball_velocity_mps: s.v_b,
+                ball_velocity_mps: s.v_b_mps,
                 ball_spin_radps: spin,
                 club_velocity_mps: e.head.velocity_mps,
                 club_angular_velocity_radps: e.head.angular_velocity_radps,
-                impulse_ns: b.mass_kg * s.v_b,
+                impulse_ns: b.mass_kg * s.v_b_mps,
             });
             out.t_separation_s = s.t_s;
         }
@@ -212,10 +212,10 @@ pub(super) fn simulate(
         ball_contact_us: out.ball_time_s * 1e6,
         club_momentum_start: momentum_start,
         club_momentum_end: sys.club_momentum(&s),
-        ball_impulse_ns: s.j_ball,
+        ball_impulse_ns: s.j_ball_ns,
         ground_impulse_before_ball_ns: out.ground_impulse_before_ball,
-        ground_impulse_ns: s.j_ground,
-        grip_impulse_ns: s.j_grip,
+        ground_impulse_ns: s.j_ground_ns,
+        grip_impulse_ns: s.j_grip_ns,
         steps,
         trace,
     })
