@@ -169,13 +169,9 @@ impl Pipeline {
         }));
         for i in 0..self.setup.models.len() {
             let m = Arc::clone(&self.setup.models[i]);
-            // The ground model runs the strike through the turf and reports it; the others give a launch.
-            let result = match m.ground(&est.state, &self.equipment, 0) {
-                Some(r) => r.map(|r| (r.launch, Some(Box::new(r.summary())))),
-                None => m.predict(&est.state, &self.equipment).map(|l| (l, None)),
-            };
-            match result {
-                Ok((launch, ground)) => {
+            // Each model's report (the ground model's `ground`) is published beside its launch.
+            match m.run(&est.state, &self.equipment, &crate::impact::RunOptions::default()) {
+                Ok(crate::impact::ModelRun { launch, report, .. }) => {
                     self.counts.predictions += 1;
                     let output = PredictOutput::new(&launch, &delivery, Default::default(), &self.equipment);
                     for w in &output.warnings {
@@ -203,7 +199,7 @@ impl Pipeline {
                                 0.0,
                             )
                         }),
-                        ground,
+                        reports: report.into(),
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),

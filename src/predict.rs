@@ -6,9 +6,8 @@ use std::io::{BufRead, Write};
 use serde::Serialize;
 
 use crate::equipment::ClubSpec;
-use crate::impact::continuous::iron_ground::{GroundSummary, GroundTracePoint};
-use crate::impact::continuous::TracePoint;
-use crate::impact::{DeliveryMetrics, Equipment, ImpactError, ImpactModel, ImpactState};
+use crate::impact::report::WireReports;
+use crate::impact::{DeliveryMetrics, Equipment, Fields, ImpactError, ImpactModel, ImpactState, RunOptions, Trace};
 use crate::jsonl::{JsonlError, Tally};
 use crate::wire::{DeliveryInput, PredictOutput};
 
@@ -21,33 +20,18 @@ pub enum Predictor<'a> {
     Traced(&'a dyn ImpactModel),
 }
 
-/// A `predict --trace` answer: the launch, then the contact's course.
+/// An answer: the launch, the model's report (the ground model's `ground` object) and, with `--trace`, the
+/// contact's course (its summary numbers beside the launch, then the trace).
 #[derive(Serialize)]
-struct TracedOutput {
+struct Answer {
     #[serde(flatten)]
     output: PredictOutput,
-    contact_time_us: f64,
-    peak_normal_force_n: f64,
-    trace: Vec<TracePoint>,
-}
-
-/// A model of the ball on the turf (`--model ground`): the launch, how the club met the turf and, with
-/// `--trace`, the ground's forces and the face angle and loft over time.
-#[derive(Serialize)]
-struct GroundOutput {
     #[serde(flatten)]
-    output: PredictOutput,
-    ground: GroundSummary,
+    reports: WireReports,
+    #[serde(flatten, skip_serializing_if = "Fields::is_empty")]
+    course_summary: Fields,
     #[serde(skip_serializing_if = "Option::is_none")]
-    trace: Option<Vec<GroundTracePoint>>,
-}
-
-#[derive(Serialize)]
-#[serde(untagged)]
-enum Answer {
-    Plain(PredictOutput),
-    Traced(TracedOutput),
-    Ground(GroundOutput),
+    trace: Option<Trace>,
 }
 
 /// A prediction error for the delivery it came from, naming the field it is about.
@@ -103,32 +87,16 @@ fn answer(
         Predictor::Plain(m) => (m, 0),
         Predictor::Traced(m) => (m, 10),
     };
-    if let Some(r) = model.ground(&state, equipment, every) {
-        let r = r.map_err(err)?;
-        return Ok(Answer::Ground(GroundOutput {
-            output: PredictOutput::new(&r.launch, &metrics, hand, equipment),
-            ground: r.summary(),
-            trace: (every > 0).then_some(r.trace),
-        }));
-    }
-    Ok(match predictor {
-        Predictor::Traced(m) => {
-            let Some(r) = m.trace(&state, equipment, 10) else {
-                let launch = m.predict(&state, equipment).map_err(err)?;
-                return Ok(Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment)));
-            };
-            let r = r.map_err(err)?;
-            Answer::Traced(TracedOutput {
-                output: PredictOutput::new(&r.launch, &metrics, hand, equipment),
-                contact_time_us: r.contact_time_s * 1e6,
-                peak_normal_force_n: r.peak_normal_force_n,
-                trace: r.trace,
-            })
-        }
-        Predictor::Plain(m) => {
-            let launch = m.predict(&state, equipment).map_err(err)?;
-            Answer::Plain(PredictOutput::new(&launch, &metrics, hand, equipment))
-        }
+    let run = model.run(&state, equipment, &RunOptions { trace_every: every }).map_err(err)?;
+    let (course_summary, trace) = match run.course {
+        Some(c) => (c.summary, Some(c.trace)),
+        None => (Fields::default(), None),
+    };
+    Ok(Answer {
+        output: PredictOutput::new(&run.launch, &metrics, hand, equipment),
+        reports: run.report.into(),
+        course_summary,
+        trace,
     })
 }
 

@@ -434,9 +434,13 @@ async fn soil_rig_publishes_impulse_then_ground() {
         let (a, g) = (pair[0].launch.launch.ball_speed_mph, pair[1].launch.launch.ball_speed_mph);
         assert!((g / a - 1.0).abs() < 0.1, "{a} vs {g}");
         // The ground prediction carries how the club met the turf (ball contact ~450 us); the impulse one does not.
-        let turf = pair[1].ground.as_deref().expect("the ground prediction carries the ground object");
-        assert!(pair[0].ground.is_none() && (100.0..1000.0).contains(&turf.ball_contact_us), "{turf:?}");
-        assert!(turf.peak_ground_force_n >= 0.0 && turf.divot_depth_mm >= 0.0, "{turf:?}");
+        let turf = pair[1].reports.get("ground").expect("the ground prediction carries the ground object");
+        let contact_us = turf.number("ball_contact_us").unwrap();
+        assert!(pair[0].reports.is_empty() && (100.0..1000.0).contains(&contact_us), "{turf:?}");
+        assert!(
+            turf.number("peak_ground_force_n").unwrap() >= 0.0 && turf.number("divot_depth_mm").unwrap() >= 0.0,
+            "{turf:?}"
+        );
     }
 }
 

@@ -289,12 +289,12 @@ fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
     assert!(good.peak_ground_force_n < fat.peak_ground_force_n);
 }
 
-/// The `ground` object a prediction line carries, with the wire's field names.
+/// The `ground` report a prediction line carries, with the wire's field names.
 #[test]
 fn ground_summary_has_the_wire_names() {
     let (p, eq) = prepared(SoilSpec::firm(), true);
     let r = p.simulate(&reference_swing(0.0, 15.0).to_state(&eq).unwrap(), 0).unwrap();
-    let v = serde_json::to_value(r.summary()).unwrap();
+    let v = serde_json::to_value(&r.report().fields).unwrap();
     for key in [
         "strike",
         "ground_contact_before_ball_ms",

@@ -39,7 +39,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         quality: 1.0,
         latency_us: 100.0,
         flight: None,
-        ground: None,
+        reports: Default::default(),
     }
 }
 

@@ -96,11 +96,10 @@ fn forces(args: &ForcesArgs) -> Result<ExitCode> {
     let equipment = Equipment::new(club.clone());
     let input = args.delivery.input();
     let state = impactd::predict::state_of(&input, &club, &equipment)?;
-    let Some(r) = model.trace(&state, &equipment, 2) else {
+    let r = model.run(&state, &equipment, &impactd::impact::RunOptions::traced(2))?;
+    let Some(mut chart) = impactd::plot::forces_chart(&club.name, input.club_speed_mph, &r) else {
         anyhow::bail!("--model {} is not resolved in time: it has no forces to plot", args.model);
     };
-    let r = r?;
-    let mut chart = impactd::plot::forces_chart(&club.name, input.club_speed_mph, &r);
     chart.title =
         format!("{} ({})\n{}", chart.title, args.model, impactd::plot::delivery_title(&input, club.loft_deg()));
     write_output(&args.output, &chart.svg(900.0, 520.0))?;

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use impactd::impact::continuous::iron_ground::Strike;
-use impactd::impact::Equipment;
+use impactd::impact::continuous::iron_ground::GROUND_REPORT;
+use impactd::impact::{Equipment, ModelRun, RunOptions};
 use impactd::wire::DeliveryInput;
 
 use super::args::{load_club, one_model, set_soil, write_output};
@@ -51,7 +51,7 @@ pub fn run(args: &GroundPlotArgs) -> Result<ExitCode> {
     let club = loaded.club.clone();
     let equipment = Equipment::new(club.clone());
     let plane = 60f64.to_radians();
-    let strike = |v_mm: f64| -> Result<impactd::impact::continuous::iron_ground::GroundResult> {
+    let strike = |v_mm: f64| -> Result<ModelRun> {
         let input = DeliveryInput {
             club_speed_mph: args.club_speed_mph,
             attack_angle_deg: args.attack_angle_deg,
@@ -64,15 +64,20 @@ pub fn run(args: &GroundPlotArgs) -> Result<ExitCode> {
             handedness: None,
         };
         let state = impactd::predict::state_of(&input, &club, &equipment)?;
-        let Some(r) = model.ground(&state, &equipment, 2) else { bail!("the ground model has no ground") };
-        Ok(r?)
+        Ok(model.run(&state, &equipment, &RunOptions::traced(2))?)
     };
+    let kind =
+        |r: &ModelRun| r.report.as_ref().filter(|g| g.key == GROUND_REPORT).and_then(|g| g.fields.text("strike"));
     let fat = strike(args.fat_v_mm)?;
-    if fat.strike != Strike::Fat {
-        bail!("--fat-v-mm {}: that strike is {:?}, not fat (strike higher on the face)", args.fat_v_mm, fat.strike);
+    if kind(&fat) != Some("fat") {
+        bail!(
+            "--fat-v-mm {}: that strike is {}, not fat (strike higher on the face)",
+            args.fat_v_mm,
+            kind(&fat).unwrap_or("not a ground strike")
+        );
     }
     let good = strike(args.good_v_mm)?;
-    if good.strike == Strike::Fat {
+    if kind(&good) == Some("fat") {
         bail!("--good-v-mm {}: that strike is fat too (strike lower on the face)", args.good_v_mm);
     }
     let title = format!("{} at {:.0} mph on {} soil", club.name, args.club_speed_mph, args.soil);

@@ -37,7 +37,7 @@ pub mod synth;
 pub use cost::{CostScales, FieldStats, ModelTable, FIELDS};
 pub use dataset::{DatasetLine, Shot};
 pub use fit::{FitOptions, FitReport};
-pub use params::{FitModel, ParamDef, ParamSpace, FIT_MODELS};
+pub use params::{FitModel, ParamDef, ParamSpace};
 
 /// Errors of the identification layer.
 #[derive(Debug, thiserror::Error)]

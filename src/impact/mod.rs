@@ -5,17 +5,21 @@
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
 
+pub mod club_sections;
 pub mod continuous;
 mod delivery;
+pub mod identifiable;
 pub mod impulse;
 mod launch;
 pub mod registry;
+pub mod report;
 pub mod sanity;
 
 pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics, SwingArc};
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
+pub use report::{Course, Fields, ModelRun, Report, RunOptions, Trace};
 pub use sanity::LaunchWarning;
 
 use crate::equipment::{BallSpec, ClubSpec};
@@ -83,8 +87,9 @@ pub struct ContactGeometry {
     pub world_from_club: Matrix3,
     /// Club CG -> contact point (m, world).
     pub r_club_m: Vector3,
-    /// Impact frame columns x' (normal toward the ball), y' (up the face), z' (toe), world.
-    pub frame: Matrix3,
+    /// The impact frame in the world: its columns are x' (normal toward the ball), y' (up the face) and z'
+    /// (toe), so `v_world = world_from_impact * v_impact`.
+    pub world_from_impact: Matrix3,
     /// Velocity of the club's material point at the contact (m/s, world), seed eq. 3.7.
     pub contact_velocity_mps: Vector3,
     /// Contact point and normal in the club frame.
@@ -102,9 +107,9 @@ impl ImpactState {
         let r_club_m = rot * contact_club.point_m;
         let normal = rot * contact_club.normal;
         let toe = rot.column(2).into_owned();
-        let frame = impact_frame(&normal, &toe);
+        let world_from_impact = impact_frame(&normal, &toe);
         let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
-        Ok(ContactGeometry { world_from_club: rot, r_club_m, frame, contact_velocity_mps, contact_club })
+        Ok(ContactGeometry { world_from_club: rot, r_club_m, world_from_impact, contact_velocity_mps, contact_club })
     }
 }
 
@@ -119,30 +124,17 @@ pub struct Launch {
     pub impulse_ns: Vector3,
 }
 
-/// A model of the club-ball collision. Choosing a model is configuration: every model implements this.
+/// A model of the club-ball collision. Choosing a model is configuration: every model implements this, with one
+/// method that runs it ([`run`](ImpactModel::run)); what it gives beyond the launch is read by name
+/// ([`report`]), so nothing outside a model knows its type.
 pub trait ImpactModel: Send + Sync + std::fmt::Debug {
-    /// A short name for logs and messages (`impulse/adjusted`).
+    /// The name it publishes under (`impulse/adjusted`).
     fn name(&self) -> &'static str;
-    /// Predicts the launch from the state at first contact.
-    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError>;
-    /// A model resolved in time runs with a trace point every `every` steps; an instantaneous model has no trace
-    /// (`None`).
-    fn trace(
-        &self,
-        _state: &ImpactState,
-        _equipment: &Equipment,
-        _every: usize,
-    ) -> Option<Result<continuous::ContinuousResult, ImpactError>> {
-        None
-    }
-    /// A model of the ball on the turf runs the strike through the ground contact, with a trace point every
-    /// `every` steps (0: none); other models have no ground (`None`).
-    fn ground(
-        &self,
-        _state: &ImpactState,
-        _equipment: &Equipment,
-        _every: usize,
-    ) -> Option<Result<continuous::iron_ground::GroundResult, ImpactError>> {
-        None
+    /// Runs the collision from the state at first contact: the launch, the model's report and, when asked, the
+    /// contact's course.
+    fn run(&self, state: &ImpactState, equipment: &Equipment, options: &RunOptions) -> Result<ModelRun, ImpactError>;
+    /// The launch alone (a run without a course).
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        Ok(self.run(state, equipment, &RunOptions::default())?.launch)
     }
 }

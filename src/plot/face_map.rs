@@ -188,15 +188,16 @@ mod tests {
         fn name(&self) -> &'static str {
             "heel-only"
         }
-        fn predict(
+        fn run(
             &self,
             state: &crate::impact::ImpactState,
             equipment: &Equipment,
-        ) -> Result<crate::impact::Launch, ImpactError> {
+            options: &crate::impact::RunOptions,
+        ) -> Result<crate::impact::ModelRun, ImpactError> {
             if state.impact_h_m > 0.0 {
                 return Err(ImpactError::Singular);
             }
-            self.0.predict(state, equipment)
+            self.0.run(state, equipment, options)
         }
     }
 

@@ -5,28 +5,31 @@
 use super::{Extras, LineChart, Mark, Series, PALETTE};
 use crate::flight::Trajectory;
 use crate::impact::continuous::law::maw::MawParams;
-use crate::impact::continuous::{plate, ContinuousResult, TracePoint};
-use crate::impact::LaunchMetrics;
+use crate::impact::continuous::plate;
+use crate::impact::{LaunchMetrics, ModelRun};
 use crate::units::{m_to_yd, radps_to_rpm};
 use crate::wire::DeliveryInput;
 
-/// The continuous model's normal and tangential force and the ball's and cover's spin through one impact `r` of
-/// `club_name` swung at `club_speed_mph`.
-pub fn forces_chart(club_name: &str, club_speed_mph: f64, r: &ContinuousResult) -> LineChart {
+/// A model's normal and tangential force and the ball's and cover's spin through one impact `r` of `club_name`
+/// swung at `club_speed_mph`, read from its course by name (`None` without a course: a model not resolved in
+/// time).
+pub fn forces_chart(club_name: &str, club_speed_mph: f64, r: &ModelRun) -> Option<LineChart> {
+    let course = r.course.as_ref()?;
     let m = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
-    let series = |name: &str, color: usize, right_axis: bool, y: fn(&TracePoint) -> f64| Series {
+    let series = |name: &str, color: usize, right_axis: bool, y: &str| Series {
         name: name.into(),
-        points: r.trace.iter().map(|p| (p.t_us, y(p))).collect(),
+        points: course.trace.series("t_us", y),
         color: PALETTE[color],
         right_axis,
     };
-    LineChart {
+    let number = |name: &str| course.summary.number(name).unwrap_or(f64::NAN);
+    Some(LineChart {
         title: format!(
             "{} at {:.0} mph: contact {:.0} µs, peak {:.1} kN; ball {:.1} mph, {:.0} rpm",
             club_name,
             club_speed_mph,
-            r.contact_time_s * 1e6,
-            r.peak_normal_force_n / 1e3,
+            number("contact_time_us"),
+            number("peak_normal_force_n") / 1e3,
             m.ball_speed_mph,
             m.total_spin_rpm
         ),
@@ -34,13 +37,13 @@ pub fn forces_chart(club_name: &str, club_speed_mph: f64, r: &ContinuousResult) 
         y_label: "force on the ball (N)".into(),
         y2_label: Some("ball spin (rpm)".into()),
         series: vec![
-            series("normal force", 0, false, |p| p.normal_force_n),
-            series("tangential force (+ along the face's slip)", 1, false, |p| p.tangential_force_n),
-            series("ball spin (right axis)", 2, true, |p| p.ball_spin_rpm),
-            series("cover spin (right axis)", 3, true, |p| p.cover_spin_rpm),
+            series("normal force", 0, false, "normal_force_n"),
+            series("tangential force (+ along the face's slip)", 1, false, "tangential_force_n"),
+            series("ball spin (right axis)", 2, true, "ball_spin_rpm"),
+            series("cover spin (right axis)", 3, true, "cover_spin_rpm"),
         ],
         equal_axes: false,
-    }
+    })
 }
 
 /// Seed Figure 3.4: the normal and tangential force and the spin of a ball (the seed's) striking a rigid plate at

@@ -4,7 +4,9 @@
 //! contact on the undisturbed swing.
 
 use super::{LineChart, Series, PALETTE};
-use crate::impact::continuous::iron_ground::{GroundResult, GroundTracePoint};
+use crate::impact::continuous::iron_ground::GROUND_REPORT;
+use crate::impact::report::Trace;
+use crate::impact::ModelRun;
 
 /// Why the strikes cannot be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -15,38 +17,36 @@ pub enum GroundPlotError {
     NoGround(&'static str),
 }
 
-fn series(name: String, color: usize, r: &GroundResult, y: fn(&GroundTracePoint) -> f64) -> Series {
-    Series { name, points: r.trace.iter().map(|p| (p.t_ms, y(p))).collect(), color: PALETTE[color], right_axis: false }
+fn series(name: String, color: usize, trace: &Trace, y: &str, right_axis: bool) -> Series {
+    Series { name, points: trace.series("t_ms", y), color: PALETTE[color], right_axis }
 }
 
-/// Figures 4.10 and 4.15 for `strikes` (a label and a run with its trace each), as one SVG titled `title`.
-pub fn ground_svg(title: &str, strikes: &[(&'static str, &GroundResult)]) -> Result<String, GroundPlotError> {
+/// Figures 4.10 and 4.15 for `strikes` (a label and a run with its trace each), as one SVG titled `title`: the
+/// runs' `ground` reports and traces are read by name.
+pub fn ground_svg(title: &str, strikes: &[(&'static str, &ModelRun)]) -> Result<String, GroundPlotError> {
+    let mut runs = Vec::new();
     for (label, r) in strikes {
-        if r.trace.is_empty() {
-            return Err(GroundPlotError::NoTrace(label));
-        }
-        if r.peak_ground_force_n <= 0.0 {
+        let trace = match &r.course {
+            Some(c) if !c.trace.is_empty() => &c.trace,
+            _ => return Err(GroundPlotError::NoTrace(label)),
+        };
+        let peak_n = match r.report.as_ref().filter(|r| r.key == GROUND_REPORT) {
+            Some(g) => g.fields.number("peak_ground_force_n").unwrap_or(0.0),
+            None => 0.0,
+        };
+        if peak_n <= 0.0 {
             return Err(GroundPlotError::NoGround(label));
         }
+        runs.push((label, trace, peak_n));
     }
     let mut forces = Vec::new();
     let mut angles = Vec::new();
-    for (k, (label, r)) in strikes.iter().enumerate() {
-        let what = format!("{label} strike, peak {:.0} N", r.peak_ground_force_n);
-        forces.push(series(format!("{what}: vertical"), 2 * k, r, |p| p.ground_vertical_n));
-        forces.push(series(format!("{what}: horizontal"), 2 * k + 1, r, |p| p.ground_horizontal_n));
-        angles.push(Series {
-            name: format!("{label}: face angle (open +)"),
-            points: r.trace.iter().map(|p| (p.t_ms, p.face_angle_deg)).collect(),
-            color: PALETTE[2 * k],
-            right_axis: false,
-        });
-        angles.push(Series {
-            name: format!("{label}: dynamic loft (right axis)"),
-            points: r.trace.iter().map(|p| (p.t_ms, p.dynamic_loft_deg)).collect(),
-            color: PALETTE[2 * k + 1],
-            right_axis: true,
-        });
+    for (k, (label, trace, peak_n)) in runs.into_iter().enumerate() {
+        let what = format!("{label} strike, peak {peak_n:.0} N");
+        forces.push(series(format!("{what}: vertical"), 2 * k, trace, "ground_vertical_n", false));
+        forces.push(series(format!("{what}: horizontal"), 2 * k + 1, trace, "ground_horizontal_n", false));
+        angles.push(series(format!("{label}: face angle (open +)"), 2 * k, trace, "face_angle_deg", false));
+        angles.push(series(format!("{label}: dynamic loft (right axis)"), 2 * k + 1, trace, "dynamic_loft_deg", true));
     }
     let top = LineChart {
         title: format!("{title}: ground force on the head (Figure 4.10)"),

@@ -163,10 +163,10 @@ pub struct LaunchPrediction {
     /// Carry, apex, landing and offline of this launch (absent when the rig's `flight = false`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flight: Option<crate::flight::Trajectory>,
-    /// How the club met the turf (the `ground` model of an iron rig with `soil`, seed chapter 4); absent for
-    /// other models.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub ground: Option<Box<crate::impact::continuous::iron_ground::GroundSummary>>,
+    /// The model's own numbers, each an object under its key: the ground model's `ground` (how the club met the
+    /// turf, seed chapter 4); none for the other models.
+    #[serde(default, flatten, skip_serializing_if = "crate::impact::report::WireReports::is_empty")]
+    pub reports: crate::impact::report::WireReports,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.

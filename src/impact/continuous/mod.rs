@@ -16,6 +16,7 @@
 pub mod assembly;
 pub mod ball;
 pub mod club;
+mod course;
 pub mod ground;
 pub mod hertzian;
 pub mod iron_ground;

@@ -29,7 +29,7 @@ use super::ground::NoGround;
 use super::law::volumetric::Volumetric;
 use super::surface::FaceSurface;
 use crate::equipment::{BallSpec, ClubSpec, ModelSections};
-use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, ModelRun, RunOptions};
 use crate::math::Real;
 
 /// The parameters of Table 3.5 (units as in `tests/data/seed-tables.toml`); [`Self::DRIVER`] and [`Self::IRON7`]
@@ -239,16 +239,7 @@ impl ImpactModel for ContinuousModel {
         "continuous/two_layer"
     }
 
-    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
-        self.simulate(state, equipment, 0).map(|r| r.launch)
-    }
-
-    fn trace(
-        &self,
-        state: &ImpactState,
-        equipment: &Equipment,
-        every: usize,
-    ) -> Option<Result<ContinuousResult, ImpactError>> {
-        Some(self.simulate(state, equipment, every.max(1)))
+    fn run(&self, state: &ImpactState, equipment: &Equipment, o: &RunOptions) -> Result<ModelRun, ImpactError> {
+        self.simulate(state, equipment, o.trace_every).map(|r| r.into_run(o))
     }
 }

@@ -23,7 +23,7 @@ use super::law::{
     maw::{MawParams, MawRings},
 };
 use super::{ContinuousResult, TracePoint};
-use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
 use crate::math::{Real, Vector3};
 
 /// One sample of a trace.
@@ -148,42 +148,38 @@ impl ImpactModel for HertzModel {
         }
     }
 
-    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
-        self.simulate(state, equipment, 0).map(|r| r.launch)
+    fn run(&self, state: &ImpactState, equipment: &Equipment, o: &RunOptions) -> Result<ModelRun, ImpactError> {
+        self.simulate(state, equipment, o.trace_every).map(|r| r.into_continuous().into_run(o))
     }
+}
 
-    fn trace(
-        &self,
-        state: &ImpactState,
-        equipment: &Equipment,
-        every: usize,
-    ) -> Option<Result<ContinuousResult, ImpactError>> {
-        Some(self.simulate(state, equipment, every.max(1)).map(|r| {
-            ContinuousResult {
-                launch: r.launch,
-                contact_time_s: r.contact_time_s,
-                peak_normal_force_n: r.peak_normal_force_n,
-                steps: r.steps,
-                trace: r
-                    .trace
-                    .iter()
-                    .map(|p| TracePoint {
-                        t_us: p.t_us,
-                        normal_force_n: p.normal_force_n,
-                        tangential_force_n: p.tangential_force_n,
-                        ball_spin_rpm: p.ball_spin_rpm,
-                        cover_spin_rpm: p.ball_spin_rpm,
-                        compression_mm: p.compression_mm,
-                        stuck_rings: p.stuck_rings,
-                    })
-                    .collect(),
-                energy_before_j: r.energy_before_j,
-                energy_after_j: r.energy_after_j,
-                max_energy_increase_j: r.max_energy_increase_j,
-                momentum_before: r.momentum_before,
-                momentum_after: r.momentum_after,
-            }
-        }))
+impl HertzResult {
+    /// The same run in the continuous models' terms (the rigid ball's cover turns with it).
+    pub fn into_continuous(self) -> ContinuousResult {
+        ContinuousResult {
+            launch: self.launch,
+            contact_time_s: self.contact_time_s,
+            peak_normal_force_n: self.peak_normal_force_n,
+            steps: self.steps,
+            trace: self
+                .trace
+                .iter()
+                .map(|p| TracePoint {
+                    t_us: p.t_us,
+                    normal_force_n: p.normal_force_n,
+                    tangential_force_n: p.tangential_force_n,
+                    ball_spin_rpm: p.ball_spin_rpm,
+                    cover_spin_rpm: p.ball_spin_rpm,
+                    compression_mm: p.compression_mm,
+                    stuck_rings: p.stuck_rings,
+                })
+                .collect(),
+            energy_before_j: self.energy_before_j,
+            energy_after_j: self.energy_after_j,
+            max_energy_increase_j: self.max_energy_increase_j,
+            momentum_before: self.momentum_before,
+            momentum_after: self.momentum_after,
+        }
     }
 }
 

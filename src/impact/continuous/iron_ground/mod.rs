@@ -13,6 +13,7 @@
 pub mod dynamics;
 pub mod placement;
 mod reference_swing;
+mod report;
 mod run;
 pub mod sections;
 
@@ -23,11 +24,12 @@ use crate::impact::continuous::ground::{GroundPhase, SoilGround};
 use crate::impact::continuous::shaft::modal::ModalClub;
 use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
 use crate::impact::continuous::TwoLayerParams;
-use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch};
+use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
 use crate::math::{Real, Vector3};
 
 pub use placement::Strike;
 pub use reference_swing::reference_swing;
+pub use report::GROUND_REPORT;
 
 /// The model's settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -163,55 +165,19 @@ pub struct GroundResult {
     pub trace: Vec<GroundTracePoint>,
 }
 
-/// The `ground` object a prediction carries: how the club met the turf (names as on the wire).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
-pub struct GroundSummary {
-    pub strike: Strike,
-    pub ground_contact_before_ball_ms: Option<Real>,
-    pub club_speed_loss_mph: Real,
-    pub face_angle_change_deg: Real,
-    pub dynamic_loft_change_deg: Real,
-    pub divot_depth_mm: Real,
-    pub divot_length_mm: Real,
-    pub peak_ground_force_n: Real,
-    pub ground_contact_ms: Real,
-    pub ball_contact_us: Real,
-}
-
-impl GroundResult {
-    /// The wire summary of the strike.
-    pub fn summary(&self) -> GroundSummary {
-        GroundSummary {
-            strike: self.strike,
-            ground_contact_before_ball_ms: self.ground_contact_before_ball_ms,
-            club_speed_loss_mph: self.club_speed_loss_mph,
-            face_angle_change_deg: self.face_angle_change_deg,
-            dynamic_loft_change_deg: self.dynamic_loft_change_deg,
-            divot_depth_mm: self.divot_depth_mm,
-            divot_length_mm: self.divot_length_mm,
-            peak_ground_force_n: self.peak_ground_force_n,
-            ground_contact_ms: self.ground_contact_ms,
-            ball_contact_us: self.ball_contact_us,
-        }
-    }
-}
-
 impl ImpactModel for PreparedGround {
     fn name(&self) -> &'static str {
         "ground"
     }
 
-    fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
-        run::simulate(self, state, 0, 0.0).map(|r| r.launch)
+    /// The strike followed through the turf after the ball leaves (for the divot), with its `ground` report.
+    fn run(&self, state: &ImpactState, _equipment: &Equipment, o: &RunOptions) -> Result<ModelRun, ImpactError> {
+        self.simulate(state, o.trace_every).map(|r| r.into_run(o))
     }
 
-    fn ground(
-        &self,
-        state: &ImpactState,
-        _equipment: &Equipment,
-        trace_every: usize,
-    ) -> Option<Result<GroundResult, ImpactError>> {
-        Some(self.simulate(state, trace_every))
+    /// The launch alone stops when the ball leaves (the same launch as [`run`](ImpactModel::run), sooner).
+    fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
+        run::simulate(self, state, 0, 0.0).map(|r| r.launch)
     }
 }
 
