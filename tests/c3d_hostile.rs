@@ -15,7 +15,10 @@ fn kept(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/c3d").join(name)
 }
 
-fn read_all(bytes: &[u8]) -> Result<(C3dReader<Cursor<&[u8]>>, Vec<Frame>), C3dError> {
+/// A reader over bytes and every frame it gave.
+type ReadAll<'a> = (C3dReader<Cursor<&'a [u8]>>, Vec<Frame>);
+
+fn read_all(bytes: &[u8]) -> Result<ReadAll<'_>, C3dError> {
     let mut reader = C3dReader::new(Cursor::new(bytes))?;
     let mut frames = Vec::new();
     let mut f = Frame::default();

@@ -207,7 +207,7 @@ fn decode(info: &C3dInfo, raw: &[u8], index: u64, frame: &mut Frame) {
             let f = |k: usize| f64::from(p.f32([raw[at + k], raw[at + k + 1], raw[at + k + 2], raw[at + k + 3]]));
             let w = f(12);
             // The fourth float holds the 16-bit residual word's value (camera mask << 8 | residual).
-            let word = if w.is_finite() && w >= -32768.0 && w <= 65535.0 { w as i32 } else { -1 };
+            let word = if (-32768.0..=65535.0).contains(&w) { w as i32 } else { -1 };
             ([f(0), f(4), f(8)], if word > 32767 { word - 65536 } else { word })
         } else {
             let at = 8 * i;
