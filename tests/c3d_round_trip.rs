@@ -195,7 +195,7 @@ fn a_capture_of_markers_gives_the_json_swings_launches() {
     // The spread the marker noise causes, per shot and number: 12 draws through the same fit and pipeline.
     let draws: Vec<Vec<[f64; 5]>> =
         (0..12).map(|seed| launches_in_process(&set, &capture(&set, Some(&mut Rng::new(100 + seed))))).collect();
-    let mut sigma = vec![[0.0f64; 5]; SWINGS];
+    let mut sigma = [[0.0f64; 5]; SWINGS];
     for (shot, s) in sigma.iter_mut().enumerate() {
         for (k, v) in s.iter_mut().enumerate() {
             let xs: Vec<f64> = draws.iter().map(|d| d[shot][k] - truth[shot][k]).collect();

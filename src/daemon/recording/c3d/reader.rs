@@ -25,8 +25,13 @@ impl<R: Read + Seek> C3dReader<R> {
         let file_bytes = source.seek(SeekFrom::End(0)).map_err(C3dError::io("measuring"))?;
         source.seek(SeekFrom::Start(0)).map_err(C3dError::io("seeking to the header"))?;
         let mut header = [0u8; BLOCK as usize];
-        read_exact(&mut source, &mut header, "the header block")?;
-        if header[1] != 0x50 {
+        let short = file_bytes < BLOCK;
+        let have = usize::try_from(file_bytes.min(BLOCK)).unwrap_or(0);
+        read_exact(&mut source, &mut header[..have], "the header block")?;
+        if short || header[1] != 0x50 {
+            if header[1] == 0x50 {
+                return Err(C3dError::NotC3d(format!("it has {file_bytes} bytes, less than a 512-byte header")));
+            }
             return Err(C3dError::NotC3d(format!("its second byte is 0x{:02x}; a C3D header's is 0x50", header[1])));
         }
         let param_block = u64::from(header[0].max(1));
