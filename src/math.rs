@@ -20,6 +20,19 @@ pub type Isometry3 = nalgebra::Isometry3<Real>;
 
 /// A translation part of an isometry.
 pub type Translation3 = nalgebra::Translation3<Real>;
+/// A quaternion, not necessarily of unit length (a rotation's rate, `q̇ = q ω / 2`).
+pub type Quaternion = nalgebra::Quaternion<Real>;
+/// A 4-vector and a 4x4 matrix (Horn's quaternion fit).
+pub type Vector4 = nalgebra::Vector4<Real>;
+pub type Matrix4 = nalgebra::Matrix4<Real>;
+/// Fixed-size matrices and vectors of any shape (a beam element's 12x12 stiffness, a fit's normal equations).
+pub type SMatrix<const R: usize, const C: usize> = nalgebra::SMatrix<Real, R, C>;
+pub type SVector<const N: usize> = nalgebra::SVector<Real, N>;
+/// Matrices and vectors sized at run time (a shaft's mesh, a least-squares fit).
+pub type DMatrix = nalgebra::DMatrix<Real>;
+pub type DVector = nalgebra::DVector<Real>;
+/// A unit-length wrapper (a face normal) and the eigen-decomposition of a symmetric matrix.
+pub use nalgebra::{SymmetricEigen, Unit};
 
 /// `v.into_translation()` for building isometries from vectors.
 pub trait Translation3Ext {

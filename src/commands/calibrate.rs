@@ -162,7 +162,7 @@ fn lab(a: &LabArgs) -> Result<ExitCode> {
         ball_radius_m: impactd::equipment::BallSpec::default().radius_m,
     };
     let world_from_lab = calibrate::world_from_lab(&markers)?;
-    let rest = world_from_lab * nalgebra::Point3::from(p[0]);
+    let rest = world_from_lab * impactd::math::Point3::from(p[0]);
     eprintln!(
         "world_from_lab: the lab's origin at ({:.1}, {:.1}, {:.1}) mm in the world; the rear marker at ({:.1}, \
          {:.1}, {:.1}) mm",

@@ -126,7 +126,7 @@ impl SoleSpec {
         let level = Vector3::new(le.x - r * theta_le.sin(), le.y + r * theta_le.cos(), face_centre_m.z);
         let theta_te = (theta_le.sin() - self.sole_width_m / r).asin();
         // Toe down: a turn about the face normal n0 = (cos loft, sin loft, 0) takes the toe (+z) toward -u0.
-        let n0 = nalgebra::Unit::new_normalize(Vector3::new(loft_rad.cos(), loft_rad.sin(), 0.0));
+        let n0 = crate::math::Unit::new_normalize(Vector3::new(loft_rad.cos(), loft_rad.sin(), 0.0));
         let axes = UnitQuaternion::from_axis_angle(&n0, self.toe_down_deg.to_radians());
         SoleArc {
             centre_m: face_centre_m + axes * (level - face_centre_m),

@@ -8,8 +8,8 @@
 use super::aero::BOUNDS;
 use super::{Aero, Conditions, Flight};
 use crate::math::Real;
+use crate::math::{DMatrix, DVector};
 use crate::units::mph_to_mps;
-use nalgebra::{DMatrix, DVector};
 
 /// One row of the TrackMan table.
 #[derive(Debug, Clone, PartialEq)]
@@ -240,7 +240,7 @@ pub fn minimax(
 }
 
 /// The step `d` that minimises `max |r + J d|` (plus `damping |d|²`), by Lawson's reweighting.
-fn lawson_step(jac: &DMatrix<Real>, r: &DVector<Real>, damping: Real) -> DVector<Real> {
+fn lawson_step(jac: &DMatrix, r: &DVector, damping: Real) -> DVector {
     let m = r.len();
     let mut w = DVector::from_element(m, 1.0 / m as Real);
     let mut d = DVector::zeros(N);

@@ -16,7 +16,7 @@
 //! `A = Σ_j Σ_i w_i 2 f_i(0) g g'`, `B = Σ_j Σ_i w_i² g g'` (`g = ∂x_sim,i,j/∂θ`, `w_i = 1 / mean|x_exp,i|`,
 //! `f_i(0) = 1 / (σ_i sqrt(2π))` the noise's density at zero, and `Var(sign ε) = 1`).
 
-use nalgebra::DMatrix;
+use crate::math::DMatrix;
 
 use super::cost::evaluate;
 use super::dataset::Shot;
@@ -75,9 +75,9 @@ pub fn jacobian(
 }
 
 /// `Σ_j Σ_i weight_i g_ik g_il` over the shots the model predicted.
-fn weighted_gram(jacobian: &[Option<Vec<[Real; 5]>>], weight: &[Real; 5]) -> DMatrix<Real> {
+fn weighted_gram(jacobian: &[Option<Vec<[Real; 5]>>], weight: &[Real; 5]) -> DMatrix {
     let d = jacobian.iter().flatten().next().map_or(0, Vec::len);
-    let mut m = DMatrix::<Real>::zeros(d, d);
+    let mut m = DMatrix::zeros(d, d);
     for row in jacobian.iter().flatten() {
         for k in 0..d {
             for l in 0..d {
@@ -89,7 +89,7 @@ fn weighted_gram(jacobian: &[Option<Vec<[Real; 5]>>], weight: &[Real; 5]) -> DMa
 }
 
 /// The Fisher information from a [`jacobian`] with noise `sigma` per launch field.
-pub fn information_of(jacobian: &[Option<Vec<[Real; 5]>>], sigma: &[Real; 5]) -> DMatrix<Real> {
+pub fn information_of(jacobian: &[Option<Vec<[Real; 5]>>], sigma: &[Real; 5]) -> DMatrix {
     weighted_gram(jacobian, &sigma.map(|s| 1.0 / (s * s)))
 }
 
@@ -102,7 +102,7 @@ pub fn information(
     shots: &[Shot],
     values: &[Real],
     sigma: &[Real; 5],
-) -> Result<DMatrix<Real>, IdentifyError> {
+) -> Result<DMatrix, IdentifyError> {
     Ok(information_of(&jacobian(space, club, ball, shots, values)?, sigma))
 }
 
@@ -125,7 +125,7 @@ pub fn l1_scatter(jacobian: &[Option<Vec<[Real; 5]>>], sigma: &[Real; 5], scales
 }
 
 /// The Cramér-Rao bounds of each parameter from a Fisher information matrix (SI).
-pub fn bounds(f: &DMatrix<Real>) -> Vec<Bound> {
+pub fn bounds(f: &DMatrix) -> Vec<Bound> {
     let d = f.nrows();
     // Inverted as a correlation-like matrix (unit diagonal), which keeps parameters of very different scales
     // (N/m³ beside mm) well conditioned.

@@ -11,8 +11,8 @@
 
 use crate::math::{Real, Vector3};
 
-type M9 = nalgebra::SMatrix<Real, 9, 9>;
-type V9 = nalgebra::SVector<Real, 9>;
+type M9 = crate::math::SMatrix<9, 9>;
+type V9 = crate::math::SVector<9>;
 
 /// Levenberg-Marquardt iterations at most. The benchmark's noisy swings take two or three accepted steps; a
 /// few take a dozen or more: centre and radius trade against each other along a shallow valley (a centre moved
@@ -72,12 +72,12 @@ impl ArcFit {
             }
         }
         let origin = points.iter().map(|(_, p)| p).sum::<Vector3>() / n_pts as Real;
-        let mut scatter = nalgebra::Matrix3::zeros();
+        let mut scatter = crate::math::Matrix3::zeros();
         for (_, p) in points {
             let d = p - origin;
             scatter += d * d.transpose();
         }
-        let eig = nalgebra::SymmetricEigen::new(scatter);
+        let eig = crate::math::SymmetricEigen::new(scatter);
         let (mut i_min, mut i_max) = (0, 0);
         for i in 1..3 {
             if eig.eigenvalues[i] < eig.eigenvalues[i_min] {
@@ -98,8 +98,8 @@ impl ArcFit {
 
         // Kåsa's algebraic fit, with the radius free to change along the arc: x² + y² + D x + E y + F(τ) = 0,
         // F quadratic in τ (r² = cx² + cy² − F), by linear least squares.
-        type V5 = nalgebra::SVector<Real, 5>;
-        let mut a = nalgebra::SMatrix::<Real, 5, 5>::zeros();
+        type V5 = crate::math::SVector<5>;
+        let mut a = crate::math::SMatrix::<5, 5>::zeros();
         let mut b = V5::zeros();
         for (&tau, &(x, y)) in taus.iter().zip(&xy) {
             let row = V5::new(x, y, 1.0, tau, tau * tau);
@@ -332,8 +332,8 @@ fn turn_angle(sin: Real, cos: Real) -> Real {
 /// Least-squares polynomial of `degree` (at most 3) from the moments of its samples: `pow_sum[m] = Σ τᵐ` and
 /// `moments[k] = Σ vᵢ τᵢᵏ`.
 fn poly_from_moments(pow_sum: &[Real; 11], moments: &[Real; 4], degree: usize) -> Option<[Real; 4]> {
-    let mut ata = nalgebra::Matrix4::<Real>::identity();
-    let mut aty = nalgebra::Vector4::<Real>::zeros();
+    let mut ata = crate::math::Matrix4::identity();
+    let mut aty = crate::math::Vector4::zeros();
     for i in 0..=degree {
         for j in 0..=degree {
             ata[(i, j)] = pow_sum[i + j];

@@ -40,7 +40,7 @@ pub fn plane(points: &[Vector3], hint: &Vector3, what: &'static str) -> Result<(
     for p in points {
         cov += (p - centroid) * (p - centroid).transpose();
     }
-    let eigen = nalgebra::SymmetricEigen::new(cov);
+    let eigen = crate::math::SymmetricEigen::new(cov);
     let mut order = [0, 1, 2];
     order.sort_by(|a, b| eigen.eigenvalues[*a].total_cmp(&eigen.eigenvalues[*b]));
     // The two larger spreads must be real: markers on one line leave the plane's tilt open.

@@ -127,7 +127,7 @@ fn fit_window(pre_impact: &[ClubPose], reveal_t_ns: u64, face_centre_club_m: &Ve
     let first = pre_impact.iter().rposition(|p| newest - p.t_ns > span_ns).map_or(0, |i| i + 1);
     let points: Vec<(Real, Vector3)> = pre_impact[first..]
         .iter()
-        .map(|p| (rel(p.t_ns), (p.world_from_club * nalgebra::Point3::from(*face_centre_club_m)).coords))
+        .map(|p| (rel(p.t_ns), (p.world_from_club * crate::math::Point3::from(*face_centre_club_m)).coords))
         .collect();
     ArcFit::fit(&points)
 }

@@ -84,7 +84,7 @@ impl ImpactDetector {
             max_extrapolation_s: self.config.max_extrapolation_s,
         };
         let g = scene.gap(&newest.world_from_club);
-        let face_centre = newest.world_from_club * nalgebra::Point3::from(club.face.center_m);
+        let face_centre = newest.world_from_club * crate::math::Point3::from(club.face.center_m);
         let distance = (face_centre.coords - self.config.ball_position_m).norm();
         let previous = self.previous.replace((newest.t_ns, g, face_centre.coords));
         let before_previous = std::mem::replace(&mut self.before_previous, previous);

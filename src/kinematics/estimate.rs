@@ -144,7 +144,7 @@ pub fn estimate(
     for (dst, p) in poses.iter_mut().zip(used) {
         *dst = TimedPose {
             t_s: rel(p.t_ns),
-            position_m: (p.world_from_club * nalgebra::Point3::from(r_fit)).coords,
+            position_m: (p.world_from_club * crate::math::Point3::from(r_fit)).coords,
             orientation: p.world_from_club.rotation,
         };
     }

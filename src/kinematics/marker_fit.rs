@@ -119,7 +119,7 @@ fn rotation_of(s: &Matrix3) -> UnitQuaternion {
     largest_eigenvector(s).unwrap_or_else(|| {
         let n = horn_matrix(s);
         // Degenerate (markers nearly on one line, or all at one point): the general eigen-solver.
-        let eigen = nalgebra::SymmetricEigen::new(n);
+        let eigen = crate::math::SymmetricEigen::new(n);
         let mut best = 0;
         for i in 1..4 {
             if eigen.eigenvalues[i] > eigen.eigenvalues[best] {
@@ -127,17 +127,17 @@ fn rotation_of(s: &Matrix3) -> UnitQuaternion {
             }
         }
         let q = eigen.eigenvectors.column(best);
-        UnitQuaternion::new_normalize(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]))
+        UnitQuaternion::new_normalize(crate::math::Quaternion::new(q[0], q[1], q[2], q[3]))
     })
 }
 
 /// Horn's eq. 41 matrix N of the cross-covariance `s` (`s[(r, c)]` = Horn's S_rc).
-fn horn_matrix(s: &Matrix3) -> nalgebra::Matrix4<Real> {
+fn horn_matrix(s: &Matrix3) -> crate::math::Matrix4 {
     let (sxx, sxy, sxz) = (s[(0, 0)], s[(0, 1)], s[(0, 2)]);
     let (syx, syy, syz) = (s[(1, 0)], s[(1, 1)], s[(1, 2)]);
     let (szx, szy, szz) = (s[(2, 0)], s[(2, 1)], s[(2, 2)]);
     #[rustfmt::skip]
-    let n = nalgebra::Matrix4::new(
+    let n = crate::math::Matrix4::new(
         sxx + syy + szz, syz - szy,        szx - sxz,        sxy - syx,
         syz - szy,       sxx - syy - szz,  sxy + syx,        szx + sxz,
         szx - sxz,       sxy + syx,        -sxx + syy - szz, syz + szy,
@@ -178,13 +178,13 @@ fn largest_eigenvector(s: &Matrix3) -> Option<UnitQuaternion> {
             break;
         }
     }
-    let a = n - nalgebra::Matrix4::identity() * lambda;
+    let a = n - crate::math::Matrix4::identity() * lambda;
     // The adjugate's columns from the 2x2 minors of rows 2-3 (its columns 0 and 1) and of rows 0-1 (2 and 3):
     // each is a multiple of the null vector; the largest is the best conditioned.
     let (m01, m23) = (minors(&a, 0, 1), minors(&a, 2, 3));
     let column = |r: usize, m: &[Real; 6]| {
         // Cofactors of row r expanded along the other row pair: m = [c01, c02, c03, c12, c13, c23].
-        nalgebra::Vector4::new(
+        crate::math::Vector4::new(
             a[(r, 1)] * m[5] - a[(r, 2)] * m[4] + a[(r, 3)] * m[3],
             -(a[(r, 0)] * m[5] - a[(r, 2)] * m[2] + a[(r, 3)] * m[1]),
             a[(r, 0)] * m[4] - a[(r, 1)] * m[2] + a[(r, 3)] * m[0],
@@ -197,11 +197,11 @@ fn largest_eigenvector(s: &Matrix3) -> Option<UnitQuaternion> {
     if !(norm > 1e-12 * p2.powf(1.5) && norm.is_finite()) {
         return None;
     }
-    Some(UnitQuaternion::new_normalize(nalgebra::Quaternion::new(best[0], best[1], best[2], best[3])))
+    Some(UnitQuaternion::new_normalize(crate::math::Quaternion::new(best[0], best[1], best[2], best[3])))
 }
 
 /// The 2x2 minors of rows `r0`, `r1` of a 4x4 matrix over the column pairs 01, 02, 03, 12, 13, 23.
-fn minors(m: &nalgebra::Matrix4<Real>, r0: usize, r1: usize) -> [Real; 6] {
+fn minors(m: &crate::math::Matrix4, r0: usize, r1: usize) -> [Real; 6] {
     let d = |c0: usize, c1: usize| m[(r0, c0)] * m[(r1, c1)] - m[(r0, c1)] * m[(r1, c0)];
     [d(0, 1), d(0, 2), d(0, 3), d(1, 2), d(1, 3), d(2, 3)]
 }
@@ -293,10 +293,10 @@ mod tests {
             let s = Matrix3::from_fn(|_, _| rng.normal());
             let fast = rotation_of(&s);
             let n = horn_matrix(&s);
-            let eigen = nalgebra::SymmetricEigen::new(n);
+            let eigen = crate::math::SymmetricEigen::new(n);
             let best = (0..4).max_by(|a, b| eigen.eigenvalues[*a].total_cmp(&eigen.eigenvalues[*b])).unwrap();
             let q = eigen.eigenvectors.column(best);
-            let slow = UnitQuaternion::new_normalize(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
+            let slow = UnitQuaternion::new_normalize(crate::math::Quaternion::new(q[0], q[1], q[2], q[3]));
             assert!(largest_eigenvector(&s).is_some());
             assert!(fast.angle_to(&slow) < 1e-6, "{}", fast.angle_to(&slow));
         }

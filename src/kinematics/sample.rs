@@ -71,7 +71,7 @@ impl ClubPose {
 
 /// The unit quaternion of `[x, y, z, w]`, if its norm is within `tol` of 1.
 pub fn unit_quaternion(xyzw: &[Real; 4], tol: Real) -> Option<UnitQuaternion> {
-    let q = nalgebra::Quaternion::new(xyzw[3], xyzw[0], xyzw[1], xyzw[2]);
+    let q = crate::math::Quaternion::new(xyzw[3], xyzw[0], xyzw[1], xyzw[2]);
     let n = q.norm();
     if (n - 1.0).abs() <= tol {
         Some(UnitQuaternion::new_normalize(q))

@@ -13,7 +13,7 @@ pub(super) fn rolled(rotation: UnitQuaternion, club: &ClubSpec, roll_deg: Real) 
         return rotation;
     }
     // About the outward normal a positive turn carries the toe (club z) down; toe up is the negative turn.
-    let n = nalgebra::Unit::new_normalize(rotation * club.face.n0());
+    let n = crate::math::Unit::new_normalize(rotation * club.face.n0());
     UnitQuaternion::from_axis_angle(&n, -roll_deg.to_radians()) * rotation
 }
 

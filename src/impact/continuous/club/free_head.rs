@@ -33,7 +33,7 @@ pub struct FreeHeadState {
 pub struct FreeHeadRate {
     v: Vector3,
     a: Vector3,
-    q_dot: nalgebra::Quaternion<Real>,
+    q_dot: crate::math::Quaternion,
     alpha_body: Vector3,
 }
 
@@ -64,7 +64,7 @@ impl ClubPart for FreeHead {
         FreeHeadRate {
             v: s.v,
             a: force_n / self.mass_kg,
-            q_dot: s.q.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5,
+            q_dot: s.q.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5,
             alpha_body: self.inertia_inv_kg_m2 * (torque_body - w.cross(&(self.inertia_kg_m2 * w))),
         }
     }

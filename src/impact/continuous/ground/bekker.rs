@@ -153,9 +153,9 @@ mod tests {
         let club = ClubSpec::iron7();
         let mut ground = SoilGround::new(SoilSpec::firm(), SoleSpec::IRON7, &club, 0.0);
         let rot = crate::math::UnitQuaternion::from_euler_angles(0.03, -0.05, -0.08);
-        let probe = Isometry3::from_parts(nalgebra::Translation3::identity(), rot);
+        let probe = Isometry3::from_parts(crate::math::Translation3::identity(), rot);
         let lowest = -ground.placed(&probe).max_sinkage_m();
-        let pose = Isometry3::from_parts(nalgebra::Translation3::new(0.0, -lowest - 0.006, 0.0), rot);
+        let pose = Isometry3::from_parts(crate::math::Translation3::new(0.0, -lowest - 0.006, 0.0), rot);
         let (v, w) = (Vector3::new(34.0, -2.5, 1.0), Vector3::new(2.0, -5.0, -30.0));
         let coarse = ground.forces(&pose, &v, &w);
         ground.strips = GaussRule::new(16);

@@ -9,7 +9,7 @@ use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::{Equipment, ImpactError, ImpactState, Launch};
 use crate::math::{Real, UnitQuaternion, Vector3};
 
-type Rotation3 = nalgebra::Rotation3<Real>;
+type Rotation3 = crate::math::Rotation3;
 
 /// A step the tangential law flags ([`TangentialLaw::refine`]) is split into this many.
 const REFINE: usize = 8;
@@ -32,7 +32,7 @@ struct State {
 struct Rates {
     v_c_mps: Vector3,
     a_c_mps2: Vector3,
-    q_dot: nalgebra::Quaternion<Real>,
+    q_dot: crate::math::Quaternion,
     alpha_c_body_radps2: Vector3,
     v_b_mps: Vector3,
     a_b_mps2: Vector3,
@@ -48,8 +48,8 @@ struct Setup {
     m_b_kg: Real,
     i_b_kgm2: Real,
     m_c_kg: Real,
-    i_c_kgm2: nalgebra::Matrix3<Real>,
-    i_c_inv_per_kgm2: nalgebra::Matrix3<Real>,
+    i_c_kgm2: crate::math::Matrix3,
+    i_c_inv_per_kgm2: crate::math::Matrix3,
 }
 
 /// The contact at a state: kinematics for the law, the contact point's lever arms, the normal force.
@@ -114,7 +114,7 @@ impl Setup {
     /// The rates at `s` with the contact and tangential force found there (`None`: apart).
     fn rates_with(&self, s: &State, rot: &Rotation3, cf: Option<(&Contact, &Vector3)>) -> Rates {
         let w = s.w_c_body_radps;
-        let q_dot = s.q_c.quaternion() * nalgebra::Quaternion::from_imag(w) * 0.5;
+        let q_dot = s.q_c.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5;
         // The head's torque in its body frame: gyroscopic, plus the contact's.
         let mut torque_body = -w.cross(&(self.i_c_kgm2 * w));
         let mut r = Rates {

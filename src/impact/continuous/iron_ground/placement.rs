@@ -31,7 +31,7 @@ pub fn ball_centre_m(state: &ImpactState, club: &ClubSpec, ball: &BallSpec) -> R
         return Err(ImpactError::OffFace { h_mm: state.impact_h_m * 1e3, v_mm: state.impact_v_m * 1e3 });
     }
     let c = club.face.contact(state.impact_h_m, state.impact_v_m)?;
-    Ok((state.world_from_club * nalgebra::Point3::from(c.point_m + ball.radius_m * c.normal)).coords)
+    Ok((state.world_from_club * crate::math::Point3::from(c.point_m + ball.radius_m * c.normal)).coords)
 }
 
 /// The ground's height under a ball resting on it (m, world).

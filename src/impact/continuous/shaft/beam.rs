@@ -11,13 +11,13 @@
 //! Five-point Gauss-Legendre quadrature is exact for these integrands when an element lies within one segment of
 //! the profile (the section properties are polynomials of degree 4 there).
 
-use nalgebra::{SMatrix, SVector};
+use crate::math::{SMatrix, SVector};
 
 use crate::equipment::shaft::ShaftSpec;
 use crate::math::Real;
 
 /// A 12 x 12 element matrix.
-pub type Mat12 = SMatrix<Real, 12, 12>;
+pub type Mat12 = SMatrix<12, 12>;
 
 /// Gauss-Legendre points and weights on [0, 1].
 const GAUSS5: [(Real, Real); 5] = [
@@ -80,11 +80,11 @@ pub fn element(shaft: &ShaftSpec, xa: Real, xb: Real) -> (Mat12, Mat12) {
 }
 
 /// The 4 x 4 bending stiffness of one plane, for the three-point test of eq. 4.1.
-pub fn bending_stiffness(shaft: &ShaftSpec, xa: Real, xb: Real) -> SMatrix<Real, 4, 4> {
+pub fn bending_stiffness(shaft: &ShaftSpec, xa: Real, xb: Real) -> SMatrix<4, 4> {
     let l = xb - xa;
-    let mut k = SMatrix::<Real, 4, 4>::zeros();
+    let mut k = SMatrix::<4, 4>::zeros();
     for &(xi, w) in &GAUSS5 {
-        let d = SVector::<Real, 4>::from(hermite_dd(xi, l));
+        let d = SVector::<4>::from(hermite_dd(xi, l));
         k += (w * l * shaft.ei_n_m2(xa + xi * l)) * d * d.transpose();
     }
     k
@@ -119,7 +119,7 @@ mod tests {
         assert!(rel(m[(1, 1)], 13.0 / 35.0 * rho_a * l) < 1e-12);
         assert!(rel(m[(0, 0)], rho_a * l / 3.0) < 1e-12);
         // Rigid translation carries no elastic force, and the mass of a rigid translation is the element's mass.
-        let mut t = SVector::<Real, 12>::zeros();
+        let mut t = SVector::<12>::zeros();
         t[1] = 1.0;
         t[7] = 1.0;
         assert!((k * t).norm() < 1e-9 * k.norm());

@@ -18,7 +18,7 @@ pub mod beam;
 pub mod grip;
 pub mod modal;
 
-use nalgebra::{DMatrix, DVector};
+use crate::math::{DMatrix, DVector};
 
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::sole::SoleSpec;
@@ -73,11 +73,11 @@ pub struct FlexibleClub {
     /// Index of the first free node.
     pub first_free: usize,
     /// Stiffness and mass over the free DOFs (6 per free node, butt to tip).
-    pub k: DMatrix<Real>,
-    pub m: DMatrix<Real>,
+    pub k: DMatrix,
+    pub m: DMatrix,
     /// Rows of the clamped DOFs against the free ones: the clamp's reaction is `K_cf q + M_cf q̈`.
-    pub k_cf: DMatrix<Real>,
-    pub m_cf: DMatrix<Real>,
+    pub k_cf: DMatrix,
+    pub m_cf: DMatrix,
     /// The shaft frame in the club frame (x from butt to tip, y the club's forward, z = x × y).
     pub club_from_shaft: Rotation3,
     /// The tip (hosel) and the butt in the club frame (m).
@@ -155,7 +155,7 @@ impl FlexibleClub {
     }
 
     /// Natural frequencies (rad/s, ascending) and mass-normalised mode shapes (columns) of the clamped club.
-    pub fn modes(&self) -> Result<(DVector<Real>, DMatrix<Real>), ShaftError> {
+    pub fn modes(&self) -> Result<(DVector, DMatrix), ShaftError> {
         let chol = self.m.clone().cholesky().ok_or(ShaftError::NotPositiveDefinite)?;
         let l = chol.l();
         // A = L⁻¹ K L⁻ᵀ, symmetric.
@@ -186,7 +186,7 @@ impl FlexibleClub {
     }
 
     /// The static displacement of the free DOFs under generalized forces `f` (N and N m, shaft frame).
-    pub fn static_displacement(&self, f: &DVector<Real>) -> Result<DVector<Real>, ShaftError> {
+    pub fn static_displacement(&self, f: &DVector) -> Result<DVector, ShaftError> {
         let chol = self.k.clone().cholesky().ok_or(ShaftError::NotPositiveDefinite)?;
         Ok(chol.solve(f))
     }
@@ -224,7 +224,7 @@ pub fn three_point_ei(shaft: &ShaftSpec, centre_m: Real, span_m: Real, elements:
     let n = elements.max(2) & !1; // even, so a node sits at mid-span
     let (xa, h) = (centre_m - 0.5 * span_m, span_m / n as Real);
     let dofs = 2 * (n + 1);
-    let mut k = DMatrix::<Real>::zeros(dofs, dofs);
+    let mut k = DMatrix::zeros(dofs, dofs);
     for e in 0..n {
         let ke = beam::bending_stiffness(shaft, xa + e as Real * h, xa + (e + 1) as Real * h);
         for i in 0..4 {

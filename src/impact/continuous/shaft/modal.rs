@@ -5,7 +5,7 @@
 //! the head's contacts put on the tip node (shaft frame). Modes above `max_frequency_hz` are dropped; the
 //! response converges as the cut-off and the mesh are raised (tests/shaft.rs).
 
-use nalgebra::{DMatrix, SMatrix, SVector};
+use crate::math::{DMatrix, SMatrix, SVector};
 
 use super::{FlexibleClub, ShaftError};
 use crate::math::{Real, Rotation3, Vector3};
@@ -13,7 +13,7 @@ use crate::math::{Real, Rotation3, Vector3};
 /// The most modes kept.
 pub const MAX_MODES: usize = 48;
 /// A vector of modal coordinates.
-pub type ModalVec = SVector<Real, MAX_MODES>;
+pub type ModalVec = SVector<MAX_MODES>;
 
 /// The reduced club.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,12 +25,12 @@ pub struct ModalClub {
     /// Modal damping ratio ζ.
     pub damping_ratio: Real,
     /// The tip node's six DOFs (translation, rotation; shaft frame) per unit modal coordinate.
-    pub tip_modes: SMatrix<Real, 6, MAX_MODES>,
+    pub tip_modes: SMatrix<6, MAX_MODES>,
     /// The club's linear momentum (shaft frame) per unit modal velocity.
-    pub momentum_modes: SMatrix<Real, 3, MAX_MODES>,
+    pub momentum_modes: SMatrix<3, MAX_MODES>,
     /// The clamp's reaction force on the shaft (shaft frame) per unit modal coordinate and acceleration.
-    pub grip_stiffness_modes: SMatrix<Real, 3, MAX_MODES>,
-    pub grip_mass_modes: SMatrix<Real, 3, MAX_MODES>,
+    pub grip_stiffness_modes: SMatrix<3, MAX_MODES>,
+    pub grip_mass_modes: SMatrix<3, MAX_MODES>,
     pub club_from_shaft: Rotation3,
     /// The head's CG from the tip, shaft frame (m).
     pub cg_from_tip_shaft_m: Vector3,
@@ -61,7 +61,7 @@ pub struct HeadOffset {
 }
 
 /// Sums the translation rows of every node: a 3 x (6 n) selector.
-fn translation_sum(dofs: usize) -> DMatrix<Real> {
+fn translation_sum(dofs: usize) -> DMatrix {
     DMatrix::from_fn(3, dofs, |i, j| if j % 6 == i { 1.0 } else { 0.0 })
 }
 
