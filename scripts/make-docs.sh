@@ -11,6 +11,7 @@
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
+#   impactd models [--sections]         -> README.md region models, docs/club-files.md region sections
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/make-docs.sh   (SHOTS=N for another number of swings per evaluation; default 200000; about 30 minutes in all on 2 cores, most of it docs-identify.sh)
 set -euo pipefail
@@ -21,6 +22,7 @@ python3 scripts/equation-index.py
 SHOTS="${SHOTS:-200000}"
 cargo build --release --quiet
 BIN=target/release/impactd
+BIN="$BIN" bash scripts/registry-docs.sh
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 

@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
-use impactd::flight::{cv, fit, Aero, Conditions, Flight, Ground};
+use impactd::flight::{cv, fit, Aero, Conditions, Flight, Turf};
 use impactd::units::{mph_to_mps, rpm_to_radps};
 
 /// Closed form: with no drag and no lift the ball flies the vacuum parabola: range v² sin 2θ / g, apex
@@ -207,7 +207,7 @@ fn slower_drives_agree_with_trackman() {
 #[test]
 fn bounce_and_roll() {
     let fly = |firmness: f64, mph: f64, launch: f64, spin: f64| {
-        Flight { ground: Ground { firmness }, ..Flight::default() }.fly_metrics(mph_to_mps(mph), launch, 0.0, spin, 0.0)
+        Flight { turf: Turf { firmness }, ..Flight::default() }.fly_metrics(mph_to_mps(mph), launch, 0.0, spin, 0.0)
     };
     let mut last = -1.0;
     for firmness in [0.0, 0.25, 0.5, 0.75, 1.0] {

@@ -86,7 +86,7 @@ fn restitution_constraints_hold() {
         let u1 = p.club_contact_velocity(&s.club_velocity_mps, &s.club_angular_velocity_radps)
             - p.ball_contact_velocity(&s.ball_velocity_mps, &s.ball_angular_velocity_radps);
         for axis in 0..3 {
-            let dir = p.frame.column(axis);
+            let dir = p.world_from_impact.column(axis);
             let want = -p.restitution[axis] * u0.dot(&dir);
             assert!((u1.dot(&dir) - want).abs() < 1e-10 * u0.norm(), "axis {axis}");
         }
@@ -143,7 +143,7 @@ fn energy_never_increases() {
             let u0 = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps);
             let u1 = p.club_contact_velocity(&s.club_velocity_mps, &s.club_angular_velocity_radps)
                 - p.ball_contact_velocity(&s.ball_velocity_mps, &s.ball_angular_velocity_radps);
-            let n = p.frame.column(0);
+            let n = p.world_from_impact.column(0);
             let e_eff = -u1.dot(&n) / u0.dot(&n);
             if (e_eff - e).abs() > 1e-9 {
                 assert!(e_eff < e && e > 0.99, "restitution lowered at e = {e} to {e_eff}");
@@ -323,7 +323,7 @@ fn solver_is_mirror_symmetric() {
             ball_inertia_inv: mirror_z_tensor(&p.ball_inertia_inv),
             r_club_m: mirror_z(&p.r_club_m),
             r_ball_m: mirror_z(&p.r_ball_m),
-            frame: m * p.frame,
+            world_from_impact: m * p.world_from_impact,
             club_velocity_mps: mirror_z(&p.club_velocity_mps),
             club_angular_velocity_radps: mirror_z_axial(&p.club_angular_velocity_radps),
             ball_velocity_mps: mirror_z(&p.ball_velocity_mps),

@@ -60,20 +60,15 @@ impl ConditionArgs {
 
     /// The flight model in these conditions, bouncing and rolling on turf of the given firmness.
     pub fn flight(&self, firmness: f64) -> Result<impactd::flight::Flight> {
-        let ground = impactd::flight::Ground { firmness };
-        ground.validate().context("--firmness")?;
-        Ok(impactd::flight::Flight { conditions: self.conditions()?, ground, ..Default::default() })
+        let turf = impactd::flight::Turf { firmness };
+        turf.validate().context("--firmness")?;
+        Ok(impactd::flight::Flight { conditions: self.conditions()?, turf, ..Default::default() })
     }
 }
 
 /// A model name from the registry (`impact::registry`): one model, a group (`both`) or a comma-separated list.
 pub fn model_name(name: &str) -> std::result::Result<String, String> {
-    let known = |n: &str| registry::entry(n).is_some();
-    if registry::GROUPS.iter().any(|g| g.0 == name) || name.split(',').all(|n| known(n.trim())) {
-        Ok(name.to_string())
-    } else {
-        Err(format!("unknown model '{name}' (expected {})", registry::names()))
-    }
+    registry::resolve(name, false).map(|_| name.to_string()).map_err(|e| e.to_string())
 }
 
 /// The single model a command runs, from the registry, with the club file's parameters.
@@ -85,9 +80,7 @@ pub fn one_model(name: &str, club: &LoadedClub, cor: f64) -> Result<Arc<dyn Impa
 /// `--soil`: the turf of the ground model (a preset or a soil file), as the club's `[soil]` section.
 pub fn set_soil(club: &mut LoadedClub, soil: Option<&str>, model: &str) -> Result<()> {
     let Some(soil) = soil else { return Ok(()) };
-    if !model.split(',').any(|m| m.trim() == "ground") {
-        anyhow::bail!("--soil needs --model ground, not {model}");
-    }
+    registry::resolve(model, true).context("--soil")?;
     let spec = impactd::equipment::soil::SoilSpec::load(soil).context("--soil")?;
     club.sections.insert("soil", impactd::impact::continuous::iron_ground::sections::soil_section(&spec));
     Ok(())

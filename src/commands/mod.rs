@@ -15,6 +15,7 @@ mod flight;
 mod flight_fit;
 mod flight_lines;
 mod map;
+mod models;
 mod plot;
 #[cfg(feature = "daemon")]
 mod plot_dispersion;
@@ -77,6 +78,8 @@ pub enum Command {
     Synth(synth::SynthArgs),
     /// Write the JSON Schemas of every message type.
     Schemas(schemas::SchemasArgs),
+    /// The impact models of the registry (or, with --sections, the club-file sections they read).
+    Models(models::ModelsArgs),
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
     #[cfg(feature = "daemon")]
     Run(run::RunArgs),
@@ -164,6 +167,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Fit(args) => fit::run(&args),
         Command::Synth(args) => synth::run(&args),
         Command::Schemas(args) => schemas::run(&args),
+        Command::Models(args) => models::run(&args),
         #[cfg(feature = "daemon")]
         Command::Run(args) => run::run(&args),
         #[cfg(feature = "daemon")]

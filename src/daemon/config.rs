@@ -7,7 +7,7 @@
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
 //! club = "driver"               # preset (driver, iron7) or a path to a club .toml
-//! model = "adjusted"            # standard | adjusted | slip | continuous | ground | both
+//! model = "adjusted"            # a model of the registry (`impactd models`), or a comma-separated list
 //! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml;
 //!                               # with model = "both" it stands for "adjusted,ground"
 //! cor = 0.83
@@ -129,10 +129,7 @@ fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
 /// model published at once and the ground model when it is ready).
 fn soil_model(r: &RigConfig, club: &mut crate::equipment::LoadedClub) -> Result<String, String> {
     let Some(soil) = &r.soil else { return Ok(r.model.clone()) };
-    let model = if r.model == "both" { "adjusted,ground".to_string() } else { r.model.clone() };
-    if !model.split(',').any(|m| m.trim() == "ground") {
-        return Err(format!("needs model = \"ground\" or \"both\", not \"{}\"", r.model));
-    }
+    let model = registry::resolve(&r.model, true).map_err(|e| e.to_string())?;
     let spec = crate::equipment::soil::SoilSpec::load(soil).map_err(|e| e.to_string())?;
     club.sections.insert("soil", crate::impact::continuous::iron_ground::sections::soil_section(&spec));
     Ok(model)

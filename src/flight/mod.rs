@@ -11,7 +11,7 @@
 //! - `dω/dt = −(ω / τ) (|u| / 50 m/s)`: spin decays in proportion to the airspeed, with time constant `τ` = 22 s at
 //!   50 m/s, Smits and Smith's measured decay ([`aero::SPIN_TAU_S`]).
 //! - Air density and viscosity from temperature, pressure, humidity and altitude ([`air`]); a uniform wind.
-//! - After landing, bounces and the roll on a fairway of configurable firmness ([`ground`], Penner's model).
+//! - After landing, bounces and the roll on a fairway of configurable firmness ([`turf`], Penner's model).
 //!
 //! Integration: classical Runge-Kutta at 100 ms with the landing found exactly on the cubic Hermite interpolant of
 //! the last step (position and velocity at both ends) crossing the ground plane `y = 0` (within 1 cm of a
@@ -22,12 +22,12 @@ pub mod aero;
 pub mod air;
 pub mod cv;
 pub mod fit;
-pub mod ground;
 pub mod reference;
+pub mod turf;
 
 pub use aero::Aero;
 pub use air::{Conditions, ConditionsError};
-pub use ground::{Ground, GroundError};
+pub use turf::{Turf, TurfError};
 
 use crate::equipment::BallSpec;
 use crate::integrate::{rk4_step, Ode};
@@ -128,7 +128,7 @@ pub struct Flight {
     pub conditions: Conditions,
     pub ball: BallSpec,
     /// The turf the ball lands, bounces and rolls on.
-    pub ground: Ground,
+    pub turf: Turf,
     /// Integration step (s).
     pub step_s: Real,
 }
@@ -139,7 +139,7 @@ impl Default for Flight {
             aero: Aero::FITTED,
             conditions: Conditions::default(),
             ball: BallSpec::SEED,
-            ground: Ground::default(),
+            turf: Turf::default(),
             step_s: 0.1,
         }
     }
@@ -339,7 +339,7 @@ impl Flight {
         };
         let w_land = a.w + (b.w - a.w) * u;
         let backspin = w_land.dot(&heading.cross(&Vector3::y()));
-        let run = self.ground.run(horizontal, -v_land.y, backspin, self.ball.radius_m, G, t_land);
+        let run = self.turf.run(horizontal, -v_land.y, backspin, self.ball.radius_m, G, t_land);
         if sample_every_s > 0.0 {
             for seg in &run.segments {
                 while next_sample < seg.t0_s + seg.duration_s {

@@ -210,7 +210,7 @@ mod tests {
             let g = s.contact(&club).unwrap();
             let contact = s.world_from_club.translation.vector + g.r_club_m;
             assert!((contact.norm() - eq.ball.radius_m).abs() < 1e-12);
-            assert!((contact + eq.ball.radius_m * g.frame.column(0)).norm() < 1e-12);
+            assert!((contact + eq.ball.radius_m * g.world_from_impact.column(0)).norm() < 1e-12);
         }
     }
 

@@ -5,6 +5,7 @@
 //! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
 //! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
 
+pub mod club_sections;
 pub mod continuous;
 mod delivery;
 pub mod identifiable;
@@ -86,8 +87,9 @@ pub struct ContactGeometry {
     pub world_from_club: Matrix3,
     /// Club CG -> contact point (m, world).
     pub r_club_m: Vector3,
-    /// Impact frame columns x' (normal toward the ball), y' (up the face), z' (toe), world.
-    pub frame: Matrix3,
+    /// The impact frame in the world: its columns are x' (normal toward the ball), y' (up the face) and z'
+    /// (toe), so `v_world = world_from_impact * v_impact`.
+    pub world_from_impact: Matrix3,
     /// Velocity of the club's material point at the contact (m/s, world), seed eq. 3.7.
     pub contact_velocity_mps: Vector3,
     /// Contact point and normal in the club frame.
@@ -105,9 +107,9 @@ impl ImpactState {
         let r_club_m = rot * contact_club.point_m;
         let normal = rot * contact_club.normal;
         let toe = rot.column(2).into_owned();
-        let frame = impact_frame(&normal, &toe);
+        let world_from_impact = impact_frame(&normal, &toe);
         let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
-        Ok(ContactGeometry { world_from_club: rot, r_club_m, frame, contact_velocity_mps, contact_club })
+        Ok(ContactGeometry { world_from_club: rot, r_club_m, world_from_impact, contact_velocity_mps, contact_club })
     }
 }
 

@@ -66,7 +66,49 @@ fn continuous(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel
     Ok(Arc::new(ContinuousModel { params, ..ContinuousModel::default() }))
 }
 
-/// Every model.
+/// Every model. Each one's launch for one delivery, with where the number comes from (the seed's driver, Table
+/// 3.1, at 113 mph, 13 deg of dynamic loft and 1.3 deg down, the thesis' own example; its 7-iron at 85 mph, 26 deg
+/// and 4.3 deg down, the swing of its section 4.3):
+///
+/// ```
+/// use impactd::equipment::{load_club, LoadedClub};
+/// use impactd::impact::registry::{build_one, BuildOptions};
+/// use impactd::impact::{Delivery, Equipment, LaunchMetrics};
+/// use impactd::units::mph_to_mps;
+///
+/// fn ball_mph(model: &str, club: &str, speed_mph: f64, loft_deg: f64, attack_deg: f64) -> (f64, f64) {
+///     let club: LoadedClub = load_club(club).unwrap();
+///     let eq = Equipment::new(club.club.clone());
+///     let d = Delivery {
+///         club_speed_mps: mph_to_mps(speed_mph),
+///         attack_angle_rad: attack_deg.to_radians(),
+///         club_path_rad: 0.0,
+///         face_angle_rad: 0.0,
+///         dynamic_loft_rad: loft_deg.to_radians(),
+///         impact_h_m: 0.0,
+///         impact_v_m: 0.0,
+///         club_angular_velocity_radps: impactd::math::Vector3::zeros(),
+///     };
+///     let model = build_one(model, &club, &BuildOptions::default()).unwrap();
+///     let l = model.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
+///     let m = LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps);
+///     (m.ball_speed_mph, m.backspin_rpm)
+/// }
+/// // The impulse models: the exact cases of tests/data/im-golden.jsonl (the closed-form 3x3 solve, eq. 3.1-3.12).
+/// assert!((ball_mph("standard", "driver", 113.0, 13.0, -1.3).0 - 163.298903).abs() < 1e-5);
+/// assert!((ball_mph("adjusted", "driver", 113.0, 13.0, -1.3).0 - 163.956911).abs() < 1e-5);
+/// assert!((ball_mph("slip", "driver", 113.0, 13.0, -1.3).0 - 163.297371).abs() < 1e-5);
+/// // The models resolved in time lose a little more to the ball's deformation and the contact's damping: within
+/// // 2 % below the adjusted model (the seed's most accurate driver model, ball speed MAE 1 %).
+/// for model in ["continuous", "maw", "arakawa"] {
+///     let (mph, _) = ball_mph(model, "driver", 113.0, 13.0, -1.3);
+///     assert!(mph < 163.96 && mph > 0.98 * 163.96, "{model}: {mph} mph");
+/// }
+/// // The iron on the turf: a good strike, its smash factor near the tour's 7-iron (120 / 90 = 1.33, TrackMan's
+/// // tour averages, tests/data/trackman-pga-tour-averages.csv).
+/// let (mph, spin) = ball_mph("ground", "iron7", 85.0, 26.0, -4.3);
+/// assert!((1.30..1.40).contains(&(mph / 85.0)) && spin > 4000.0, "{mph} mph, {spin} rpm");
+/// ```
 pub const MODELS: &[ModelEntry] = &[
     ModelEntry {
         name: "standard",
@@ -95,7 +137,7 @@ pub const MODELS: &[ModelEntry] = &[
     ModelEntry {
         name: "continuous",
         summary: "two-layer ball, volumetric contact, free head, in time (seed 3.2.1, Table 3.5 read for one \
-                  force reversal per contact)",
+                  force reversal per contact; `reading = \"table\"`: as printed)",
         sections: &["continuous"],
         resolved_in_time: true,
         fit: Some(identifiable::CONTINUOUS),
@@ -103,8 +145,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "maw",
-        summary:
-            "rigid ball, Hertz normal force and Maw's stick-slip rings, free head, in time (seed 3.2.2, Table 3.6)",
+        summary: "rigid ball, Hertz + Hunt-Crossley normal force and Maw's stick-slip rings with Mindlin \
+                  compliance, free head, in time (seed 3.2.2, eq. 3.16-3.18, Table 3.6)",
         sections: &["maw"],
         resolved_in_time: true,
         fit: Some(identifiable::MAW),
@@ -112,8 +154,8 @@ pub const MODELS: &[ModelEntry] = &[
     },
     ModelEntry {
         name: "arakawa",
-        summary: "rigid ball, Hertz normal force and Arakawa's contact-area friction, free head, in time (seed 3.2.3, \
-                  Table 3.7)",
+        summary: "rigid ball, Hertz normal force and Arakawa's contact-area friction F_T = mu F_N + mu eta pi R \
+                  xdot bounding an elastic stick, free head, in time (seed 3.2.3, eq. 3.19-3.23, Table 3.7)",
         sections: &["arakawa"],
         resolved_in_time: true,
         fit: Some(identifiable::ARAKAWA),
@@ -130,12 +172,43 @@ pub const MODELS: &[ModelEntry] = &[
     },
 ];
 
-/// Names that stand for several models, published in order.
-pub const GROUPS: &[(&str, &[&str])] = &[("both", &["adjusted", "continuous"])];
+/// A name that stands for several models, published in order: one list for a ball on a tee, one for a ball on
+/// the turf (a rig or command with a soil).
+pub struct Group {
+    pub name: &'static str,
+    pub members: &'static [&'static str],
+    pub on_turf: &'static [&'static str],
+}
+
+/// Every group.
+pub const GROUPS: &[Group] =
+    &[Group { name: "both", members: &["adjusted", "continuous"], on_turf: &["adjusted", "ground"] }];
+
+/// The model (or comma-separated models) a configured name stands for, the one place groups are resolved: a
+/// group expands to its members, on the turf (`on_turf`: a soil is given) to its turf members, which must then
+/// include the ground model.
+pub fn resolve(name: &str, on_turf: bool) -> Result<String, ImpactError> {
+    let list = match GROUPS.iter().find(|g| g.name == name) {
+        Some(g) => (if on_turf { g.on_turf } else { g.members }).join(","),
+        None => name.to_string(),
+    };
+    for n in list.split(',').map(str::trim) {
+        if entry(n).is_none() {
+            return Err(ImpactError::UnknownModel { name: n.to_string(), expected: names() });
+        }
+    }
+    if on_turf && !list.split(',').any(|m| m.trim() == "ground") {
+        return Err(ImpactError::InvalidParameter {
+            field: "soil".into(),
+            reason: format!("needs the ground model (model ground or both), not {name}"),
+        });
+    }
+    Ok(list)
+}
 
 /// The model names and groups, for help texts and errors: `standard, adjusted, slip, continuous, both`.
 pub fn names() -> String {
-    MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.0)).collect::<Vec<_>>().join(", ")
+    MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.name)).collect::<Vec<_>>().join(", ")
 }
 
 /// The identifiable parameters of every model that has them, in the registry's order.
@@ -153,10 +226,8 @@ pub fn entry(name: &str) -> Option<&'static ModelEntry> {
 /// that belongs to no model is an error (a typo would otherwise be ignored).
 pub fn build(name: &str, club: &LoadedClub, options: &BuildOptions) -> Result<Vec<Arc<dyn ImpactModel>>, ImpactError> {
     check_sections(club)?;
-    let names: Vec<&str> = match GROUPS.iter().find(|g| g.0 == name) {
-        Some((_, members)) => members.to_vec(),
-        None => name.split(',').map(str::trim).collect(),
-    };
+    let list = resolve(name, false)?;
+    let names: Vec<&str> = list.split(',').map(str::trim).collect();
     names
         .iter()
         .map(|n| {
@@ -184,6 +255,45 @@ fn check_sections(club: &LoadedClub) -> Result<(), ImpactError> {
     Ok(())
 }
 
+/// The models as a Markdown list (the README's "Models" section is this, `impactd models`).
+pub fn models_markdown() -> String {
+    let mut out = String::new();
+    for m in MODELS {
+        out.push_str(&format!("- `{}`: {}", m.name, m.summary));
+        if let Some(fit) = &m.fit {
+            let params: Vec<&str> = fit.params.iter().map(|p| p.name).collect();
+            out.push_str(&format!("; `fit` identifies {}", params.join(", ")));
+        }
+        out.push_str(".\n");
+    }
+    for g in GROUPS {
+        out.push_str(&format!(
+            "- `{}`: {} together (with a soil: {}).\n",
+            g.name,
+            g.members.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(" and "),
+            g.on_turf.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(" and ")
+        ));
+    }
+    out
+}
+
+/// The club-file sections and the models that read them, as the TOML comment block of docs/club-files.md
+/// (`impactd models --sections`).
+pub fn sections_markdown() -> String {
+    let mut out = String::new();
+    for s in super::club_sections::SECTIONS {
+        let readers: Vec<String> =
+            MODELS.iter().filter(|m| m.sections.contains(&s.name)).map(|m| format!("`{}`", m.name)).collect();
+        let head = format!("[{}]", s.name);
+        for (i, line) in s.fields.iter().enumerate() {
+            let text = if i == 0 { format!("read by {}: {line}", readers.join(" and ")) } else { line.to_string() };
+            let left = if i == 0 { head.as_str() } else { "" };
+            out.push_str(&format!("{left:<27}# {text}\n"));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,6 +310,15 @@ mod tests {
         let list = build("slip, standard", &club, &BuildOptions::default()).unwrap();
         assert_eq!(list.iter().map(|m| m.name()).collect::<Vec<_>>(), ["impulse/slip", "impulse/standard"]);
         let e = build("nosuch", &club, &BuildOptions::default()).unwrap_err().to_string();
+        // Every section a model reads is documented, and every documented section is read.
+        for m in MODELS {
+            for s in m.sections {
+                assert!(super::super::club_sections::SECTIONS.iter().any(|d| d.name == *s), "[{s}] undocumented");
+            }
+        }
+        for d in super::super::club_sections::SECTIONS {
+            assert!(MODELS.iter().any(|m| m.sections.contains(&d.name)), "[{}] read by no model", d.name);
+        }
         assert!(e.contains("nosuch") && e.contains("adjusted"), "{e}");
     }
 }

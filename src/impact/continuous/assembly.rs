@@ -8,7 +8,7 @@
 
 use super::ball::BallPart;
 use super::club::{ClubPart, Head};
-use super::ground::Ground;
+use super::ground::GroundReaction;
 use super::law::{Contact, ContactForce, ContactLaw};
 use super::surface::FaceSurface;
 use crate::impact::{ImpactError, ImpactState, Launch};
@@ -104,7 +104,7 @@ struct Stage<'a, L: ContactLaw, B, C, G> {
     law_state: &'a L::State,
 }
 
-impl<L: ContactLaw, B: BallPart, C: ClubPart, G: Ground> Assembly<L, B, C, G> {
+impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
     /// The contact between ball and face in a state, if they overlap.
     #[inline]
     fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
@@ -265,7 +265,7 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: Ground> Assembly<L, B, C, G> {
     }
 }
 
-impl<L: ContactLaw, B: BallPart, C: ClubPart, G: Ground> Ode for Stage<'_, L, B, C, G> {
+impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Ode for Stage<'_, L, B, C, G> {
     type State = State<C::State, B::State>;
     type Rate = Rate<C::Rate, B::Rate>;
 

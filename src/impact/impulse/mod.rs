@@ -133,8 +133,8 @@ pub struct ContactProblem {
     pub r_club_m: Vector3,
     /// Ball CG -> contact (m).
     pub r_ball_m: Vector3,
-    /// Impact frame columns x′, y′, z′.
-    pub frame: Matrix3,
+    /// The impact frame in the world (columns x′, y′, z′).
+    pub world_from_impact: Matrix3,
     pub club_velocity_mps: Vector3,
     pub club_angular_velocity_radps: Vector3,
     pub ball_velocity_mps: Vector3,
@@ -174,11 +174,11 @@ pub fn solve(p: &ContactProblem) -> Result<ContactSolution, ImpactError> {
         - rb * p.ball_inertia_inv * rb;
     let u = p.club_contact_velocity(&p.club_velocity_mps, &p.club_angular_velocity_radps)
         - p.ball_contact_velocity(&p.ball_velocity_mps, &p.ball_angular_velocity_radps);
-    let u_frame = p.frame.transpose() * u;
+    let u_impact = p.world_from_impact.transpose() * u;
     let chol = k.cholesky();
     let impulse_for = |restitution: &Vector3| {
         // u - u' = F (I + E) F^T u
-        let du = p.frame * u_frame.component_mul(&(Vector3::repeat(1.0) + restitution));
+        let du = p.world_from_impact * u_impact.component_mul(&(Vector3::repeat(1.0) + restitution));
         chol.as_ref().map(|c| c.solve(&du)).or_else(|| k.lu().solve(&du))
     };
     // Kinetic energy change of an impulse P that takes u to u': −½ P·(u + u').
@@ -216,12 +216,12 @@ impl ImpulseModel {
     pub fn problem(&self, state: &ImpactState, equipment: &Equipment) -> Result<ContactProblem, ImpactError> {
         let params = self.params(equipment);
         let g = state.contact(&equipment.club)?;
-        if g.contact_velocity_mps.dot(&g.frame.column(0)) <= 0.0 {
+        if g.contact_velocity_mps.dot(&g.world_from_impact.column(0)) <= 0.0 {
             return Err(ImpactError::NotApproaching);
         }
         let rot = g.world_from_club;
         let ball = &equipment.ball;
-        let r_ball_m = -ball.radius_m * g.frame.column(0) - g.frame * params.ball_cg_shift_m;
+        let r_ball_m = -ball.radius_m * g.world_from_impact.column(0) - g.world_from_impact * params.ball_cg_shift_m;
         Ok(ContactProblem {
             club_mass_kg: equipment.club.mass_kg + params.delta_mass_kg,
             club_inertia_inv: rot * equipment.club.inertia_inv_kg_m2 * rot.transpose(),
@@ -229,7 +229,7 @@ impl ImpulseModel {
             ball_inertia_inv: Matrix3::from_diagonal_element(1.0 / ball.inertia_kg_m2),
             r_club_m: g.r_club_m,
             r_ball_m,
-            frame: g.frame,
+            world_from_impact: g.world_from_impact,
             club_velocity_mps: state.cg_velocity_mps,
             club_angular_velocity_radps: state.angular_velocity_radps,
             ball_velocity_mps: Vector3::zeros(),

@@ -23,7 +23,7 @@ pub struct GroundWrench {
 }
 
 /// Ground reaction on the head as a function of its motion.
-pub trait Ground {
+pub trait GroundReaction {
     /// The wrench on the head at this instant.
     fn wrench(&self, head: &Head) -> GroundWrench;
     /// Whether the ground exists at all (lets the assembly skip it).
@@ -34,7 +34,7 @@ pub trait Ground {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NoGround;
 
-impl Ground for NoGround {
+impl GroundReaction for NoGround {
     const PRESENT: bool = false;
     #[inline]
     fn wrench(&self, _: &Head) -> GroundWrench {
@@ -42,7 +42,7 @@ impl Ground for NoGround {
     }
 }
 
-impl Ground for SoilGround {
+impl GroundReaction for SoilGround {
     fn wrench(&self, head: &Head) -> GroundWrench {
         let pose = crate::math::Isometry3::from_parts(
             crate::math::Translation3::from(head.position_m),

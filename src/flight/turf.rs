@@ -39,20 +39,20 @@ const MAX_BOUNCES: usize = 20;
 
 /// The turf the ball lands on.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Ground {
+pub struct Turf {
     /// 0 soft (wet turf), 0.5 Penner's fairway, 1 firm (dry links turf).
     pub firmness: Real,
 }
 
-impl Default for Ground {
+impl Default for Turf {
     fn default() -> Self {
-        Ground { firmness: 0.5 }
+        Turf { firmness: 0.5 }
     }
 }
 
 /// Why a ground is not usable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum GroundError {
+pub enum TurfError {
     #[error("`firmness` must be within 0 and 1, got {0}")]
     Firmness(Real),
 }
@@ -90,12 +90,12 @@ pub struct Run {
     pub segments: Vec<Segment>,
 }
 
-impl Ground {
-    pub fn validate(&self) -> Result<(), GroundError> {
+impl Turf {
+    pub fn validate(&self) -> Result<(), TurfError> {
         if self.firmness.is_finite() && (0.0..=1.0).contains(&self.firmness) {
             Ok(())
         } else {
-            Err(GroundError::Firmness(self.firmness))
+            Err(TurfError::Firmness(self.firmness))
         }
     }
 
@@ -198,7 +198,7 @@ mod tests {
     /// Penner's restitution: 0.51 at rest, 0.151 at 15 m/s (0.510 − 0.5625 + 0.2032), 0.12 past 20 m/s.
     #[test]
     fn penner_restitution() {
-        let g = Ground::default();
+        let g = Turf::default();
         assert!((g.restitution(0.0) - 0.510).abs() < 1e-12);
         assert!((g.restitution(15.0) - 0.150675).abs() < 1e-9);
         assert!((g.restitution(25.0) - 0.120).abs() < 1e-12);
@@ -208,7 +208,7 @@ mod tests {
     /// sphere's `v_t' = (5 v_t − 2 r ω) / 7` along the plane and topspin `v_t' / r`.
     #[test]
     fn rolling_exit_is_the_rigid_sphere_result() {
-        let g = Ground::default();
+        let g = Turf::default();
         let (r, along, down, w): (Real, Real, Real, Real) = (0.0213, 10.0, 8.0, 300.0);
         let tilt = g.contact_angle_rad(along.hypot(down), down.atan2(along));
         let (sin_c, cos_c) = tilt.sin_cos();
@@ -226,7 +226,7 @@ mod tests {
         let r = 0.0213;
         let inertia = 0.4 * r * r;
         for firmness in [0.0, 0.3, 0.5, 0.8, 1.0] {
-            let g = Ground { firmness };
+            let g = Turf { firmness };
             for (a, d, w) in [(20.0, 15.0, 300.0), (10.0, 12.0, 800.0), (25.0, 8.0, 100.0), (5.0, 10.0, 900.0)] {
                 let (a2, u2, w2) = g.bounce(a, d, w, r);
                 let before = a * a + d * d + inertia * w * w;
