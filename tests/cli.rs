@@ -251,3 +251,35 @@ fn trajectory_picture_is_a_report_picture() {
     assert!(svg.contains("wind 3.0 m/s toward -90°") && svg.contains("firmness 0.50"), "conditions");
     assert_eq!(svg.matches("<circle").count(), 4, "a landing mark per shot in each view");
 }
+
+/// Regression: `plot maw-plate` (default `-o docs/maw-plate.svg`) failed where there is no `docs/`; an output's
+/// directory is made.
+#[test]
+fn plot_output_directory_is_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("docs/maw-plate.svg");
+    let out = impactd(&["plot", "maw-plate", "--rings", "5", "-o", svg.to_str().unwrap()], "");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+}
+
+/// `predict | flight | plot trajectory` is a pipe: the fields each step does not read (labels, `warnings`,
+/// `apex_m`) pass through instead of being refused.
+#[test]
+fn predict_flight_plot_is_a_pipe() {
+    let predicted =
+        impactd(&["predict", "--model", "both"], "{\"club_speed_mph\":105,\"player\":\"ann\",\"club\":\"D\"}\n");
+    assert!(predicted.status.success(), "{}", text(&predicted.stderr));
+    let flown = impactd(&["flight"], &text(&predicted.stdout));
+    assert!(flown.status.success(), "{}", text(&flown.stderr));
+    let lines: Vec<serde_json::Value> = text(&flown.stdout).lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 2, "one line per model");
+    assert!(lines.iter().all(|l| l["player"] == "ann" && l["club"] == "D" && l["carry_yd"].is_number()));
+    assert_ne!(lines[0]["model"], lines[1]["model"]);
+    let again = impactd(&["flight"], &text(&flown.stdout));
+    assert!(again.status.success(), "{}", text(&again.stderr));
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("t.svg");
+    let plotted = impactd(&["plot", "trajectory", "-o", svg.to_str().unwrap()], &text(&again.stdout));
+    assert!(plotted.status.success(), "{}", text(&plotted.stderr));
+}
