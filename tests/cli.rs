@@ -276,3 +276,35 @@ fn bench_names_the_stages_slower_than_the_baseline() {
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains("no `stages` array"), "{}", text(&out.stderr));
 }
+
+/// Regression: `plot maw-plate` (default `-o docs/maw-plate.svg`) failed where there is no `docs/`; an output's
+/// directory is made.
+#[test]
+fn plot_output_directory_is_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("docs/maw-plate.svg");
+    let out = impactd(&["plot", "maw-plate", "--rings", "5", "-o", svg.to_str().unwrap()], "");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+}
+
+/// `predict | flight | plot trajectory` is a pipe: the fields each step does not read (labels, `warnings`,
+/// `apex_m`) pass through instead of being refused.
+#[test]
+fn predict_flight_plot_is_a_pipe() {
+    let predicted =
+        impactd(&["predict", "--model", "both"], "{\"club_speed_mph\":105,\"player\":\"ann\",\"club\":\"D\"}\n");
+    assert!(predicted.status.success(), "{}", text(&predicted.stderr));
+    let flown = impactd(&["flight"], &text(&predicted.stdout));
+    assert!(flown.status.success(), "{}", text(&flown.stderr));
+    let lines: Vec<serde_json::Value> = text(&flown.stdout).lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 2, "one line per model");
+    assert!(lines.iter().all(|l| l["player"] == "ann" && l["club"] == "D" && l["carry_yd"].is_number()));
+    assert_ne!(lines[0]["model"], lines[1]["model"]);
+    let again = impactd(&["flight"], &text(&flown.stdout));
+    assert!(again.status.success(), "{}", text(&again.stderr));
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("t.svg");
+    let plotted = impactd(&["plot", "trajectory", "-o", svg.to_str().unwrap()], &text(&again.stdout));
+    assert!(plotted.status.success(), "{}", text(&plotted.stderr));
+}

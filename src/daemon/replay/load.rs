@@ -22,6 +22,9 @@ pub struct ReplayInput {
     /// Session labels as recorded (`golf/<rig>/session`): `(i, rig, labels)` label that rig's shots from sample
     /// `i` of `samples` on.
     pub labels: Vec<(usize, String, crate::wire::ShotLabels)>,
+    /// A synthetic rig's recorded truths (`sim/<rig>/truth`): `(i, rig, t_impact_ns, payload)`, recorded again by a
+    /// replay's recording before sample `i`.
+    pub truths: Vec<(usize, String, u64, Vec<u8>)>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
@@ -130,6 +133,13 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 }
                 Err(e) => {
                     input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                }
+            }
+        } else if let Some(rig) = keys::rig_of_truth(topic) {
+            match serde_json::from_slice::<crate::wire::TruthMessage>(&message.data) {
+                Ok(t) => input.truths.push((input.samples.len(), rig.to_string(), t.t_impact_ns, message.data.clone())),
+                Err(e) => {
+                    input.damage.push(format!("a recorded truth at log time {} does not parse: {e}", message.log_time))
                 }
             }
         } else if let Some(rig) = keys::rig_of_session(topic) {

@@ -177,11 +177,18 @@ pub async fn run(
     let (start, mut first_t, mut paused) = (Instant::now(), None, Duration::ZERO);
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
     let mut labels = input.labels.iter().peekable();
+    let mut truths = input.truths.iter().peekable();
     for (i, msg) in input.samples.iter().enumerate() {
         while let Some((_, name, l)) = labels.next_if(|(at, _, _)| *at <= i) {
             if let Some(rig) = rigs.get_mut(name) {
                 rig.sinks.labels(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), l);
                 rig.pipeline.set_labels(l.clone());
+            }
+        }
+        while let Some((_, name, t_impact_ns, payload)) = truths.next_if(|(at, ..)| *at <= i) {
+            if let Some(rig) = rigs.get(name) {
+                let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
+                rig.sinks.truth(log_time_ns, *t_impact_ns, payload.clone());
             }
         }
         stats.samples += 1;
@@ -245,6 +252,12 @@ pub async fn run(
         if msg.t_ns >= rig.next_status_ns {
             rig.publish_status(msg.t_ns, log_time_ns);
             rig.next_status_ns = rig.next_status_ns.saturating_add(period_ns);
+        }
+    }
+    // Truths recorded after the last sample.
+    for (_, name, t_impact_ns, payload) in truths {
+        if let Some(rig) = rigs.get(name) {
+            rig.sinks.truth(input.log_time_ns.last().copied().unwrap_or_else(wall_ns), *t_impact_ns, payload.clone());
         }
     }
     for rig in rigs.values() {
