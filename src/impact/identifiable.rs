@@ -1,6 +1,6 @@
 //! Each model's identifiable parameters, with bounds (seed section 3.1.3: "unique parameters that will affect
 //! the predicted launch conditions"), read from and written to the model's club-file section. Each is part of
-//! its model's entry in the registry ([`super::registry::MODELS`]); the identification (`crate::identify`)
+//! its model's entry in the registry (`impact::registry::MODELS`); the identification (`crate::identify`)
 //! reads them there.
 //!
 //! - adjusted (Danaei, Table 3.3), `[adjusted]`: the mass added to the head `Δm` and the ball-CG shift `Δ` in the
@@ -15,10 +15,10 @@
 
 use std::sync::Arc;
 
+use super::continuous::hertzian::HertzModel;
 use super::continuous::law::{arakawa::ArakawaParams, maw::MawParams};
 use super::continuous::{ContinuousModel, TwoLayerParams, TwoLayerReading};
 use super::impulse::ImpulseTuning;
-use super::registry::{self, BuildOptions};
 use super::{ImpactError, ImpactModel};
 use crate::equipment::{BallSpec, ClubSpec, LoadedClub};
 use crate::math::Real;
@@ -117,12 +117,13 @@ fn continuous_coarse(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn Impac
 
 /// Maw's and Arakawa's global search: the exact model on the subsample of a model resolved in time (their steps
 /// cannot be coarsened: the stick/slip switches of the rings make the step error first order, docs/models.md).
-fn maw_global(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    registry::build_one("maw", club, &BuildOptions { ball: *ball, ..Default::default() })
+/// (Their rigid ball is the seed's, whatever the fit's ball: as the registry builds them.)
+fn maw_global(club: &LoadedClub, _: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    Ok(Arc::new(HertzModel::maw_from_sections(&club.sections)?))
 }
 
-fn arakawa_global(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    registry::build_one("arakawa", club, &BuildOptions { ball: *ball, ..Default::default() })
+fn arakawa_global(club: &LoadedClub, _: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
+    Ok(Arc::new(HertzModel::arakawa_from_sections(&club.sections)?))
 }
 
 fn maw_defaults(club: &ClubSpec) -> toml::Table {

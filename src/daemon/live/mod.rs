@@ -27,7 +27,9 @@ use zenoh::Wait;
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use crate::daemon::live::sinks::{RigPublishers, RigSinks, StatusInputs};
-use crate::daemon::live::stats::{Budget, LatencyWindow, RateLimiter};
+use crate::daemon::live::stats::{
+    Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
+};
 use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::identify::pairing::Pairer;
@@ -54,14 +56,6 @@ pub struct RunOptions {
     /// Serve the Foxglove live view on this `HOST:PORT`.
     pub foxglove: Option<String>,
 }
-
-/// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
-/// counted, not stored.
-pub const REJECTED_RECORDS_PER_S: u32 = 20;
-/// Bytes of rejected payloads recorded per rig per second.
-pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
-/// The most of one rejected payload that is kept.
-pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 
 /// What a run did, per rig.
 #[derive(Debug, Clone, Default)]

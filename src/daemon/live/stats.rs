@@ -89,6 +89,14 @@ impl RateLimiter {
     }
 }
 
+/// Rejected payloads recorded per rig (and for unknown rigs together), per second: beyond either bound they are
+/// counted, not stored.
+pub const REJECTED_RECORDS_PER_S: u32 = 20;
+/// Bytes of rejected payloads recorded per rig per second.
+pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
+/// The most of one rejected payload that is kept.
+pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
+
 #[cfg(test)]
 mod tests {
     use super::*;

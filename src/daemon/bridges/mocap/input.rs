@@ -5,15 +5,14 @@
 use std::collections::BTreeMap;
 use std::net::{Ipv4Addr, SocketAddr, ToSocketAddrs};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
+use super::shared::{lock, Conn, Deliver, Shared};
 use crate::daemon::live::stats::LatencyWindow;
 use crate::daemon::DaemonError;
-use crate::mocap::track::BodySample;
 use crate::wire::{ConnectionState, MocapInputStatus};
 
 pub const NATNET_COMMAND_PORT: u16 = 1510;
@@ -22,12 +21,6 @@ pub const NATNET_DATA_PORT: u16 = 1511;
 pub const NATNET_MULTICAST_GROUP: Ipv4Addr = Ipv4Addr::new(239, 255, 42, 99);
 /// QTM's little-endian real-time port.
 pub const QTM_PORT: u16 = 22223;
-
-/// How long a blocking socket read waits before looking at the stop flag: a client stops within this.
-pub const POLL: Duration = Duration::from_millis(100);
-/// Reconnection back-off: from the first to the last, doubling.
-pub const BACKOFF_FIRST: Duration = Duration::from_millis(250);
-pub const BACKOFF_LAST: Duration = Duration::from_secs(4);
 
 /// `[rig.input]`: the rig's samples come straight from a NatNet or QTM server.
 ///
@@ -144,33 +137,6 @@ pub fn resolve(host: &str, port: u16) -> Result<SocketAddr, DaemonError> {
         .ok_or_else(|| io(std::io::Error::other("no IPv4 address")))
 }
 
-/// Hands a body's sample on (to a rig's queue, or to zenoh); `route` indexes the client's bodies.
-pub type Deliver = Box<dyn FnMut(usize, &BodySample, Instant) + Send>;
-
-/// Connection-wide state and counts.
-#[derive(Debug)]
-pub struct Conn {
-    pub state: ConnectionState,
-    pub connects: u64,
-    pub server_version: Option<String>,
-    pub rejected: BTreeMap<String, u64>,
-    pub last_error: Option<String>,
-    pub exposure_to_transmit_us: LatencyWindow,
-}
-
-impl Conn {
-    pub fn reject(&mut self, reason: &str) {
-        *self.rejected.entry(reason.to_string()).or_default() += 1;
-    }
-}
-
-/// The counts a client keeps; one [`MocapInputStatus`] per body (route).
-pub struct Shared {
-    pub conn: Conn,
-    pub bodies: Vec<MocapInputStatus>,
-    pub deliver: Deliver,
-}
-
 impl Shared {
     pub fn new(source: &Source, routes: &[(String, String)], deliver: Deliver) -> Self {
         let bodies = routes
@@ -204,11 +170,6 @@ pub struct InputHandle {
     stop: Arc<AtomicBool>,
     threads: Vec<JoinHandle<()>>,
     shared: Arc<Mutex<Shared>>,
-}
-
-/// Locks the counts, whatever a panicking holder left (they are counts: still worth reporting).
-pub fn lock(shared: &Mutex<Shared>) -> MutexGuard<'_, Shared> {
-    shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 impl InputHandle {
@@ -287,17 +248,4 @@ fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
     let p99 = w.quantile(0.99);
     out.exposure_to_transmit_p99_us = (p99 > 0.0).then_some(p99);
     out
-}
-
-/// Sleeps up to `d`, waking early when `stop` is set; false when stopped.
-pub fn sleep_unless_stopped(d: Duration, stop: &AtomicBool) -> bool {
-    let end = Instant::now() + d;
-    while !stop.load(Ordering::Relaxed) {
-        let now = Instant::now();
-        if now >= end {
-            return true;
-        }
-        std::thread::sleep((end - now).min(POLL));
-    }
-    false
 }

@@ -6,6 +6,8 @@ pub mod input;
 pub mod natnet;
 pub mod publish;
 pub mod qtm;
+pub mod shared;
 
-pub use input::{Deliver, InputHandle, MocapInputConfig, Source, StatusSource};
+pub use input::{InputHandle, MocapInputConfig, Source, StatusSource};
 pub use publish::run_bridge;
+pub use shared::Deliver;

@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use super::input::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
+use super::shared::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::DaemonError;
 use crate::mocap::natnet::{self, Frame, Version};
 use crate::mocap::natnet_encode;

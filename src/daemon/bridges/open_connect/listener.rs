@@ -31,7 +31,7 @@ use super::{LaunchMonitorConfig, MAX_MESSAGE_BYTES};
 use crate::capped::quote;
 use crate::daemon::bridges::peers::{PeerSlot, Peers};
 use crate::daemon::live::stats::Budget;
-use crate::daemon::live::{REJECTED_BYTES_PER_S, REJECTED_RECORDS_PER_S};
+use crate::daemon::live::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::{wall_ns, DaemonError};
@@ -188,7 +188,7 @@ impl Shared {
         if !self.recorder.enabled() {
             return;
         }
-        let keep = text.len().min(crate::daemon::live::REJECTED_KEEP_BYTES);
+        let keep = text.len().min(REJECTED_KEEP_BYTES);
         let refused_before = {
             let Ok(mut b) = self.budget.lock() else { return };
             if !b.0.allow(keep) {
