@@ -1,39 +1,11 @@
 //! A rig worker's measured launches: taken from `lm/<rig>/launch` into the rig's queue, recorded, paired with the
 //! rig's predictions, and each comparison published on `golf/<rig>/comparison` at once.
 
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::SyncSender;
-use std::sync::Arc;
+use super::{Incoming, Worker};
 use std::time::Instant;
 
-use super::{Incoming, InputKind, Worker};
-use crate::daemon::{wall_ns, DaemonError};
-use crate::wire::{self, keys, ComparisonMessage, MeasuredLaunch};
-
-/// Subscribes to `lm/<rig>/launch`; each payload joins the rig's queue (a full queue is counted in `dropped`).
-pub(super) async fn subscribe(
-    session: &zenoh::Session,
-    rig: &str,
-    tx: SyncSender<Incoming>,
-    dropped: Arc<AtomicU64>,
-) -> Result<zenoh::pubsub::Subscriber<()>, DaemonError> {
-    session
-        .declare_subscriber(keys::measured_launch(rig))
-        .callback(move |sample| {
-            let incoming = Incoming {
-                kind: InputKind::Measured,
-                received: Instant::now(),
-                log_time_ns: wall_ns(),
-                payload: sample.payload().to_bytes().into_owned(),
-                encoding: sample.encoding().to_string(),
-            };
-            if tx.try_send(incoming).is_err() {
-                dropped.fetch_add(1, Ordering::Relaxed);
-            }
-        })
-        .await
-        .map_err(DaemonError::zenoh)
-}
+use crate::daemon::wall_ns;
+use crate::wire::{self, ComparisonMessage, MeasuredLaunch};
 
 impl Worker {
     /// A measured launch: recorded, paired, and each comparison published at once.

@@ -39,6 +39,7 @@ use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 mod inputs;
 mod labels;
 mod measured;
+mod queue;
 pub mod sinks;
 pub mod stats;
 mod truth;
@@ -149,9 +150,13 @@ pub async fn run(
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
-        measured_subscribers.push(measured::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
-        measured_subscribers.push(labels::subscribe(session, &name, tx.clone(), queue_dropped.clone()).await?);
-        measured_subscribers.push(truth::subscribe(session, &name, tx, queue_dropped.clone()).await?);
+        for (key, kind) in [
+            (keys::measured_launch(&name), InputKind::Measured),
+            (keys::session(&name), InputKind::Labels),
+            (keys::truth(&name), InputKind::Truth),
+        ] {
+            measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
+        }
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
         let pipeline = Pipeline::new(setup);
         let worker = Worker {

@@ -1,0 +1,37 @@
+//! The rig worker's queue fed from zenoh: measured launches (`lm/<rig>/launch`), session labels
+//! (`golf/<rig>/session`) and a synthetic rig's truth (`sim/<rig>/truth`) join it behind the samples that came
+//! before them, so each is handled in order by the rig's one worker.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::SyncSender;
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::{Incoming, InputKind};
+use crate::daemon::{wall_ns, DaemonError};
+
+/// Subscribes to `key`; each payload joins the rig's queue as `kind` (a full queue is counted in `dropped`).
+pub(super) async fn subscribe(
+    session: &zenoh::Session,
+    key: String,
+    kind: InputKind,
+    tx: SyncSender<Incoming>,
+    dropped: Arc<AtomicU64>,
+) -> Result<zenoh::pubsub::Subscriber<()>, DaemonError> {
+    session
+        .declare_subscriber(key)
+        .callback(move |sample| {
+            let incoming = Incoming {
+                kind,
+                received: Instant::now(),
+                log_time_ns: wall_ns(),
+                payload: sample.payload().to_bytes().into_owned(),
+                encoding: sample.encoding().to_string(),
+            };
+            if tx.try_send(incoming).is_err() {
+                dropped.fetch_add(1, Ordering::Relaxed);
+            }
+        })
+        .await
+        .map_err(DaemonError::zenoh)
+}
