@@ -121,6 +121,7 @@ impl LaunchMonitorListener {
             }
             // Every connection ends before the listener does, so nothing outlives the daemon's recording.
             connections.shutdown().await;
+            shared.record_what_was_left_out();
         });
         Ok(LaunchMonitorListener { status, local_addr, stop: Some(stop), task })
     }
@@ -208,6 +209,16 @@ impl Shared {
             )),
         };
         self.record(peer, direction, &text[..keep], note);
+    }
+
+    /// At the end: the rejected traffic the budget left out since the last record, noted in a record of its own
+    /// (no later record would carry it).
+    fn record_what_was_left_out(&self) {
+        let left = self.budget.lock().map(|mut b| std::mem::take(&mut b.1)).unwrap_or(0);
+        if left > 0 {
+            let note = format!("{left} rejected messages and answers at the end not recorded (over the budget)");
+            self.record("", TrafficDirection::Received, b"", Some(note));
+        }
     }
 
     fn record(&self, peer: &str, direction: TrafficDirection, text: &[u8], note: Option<String>) {
