@@ -15,7 +15,7 @@
 //!
 //! Six numbers, each a physical property of the ball: the supercritical drag without spin, the drag per spin
 //! ratio, the extra subcritical drag, the critical Reynolds number, the saturated lift and the spin ratio at half
-//! of it. They are fitted to the TrackMan tour averages ([`super::fit`]) with the spin decay held at Smits and
+//! of it. They are fitted to the TrackMan tour averages (`flight::fit`) with the spin decay held at Smits and
 //! Smith's measurement ([`SPIN_TAU_S`]).
 
 use crate::math::Real;

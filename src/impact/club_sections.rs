@@ -1,6 +1,6 @@
 //! The club-file sections the models read, each with its fields: the one list `impactd models --sections`
 //! prints and docs/club-files.md is generated from (`scripts/registry-docs.sh`). Which models read a section is
-//! the registry's ([`super::registry::MODELS`]).
+//! the registry's (`MODELS` in registry.rs).
 
 /// One club-file section.
 pub struct SectionDoc {

@@ -15,7 +15,7 @@
 //! still decodes.
 //!
 //! The layouts are those of OptiTrack's NatNet SDK (`NatNetTypes.h`, its PacketClient sample and its Python
-//! client `natnetsdk`, which the tests run against the test server built on [`super::natnet_encode`]).
+//! client `natnetsdk`, which the tests run against the test server built on `natnet_encode`).
 //!
 //! Why not the `natnet` crate: it refuses servers newer than NatNet 4.1 (Motive 3.1 and later announce 4.2+,
 //! with the same 4.1 layout plus byte counts this decoder relies on), it brings its own UDP clients where the

@@ -1,5 +1,5 @@
 //! NatNet messages as a server (Motive) or a client writes them: the requests the bridge sends, and the server
-//! side the test servers and benchmarks use. The layouts are those [`super::natnet`] reads; OptiTrack's Python
+//! side the test servers and benchmarks use. The layouts are those `natnet.rs` reads; OptiTrack's Python
 //! client (`natnetsdk`) checks them in the tests.
 
 use super::bytes::Writer;

@@ -13,7 +13,7 @@
 //! `NoMoreData` marks the end of a measurement.
 //!
 //! The layouts follow Qualisys' Python SDK (`qtm-rt`, `qtm_rt/packet.py`), which the tests run against the
-//! test server built on [`super::qtm_encode`]. Bounded allocation: bodies are pushed only after their bytes
+//! test server built on `qtm_encode`. Bounded allocation: bodies are pushed only after their bytes
 //! were read, and a packet's size is checked against [`MAX_PACKET_BYTES`] before anything is buffered.
 
 use super::bytes::{Reader, Truncated};

@@ -40,6 +40,7 @@ mod inputs;
 mod labels;
 mod measured;
 mod queue;
+use queue::{Incoming, InputKind};
 pub mod sinks;
 pub mod stats;
 mod truth;
@@ -67,27 +68,6 @@ pub struct RunSummary {
     /// Each rig's Open Connect client and listener at the end, for rigs that have them.
     pub simulators: BTreeMap<String, SimulatorStatus>,
     pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
-}
-
-/// What a queued payload is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum InputKind {
-    /// A clubhead sample (`mocap/<rig>/clubhead`).
-    Sample,
-    /// A measured launch (`lm/<rig>/launch`).
-    Measured,
-    /// Session labels (`golf/<rig>/session`).
-    Labels,
-    /// A synthetic rig's truth (`sim/<rig>/truth`).
-    Truth,
-}
-
-struct Incoming {
-    kind: InputKind,
-    received: Instant,
-    log_time_ns: u64,
-    payload: Vec<u8>,
-    encoding: String,
 }
 
 /// Runs the daemon on `session` until `shutdown` completes.

@@ -7,8 +7,29 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 use std::time::Instant;
 
-use super::{Incoming, InputKind};
 use crate::daemon::{wall_ns, DaemonError};
+
+/// What a queued payload is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum InputKind {
+    /// A clubhead sample (`mocap/<rig>/clubhead`).
+    Sample,
+    /// A measured launch (`lm/<rig>/launch`).
+    Measured,
+    /// Session labels (`golf/<rig>/session`).
+    Labels,
+    /// A synthetic rig's truth (`sim/<rig>/truth`).
+    Truth,
+}
+
+/// A payload in the rig's queue, with when it arrived.
+pub(super) struct Incoming {
+    pub(super) kind: InputKind,
+    pub(super) received: Instant,
+    pub(super) log_time_ns: u64,
+    pub(super) payload: Vec<u8>,
+    pub(super) encoding: String,
+}
 
 /// Subscribes to `key`; each payload joins the rig's queue as `kind` (a full queue is counted in `dropped`).
 pub(super) async fn subscribe(

@@ -1,6 +1,6 @@
 //! The records of an MCAP file, parsed within bounds: every length is checked against the bytes that hold it,
 //! and a chunk is decompressed only to a size its zstd frame and the largest zstd ratio allow, then checked
-//! against its CRC. Used by the [`reader`](crate::daemon::recording::reader).
+//! against its CRC. Used by the reader (reader.rs).
 
 use std::collections::BTreeMap;
 

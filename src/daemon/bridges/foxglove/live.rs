@@ -5,7 +5,7 @@
 //! status, measured launches, club pose, impact scene and the predicted ball flight) with their JSON Schemas and
 //! streams the messages of the channels a client subscribes to: server info and advertise as JSON text, data
 //! as binary frames (opcode 1, subscription id u32 LE, log time ns u64 LE, the JSON payload). The records come
-//! from the daemon's [`RecorderHandle`](crate::daemon::recording::writer::RecorderHandle) through a [`LiveTap`], a non-blocking
+//! from the daemon's `RecorderHandle` (recording/writer.rs) through a [`LiveTap`], a non-blocking
 //! bounded queue: the view is encoded on its own task (the same encoder as the recording), a slow or absent
 //! viewer never delays a prediction, and a viewer that falls behind skips messages rather than grow memory.
 //!

@@ -3,7 +3,7 @@
 //!
 //! - [`volumetric`]: eq. 3.14-3.15, the two-layer model's law (volume of intersection, tanh friction).
 //! - [`hertz`]: eq. 3.16-3.19, Hertz with Hunt-Crossley damping; [`maw`]: Maw's rings; [`arakawa`]: eq. 3.23.
-//!   These three run in [`super::hertzian`] with their own stage-wise slip (their rings need the slip since a
+//!   These three run in `continuous::hertzian` with their own stage-wise slip (their rings need the slip since a
 //!   step's start), not yet behind [`ContactLaw`].
 
 pub mod arakawa;
