@@ -7,11 +7,11 @@ use crate::equipment::ClubSpec;
 use std::sync::Arc;
 
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::kinematics::ball_tracker::{BallIgnored, BallTracker, BallTrackerConfig};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
-use crate::kinematics::ball_tracker::{BallIgnored, BallTracker, BallTrackerConfig};
 use crate::wire::{BallSource, BallUsed, ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// Everything one rig's pipeline needs.

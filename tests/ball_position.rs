@@ -44,11 +44,16 @@ fn launches_with(balls: &[BallSampleMsg]) -> Vec<LaunchPrediction> {
     assert_eq!(input.balls.len(), balls.len(), "ball lines are read beside the samples");
     let (_, setups) = DaemonConfig::parse(CONFIG).unwrap();
     let mut out = Vec::new();
-    replay::replay(&input, setups, |_| {}, |e| {
-        if let Event::Launch(l) = e {
-            out.push(l.clone());
-        }
-    });
+    replay::replay(
+        &input,
+        setups,
+        |_| {},
+        |e| {
+            if let Event::Launch(l) = e {
+                out.push(l.clone());
+            }
+        },
+    );
     out
 }
 
@@ -99,7 +104,14 @@ async fn a_tracked_ball_live_is_recorded_and_replayed() {
         publisher.put(serde_json::to_vec(&ball("rig1", t, at)).unwrap()).await.unwrap();
     }
     publisher.put(b"{\"rig\":\"rig1\",\"t_ns\":4,\"position_m\":[NaN]}".to_vec()).await.unwrap();
-    let sim = SimOptions { rigs: vec!["rig1".into()], club: ClubSpec::driver(), shots: 2, interval_s: 0.6, seed: 3, ..SimOptions::default() };
+    let sim = SimOptions {
+        rigs: vec!["rig1".into()],
+        club: ClubSpec::driver(),
+        shots: 2,
+        interval_s: 0.6,
+        seed: 3,
+        ..SimOptions::default()
+    };
     run_sim(&session, sim, std::future::pending()).await.unwrap();
     let l = launches.clone();
     assert!(common::wait_until(Duration::from_secs(5), || l.lock().unwrap().len() >= 2).await);
@@ -115,10 +127,15 @@ async fn a_tracked_ball_live_is_recorded_and_replayed() {
     let input = replay::load(&recording).unwrap();
     let (_, setups) = DaemonConfig::parse(input.config_toml.as_deref().unwrap()).unwrap();
     let mut produced = Vec::new();
-    replay::replay(&input, setups, |_| {}, |e| {
-        if let Event::Launch(l) = e {
-            produced.push(serde_json::to_vec(l).unwrap());
-        }
-    });
+    replay::replay(
+        &input,
+        setups,
+        |_| {},
+        |e| {
+            if let Event::Launch(l) = e {
+                produced.push(serde_json::to_vec(l).unwrap());
+            }
+        },
+    );
     assert_eq!(produced, input.recorded_launches, "replay reproduces the recorded launches");
 }

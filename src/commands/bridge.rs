@@ -101,7 +101,8 @@ pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
     let rt = runtime()?;
     rt.block_on(async {
         let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
-        let statuses = run_bridge_with_balls(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
+        let statuses =
+            run_bridge_with_balls(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
         let _ = session.close().await;
         for s in statuses {
             eprintln!(

@@ -16,13 +16,15 @@ use crate::wire::MessageType;
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
 
+/// A server, its routes `(body, rig)`, and what each route feeds (the club's samples or the rig's ball).
+type Group = (Source, Vec<(String, String)>, Vec<InputKind>);
+
 /// Starts one client per server named by the rigs' inputs; gives each such rig its status source.
 pub(super) fn start(
     config: &DaemonConfig,
     routes: &HashMap<String, Route>,
 ) -> Result<(Vec<InputHandle>, HashMap<String, StatusSource>), DaemonError> {
-    // Per server: its routes `(body, rig)` and what each feeds (the club's samples or the rig's ball).
-    let mut groups: Vec<(Source, Vec<(String, String)>, Vec<InputKind>)> = Vec::new();
+    let mut groups: Vec<Group> = Vec::new();
     for rig in &config.rigs {
         let Some(input) = &rig.input else { continue };
         let source = input.source().map_err(|(field, reason)| DaemonError::Config {
@@ -61,8 +63,13 @@ pub(super) fn start(
                 InputKind::Ball => (serde_json::to_vec(&sample.to_ball_msg(rig)), ball_encoding.clone()),
                 _ => (serde_json::to_vec(&sample.to_msg(rig)), sample_encoding.clone()),
             };
-            let incoming =
-                Incoming { kind: *kind, received, log_time_ns: wall_ns(), payload: payload.unwrap_or_default(), encoding };
+            let incoming = Incoming {
+                kind: *kind,
+                received,
+                log_time_ns: wall_ns(),
+                payload: payload.unwrap_or_default(),
+                encoding,
+            };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }

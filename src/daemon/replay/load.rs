@@ -127,7 +127,9 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         } else if keys::rig_of_ball(topic).is_some() {
             match crate::wire::BallSampleMsg::parse(&message.data) {
                 Ok(b) => input.balls.push((input.samples.len(), b, message.data)),
-                Err(e) => damage.push(format!("a recorded ball sample at log time {} does not parse: {e}", message.log_time)),
+                Err(e) => {
+                    damage.push(format!("a recorded ball sample at log time {} does not parse: {e}", message.log_time))
+                }
             }
         } else if let Some(rig) = keys::rig_of_truth(topic) {
             match serde_json::from_slice::<crate::wire::TruthMessage>(&message.data) {
