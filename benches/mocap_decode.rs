@@ -57,6 +57,7 @@ fn bench(c: &mut Criterion) {
             .collect(),
         drop_rate_2d: 0,
         out_of_sync_rate_2d: 0,
+        markers_mm: Vec::new(),
     };
     let packet = qtm_encode::data(&q);
     let body = &packet[qtm::HEADER_BYTES..];

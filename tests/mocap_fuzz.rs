@@ -47,6 +47,8 @@ fn qtm_frame(n: usize, seed: u32) -> Frame6d {
         bodies,
         drop_rate_2d: 3,
         out_of_sync_rate_2d: 1,
+        // Every third seed carries labelled 3D markers too.
+        markers_mm: (0..if seed % 3 == 0 { n + 1 } else { 0 }).map(|i| [i as f32, -(seed as f32), 7.5]).collect(),
     }
 }
 

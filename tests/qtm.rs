@@ -72,6 +72,7 @@ fn frame_of(s: &ClubheadSample) -> Frame6d {
         bodies: vec![other, body_of(s)],
         drop_rate_2d: 0,
         out_of_sync_rate_2d: 0,
+        markers_mm: Vec::new(),
     }
 }
 
@@ -297,4 +298,145 @@ async fn bad_qtm_input_is_counted_by_reason() {
     assert_eq!(s.state, impactd::wire::ConnectionState::Connected);
     assert_eq!(server.stream_requests.load(Ordering::Relaxed), 3, "one StreamFrames per session");
     daemon.stop().await;
+}
+
+/// A club marker set (body frame, metres) whose labels QTM streams as 3D markers, with a wand's marker
+/// between them.
+const MARKERS: &str = "[markers]\nCH1 = [0.035, 0.0, 0.01]\nCH2 = [-0.035, 0.004, 0.012]\nTOE = [0.0, 0.025, -0.03]\nHEEL = [0.012, -0.022, 0.028]\n";
+const LABELS: [&str; 5] = ["CH1", "wand tip", "CH2", "TOE", "HEEL"];
+
+/// A swing's sample as QTM's labelled 3D markers of [`MARKERS`] (mm, f32; NaN when the body is occluded).
+fn markers_frame(s: &ClubheadSample, set: &impactd::kinematics::MarkerSet) -> Frame6d {
+    let [x, y, z, w] = s.orientation_xyzw;
+    let q = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+    let pose = impactd::math::Isometry3::from_parts(s.position_m.into(), q);
+    // In QTM's label order; the wand's marker is not the club's.
+    let markers: Vec<[f32; 3]> = LABELS
+        .iter()
+        .map(|label| match set.labels.iter().position(|l| l == label) {
+            Some(k) if !s.occluded => {
+                let p = (pose * nalgebra::Point3::from(set.body_m[k])).coords * 1e3;
+                [p.x as f32, p.y as f32, p.z as f32]
+            }
+            Some(_) => [f32::NAN; 3],
+            None => [500.0, 1000.0, -250.0],
+        })
+        .collect();
+    Frame6d {
+        timestamp_us: (s.t_ns / 1000) as i64,
+        frame_number: s.frame as u32,
+        bodies: Vec::new(),
+        drop_rate_2d: 0,
+        out_of_sync_rate_2d: 0,
+        markers_mm: markers,
+    }
+}
+
+const CHECK_3D: &str = r#"
+import asyncio, json, sys
+import xml.etree.ElementTree as ET
+import qtm_rt
+async def main(port, want):
+    c = await qtm_rt.connect("127.0.0.1", port=port, version="1.25", timeout=5)
+    xml = await c.get_parameters(parameters=["3d"])
+    labels = [l.find("Name").text for l in ET.fromstring(xml).find("The_3D").findall("Label")]
+    frames = []
+    def on_packet(p):
+        h, markers = p.get_3d_markers()
+        frames.append(dict(frame=p.framenumber, count=h.marker_count, markers=[[m.x, m.y, m.z] for m in markers]))
+    await c.stream_frames(components=["3d"], on_packet=on_packet)
+    for _ in range(200):
+        if len(frames) >= want: break
+        await asyncio.sleep(0.05)
+    print("RESULT " + json.dumps(dict(labels=labels, frames=frames)), flush=True)
+    c.disconnect()
+asyncio.run(main(int(sys.argv[1]), int(sys.argv[2])))
+"#;
+
+/// QTM's 3D: the test server's labels XML and 3D components are what Qualisys' SDK reads (labels in order,
+/// every marker's f32 millimetres).
+#[test]
+fn qualisys_python_sdk_reads_the_3d_markers() {
+    let set = impactd::kinematics::MarkerSet::from_toml(MARKERS).unwrap();
+    let server = QtmServer::start(&[]);
+    *server.labels.lock().unwrap() = LABELS.iter().map(|l| l.to_string()).collect();
+    let child = python()
+        .args(["-c", CHECK_3D, &server.port.to_string(), "20"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = std::time::Instant::now();
+    while server.streaming() == 0 && t0.elapsed() < Duration::from_secs(20) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let samples = swing::samples(1, 720.0, 5);
+    let sent: Vec<Frame6d> = samples[100..120].iter().map(|s| markers_frame(s, &set)).collect();
+    for f in &sent {
+        server.send_frame(f);
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("RESULT "))
+        .unwrap_or_else(|| panic!("no result from qtm-rt: {stdout}\n{}", String::from_utf8_lossy(&out.stderr)));
+    let r: serde_json::Value = serde_json::from_str(line).unwrap();
+    assert_eq!(r["labels"], serde_json::json!(LABELS));
+    let frames = r["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), sent.len());
+    for (got, f) in frames.iter().zip(&sent) {
+        assert_eq!(got["frame"], f.frame_number);
+        assert_eq!(got["count"], LABELS.len());
+        let markers: Vec<[f32; 3]> = got["markers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| {
+                let v: Vec<f32> = m.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        assert_eq!(markers, f.markers_mm);
+    }
+}
+
+/// `[rig.input] qtm` with `markers = SET.toml`: no rigid body in QTM, the club's marker set fitted to its
+/// labelled 3D markers each frame gives the launches of the same swing sent as JSON poses, within the f32
+/// millimetres of QTM's wire (the fit of exact markers is exact to rounding).
+#[tokio::test(flavor = "multi_thread")]
+async fn a_marker_set_is_fitted_live_to_qtms_3d_markers() {
+    let set = impactd::kinematics::MarkerSet::from_toml(MARKERS).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let set_path = dir.path().join("club.toml");
+    std::fs::write(&set_path, MARKERS).unwrap();
+    let samples = swing::samples(2, 720.0, 13);
+    let json = swing::launches(RIG, &samples);
+    assert_eq!(json.len(), 2);
+    let server = QtmServer::start(&[]);
+    *server.labels.lock().unwrap() = LABELS.iter().map(|l| l.to_string()).collect();
+    let config = format!(
+        "{RIG}[rig.input]\nqtm = \"127.0.0.1\"\nbody = \"club markers\"\nport = {}\nmarkers = {:?}\n",
+        server.port,
+        set_path.to_str().unwrap()
+    );
+    let daemon = start_daemon(&config, RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
+    assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await, "the daemon streams 3D");
+    for (i, s) in samples.iter().enumerate() {
+        server.send_frame(&markers_frame(s, &set));
+        if i % 4 == 3 {
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    }
+    let two = wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= 2).await;
+    assert!(two, "two launches; status {:?}", statuses.lock().unwrap().last());
+    let got = launches.lock().unwrap().clone();
+    daemon.stop().await;
+    let d = swing::max_differences(&got, &json);
+    eprintln!("fitted 3D markers vs JSON poses: ball speed {:.2e} mph, launch {:.2e} deg, direction {:.2e} deg, backspin {:.2e} rpm, sidespin {:.2e} rpm", d[0], d[1], d[2], d[3], d[4]);
+    assert!(d[0] < 0.05 && d[1] < 0.05 && d[2] < 0.05 && d[3] < 5.0 && d[4] < 5.0, "{d:?}");
 }

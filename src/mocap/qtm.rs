@@ -31,6 +31,8 @@ pub const PACKET_NO_MORE_DATA: u32 = 4;
 pub const PACKET_EVENT: u32 = 6;
 
 /// Component types read here.
+pub const COMPONENT_3D: u32 = 1;
+pub const COMPONENT_3D_RES: u32 = 2;
 pub const COMPONENT_6D: u32 = 5;
 pub const COMPONENT_6D_RES: u32 = 11;
 
@@ -56,7 +58,7 @@ pub enum QtmError {
     UnknownPacket(u32),
     #[error("component of {size} bytes does not fit the {left} bytes left in the packet")]
     BadComponent { size: u32, left: usize },
-    #[error("the data packet has no 6D component")]
+    #[error("the data packet has neither a 6D nor a 3D component")]
     No6d,
 }
 
@@ -109,60 +111,100 @@ pub struct Frame6d {
     /// Per mille.
     pub drop_rate_2d: u16,
     pub out_of_sync_rate_2d: u16,
+    /// The labelled markers of a 3D (or 3DRes) component, in the order of `GetParameters 3D`'s labels (mm;
+    /// NaN when the marker is not seen in this frame).
+    pub markers_mm: Vec<[f32; 3]>,
 }
 
-/// Decodes the body of a data packet (after the 8-byte header) into `frame`, reusing its body list.
-pub fn decode_data(body: &[u8], frame: &mut Frame6d) -> Result<(), QtmError> {
+/// The components a data packet held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Components {
+    pub six_d: bool,
+    pub three_d: bool,
+}
+
+/// Decodes the body of a data packet (after the 8-byte header) into `frame`, reusing its lists; says which of
+/// 6D and 3D it held (at least one, else [`QtmError::No6d`]).
+pub fn decode_data(body: &[u8], frame: &mut Frame6d) -> Result<Components, QtmError> {
     frame.bodies.clear();
+    frame.markers_mm.clear();
     let mut r = Reader::new(body);
     frame.timestamp_us = r.i64("timestamp")?;
     frame.frame_number = r.u32("frame number")?;
     let components = r.u32("component count")?;
-    let mut found = false;
+    let (mut found_6d, mut found_3d) = (false, false);
     for _ in 0..components {
         let size = r.u32("component size")?;
         let kind = r.u32("component type")?;
         let len = (size as usize).checked_sub(HEADER_BYTES).filter(|&n| n <= r.remaining());
         let Some(len) = len else { return Err(QtmError::BadComponent { size, left: r.remaining() }) };
         let data = r.take(len, "component")?;
-        if found || (kind != COMPONENT_6D && kind != COMPONENT_6D_RES) {
-            continue;
-        }
-        found = true;
         let mut c = Reader::new(data);
-        let count = c.u32("6D body count")?;
-        frame.drop_rate_2d = c.u16("2D drop rate")?;
-        frame.out_of_sync_rate_2d = c.u16("2D out-of-sync rate")?;
-        for _ in 0..count {
-            let position_mm = c.vec3("6D position")?;
-            let mut rotation = [0f32; 9];
-            for v in &mut rotation {
-                *v = c.f32("6D rotation")?;
+        match kind {
+            COMPONENT_6D | COMPONENT_6D_RES if !found_6d => {
+                found_6d = true;
+                let count = c.u32("6D body count")?;
+                frame.drop_rate_2d = c.u16("2D drop rate")?;
+                frame.out_of_sync_rate_2d = c.u16("2D out-of-sync rate")?;
+                for _ in 0..count {
+                    let position_mm = c.vec3("6D position")?;
+                    let mut rotation = [0f32; 9];
+                    for v in &mut rotation {
+                        *v = c.f32("6D rotation")?;
+                    }
+                    let residual_mm = if kind == COMPONENT_6D_RES { Some(c.f32("6D residual")?) } else { None };
+                    frame.bodies.push(Body6d { position_mm, rotation, residual_mm });
+                }
             }
-            let residual_mm = if kind == COMPONENT_6D_RES { Some(c.f32("6D residual")?) } else { None };
-            frame.bodies.push(Body6d { position_mm, rotation, residual_mm });
+            // 3D: the marker count, the 2D rates, then per marker its position (3 `f32`, mm) and, for 3DRes, its
+            // residual (`f32`, mm).
+            COMPONENT_3D | COMPONENT_3D_RES if !found_3d => {
+                found_3d = true;
+                let count = c.u32("3D marker count")?;
+                frame.drop_rate_2d = c.u16("2D drop rate")?;
+                frame.out_of_sync_rate_2d = c.u16("2D out-of-sync rate")?;
+                for _ in 0..count {
+                    let p = c.vec3("3D position")?;
+                    if kind == COMPONENT_3D_RES {
+                        c.f32("3D residual")?;
+                    }
+                    frame.markers_mm.push(p);
+                }
+            }
+            _ => {}
         }
     }
-    if found {
-        Ok(())
+    if found_6d || found_3d {
+        Ok(Components { six_d: found_6d, three_d: found_3d })
     } else {
         Err(QtmError::No6d)
     }
+}
+
+/// The 3D marker labels of a `GetParameters 3D` reply, in index order (each `<Label>`'s `<Name>` inside
+/// `<The_3D>`).
+pub fn label_names(xml: &str) -> Vec<String> {
+    names_in(xml, "<The_3D>", "</The_3D>", "<Label>", "</Label>")
 }
 
 /// The 6D body names of a `GetParameters 6D` reply, in index order (each `<Body>`'s `<Name>` inside
 /// `<The_6D>`). A small scanner rather than an XML crate: the reply's structure is fixed and only this list
 /// is needed; the five predefined entities are decoded.
 pub fn body_names(xml: &str) -> Vec<String> {
-    let section = match (xml.find("<The_6D>"), xml.find("</The_6D>")) {
+    names_in(xml, "<The_6D>", "</The_6D>", "<Body>", "</Body>")
+}
+
+/// Each item's `<Name>` inside a section, in order.
+fn names_in(xml: &str, open: &str, close: &str, item: &str, item_end: &str) -> Vec<String> {
+    let section = match (xml.find(open), xml.find(close)) {
         (Some(a), Some(b)) if b > a => &xml[a..b],
         _ => return Vec::new(),
     };
     let mut names = Vec::new();
     let mut rest = section;
-    while let Some(start) = rest.find("<Body>") {
-        let after = &rest[start + 6..];
-        let end = after.find("</Body>").unwrap_or(after.len());
+    while let Some(start) = rest.find(item) {
+        let after = &rest[start + item.len()..];
+        let end = after.find(item_end).unwrap_or(after.len());
         let body = &after[..end];
         if let (Some(a), Some(b)) = (body.find("<Name>"), body.find("</Name>")) {
             if b > a + 6 {

@@ -123,6 +123,44 @@ pub fn natnet_sample(body: &RigidBody, frame: &Frame, clock_hz: Option<u64>) -> 
 }
 
 /// A QTM 6D body of `frame` as a sample: NaN position means not tracked.
+/// A marker set fitted to a QTM frame's labelled markers: `indices[k]` is marker `k` of the set among the 3D
+/// labels; a frame with fewer than 3 of them seen (or 3 that disagree) is occluded. The fit's residual is the
+/// caller's to count.
+pub fn qtm_fitted_sample(
+    fitter: &crate::kinematics::MarkerFitter,
+    indices: &[usize],
+    frame: &Frame6d,
+    lab_m: &mut Vec<Option<crate::math::Vector3>>,
+) -> BodySample {
+    let t_ns = u64::try_from(frame.timestamp_us).unwrap_or(0).saturating_mul(1000);
+    lab_m.clear();
+    lab_m.extend(indices.iter().map(|&i| {
+        let p = frame.markers_mm.get(i)?.map(|v| f64::from(v) * 1e-3);
+        p.iter().all(|v| v.is_finite()).then(|| crate::math::Vector3::from(p))
+    }));
+    let mut s = BodySample {
+        frame: u64::from(frame.frame_number),
+        t_ns,
+        position_m: [0.0; 3],
+        orientation_xyzw: [0.0, 0.0, 0.0, 1.0],
+        occluded: false,
+        exposure_t_ns: Some(t_ns),
+    };
+    match fitter.fit(lab_m) {
+        Ok(fit) => {
+            let p = fit.lab_from_body.translation.vector;
+            let q = fit.lab_from_body.rotation;
+            s.position_m = [p.x, p.y, p.z];
+            s.orientation_xyzw = [q.i, q.j, q.k, q.w];
+        }
+        Err(_) => {
+            placeholder(&mut s);
+            s.occluded = true;
+        }
+    }
+    s
+}
+
 pub fn qtm_sample(body: &Body6d, frame: &Frame6d) -> (BodySample, Option<BadPose>) {
     let t_ns = u64::try_from(frame.timestamp_us).unwrap_or(0).saturating_mul(1000);
     let mut s = BodySample {

@@ -1,5 +1,6 @@
 //! A QTM real-time server on 127.0.0.1 (TCP) that answers as QTM does: the greeting, `Version` (1.20-1.25),
-//! `GetParameters 6D` (the 6D XML naming its bodies), `StreamFrames AllFrames 6D|6DRes` and `StreamFrames Stop`,
+//! `GetParameters 6D|3D|6D 3D` (the XML naming its bodies and marker labels), `StreamFrames AllFrames 6D|6DRes
+//! [3D]` and `StreamFrames Stop`,
 //! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm_encode`; the tests
 //! check them with Qualisys' own Python SDK (`qtm-rt`).
 
@@ -16,12 +17,15 @@ use impactd::mocap::qtm_encode;
 
 struct Conn {
     stream: TcpStream,
-    streaming: Option<bool>,
+    /// Streaming: (6DRes rather than 6D, 3D markers too).
+    streaming: Option<(bool, bool)>,
 }
 
 pub struct QtmServer {
     pub port: u16,
     pub bodies: Arc<Mutex<Vec<String>>>,
+    /// The 3D marker labels (`GetParameters 3D`), in index order.
+    pub labels: Arc<Mutex<Vec<String>>>,
     conns: Arc<Mutex<Vec<Conn>>>,
     /// `StreamFrames` commands received.
     pub stream_requests: Arc<AtomicU64>,
@@ -32,6 +36,7 @@ pub struct QtmServer {
 
 struct Ctx {
     bodies: Arc<Mutex<Vec<String>>>,
+    labels: Arc<Mutex<Vec<String>>>,
     conns: Arc<Mutex<Vec<Conn>>>,
     streams: Arc<AtomicU64>,
     refuse: Arc<AtomicBool>,
@@ -39,7 +44,7 @@ struct Ctx {
 }
 
 fn handle(mut stream: TcpStream, id: usize, ctx: Ctx) {
-    let Ctx { bodies, conns, streams, refuse, stop } = ctx;
+    let Ctx { bodies, labels, conns, streams, refuse, stop } = ctx;
     stream.set_read_timeout(Some(Duration::from_millis(50))).unwrap();
     let reply = |bytes: Vec<u8>| {
         if let Some(c) = conns.lock().unwrap().get_mut(id) {
@@ -77,15 +82,31 @@ fn handle(mut stream: TcpStream, id: usize, ctx: Ctx) {
                     let names: Vec<&str> = names.iter().map(String::as_str).collect();
                     reply(qtm_encode::xml(&qtm_encode::parameters_6d(&names)))
                 }
+                ["getparameters", "3d"] => {
+                    let names = labels.lock().unwrap().clone();
+                    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+                    reply(qtm_encode::xml(&qtm_encode::parameters_3d(&names)))
+                }
+                ["getparameters", "6d", "3d"] | ["getparameters", "3d", "6d"] => {
+                    let (b, l) = (bodies.lock().unwrap().clone(), labels.lock().unwrap().clone());
+                    let b: Vec<&str> = b.iter().map(String::as_str).collect();
+                    let l: Vec<&str> = l.iter().map(String::as_str).collect();
+                    // One document with both sections, as QTM answers a request for several components.
+                    let six = qtm_encode::parameters_6d(&b);
+                    let at = six.find("  <The_6D>").unwrap();
+                    reply(qtm_encode::xml(&format!("{}{}{}", &six[..at], qtm_encode::the_3d(&l), &six[at..])))
+                }
                 ["streamframes", "stop"] => {
                     if let Some(c) = conns.lock().unwrap().get_mut(id) {
                         c.streaming = None;
                     }
                 }
-                ["streamframes", "allframes", component] if *component == "6d" || *component == "6dres" => {
+                ["streamframes", "allframes", components @ ..]
+                    if !components.is_empty() && components.iter().all(|c| ["6d", "6dres", "3d"].contains(c)) =>
+                {
                     streams.fetch_add(1, Ordering::Relaxed);
                     if let Some(c) = conns.lock().unwrap().get_mut(id) {
-                        c.streaming = Some(*component == "6dres");
+                        c.streaming = Some((components.contains(&"6dres"), components.contains(&"3d")));
                     }
                 }
                 _ => reply(qtm_encode::error("Parse error")),
@@ -105,12 +126,14 @@ impl QtmServer {
         listener.set_nonblocking(true).unwrap();
         let port = listener.local_addr().unwrap().port();
         let bodies = Arc::new(Mutex::new(bodies.iter().map(|s| s.to_string()).collect::<Vec<_>>()));
+        let labels: Arc<Mutex<Vec<String>>> = Default::default();
         let conns: Arc<Mutex<Vec<Conn>>> = Default::default();
         let stream_requests = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
         let refuse_version = Arc::new(AtomicBool::new(false));
         let (b, c, s, st, rf) =
             (bodies.clone(), conns.clone(), stream_requests.clone(), stop.clone(), refuse_version.clone());
+        let l = labels.clone();
         std::thread::spawn(move || {
             while !st.load(Ordering::Relaxed) {
                 match listener.accept() {
@@ -124,6 +147,7 @@ impl QtmServer {
                         };
                         let ctx = Ctx {
                             bodies: b.clone(),
+                            labels: l.clone(),
                             conns: c.clone(),
                             streams: s.clone(),
                             refuse: rf.clone(),
@@ -135,7 +159,7 @@ impl QtmServer {
                 }
             }
         });
-        QtmServer { port, bodies, conns, stream_requests, refuse_version, stop }
+        QtmServer { port, bodies, labels, conns, stream_requests, refuse_version, stop }
     }
 
     /// Sends raw bytes to every streaming client.
@@ -145,11 +169,15 @@ impl QtmServer {
         }
     }
 
-    /// Sends a frame as 6D or 6DRes, as each streaming client asked.
+    /// Sends a frame as 6D or 6DRes (with its 3D markers when the client asked for 3D), as each streaming
+    /// client asked.
     pub fn send_frame(&self, frame: &Frame6d) {
         for c in self.conns.lock().unwrap().iter_mut() {
-            let Some(residual) = c.streaming else { continue };
+            let Some((residual, with_3d)) = c.streaming else { continue };
             let mut f = frame.clone();
+            if !with_3d {
+                f.markers_mm.clear();
+            }
             for b in &mut f.bodies {
                 b.residual_mm = residual.then_some(0.4);
             }

@@ -11,13 +11,21 @@ use std::sync::Arc;
 use super::{Incoming, InputKind};
 use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::kinematics::{MarkerFitter, MarkerSet};
 use crate::wire::MessageType;
+
+/// The marker set file of a rig's input, as a fitter (3 mm rejection, as `impactd import`'s default).
+fn marker_fitter(path: &str) -> Result<MarkerFitter, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("reading {path}: {e}"))?;
+    let set = MarkerSet::from_toml(&text).map_err(|e| format!("{path}: {e}"))?;
+    Ok(MarkerFitter::new(set).with_reject_m(3e-3))
+}
 
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
 
 /// A server, its routes `(body, rig)`, and what each route feeds (the club's samples or the rig's ball).
-type Group = (Source, Vec<(String, String)>, Vec<InputKind>);
+type Group = (Source, Vec<(String, String)>, Vec<InputKind>, Vec<Option<MarkerFitter>>);
 
 /// Starts one client per server named by the rigs' inputs; gives each such rig its status source.
 pub(super) fn start(
@@ -31,25 +39,34 @@ pub(super) fn start(
             field: format!("rig {}: input.{field}", rig.name),
             reason,
         })?;
-        let mut routes = vec![((input.body.clone(), rig.name.clone()), InputKind::Sample)];
+        let fitter =
+            match &input.markers {
+                Some(path) => Some(marker_fitter(path).map_err(|reason| DaemonError::Config {
+                    field: format!("rig {}: input.markers", rig.name),
+                    reason,
+                })?),
+                None => None,
+            };
+        let mut routes = vec![((input.body.clone(), rig.name.clone()), InputKind::Sample, fitter)];
         if let Some(ball) = &input.ball_body {
-            routes.push(((ball.clone(), rig.name.clone()), InputKind::Ball));
+            routes.push(((ball.clone(), rig.name.clone()), InputKind::Ball, None));
         }
         let at = match groups.iter().position(|g| g.0 == source) {
             Some(at) => at,
             None => {
-                groups.push((source, Vec::new(), Vec::new()));
+                groups.push((source, Vec::new(), Vec::new(), Vec::new()));
                 groups.len() - 1
             }
         };
-        for (route, kind) in routes {
+        for (route, kind, fitter) in routes {
             groups[at].1.push(route);
             groups[at].2.push(kind);
+            groups[at].3.push(fitter);
         }
     }
     let mut handles = Vec::new();
     let mut sources = HashMap::new();
-    for (source, group, kinds) in groups {
+    for (source, group, kinds, fitters) in groups {
         let targets: Vec<(Arc<str>, Option<Route>, InputKind)> = group
             .iter()
             .zip(&kinds)
@@ -75,7 +92,7 @@ pub(super) fn start(
             }
         });
         tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), group);
-        let handle = InputHandle::start(source, group.clone(), deliver)?;
+        let handle = InputHandle::start_fitted(source, group.clone(), fitters, deliver)?;
         for (i, ((_, rig), kind)) in group.iter().zip(&kinds).enumerate() {
             if *kind == InputKind::Sample {
                 sources.insert(rig.clone(), handle.status_source(i));

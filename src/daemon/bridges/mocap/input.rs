@@ -29,6 +29,7 @@ pub const QTM_PORT: u16 = 22223;
 /// natnet = "192.168.1.20"    # or qtm = "192.168.1.20"
 /// body = "driver"            # the rigid body's name in Motive (6DOF body in QTM)
 /// ball_body = "ball"         # optional: a body whose origin is the ball's centre (mocap/<rig>/ball)
+/// markers = "club.toml"      # optional (QTM): fit this marker set to the labelled 3D markers instead of a body
 /// unicast = true             # NatNet: unicast (default: multicast on multicast_group)
 /// # command_port = 1510; data_port = 1511; multicast_group = "239.255.42.99"; port = 22223 (QTM)
 /// ```
@@ -44,6 +45,11 @@ pub struct MocapInputConfig {
     /// which sets each shot's ball position (`mocap/<rig>/ball`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ball_body: Option<String>,
+    /// A marker set file (`[markers]`, as `impactd import` takes): the club's pose is that set fitted to the
+    /// server's labelled markers each frame (QTM 3D), so the capture software needs no rigid body; `body` then
+    /// names the route in the status.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub markers: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub command_port: Option<u16>,
     /// NatNet data port (0: any free port, for unicast).
@@ -185,10 +191,29 @@ pub struct InputHandle {
 impl InputHandle {
     /// Starts a client of `source` for `routes` (`(body name, rig)`), handing samples to `deliver`.
     pub fn start(source: Source, routes: Vec<(String, String)>, deliver: Deliver) -> Result<Self, DaemonError> {
+        let fitters = vec![None; routes.len()];
+        Self::start_fitted(source, routes, fitters, deliver)
+    }
+
+    /// [`InputHandle::start`] with a marker set per route (`Some`: the route's pose is that set fitted to the
+    /// server's labelled markers each frame, for QTM's 3D; NatNet's labelled markers are not read yet).
+    pub fn start_fitted(
+        source: Source,
+        routes: Vec<(String, String)>,
+        fitters: Vec<Option<crate::kinematics::MarkerFitter>>,
+        deliver: Deliver,
+    ) -> Result<Self, DaemonError> {
         let stop = Arc::new(AtomicBool::new(false));
         let bodies: Vec<String> = routes.iter().map(|r| r.0.clone()).collect();
         let shared = Arc::new(Mutex::new(Shared::new(&source, &routes, deliver)));
         let threads = match &source {
+            Source::NatNet { .. } if fitters.iter().any(Option::is_some) => {
+                return Err(DaemonError::Config {
+                    field: "input.markers".into(),
+                    reason: "marker sets are fitted live from QTM's 3D markers; over NatNet, define a rigid body"
+                        .into(),
+                })
+            }
             Source::NatNet { host, command_port, data_port, multicast_group } => super::natnet::start(
                 super::natnet::Options {
                     server: resolve(host, *command_port)?,
@@ -200,7 +225,7 @@ impl InputHandle {
                 stop.clone(),
             )?,
             Source::Qtm { host, port } => {
-                super::qtm::start(resolve(host, *port)?, bodies, shared.clone(), stop.clone())?
+                super::qtm::start(resolve(host, *port)?, bodies, fitters, shared.clone(), stop.clone())?
             }
         };
         Ok(InputHandle { source, stop, threads, shared })

@@ -1,7 +1,7 @@
 //! The QTM real-time client: one thread, one TCP connection at a time. It connects (with back-off while QTM
 //! is not there), reads the greeting, asks for protocol 1.25, maps body names to 6D indices with
 //! `GetParameters 6D` (again when QTM says the cameras or the measurement changed), then `StreamFrames
-//! AllFrames 6D` and reads frames until the measurement stops or the connection ends, and then connects again
+//! AllFrames 6D` (`6D 3D` when a route is a marker set, fitted to the labelled markers) and reads frames until the measurement stops or the connection ends, and then connects again
 //! with back-off.
 
 use std::io::{Read, Write};
@@ -13,9 +13,10 @@ use std::time::{Duration, Instant};
 
 use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::DaemonError;
+use crate::kinematics::MarkerFitter;
 use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
 use crate::mocap::qtm_encode;
-use crate::mocap::track::{qtm_sample, BodyTrack, Sequence};
+use crate::mocap::track::{self, qtm_sample, BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 
 /// How long a reply to a command may take.
@@ -24,15 +25,18 @@ const REPLY_WAIT: Duration = Duration::from_secs(5);
 /// Events after which the body list may have changed: ask for the parameters again.
 const EVENTS_REMAP: [u8; 4] = [3, 7, 8, 11];
 
+/// Starts the client thread for `bodies` (route `i` is the 6DOF body `bodies[i]`, or, when `fitters[i]` is
+/// given, that marker set fitted to QTM's labelled 3D markers each frame).
 pub fn start(
     server: SocketAddr,
     bodies: Vec<String>,
+    fitters: Vec<Option<MarkerFitter>>,
     shared: Arc<Mutex<Shared>>,
     stop: Arc<AtomicBool>,
 ) -> Result<Vec<JoinHandle<()>>, DaemonError> {
     let thread = std::thread::Builder::new()
         .name("qtm".into())
-        .spawn(move || run(server, &bodies, &shared, &stop))
+        .spawn(move || run(server, &bodies, &fitters, &shared, &stop))
         .map_err(|source| DaemonError::Io { what: "starting the QTM thread".into(), source })?;
     Ok(vec![thread])
 }
@@ -43,7 +47,13 @@ enum End {
     Lost(String),
 }
 
-fn run(server: SocketAddr, bodies: &[String], shared: &Mutex<Shared>, stop: &AtomicBool) {
+fn run(
+    server: SocketAddr,
+    bodies: &[String],
+    fitters: &[Option<MarkerFitter>],
+    shared: &Mutex<Shared>,
+    stop: &AtomicBool,
+) {
     let mut backoff = BACKOFF_FIRST;
     let mut tracks = vec![BodyTrack::default(); bodies.len()];
     let mut failures = 0u32;
@@ -51,7 +61,17 @@ fn run(server: SocketAddr, bodies: &[String], shared: &Mutex<Shared>, stop: &Ato
         let why = match TcpStream::connect_timeout(&server, Duration::from_secs(1)) {
             Ok(stream) => {
                 let reader = PacketReader::default();
-                let mut session = Session { stream, reader, shared, stop, bodies, names: Vec::new() };
+                let mut session = Session {
+                    stream,
+                    reader,
+                    shared,
+                    stop,
+                    bodies,
+                    fitters,
+                    names: Vec::new(),
+                    indices: vec![None; bodies.len()],
+                    lab_m: Vec::new(),
+                };
                 match session.run(&mut tracks, &mut backoff) {
                     End::Stopped => return,
                     End::Lost(why) => why,
@@ -132,8 +152,12 @@ struct Session<'a> {
     shared: &'a Mutex<Shared>,
     stop: &'a AtomicBool,
     bodies: &'a [String],
+    fitters: &'a [Option<MarkerFitter>],
     /// QTM's 6D body names, in index order.
     names: Vec<String>,
+    /// Per marker-set route, each of its markers' index among QTM's 3D labels (None: a label is missing).
+    indices: Vec<Option<Vec<usize>>>,
+    lab_m: Vec<Option<crate::math::Vector3>>,
 }
 
 impl Session<'_> {
@@ -177,10 +201,43 @@ impl Session<'_> {
         }
     }
 
+    /// Whether any route is a marker set (then 3D is asked for beside 6D).
+    fn wants_3d(&self) -> bool {
+        self.fitters.iter().any(Option::is_some)
+    }
+
+    fn components(&self) -> &'static str {
+        if self.wants_3d() {
+            "6D 3D"
+        } else {
+            "6D"
+        }
+    }
+
     fn map_bodies(&mut self, xml: &str) {
+        if self.wants_3d() {
+            let labels = qtm::label_names(xml);
+            for (i, fitter) in self.fitters.iter().enumerate() {
+                let Some(f) = fitter else { continue };
+                self.indices[i] = match f.set.indices_in(&labels) {
+                    Ok(found) => Some(found),
+                    Err(missing) => {
+                        tracing::warn!(
+                            "marker `{missing}` of `{}` is not among QTM's 3D labels ({labels:?})",
+                            self.bodies[i]
+                        );
+                        None
+                    }
+                };
+                lock(self.shared).bodies[i].body_found = self.indices[i].is_some();
+            }
+        }
         let names = qtm::body_names(xml);
         let mut sh = lock(self.shared);
         for (i, name) in self.bodies.iter().enumerate() {
+            if self.fitters[i].is_some() {
+                continue;
+            }
             let found = names.iter().any(|n| n == name);
             if !found && (sh.bodies[i].body_found || sh.bodies[i].frames == 0) {
                 tracing::warn!("6DOF body `{name}` is not among QTM's bodies ({names:?})");
@@ -215,9 +272,9 @@ impl Session<'_> {
                 }
             }
         })?;
-        let xml = self.ask("GetParameters 6D", qtm::PACKET_XML)?;
+        let xml = self.ask(&format!("GetParameters {}", self.components()), qtm::PACKET_XML)?;
         self.map_bodies(&xml);
-        self.send("StreamFrames AllFrames 6D")?;
+        self.send(&format!("StreamFrames AllFrames {}", self.components()))?;
         {
             let mut sh = lock(self.shared);
             sh.conn.state = ConnectionState::Connected;
@@ -250,7 +307,7 @@ impl Session<'_> {
                         return Err(End::Lost(format!("QTM's measurement stopped (event {code})")));
                     }
                     if EVENTS_REMAP.contains(&code) {
-                        self.send("GetParameters 6D")?;
+                        self.send(&format!("GetParameters {}", self.components()))?;
                     }
                 }
                 qtm::PACKET_NO_MORE_DATA => return Err(End::Lost("QTM's measurement stopped (no more data)".into())),
@@ -263,12 +320,29 @@ impl Session<'_> {
 
     fn on_data(&mut self, frame: &mut Frame6d, tracks: &mut [BodyTrack], received: Instant) {
         let mut sh = lock(self.shared);
-        if let Err(e) = qtm::decode_data(&self.reader.packet, frame) {
-            return sh.conn.reject(e.reason());
+        let components = match qtm::decode_data(&self.reader.packet, frame) {
+            Ok(c) => c,
+            Err(e) => return sh.conn.reject(e.reason()),
+        };
+        // A route of a 6DOF body in a packet without 6D (or a marker set without 3D): counted once per packet.
+        let wants_6d = self.fitters.iter().any(Option::is_none);
+        if (wants_6d && !components.six_d) || (self.wants_3d() && !components.three_d) {
+            return sh.conn.reject(QtmError::No6d.reason());
         }
         let sh = &mut *sh;
         for (i, name) in self.bodies.iter().enumerate() {
             let status = &mut sh.bodies[i];
+            if let Some(fitter) = &self.fitters[i] {
+                let Some(indices) = &self.indices[i] else {
+                    *status.rejected.entry("markers_not_in_model".into()).or_default() += 1;
+                    continue;
+                };
+                let sample = track::qtm_fitted_sample(fitter, indices, frame, &mut self.lab_m);
+                if tracks[i].on_frame(&sample, None, status) == Sequence::Publish {
+                    (sh.deliver)(i, &sample, received);
+                }
+                continue;
+            }
             let Some(index) = self.names.iter().position(|n| n == name) else {
                 *status.rejected.entry("body_not_in_model".into()).or_default() += 1;
                 continue;
