@@ -6,7 +6,7 @@
 //!
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
-//! club = "driver"               # preset (driver, iron7) or a path to a club .toml
+//! club = "driver"               # a preset (driver, wood3, hybrid, iron4-iron9, pw, gw, sw, lw) or a club .toml
 //! model = "adjusted"            # a model of the registry (`impactd models`), or a comma-separated list
 //! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml;
 //!                               # with model = "both" it stands for "adjusted,ground"
