@@ -11,7 +11,7 @@ use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
-use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
+use crate::wire::{ClubRef, ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
@@ -28,7 +28,26 @@ pub struct RigSetup {
     pub flight: Option<crate::flight::Flight>,
     /// The labels of the rig's shots (from its configuration; [`Pipeline::set_labels`] replaces them).
     pub labels: ShotLabels,
+    /// The club file of `club` (preset or path and its SHA-256), carried by every impact and launch.
+    pub club_ref: Option<ClubRef>,
+    /// Tracked bodies and the club each holds (`[rig.clubs]`): a sample of another body, once the current
+    /// body has been out of view for [`BODY_SWITCH_AFTER_NS`], switches the club ([`Pipeline::on_body_sample_with`]).
+    pub bodies: BTreeMap<String, ClubSwitch>,
 }
+
+/// A club to switch to: the head, its models (built by `impact::registry`), its file, and for a tracked body
+/// its calibration (the body's pose in the club frame).
+#[derive(Debug, Clone)]
+pub struct ClubSwitch {
+    pub club: ClubSpec,
+    pub models: Vec<Arc<dyn ImpactModel>>,
+    pub club_ref: Option<ClubRef>,
+    pub calibration: Option<Calibration>,
+}
+
+/// How long the current body must have been out of view (no tracked sample, capture time) before another
+/// body's tracked sample switches the club: a club set down or held aside, not a marker flicker (ns).
+pub const BODY_SWITCH_AFTER_NS: u64 = 200_000_000;
 
 impl RigSetup {
     /// A rig with the defaults: the adjusted model, the `arc` estimator, identity calibration, ball at the
@@ -44,6 +63,8 @@ impl RigSetup {
             track: TrackLimits::default(),
             flight: Some(crate::flight::Flight::default()),
             labels: ShotLabels::default(),
+            club_ref: None,
+            bodies: BTreeMap::new(),
         }
     }
 }
@@ -60,6 +81,8 @@ pub enum Event {
     Launch(LaunchPrediction),
     /// An impact was found but no prediction could be made.
     Failed { shot: u64, frame: u64, reason: String, key: &'static str },
+    /// Another tracked body came into view: the rig's club is now this body's.
+    ClubChanged { body: String, club_ref: Option<ClubRef> },
 }
 
 /// Counters of one rig's pipeline.
@@ -88,6 +111,8 @@ pub struct Pipeline {
     detector: ImpactDetector,
     estimators: Vec<EstimatorSpec>,
     pub counts: Counts,
+    /// The tracked body holding the club (`[rig.clubs]`) and the capture time of its last tracked sample.
+    body: Option<(String, u64)>,
 }
 
 impl Pipeline {
@@ -99,7 +124,64 @@ impl Pipeline {
             estimators: vec![setup.estimator.clone()],
             setup,
             counts: Counts::default(),
+            body: None,
         }
+    }
+
+    /// The club from now on (a put on `golf/<rig>/club`, or a body's club): the same track and detector carry
+    /// on unless the switch brings a body's calibration.
+    pub fn switch_club(&mut self, switch: ClubSwitch) {
+        self.equipment = Equipment::new(switch.club.clone());
+        self.setup.club = switch.club;
+        self.setup.models = switch.models;
+        self.setup.club_ref = switch.club_ref;
+        if let Some(calibration) = switch.calibration {
+            self.setup.calibration = calibration;
+            self.track = Track::new(calibration, self.setup.track);
+            self.detector = ImpactDetector::new(self.setup.detector.clone());
+        }
+    }
+
+    /// Feeds one sample of a tracked body (`None`: the rig's only body). With `[rig.clubs]`, a body not mapped
+    /// is refused (`unknown_body`); another mapped body's samples are set aside (`other_body`) until the
+    /// current body has been out of view for [`BODY_SWITCH_AFTER_NS`], when its first tracked sample switches
+    /// the club (a fresh track and detector: another object) and [`Event::ClubChanged`] says so.
+    pub fn on_body_sample_with(&mut self, body: Option<&str>, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
+        if let (Some(name), false) = (body, self.setup.bodies.is_empty()) {
+            let current = self.body.as_ref().map(|(b, t)| (b.as_str() == name, *t));
+            match current {
+                Some((true, _)) => {}
+                _ if !self.setup.bodies.contains_key(name) => {
+                    self.counts.samples += 1;
+                    *self.counts.rejected.entry("unknown_body".into()).or_default() += 1;
+                    return;
+                }
+                Some((false, last_t_ns))
+                    if sample.occluded || sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
+                {
+                    self.counts.samples += 1;
+                    *self.counts.rejected.entry("other_body".into()).or_default() += 1;
+                    return;
+                }
+                None if sample.occluded => {
+                    self.counts.samples += 1;
+                    self.counts.occluded += 1;
+                    return;
+                }
+                _ => {
+                    if let Some(switch) = self.setup.bodies.get(name).cloned() {
+                        let club_ref = switch.club_ref.clone();
+                        let calibration = switch.calibration.unwrap_or(self.setup.calibration);
+                        self.switch_club(ClubSwitch { calibration: Some(calibration), ..switch });
+                        out(Event::ClubChanged { body: name.to_string(), club_ref });
+                    }
+                }
+            }
+            if !sample.occluded {
+                self.body = Some((name.to_string(), sample.t_ns));
+            }
+        }
+        self.on_sample_with(sample, out);
     }
 
     /// The labels of the shots from now on (a put on `golf/<rig>/session`).
@@ -170,6 +252,7 @@ impl Pipeline {
             frame: d.reveal_frame,
             t_impact_ns: est.t_impact_ns,
             club: club.name.clone(),
+            club_file: self.setup.club_ref.clone(),
             estimator: self.setup.estimator.name.clone(),
             state: (&est.state).into(),
             delivery,
@@ -192,6 +275,7 @@ impl Pipeline {
                         frame: d.reveal_frame,
                         t_impact_ns: est.t_impact_ns,
                         club: self.setup.club.name.clone(),
+                        club_file: self.setup.club_ref.clone(),
                         model: m.name().to_string(),
                         estimator: self.setup.estimator.name.clone(),
                         delivery,

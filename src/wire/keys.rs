@@ -79,6 +79,12 @@ pub fn foxglove_ball_flight(rig: &str) -> String {
 pub fn session(rig: &str) -> String {
     format!("golf/{rig}/session")
 }
+/// In: a rig's club from now on, as plain UTF-8 text: a preset name (`iron7`) or a club file's path. A bad put is
+/// logged and changes nothing. Recorded (and so out, in recordings): [`ClubChange`](super::ClubChange) at start
+/// and at every change, by a put or by another tracked body (`[rig.clubs]`).
+pub fn club(rig: &str) -> String {
+    format!("golf/{rig}/club")
+}
 /// Every rig's session labels.
 pub const SESSION_ALL: &str = "golf/*/session";
 /// The rig name of a `golf/<rig>/session` key.

@@ -27,26 +27,38 @@ pub(super) fn start(
             field: format!("rig {}: input.{field}", rig.name),
             reason,
         })?;
-        let route = (input.body.clone(), rig.name.clone());
-        match groups.iter_mut().find(|g| g.0 == source) {
-            Some(g) => g.1.push(route),
-            None => groups.push((source, vec![route])),
-        }
+        // The rig's body, and with `[rig.clubs]` every club's body: each sample then names its body.
+        let mut bodies = vec![input.body.clone()];
+        bodies.extend(rig.clubs.keys().filter(|b| **b != input.body).cloned());
+        let group = match groups.iter().position(|g| g.0 == source) {
+            Some(i) => i,
+            None => {
+                groups.push((source, Vec::new()));
+                groups.len() - 1
+            }
+        };
+        groups[group].1.extend(bodies.into_iter().map(|b| (b, rig.name.clone())));
     }
     let mut handles = Vec::new();
     let mut sources = HashMap::new();
     for (source, group) in groups {
-        let targets: Vec<(Arc<str>, Option<Route>)> =
-            group.iter().map(|(_, rig)| (Arc::from(rig.as_str()), routes.get(rig).cloned())).collect();
+        let named = |rig: &str| config.rigs.iter().any(|r| r.name == rig && !r.clubs.is_empty());
+        let targets: Vec<(Arc<str>, Option<Route>, Option<String>)> = group
+            .iter()
+            .map(|(body, rig)| (Arc::from(rig.as_str()), routes.get(rig).cloned(), named(rig).then(|| body.clone())))
+            .collect();
         let encoding = MessageType::ClubheadSample.encoding();
         let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
-            let Some((rig, Some((tx, dropped)))) = targets.get(i) else { return };
+            let Some((rig, Some((tx, dropped)), body)) = targets.get(i) else { return };
+            let mut msg = sample.to_msg(rig);
+            msg.body = body.clone();
             let incoming = Incoming {
                 kind: InputKind::Sample,
                 received,
                 log_time_ns: wall_ns(),
-                payload: serde_json::to_vec(&sample.to_msg(rig)).unwrap_or_default(),
+                payload: serde_json::to_vec(&msg).unwrap_or_default(),
                 encoding: encoding.clone(),
+                club: None,
             };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
@@ -54,8 +66,9 @@ pub(super) fn start(
         });
         tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), group);
         let handle = InputHandle::start(source, group.clone(), deliver)?;
+        // A rig's status shows its first body's input (`[rig.input] body`).
         for (i, (_, rig)) in group.iter().enumerate() {
-            sources.insert(rig.clone(), handle.status_source(i));
+            sources.entry(rig.clone()).or_insert_with(|| handle.status_source(i));
         }
         handles.push(handle);
     }

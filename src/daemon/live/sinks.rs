@@ -204,6 +204,12 @@ impl RigSinks {
         );
     }
 
+    /// Records the rig's club from now on (`golf/<rig>/club`).
+    pub fn club_change(&self, log_time_ns: u64, change: &crate::wire::ClubChange) {
+        let data = serde_json::to_vec(change).unwrap_or_default();
+        self.record::<crate::wire::ClubChange>(&crate::wire::keys::club(&self.rig), log_time_ns, log_time_ns, data);
+    }
+
     /// Records the session labels a put set (`golf/<rig>/session`).
     pub fn labels(&self, log_time_ns: u64, labels: &crate::wire::ShotLabels) {
         let data = serde_json::to_vec(labels).unwrap_or_default();
@@ -278,4 +284,15 @@ pub fn world_from_club(pipeline: &Pipeline, sample: &ClubheadSample) -> Option<I
     let q = crate::kinematics::sample::unit_quaternion(&sample.orientation_xyzw, 0.01)?;
     let lab = Isometry3::from_parts(sample.position_m.into(), q);
     Some(pipeline.setup.calibration.world_from_club(&lab))
+}
+
+/// The pipeline's club as a [`crate::wire::ClubChange`] (what is recorded on `golf/<rig>/club`).
+pub fn club_change(p: &Pipeline, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
+    let club = p.setup.club_ref.clone().unwrap_or_else(|| crate::wire::ClubRef {
+        name: p.setup.club.name.clone(),
+        file: String::new(),
+        sha256: String::new(),
+    });
+    let models = p.setup.models.iter().map(|m| m.name().to_string()).collect();
+    crate::wire::ClubChange { rig: p.setup.name.clone(), club, source, body, models }
 }

@@ -217,7 +217,7 @@ pub async fn run(
             rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(msg).unwrap_or_default());
         }
         events.clear();
-        rig.pipeline.on_sample(&sample, &mut events);
+        rig.pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |e| events.push(e));
         for e in events.iter_mut() {
             match e {
                 Event::Launch(l) => {
@@ -238,6 +238,11 @@ pub async fn run(
                     on_event(e, &[]);
                 }
                 Event::Rejected { .. } => on_event(e, &[]),
+                Event::ClubChanged { body, .. } => {
+                    let change = sinks::club_change(&rig.pipeline, crate::wire::ClubSource::Body, Some(body.clone()));
+                    rig.sinks.club_change(log_time_ns, &change);
+                    on_event(e, &[]);
+                }
             }
         }
         if handle.enabled() && events.is_empty() && !sample.occluded {
