@@ -82,7 +82,7 @@ pub enum Event {
     /// An impact was found but no prediction could be made.
     Failed { shot: u64, frame: u64, reason: String, key: &'static str },
     /// Another tracked body came into view: the rig's club is now this body's.
-    ClubChanged { body: String, club_ref: Option<ClubRef> },
+    ClubChanged(crate::wire::ClubChange),
 }
 
 /// Counters of one rig's pipeline.
@@ -128,6 +128,17 @@ impl Pipeline {
         }
     }
 
+    /// The rig's club as it is now, as recorded on `golf/<rig>/club`.
+    pub fn club_change(&self, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
+        let club = self.setup.club_ref.clone().unwrap_or_else(|| ClubRef {
+            name: self.setup.club.name.clone(),
+            file: String::new(),
+            sha256: String::new(),
+        });
+        let models = self.setup.models.iter().map(|m| m.name().to_string()).collect();
+        crate::wire::ClubChange { rig: self.setup.name.clone(), club, source, body, models }
+    }
+
     /// The club from now on (a put on `golf/<rig>/club`, or a body's club): the same track and detector carry
     /// on unless the switch brings a body's calibration.
     pub fn switch_club(&mut self, switch: ClubSwitch) {
@@ -170,10 +181,9 @@ impl Pipeline {
                 }
                 _ => {
                     if let Some(switch) = self.setup.bodies.get(name).cloned() {
-                        let club_ref = switch.club_ref.clone();
                         let calibration = switch.calibration.unwrap_or(self.setup.calibration);
                         self.switch_club(ClubSwitch { calibration: Some(calibration), ..switch });
-                        out(Event::ClubChanged { body: name.to_string(), club_ref });
+                        out(Event::ClubChanged(self.club_change(crate::wire::ClubSource::Body, Some(name.into()))));
                     }
                 }
             }

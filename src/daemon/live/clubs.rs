@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use super::inputs::Route;
 use super::queue::{Incoming, InputKind};
 use super::stats::RateLimiter;
-use super::{sinks, Worker};
+use super::Worker;
 use crate::daemon::config::RigConfig;
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::wire::{self, keys, ClubSource};
@@ -109,10 +109,8 @@ impl Worker {
         self.record_club(incoming.log_time_ns, ClubSource::Put, None);
     }
 
-    /// Records (and logs) the rig's club as it is now.
-    pub(super) fn record_club(&mut self, log_time_ns: u64, source: ClubSource, body: Option<String>) {
-        let Some(p) = self.pipeline.as_ref() else { return };
-        let change = sinks::club_change(p, source, body);
+    /// Records (and logs) the rig's club from a pipeline's change (a body's club).
+    pub(super) fn record_club_change(&mut self, log_time_ns: u64, change: &wire::ClubChange) {
         tracing::info!(
             "rig {}: club {} ({}, sha256 {}) from {:?}{}",
             self.rig,
@@ -122,6 +120,13 @@ impl Worker {
             change.source,
             change.body.as_deref().map(|b| format!(" (body {b})")).unwrap_or_default()
         );
-        self.sinks.club_change(log_time_ns, &change);
+        self.sinks.club_change(log_time_ns, change);
+    }
+
+    /// Records (and logs) the rig's club as it is now.
+    pub(super) fn record_club(&mut self, log_time_ns: u64, source: ClubSource, body: Option<String>) {
+        let Some(p) = self.pipeline.as_ref() else { return };
+        let change = p.club_change(source, body);
+        self.record_club_change(log_time_ns, &change);
     }
 }

@@ -415,7 +415,7 @@ impl Worker {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
                 self.sinks.failed();
             }
-            Event::ClubChanged { body, .. } => self.record_club(wall_ns(), wire::ClubSource::Body, Some(body)),
+            Event::ClubChanged(change) => self.record_club_change(wall_ns(), &change),
         }
     }
 

@@ -285,14 +285,3 @@ pub fn world_from_club(pipeline: &Pipeline, sample: &ClubheadSample) -> Option<I
     let lab = Isometry3::from_parts(sample.position_m.into(), q);
     Some(pipeline.setup.calibration.world_from_club(&lab))
 }
-
-/// The pipeline's club as a [`crate::wire::ClubChange`] (what is recorded on `golf/<rig>/club`).
-pub fn club_change(p: &Pipeline, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
-    let club = p.setup.club_ref.clone().unwrap_or_else(|| crate::wire::ClubRef {
-        name: p.setup.club.name.clone(),
-        file: String::new(),
-        sha256: String::new(),
-    });
-    let models = p.setup.models.iter().map(|m| m.name().to_string()).collect();
-    crate::wire::ClubChange { rig: p.setup.name.clone(), club, source, body, models }
-}

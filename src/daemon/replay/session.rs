@@ -238,9 +238,8 @@ pub async fn run(
                     on_event(e, &[]);
                 }
                 Event::Rejected { .. } => on_event(e, &[]),
-                Event::ClubChanged { body, .. } => {
-                    let change = sinks::club_change(&rig.pipeline, crate::wire::ClubSource::Body, Some(body.clone()));
-                    rig.sinks.club_change(log_time_ns, &change);
+                Event::ClubChanged(change) => {
+                    rig.sinks.club_change(log_time_ns, change);
                     on_event(e, &[]);
                 }
             }
