@@ -3,7 +3,7 @@
 //! a bad put is refused and changes nothing. The recording, read back by Python's `mcap` (an independent reader),
 //! says which club file each launch used (SHA-256 computed by Python's `hashlib` from the files' bytes), and the
 //! launches after each switch are those `impactd predict --club NEW` gives for the recorded delivery, not the old
-//! club's.
+//! club's; `impactd replay` switches where the session did and reproduces every launch byte for byte.
 
 #![allow(clippy::unwrap_used)]
 
@@ -141,6 +141,14 @@ async fn a_put_and_a_body_switch_the_club_and_the_recording_says_which() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // A replay switches the clubs where the session did (the put's preset loaded again and its hash checked;
+    // the body's samples name it) and so reproduces every recorded launch byte for byte.
+    let replay = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["replay", recording.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&replay.stderr).to_string() + &String::from_utf8_lossy(&replay.stdout);
+    assert!(said.contains("6 of 6 recorded predictions reproduced byte for byte"), "{said}");
     let launches: Vec<serde_json::Value> =
         String::from_utf8(out.stdout).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
     assert_eq!(launches.len() as u64, 3 * SHOTS);

@@ -93,6 +93,12 @@ pub fn rig_of_session(key: &str) -> Option<&str> {
     let rig = rest.strip_suffix("/session")?;
     (!rig.is_empty() && !rig.contains('/')).then_some(rig)
 }
+/// The rig name of a `golf/<rig>/club` key.
+pub fn rig_of_club(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("golf/")?;
+    let rig = rest.strip_suffix("/club")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
 /// The rig name of a `sim/<rig>/truth` key.
 pub fn rig_of_truth(key: &str) -> Option<&str> {
     let rest = key.strip_prefix("sim/")?;
