@@ -389,6 +389,27 @@ mod tests {
         assert_eq!(r[0].club.name, "iron7");
     }
 
+    /// `[rig.clubs]`: each body's club is loaded and built at start, with its hash and the body's own
+    /// `club_from_body`; a bad club or pose is refused naming the body.
+    #[test]
+    fn bodies_map_to_clubs() {
+        let rig = |clubs: &str| format!("[[rig]]\nname = \"bay1\"\n[rig.clubs]\n{clubs}");
+        let text =
+            rig("seven = \"iron7\"\nwedge = { club = \"sw\", club_from_body = { translation_m = [0.0, 0.01, 0.0] } }");
+        let (_, r) = DaemonConfig::parse(&text).unwrap();
+        let seven = &r[0].bodies["seven"];
+        assert_eq!(seven.club.name, "iron7");
+        let sha = crate::equipment::sha256_hex(crate::equipment::presets::find("iron7").unwrap().bytes());
+        assert_eq!(seven.club_ref.as_ref().map(|c| c.sha256.clone()), Some(sha));
+        let wedge = r[0].bodies["wedge"].calibration.unwrap();
+        assert_eq!(wedge.club_from_body.translation.vector.y, 0.01);
+        assert_eq!(r[0].club_ref.as_ref().map(|c| c.file.as_str()), Some("driver"));
+        let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
+        assert!(err(&rig("seven = \"putter\"")).contains("rig[0].clubs.seven"));
+        let bad_pose = rig("w = { club = \"sw\", club_from_body = { rotation_xyzw = [0.0, 0.0, 0.0, 2.0] } }");
+        assert!(err(&bad_pose).contains("rig[0].clubs.w.club_from_body"), "{}", err(&bad_pose));
+    }
+
     /// `soil` gives the ground model its turf; with `both` it means the impulse model, then the ground model;
     /// without a ground model, or an unknown soil, it is refused naming the field.
     #[test]
