@@ -154,8 +154,9 @@ impl Pipeline {
     }
 
     /// Feeds one sample of a tracked body (`None`: the rig's only body). With `[rig.clubs]`, a body not mapped
-    /// is refused (`unknown_body`); another mapped body's samples are set aside (`other_body`) until the
-    /// current body has been out of view for [`BODY_SWITCH_AFTER_NS`], when its first tracked sample switches
+    /// is refused (`unknown_body`); another mapped body's tracked samples are set aside (`other_body`; its
+    /// untracked ones count as occluded) until the current body has been out of view for
+    /// [`BODY_SWITCH_AFTER_NS`], when its first tracked sample switches
     /// the club (a fresh track and detector: another object) and [`Event::ClubChanged`] says so.
     pub fn on_body_sample_with(&mut self, body: Option<&str>, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
         if let (Some(name), false) = (body, self.setup.bodies.is_empty()) {
@@ -168,13 +169,14 @@ impl Pipeline {
                     return;
                 }
                 Some((false, last_t_ns))
-                    if sample.occluded || sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
+                    if !sample.occluded && sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
                 {
                     self.counts.samples += 1;
                     *self.counts.rejected.entry("other_body".into()).or_default() += 1;
                     return;
                 }
-                None if sample.occluded => {
+                // Another club out of view (in the bag): an occluded sample, not a rejection.
+                Some((false, _)) | None if sample.occluded => {
                     self.counts.samples += 1;
                     self.counts.occluded += 1;
                     return;
