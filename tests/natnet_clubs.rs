@@ -71,6 +71,7 @@ async fn another_tracked_body_switches_the_club() {
         wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
             .await
     );
+    assert_eq!(server.clients(), 1, "the daemon is the server's one client");
     tokio::time::sleep(Duration::from_millis(200)).await;
     let driver = swing("driver", 1_000_000_000, 5);
     let iron = swing("iron7", driver.last().unwrap().t_ns + 1_000_000_000, 6);

@@ -26,6 +26,7 @@ pub enum MessageType {
     MocapInputStatus,
     ShotLabels,
     ClubChange,
+    BallSample,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -76,6 +77,7 @@ messages! {
     MocapInputStatus => MocapInputStatus,
     ShotLabels => ShotLabels,
     ClubChange => ClubChange,
+    BallSample => BallSampleMsg,
 }
 
 impl MessageType {
