@@ -42,6 +42,7 @@ fn recorded(n: usize) -> Vec<Vec<u8>> {
                 frame: 0,
                 t_impact_ns: 0,
                 club: club.name.clone(),
+                club_file: None,
                 model: model.name().into(),
                 estimator: "arc".into(),
                 delivery,

@@ -12,6 +12,7 @@ import docs_regions
 bin = sys.argv[1]
 models = subprocess.run([bin, "models"], check=True, capture_output=True, text=True).stdout
 sections = subprocess.run([bin, "models", "--sections"], check=True, capture_output=True, text=True).stdout
+presets = subprocess.run([bin, "models", "--presets"], check=True, capture_output=True, text=True).stdout
 docs_regions.replace("README.md", {"models": models.rstrip("\n")})
-docs_regions.replace("docs/club-files.md", {"sections": sections.rstrip("\n")})
+docs_regions.replace("docs/club-files.md", {"sections": sections.rstrip("\n"), "presets": presets.rstrip("\n")})
 PY

@@ -12,7 +12,7 @@ use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
-use crate::wire::{BallSource, BallUsed, ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
+use crate::wire::{BallSource, BallUsed, ClubRef, ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
@@ -29,7 +29,26 @@ pub struct RigSetup {
     pub flight: Option<crate::flight::Flight>,
     /// The labels of the rig's shots (from its configuration; [`Pipeline::set_labels`] replaces them).
     pub labels: ShotLabels,
+    /// The club file of `club` (preset or path and its SHA-256), carried by every impact and launch.
+    pub club_ref: Option<ClubRef>,
+    /// Tracked bodies and the club each holds (`[rig.clubs]`): a sample of another body, once the current
+    /// body has been out of view for [`BODY_SWITCH_AFTER_NS`], switches the club ([`Pipeline::on_body_sample_with`]).
+    pub bodies: BTreeMap<String, ClubSwitch>,
 }
+
+/// A club to switch to: the head, its models (built by `impact::registry`), its file, and for a tracked body
+/// its calibration (the body's pose in the club frame).
+#[derive(Debug, Clone)]
+pub struct ClubSwitch {
+    pub club: ClubSpec,
+    pub models: Vec<Arc<dyn ImpactModel>>,
+    pub club_ref: Option<ClubRef>,
+    pub calibration: Option<Calibration>,
+}
+
+/// How long the current body must have been out of view (no tracked sample, capture time) before another
+/// body's tracked sample switches the club: a club set down or held aside, not a marker flicker (ns).
+pub const BODY_SWITCH_AFTER_NS: u64 = 200_000_000;
 
 impl RigSetup {
     /// A rig with the defaults: the adjusted model, the `arc` estimator, identity calibration, ball at the
@@ -45,6 +64,8 @@ impl RigSetup {
             track: TrackLimits::default(),
             flight: Some(crate::flight::Flight::default()),
             labels: ShotLabels::default(),
+            club_ref: None,
+            bodies: BTreeMap::new(),
         }
     }
 }
@@ -61,6 +82,8 @@ pub enum Event {
     Launch(LaunchPrediction),
     /// An impact was found but no prediction could be made.
     Failed { shot: u64, frame: u64, reason: String, key: &'static str },
+    /// Another tracked body came into view: the rig's club is now this body's.
+    ClubChanged(crate::wire::ClubChange),
 }
 
 /// Counters of one rig's pipeline.
@@ -91,6 +114,8 @@ pub struct Pipeline {
     /// A tracked ball's rest position (the fixed `ball_position_m` until one has rested).
     ball: BallTracker,
     pub counts: Counts,
+    /// The tracked body holding the club (`[rig.clubs]`) and the capture time of its last tracked sample.
+    body: Option<(String, u64)>,
 }
 
 impl Pipeline {
@@ -103,7 +128,76 @@ impl Pipeline {
             ball: BallTracker::new(BallTrackerConfig::new(setup.detector.ball_position_m)),
             setup,
             counts: Counts::default(),
+            body: None,
         }
+    }
+
+    /// The rig's club as it is now, as recorded on `golf/<rig>/club`.
+    pub fn club_change(&self, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
+        let club = self.setup.club_ref.clone().unwrap_or_else(|| ClubRef {
+            name: self.setup.club.name.clone(),
+            file: String::new(),
+            sha256: String::new(),
+        });
+        let models = self.setup.models.iter().map(|m| m.name().to_string()).collect();
+        crate::wire::ClubChange { rig: self.setup.name.clone(), club, source, body, models }
+    }
+
+    /// The club from now on (a put on `golf/<rig>/club`, or a body's club): the same track and detector carry
+    /// on unless the switch brings a body's calibration.
+    pub fn switch_club(&mut self, switch: ClubSwitch) {
+        self.equipment = Equipment::new(switch.club.clone());
+        self.setup.club = switch.club;
+        self.setup.models = switch.models;
+        self.setup.club_ref = switch.club_ref;
+        if let Some(calibration) = switch.calibration {
+            self.setup.calibration = calibration;
+            self.track = Track::new(calibration, self.setup.track);
+            self.detector = ImpactDetector::new(self.setup.detector.clone());
+        }
+    }
+
+    /// Feeds one sample of a tracked body (`None`: the rig's only body). With `[rig.clubs]`, a body not mapped
+    /// is refused (`unknown_body`); another mapped body's tracked samples are set aside (`other_body`; its
+    /// untracked ones count as occluded) until the current body has been out of view for
+    /// [`BODY_SWITCH_AFTER_NS`], when its first tracked sample switches
+    /// the club (a fresh track and detector: another object) and [`Event::ClubChanged`] says so.
+    pub fn on_body_sample_with(&mut self, body: Option<&str>, sample: &ClubheadSample, out: &mut dyn FnMut(Event)) {
+        if let (Some(name), false) = (body, self.setup.bodies.is_empty()) {
+            let current = self.body.as_ref().map(|(b, t)| (b.as_str() == name, *t));
+            match current {
+                Some((true, _)) => {}
+                _ if !self.setup.bodies.contains_key(name) => {
+                    self.counts.samples += 1;
+                    *self.counts.rejected.entry("unknown_body".into()).or_default() += 1;
+                    return;
+                }
+                Some((false, last_t_ns))
+                    if !sample.occluded && sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
+                {
+                    self.counts.samples += 1;
+                    *self.counts.rejected.entry("other_body".into()).or_default() += 1;
+                    return;
+                }
+                // Another club out of view (in the bag): an occluded sample, not a rejection.
+                Some((false, _)) | None if sample.occluded => {
+                    self.counts.samples += 1;
+                    self.counts.occluded += 1;
+                    return;
+                }
+                _ => {
+                    if let Some(switch) = self.setup.bodies.get(name).cloned() {
+                        let calibration = switch.calibration.unwrap_or(self.setup.calibration);
+                        self.switch_club(ClubSwitch { calibration: Some(calibration), ..switch });
+                        out(Event::ClubChanged(self.club_change(crate::wire::ClubSource::Body, Some(name.into()))));
+                    }
+                }
+            }
+            if !sample.occluded {
+                self.body = Some((name.to_string(), sample.t_ns));
+            }
+        }
+        self.on_sample_with(sample, out);
     }
 
     /// The labels of the shots from now on (a put on `golf/<rig>/session`).
@@ -192,6 +286,7 @@ impl Pipeline {
             frame: d.reveal_frame,
             t_impact_ns: est.t_impact_ns,
             club: club.name.clone(),
+            club_file: self.setup.club_ref.clone(),
             estimator: self.setup.estimator.name.clone(),
             state: (&est.state).into(),
             delivery,
@@ -215,6 +310,7 @@ impl Pipeline {
                         frame: d.reveal_frame,
                         t_impact_ns: est.t_impact_ns,
                         club: self.setup.club.name.clone(),
+                        club_file: self.setup.club_ref.clone(),
                         model: m.name().to_string(),
                         estimator: self.setup.estimator.name.clone(),
                         delivery,
@@ -268,5 +364,57 @@ mod tests {
                 < 1e-3 * swing.delivery.club_speed_mps
         );
         assert_eq!(p.counts.predictions, 1);
+    }
+
+    /// `[rig.clubs]`: the first tracked body takes its club; another body's samples are set aside while the
+    /// current body was in view within 0.2 s, an unmapped body's refused; then the other body's club takes over
+    /// and its swing's launch names that club and file.
+    #[test]
+    fn another_body_in_view_switches_the_club() {
+        let switch = |club: ClubSpec| ClubSwitch {
+            club_ref: Some(ClubRef { name: club.name.clone(), file: club.name.clone(), sha256: "00".into() }),
+            club,
+            models: vec![Arc::new(ImpulseModel::new(ImpulseVariant::Adjusted))],
+            calibration: None,
+        };
+        let mut setup = RigSetup::new("bay1", ClubSpec::driver());
+        setup.bodies.insert("a".into(), switch(ClubSpec::driver()));
+        setup.bodies.insert("b".into(), switch(ClubSpec::iron7()));
+        let mut p = Pipeline::new(setup);
+        let swing_of = |club: &ClubSpec, start_ns: u64| {
+            let eq = Equipment::new(club.clone());
+            let swing = Swing::new(&SwingSpec::random(club, &mut Rng::new(3)), &eq).unwrap();
+            sample(&swing, &Sampling::default(), &Calibration::default(), start_ns, 1, &mut Rng::new(4)).samples
+        };
+        let mut out = Vec::new();
+        let driver = swing_of(&ClubSpec::driver(), 1_000_000_000);
+        for x in &driver[..10] {
+            p.on_body_sample_with(Some("a"), x, &mut |e| out.push(e));
+        }
+        let changed = |out: &[Event]| -> Vec<String> {
+            out.iter()
+                .filter_map(|e| if let Event::ClubChanged(c) = e { Some(c.club.name.clone()) } else { None })
+                .collect()
+        };
+        assert_eq!(changed(&out), ["driver"]);
+        let mut early = driver[10];
+        early.t_ns = driver[9].t_ns + 1_000_000;
+        p.on_body_sample_with(Some("b"), &early, &mut |e| out.push(e));
+        p.on_body_sample_with(Some("c"), &early, &mut |e| out.push(e));
+        assert_eq!((p.counts.rejected["other_body"], p.counts.rejected["unknown_body"]), (1, 1));
+        assert_eq!(p.setup.club.name, "driver");
+        for x in &swing_of(&ClubSpec::iron7(), driver[9].t_ns + BODY_SWITCH_AFTER_NS + 1_000_000_000) {
+            p.on_body_sample_with(Some("b"), x, &mut |e| out.push(e));
+        }
+        assert_eq!(changed(&out), ["driver", "iron7"]);
+        let launches: Vec<&LaunchPrediction> =
+            out.iter().filter_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).collect();
+        let failed: Vec<String> = out
+            .iter()
+            .filter_map(|e| if let Event::Failed { reason, .. } = e { Some(reason.clone()) } else { None })
+            .collect();
+        assert_eq!(launches.len(), 1, "{failed:?} {:?}", p.counts);
+        assert_eq!(launches[0].club, "iron7");
+        assert_eq!(launches[0].club_file.as_ref().map(|c| c.file.as_str()), Some("iron7"));
     }
 }

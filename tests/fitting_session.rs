@@ -3,14 +3,13 @@
 //! `impactd export --format trackman-csv` on the recording, checked against an independent reader (Python's `mcap`
 //! and `csv` modules, computing the statistics with `statistics`).
 //!
-//! The ten clubs are test fixtures: the seed's driver and 7-iron heads (clubs/*-one-cycle.toml) at the lofts of a
-//! driver, 3-wood, hybrid, 4- to 9-iron and pitching wedge; each rig holds one of them.
+//! The ten clubs are the presets of a driver, 3-wood, hybrid, 4- to 9-iron and pitching wedge
+//! (`clubs/presets/`); each rig holds one of them.
 
 #![allow(clippy::unwrap_used)]
 
 mod common;
 
-use std::path::Path;
 use std::time::Duration;
 
 use common::{client, python, start_daemon};
@@ -19,41 +18,21 @@ use impactd::daemon::RunOptions;
 use impactd::wire::keys;
 use zenoh::Wait;
 
-/// (rig, club name, head file, loft in degrees).
-const CLUBS: [(&str, &str, &str, f64); 10] = [
-    ("c1", "Driver", "driver", 10.5),
-    ("c2", "3 Wood", "driver", 15.0),
-    ("c3", "Hybrid", "iron7", 20.0),
-    ("c4", "4 Iron", "iron7", 22.0),
-    ("c5", "5 Iron", "iron7", 25.0),
-    ("c6", "6 Iron", "iron7", 28.0),
-    ("c7", "7 Iron", "iron7", 31.0),
-    ("c8", "8 Iron", "iron7", 35.0),
-    ("c9", "9 Iron", "iron7", 40.0),
-    ("c10", "Pitching Wedge", "iron7", 45.0),
+/// (rig, the fitter's club label, the club preset the rig holds).
+const CLUBS: [(&str, &str, &str); 10] = [
+    ("c1", "Driver", "driver"),
+    ("c2", "3 Wood", "wood3"),
+    ("c3", "Hybrid", "hybrid"),
+    ("c4", "4 Iron", "iron4"),
+    ("c5", "5 Iron", "iron5"),
+    ("c6", "6 Iron", "iron6"),
+    ("c7", "7 Iron", "iron7"),
+    ("c8", "8 Iron", "iron8"),
+    ("c9", "9 Iron", "iron9"),
+    ("c10", "Pitching Wedge", "pw"),
 ];
 const PLAYERS: [&str; 3] = ["ann", "bob", "cy"];
 const SHOTS_PER_PLAYER: u64 = 2;
-
-/// A club file: the head of `base` at `loft_deg`, named `name`.
-fn club_file(dir: &Path, name: &str, base: &str, loft_deg: f64) -> std::path::PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join(format!("clubs/{base}-one-cycle.toml"))).unwrap();
-    let mut out = String::new();
-    for line in text.lines() {
-        if line.starts_with("name = ") {
-            out += &format!("name = \"{name}\"\n");
-        } else if line.starts_with("loft_deg = ") {
-            out += &format!("loft_deg = {loft_deg}\n");
-        } else {
-            out += line;
-            out += "\n";
-        }
-    }
-    let path = dir.join(format!("{}.toml", name.replace(' ', "_")));
-    std::fs::write(&path, out).unwrap();
-    path
-}
 
 fn impactd(args: &[&str]) -> String {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_impactd")).args(args).output().unwrap();
@@ -164,10 +143,9 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     let dir = tempfile::tempdir().unwrap();
     let mut config = String::from("status_period_s = 1.0\n");
     let mut clubs = Vec::new();
-    for (rig, name, base, loft) in CLUBS {
-        let file = club_file(dir.path(), name, base, loft);
-        config += &format!("[[rig]]\nname = \"{rig}\"\nclub = \"{}\"\nmodel = \"adjusted\"\n", file.display());
-        clubs.push((rig, name, impactd::equipment::load_club(file.to_str().unwrap()).unwrap().club));
+    for (rig, name, preset) in CLUBS {
+        config += &format!("[[rig]]\nname = \"{rig}\"\nclub = \"{preset}\"\nmodel = \"adjusted\"\n");
+        clubs.push((rig, name, impactd::equipment::load_club(preset).unwrap().club));
     }
     let recording = dir.path().join("fitting.mcap");
     let options = RunOptions { record: Some(recording.clone()), ..Default::default() };
@@ -247,7 +225,7 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     let svg = dir.path().join("dispersion.svg");
     impactd(&["plot", "dispersion", rec, "--units", "metric", "-o", svg.to_str().unwrap()]);
     let svg = std::fs::read_to_string(svg).unwrap();
-    for (_, name, _, _) in CLUBS {
+    for (_, name, _) in CLUBS {
         assert!(svg.contains(&format!("{name} ({} shots)", PLAYERS.len() as u64 * SHOTS_PER_PLAYER)), "{name}");
     }
     assert!(

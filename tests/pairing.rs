@@ -31,6 +31,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         frame: shot * 1000,
         t_impact_ns,
         club: "driver".into(),
+        club_file: None,
         model: model.into(),
         estimator: "arc".into(),
         delivery: metrics,

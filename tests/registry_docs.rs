@@ -1,4 +1,4 @@
-//! The README's model list and docs/club-files.md's sections are the registry's (`impactd models`); regenerate
+//! The README's model list and docs/club-files.md's sections and presets are the registry's (`impactd models`); regenerate
 //! them with `scripts/registry-docs.sh` when a model or a section changes.
 
 #![allow(clippy::unwrap_used)]
@@ -27,4 +27,9 @@ fn readme_lists_the_registrys_models() {
 #[test]
 fn club_files_doc_lists_the_registrys_sections() {
     assert_eq!(region("docs/club-files.md", "sections"), models(&["--sections"]), "run scripts/registry-docs.sh");
+}
+
+#[test]
+fn club_files_doc_lists_the_presets() {
+    assert_eq!(region("docs/club-files.md", "presets"), models(&["--presets"]), "run scripts/registry-docs.sh");
 }

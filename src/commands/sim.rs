@@ -24,6 +24,9 @@ pub struct SimArgs {
     /// Club preset (driver, iron7) or a path to a club .toml file.
     #[arg(long, default_value = "driver")]
     pub club: String,
+    /// Name this tracked body in every sample (a rig with `[rig.clubs]` switches to the body's club).
+    #[arg(long)]
+    pub body: Option<String>,
     /// Capture rate (Hz).
     #[arg(long, default_value_t = 720.0, value_parser = checked::capture_rate_hz)]
     pub rate: f64,
@@ -64,6 +67,7 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
         noise_mm: args.noise_mm,
         noise_deg: args.noise_deg,
         wait_for_subscriber_s: 10.0,
+        body: args.body.clone(),
     };
     let rt = runtime()?;
     rt.block_on(async {

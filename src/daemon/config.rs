@@ -6,7 +6,7 @@
 //!
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
-//! club = "driver"               # preset (driver, iron7) or a path to a club .toml
+//! club = "driver"               # a preset (driver, wood3, hybrid, iron4-iron9, pw, gw, sw, lw) or a club .toml
 //! model = "adjusted"            # a model of the registry (`impactd models`), or a comma-separated list
 //! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml;
 //!                               # with model = "both" it stands for "adjusted,ground"
@@ -20,6 +20,9 @@
 //! [rig.club_from_body]          # the tracked body's pose in the club frame; default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
+//! [rig.clubs]                  # tracked bodies and their clubs: another body in view switches the club
+//! driver_body = "driver"        # body name = a preset or a club .toml (a put on golf/<rig>/club also switches)
+//! seven = { club = "iron7", club_from_body = { translation_m = [0.0, 0.02, 0.0] } }
 //! [rig.labels]                 # the labels of the shots until a put on golf/<rig>/session replaces them
 //! player = "ann"
 //! tags = ["fitting"]
@@ -35,6 +38,7 @@
 //! pair_window_s = [0.05, 5.0]   # a measurement pairs with the prediction it follows by this delay (s)
 //! ```
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -45,7 +49,7 @@ use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::{Isometry3, Translation3Ext, Vector3};
-use crate::pipeline::RigSetup;
+use crate::pipeline::{ClubSwitch, RigSetup};
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -96,6 +100,36 @@ pub struct RigConfig {
     /// The labels of the rig's shots until a put on `golf/<rig>/session` replaces them.
     #[serde(default, skip_serializing_if = "crate::wire::ShotLabels::is_empty")]
     pub labels: crate::wire::ShotLabels,
+    /// Tracked bodies (rigid bodies, 6DOF bodies, marker sets) and the club each holds: a sample naming another
+    /// body (`body`, or a `[rig.input]` body) switches the rig's club.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub clubs: BTreeMap<String, BodyClub>,
+}
+
+/// A `[rig.clubs]` entry: a club (preset or file), or a club with the body's own pose in the club frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum BodyClub {
+    Club(String),
+    Mounted(MountedClub),
+}
+
+/// A club and where its tracked body sits on it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MountedClub {
+    pub club: String,
+    /// The body's pose in the club frame (default: the rig's `club_from_body`).
+    #[serde(default)]
+    pub club_from_body: Option<PoseConfig>,
+}
+
+impl BodyClub {
+    fn club(&self) -> &str {
+        match self {
+            BodyClub::Club(c) | BodyClub::Mounted(MountedClub { club: c, .. }) => c,
+        }
+    }
 }
 
 fn default_true() -> bool {
@@ -143,6 +177,25 @@ fn soil_model(r: &RigConfig, club: &mut crate::equipment::LoadedClub) -> Result<
     Ok(model)
 }
 
+impl RigConfig {
+    /// The club `spec` (a preset or a club file) ready for this rig: loaded, with the rig's soil, its models built
+    /// with the rig's model and COR, and its file's SHA-256. What a put on `golf/<rig>/club` and `[rig.clubs]`
+    /// load; an error names the part of the rig it comes from (`club`, `soil` or `model`) and why.
+    pub fn prepare_club(&self, spec: &str, what: &str) -> Result<ClubSwitch, (&'static str, String)> {
+        let (mut club, bytes) =
+            crate::equipment::load_club_source(spec).map_err(|e| ("club", format!("{what} `{spec}`: {e}")))?;
+        let model = soil_model(self, &mut club).map_err(|reason| ("soil", reason))?;
+        let options = BuildOptions { cor: self.cor, ..BuildOptions::default() };
+        let models = registry::build(&model, &club, &options).map_err(|e| ("model", format!("{spec}: {e}")))?;
+        let club_ref = crate::wire::ClubRef {
+            name: club.club.name.clone(),
+            file: spec.to_string(),
+            sha256: crate::equipment::sha256_hex(&bytes),
+        };
+        Ok(ClubSwitch { club: club.club, models, club_ref: Some(club_ref), calibration: None })
+    }
+}
+
 impl PoseConfig {
     fn to_isometry(self, field: String) -> Result<Isometry3, DaemonError> {
         if self.rotation_xyzw.iter().chain(self.translation_m.iter()).any(|v| !v.is_finite()) {
@@ -174,6 +227,7 @@ impl Default for DaemonConfig {
                 launch_monitor: None,
                 input: None,
                 labels: Default::default(),
+                clubs: BTreeMap::new(),
             }],
         }
     }
@@ -229,14 +283,10 @@ impl DaemonConfig {
                 if !names.insert(r.name.clone()) {
                     return Err(invalid(f("name"), format!("`{}` appears twice", r.name)));
                 }
-                let mut club = crate::equipment::load_club(&r.club).map_err(|e| invalid(f("club"), e.to_string()))?;
-                let model = soil_model(r, &mut club).map_err(|reason| invalid(f("soil"), reason))?;
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
-                let options = BuildOptions { cor: r.cor, ..BuildOptions::default() };
-                let models =
-                    registry::build(&model, &club, &options).map_err(|e| invalid(f("model"), e.to_string()))?;
+                let club = r.prepare_club(&r.club, &f("club")).map_err(|(field, e)| invalid(f(field), e))?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
@@ -268,7 +318,21 @@ impl DaemonConfig {
                         .unwrap_or_default(),
                 };
                 let mut setup = RigSetup::new(&r.name, club.club);
-                setup.models = models;
+                setup.models = club.models;
+                setup.club_ref = club.club_ref;
+                for (body, entry) in &r.clubs {
+                    let field = f(&format!("clubs.{body}"));
+                    let mut switch =
+                        r.prepare_club(entry.club(), &field).map_err(|(_, e)| invalid(field.clone(), e))?;
+                    let club_from_body = match entry {
+                        BodyClub::Mounted(MountedClub { club_from_body: Some(p), .. }) => {
+                            p.to_isometry(format!("{field}.club_from_body"))?
+                        }
+                        _ => calibration.club_from_body,
+                    };
+                    switch.calibration = Some(Calibration { club_from_body, ..calibration });
+                    setup.bodies.insert(body.clone(), switch);
+                }
                 if !r.flight {
                     setup.flight = None;
                 }
@@ -323,6 +387,27 @@ mod tests {
         let (c, r) = DaemonConfig::parse("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"slip\"").unwrap();
         assert_eq!(c.rigs[0].estimator, "arc");
         assert_eq!(r[0].club.name, "iron7");
+    }
+
+    /// `[rig.clubs]`: each body's club is loaded and built at start, with its hash and the body's own
+    /// `club_from_body`; a bad club or pose is refused naming the body.
+    #[test]
+    fn bodies_map_to_clubs() {
+        let rig = |clubs: &str| format!("[[rig]]\nname = \"bay1\"\n[rig.clubs]\n{clubs}");
+        let text =
+            rig("seven = \"iron7\"\nwedge = { club = \"sw\", club_from_body = { translation_m = [0.0, 0.01, 0.0] } }");
+        let (_, r) = DaemonConfig::parse(&text).unwrap();
+        let seven = &r[0].bodies["seven"];
+        assert_eq!(seven.club.name, "iron7");
+        let sha = crate::equipment::sha256_hex(crate::equipment::presets::find("iron7").unwrap().bytes());
+        assert_eq!(seven.club_ref.as_ref().map(|c| c.sha256.clone()), Some(sha));
+        let wedge = r[0].bodies["wedge"].calibration.unwrap();
+        assert_eq!(wedge.club_from_body.translation.vector.y, 0.01);
+        assert_eq!(r[0].club_ref.as_ref().map(|c| c.file.as_str()), Some("driver"));
+        let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
+        assert!(err(&rig("seven = \"putter\"")).contains("rig[0].clubs.seven"));
+        let bad_pose = rig("w = { club = \"sw\", club_from_body = { rotation_xyzw = [0.0, 0.0, 0.0, 2.0] } }");
+        assert!(err(&bad_pose).contains("rig[0].clubs.w.club_from_body"), "{}", err(&bad_pose));
     }
 
     /// `soil` gives the ground model its turf; with `both` it means the impulse model, then the ground model;

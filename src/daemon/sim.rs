@@ -36,6 +36,8 @@ pub struct SimOptions {
     pub noise_deg: f64,
     /// Wait this long for a subscriber before publishing (s); 0 publishes at once.
     pub wait_for_subscriber_s: f64,
+    /// The tracked body each sample names (`body`), as a rig with several clubs (`[rig.clubs]`) sees them.
+    pub body: Option<String>,
 }
 
 impl Default for SimOptions {
@@ -50,6 +52,7 @@ impl Default for SimOptions {
             noise_mm: 0.2,
             noise_deg: 0.1,
             wait_for_subscriber_s: 10.0,
+            body: None,
         }
     }
 }
@@ -255,7 +258,7 @@ pub async fn run_sim(
         }
         let mut rig =
             SimRig::new(name, &options, start_ns + i as u64 * 37_000_000, options.seed.wrapping_add(i as u64 * 7919));
-        let stop = stop.clone();
+        let (stop, body) = (stop.clone(), options.body.clone());
         threads.push(tokio::task::spawn_blocking(move || {
             let mut summary = SimSummary::default();
             while !stop.load(Ordering::Relaxed) && !rig.done() {
@@ -265,7 +268,8 @@ pub async fn run_sim(
                     std::thread::sleep(Duration::from_nanos(due - now));
                 }
                 let (sample, truth) = rig.next_sample();
-                let msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
+                let mut msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
+                msg.body = body.clone();
                 if let Err(e) = samples.put(serde_json::to_vec(&msg).unwrap_or_default()).wait() {
                     tracing::warn!("rig {}: publishing a sample: {e}", rig.name);
                 }

@@ -107,17 +107,14 @@ impl ClubSpec {
         Vector3::new(0.0, lie.sin(), -lie.cos())
     }
 
-    /// A preset by name: `driver` or `iron7`.
+    /// A preset by name or alias (`driver`, `wood3`, `hybrid`, `iron4` ... `iron9`, `pw`, `gw`, `sw`, `lw`;
+    /// [`super::presets`]).
     pub fn preset(name: &str) -> Result<Self, EquipmentError> {
-        match name {
-            "driver" => Ok(Self::driver()),
-            "iron7" | "7iron" | "7i" => Ok(Self::iron7()),
-            other => Err(EquipmentError::UnknownPreset(other.to_string())),
-        }
+        super::presets::find(name)
+            .ok_or_else(|| EquipmentError::UnknownPreset(name.to_string()))?
+            .load()
+            .map(|loaded| loaded.club)
     }
-
-    /// Names of the presets.
-    pub const PRESETS: [&'static str; 2] = ["driver", "iron7"];
 
     /// The physical club of a TOML club file's text (its model sections are ignored; see
     /// [`ClubFile::parse`] to keep them).

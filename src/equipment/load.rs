@@ -3,13 +3,22 @@
 use std::io::Read;
 use std::path::Path;
 
-use super::{ClubFile, ClubSpec, EquipmentError, LoadedClub, ModelSections};
+use sha2::{Digest, Sha256};
+
+use super::{ClubFile, EquipmentError, LoadedClub};
 
 /// The largest club file read (bytes): a club is a few hundred bytes; this keeps `club = "/dev/zero"` finite.
 pub const MAX_CLUB_FILE_BYTES: u64 = 1 << 20;
 
-/// A club from a preset name (`driver`, `iron7`) or a path to a TOML club file, with the file's model sections.
+/// A club from a preset name (`driver`, `iron7`, `sw`, ...) or a path to a TOML club file, with the file's model
+/// sections.
 pub fn load_club(spec: &str) -> Result<LoadedClub, EquipmentError> {
+    load_club_source(spec).map(|(club, _)| club)
+}
+
+/// A club and the bytes it was read from: a club file's text, a preset's embedded file, or for the seed's two
+/// code presets their name (see [`super::presets::Preset::bytes`]).
+pub fn load_club_source(spec: &str) -> Result<(LoadedClub, Vec<u8>), EquipmentError> {
     if spec.ends_with(".toml") || Path::new(spec).exists() {
         let read_err = |source| EquipmentError::Read { path: spec.to_string(), source };
         let file = std::fs::File::open(spec).map_err(read_err)?;
@@ -18,8 +27,30 @@ pub fn load_club(spec: &str) -> Result<LoadedClub, EquipmentError> {
         if text.len() as u64 > MAX_CLUB_FILE_BYTES {
             return Err(EquipmentError::TooLarge { path: spec.to_string(), max_bytes: MAX_CLUB_FILE_BYTES });
         }
-        ClubFile::parse(&text)
+        Ok((ClubFile::parse(&text)?, text.into_bytes()))
     } else {
-        Ok(LoadedClub { club: ClubSpec::preset(spec)?, sections: ModelSections::default() })
+        let preset = super::presets::find(spec).ok_or_else(|| EquipmentError::UnknownPreset(spec.to_string()))?;
+        Ok((preset.load()?, preset.bytes().to_vec()))
+    }
+}
+
+/// The SHA-256 of a club's bytes, lower-case hex (`sha256sum FILE` prints the same).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A preset's hash is its file's: FIPS 180-4's example "abc" checks the digest itself.
+    #[test]
+    fn a_preset_hashes_as_its_file() {
+        assert_eq!(sha256_hex(b"abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+        let (club, bytes) = load_club_source("sw").unwrap();
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/clubs/presets/sw.toml");
+        let (from_file, file_bytes) = load_club_source(path).unwrap();
+        assert_eq!((club, sha256_hex(&bytes)), (from_file, sha256_hex(&file_bytes)));
+        assert!(load_club_source("putter").unwrap_err().to_string().contains("putter"));
     }
 }

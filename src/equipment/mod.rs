@@ -11,6 +11,7 @@ mod club;
 mod club_file;
 mod load;
 mod outline;
+pub mod presets;
 pub mod shaft;
 pub mod soil;
 pub mod sole;
@@ -18,7 +19,7 @@ pub mod sole;
 pub use ball::BallSpec;
 pub use club::ClubSpec;
 pub use club_file::{ClubFile, LoadedClub, ModelSections};
-pub use load::{load_club, MAX_CLUB_FILE_BYTES};
+pub use load::{load_club, load_club_source, sha256_hex, MAX_CLUB_FILE_BYTES};
 pub use outline::FaceOutline;
 
 use crate::math::{Matrix3, Real};
@@ -26,7 +27,7 @@ use crate::math::{Matrix3, Real};
 /// Errors of the equipment layer.
 #[derive(Debug, thiserror::Error)]
 pub enum EquipmentError {
-    #[error("unknown club preset '{0}' (expected driver or iron7, or a path to a .toml file)")]
+    #[error("unknown club preset '{0}' (expected driver, wood3, hybrid, iron4-iron9, pw, gw, sw or lw, or a path to a .toml file)")]
     UnknownPreset(String),
     #[error("unknown soil '{0}' (expected soft, medium or firm, or a path to a soil .toml file)")]
     UnknownSoil(String),

@@ -41,6 +41,7 @@ impl BodySample {
             occluded: self.occluded,
             exposure_t_ns: self.exposure_t_ns,
             fit_residual_m: None,
+            body: None,
         }
     }
 

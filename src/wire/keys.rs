@@ -84,12 +84,24 @@ pub fn foxglove_ball_flight(rig: &str) -> String {
 pub fn session(rig: &str) -> String {
     format!("golf/{rig}/session")
 }
+/// In: a rig's club from now on, as plain UTF-8 text: a preset name (`iron7`) or a club file's path. A bad put is
+/// logged and changes nothing. Recorded (and so out, in recordings): [`ClubChange`](super::ClubChange) at start
+/// and at every change, by a put or by another tracked body (`[rig.clubs]`).
+pub fn club(rig: &str) -> String {
+    format!("golf/{rig}/club")
+}
 /// Every rig's session labels.
 pub const SESSION_ALL: &str = "golf/*/session";
 /// The rig name of a `golf/<rig>/session` key.
 pub fn rig_of_session(key: &str) -> Option<&str> {
     let rest = key.strip_prefix("golf/")?;
     let rig = rest.strip_suffix("/session")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
+/// The rig name of a `golf/<rig>/club` key.
+pub fn rig_of_club(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("golf/")?;
+    let rig = rest.strip_suffix("/club")?;
     (!rig.is_empty() && !rig.contains('/')).then_some(rig)
 }
 /// The rig name of a `sim/<rig>/truth` key.

@@ -76,6 +76,10 @@ pub struct ClubheadSampleMsg {
     /// The RMS distance of the markers from their fitted places when the pose was fitted from markers (m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fit_residual_m: Option<f64>,
+    /// The tracked body (rigid body, 6DOF body or marker set) the pose is of, when the rig tracks several clubs:
+    /// `[rig.clubs]` maps each body to its club, so another body coming into view switches the club.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
 }
 
 impl ClubheadSampleMsg {
@@ -101,6 +105,7 @@ impl ClubheadSampleMsg {
             occluded: s.occluded,
             exposure_t_ns: None,
             fit_residual_m: None,
+            body: None,
         }
     }
 }
@@ -140,6 +145,9 @@ pub struct ImpactMessage {
     pub frame: u64,
     pub t_impact_ns: u64,
     pub club: String,
+    /// The club file the models used: preset or path, and its SHA-256 (absent in recordings made before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_file: Option<super::ClubRef>,
     pub estimator: String,
     pub state: ImpactStateMsg,
     pub delivery: crate::impact::DeliveryMetrics,
@@ -162,6 +170,9 @@ pub struct LaunchPrediction {
     pub frame: u64,
     pub t_impact_ns: u64,
     pub club: String,
+    /// The club file the model used: preset or path, and its SHA-256 (absent in recordings made before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_file: Option<super::ClubRef>,
     pub model: String,
     pub estimator: String,
     pub delivery: crate::impact::DeliveryMetrics,

@@ -7,6 +7,7 @@
 
 mod ball;
 mod bridge;
+mod club;
 mod delivery;
 mod flight;
 pub mod keys;
@@ -22,6 +23,7 @@ pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,
 };
+pub use club::{parse_club_put, ClubChange, ClubPutError, ClubRef, ClubSource, MAX_CLUB_PUT_BYTES};
 pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
 pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
 pub use labels::{LabelsError, ShotLabels, MAX_LABEL_BYTES, MAX_TAGS};

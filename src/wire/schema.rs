@@ -25,6 +25,7 @@ pub enum MessageType {
     OpenConnectTraffic,
     MocapInputStatus,
     ShotLabels,
+    ClubChange,
     BallSample,
 }
 
@@ -75,6 +76,7 @@ messages! {
     OpenConnectTraffic => OpenConnectTraffic,
     MocapInputStatus => MocapInputStatus,
     ShotLabels => ShotLabels,
+    ClubChange => ClubChange,
     BallSample => BallSampleMsg,
 }
 

@@ -27,6 +27,10 @@ pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
 /// A server, its routes `(body, rig)`, and what each route feeds (the club's samples or the rig's ball).
 type Group = (Source, Vec<(String, String)>, Vec<InputKind>, Vec<Option<MarkerFitter>>);
 
+/// Where a client's route delivers: the rig, its queue, sample or ball, and the body's name when the rig's
+/// bodies choose its club (`[rig.clubs]`).
+type Target = (Arc<str>, Option<Route>, InputKind, Option<String>);
+
 /// Starts one client per server named by the rigs' inputs; gives each such rig its status source.
 pub(super) fn start(
     config: &DaemonConfig,
@@ -39,15 +43,17 @@ pub(super) fn start(
             field: format!("rig {}: input.{field}", rig.name),
             reason,
         })?;
-        let fitter =
-            match &input.markers {
-                Some(path) => Some(marker_fitter(path).map_err(|reason| DaemonError::Config {
-                    field: format!("rig {}: input.markers", rig.name),
-                    reason,
-                })?),
-                None => None,
-            };
+        let fitter = match &input.markers {
+            Some(path) => Some(marker_fitter(path).map_err(|reason| DaemonError::Config {
+                field: format!("rig {}: input.markers", rig.name),
+                reason,
+            })?),
+            None => None,
+        };
         let mut routes = vec![((input.body.clone(), rig.name.clone()), InputKind::Sample, fitter)];
+        // With `[rig.clubs]`, every club's body too: each sample then names its body.
+        let clubs = rig.clubs.keys().filter(|b| **b != input.body);
+        routes.extend(clubs.map(|b| ((b.clone(), rig.name.clone()), InputKind::Sample, None)));
         if let Some(ball) = &input.ball_body {
             routes.push(((ball.clone(), rig.name.clone()), InputKind::Ball, None));
         }
@@ -67,18 +73,25 @@ pub(super) fn start(
     let mut handles = Vec::new();
     let mut sources = HashMap::new();
     for (source, group, kinds, fitters) in groups {
-        let targets: Vec<(Arc<str>, Option<Route>, InputKind)> = group
+        let named = |rig: &str| config.rigs.iter().any(|r| r.name == rig && !r.clubs.is_empty());
+        let targets: Vec<Target> = group
             .iter()
             .zip(&kinds)
-            .map(|((_, rig), kind)| (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind))
+            .map(|((body, rig), kind)| {
+                (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind, named(rig).then(|| body.clone()))
+            })
             .collect();
         let (sample_encoding, ball_encoding) =
             (MessageType::ClubheadSample.encoding(), MessageType::BallSample.encoding());
         let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
-            let Some((rig, Some((tx, dropped)), kind)) = targets.get(i) else { return };
+            let Some((rig, Some((tx, dropped)), kind, body)) = targets.get(i) else { return };
             let (payload, encoding) = match kind {
                 InputKind::Ball => (serde_json::to_vec(&sample.to_ball_msg(rig)), ball_encoding.clone()),
-                _ => (serde_json::to_vec(&sample.to_msg(rig)), sample_encoding.clone()),
+                _ => {
+                    let mut msg = sample.to_msg(rig);
+                    msg.body = body.clone();
+                    (serde_json::to_vec(&msg), sample_encoding.clone())
+                }
             };
             let incoming = Incoming {
                 kind: *kind,
@@ -86,6 +99,7 @@ pub(super) fn start(
                 log_time_ns: wall_ns(),
                 payload: payload.unwrap_or_default(),
                 encoding,
+                club: None,
             };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
@@ -93,9 +107,10 @@ pub(super) fn start(
         });
         tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), group);
         let handle = InputHandle::start_fitted(source, group.clone(), fitters, deliver)?;
+        // A rig's status shows its first body's input (`[rig.input] body`).
         for (i, ((_, rig), kind)) in group.iter().zip(&kinds).enumerate() {
             if *kind == InputKind::Sample {
-                sources.insert(rig.clone(), handle.status_source(i));
+                sources.entry(rig.clone()).or_insert_with(|| handle.status_source(i));
             }
         }
         handles.push(handle);

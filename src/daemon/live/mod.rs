@@ -37,6 +37,7 @@ use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod ball;
+mod clubs;
 mod inputs;
 mod labels;
 mod measured;
@@ -166,6 +167,7 @@ pub async fn run(
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
     let (inputs, input_sources) = inputs::start(&config, &senders)?;
+    let club_loader = clubs::start(session, &config, &senders).await?;
     for (rig, source) in input_sources {
         if let Some(slot) = input_slots.get(&rig) {
             if let Ok(mut s) = slot.lock() {
@@ -216,6 +218,7 @@ pub async fn run(
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),
                 encoding: sample.encoding().to_string(),
+                club: None,
             };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
@@ -229,9 +232,10 @@ pub async fn run(
         input.stop();
     }
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
-    for s in measured_subscribers {
+    for s in measured_subscribers.into_iter().chain(club_loader.subscribers) {
         s.undeclare().await.map_err(DaemonError::zenoh)?;
     }
+    let _ = club_loader.thread.join();
     drop(queryables);
     drop(tokens);
     let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
@@ -305,6 +309,7 @@ impl Worker {
 
     fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
         let mut next_status = Instant::now() + period;
+        self.record_club(wall_ns(), wire::ClubSource::Config, None);
         loop {
             let wait = next_status.saturating_duration_since(Instant::now());
             match rx.recv_timeout(wait) {
@@ -344,6 +349,7 @@ impl Worker {
             InputKind::Measured => return self.on_measured(incoming),
             InputKind::Labels => return self.on_labels(incoming),
             InputKind::Truth => return self.on_truth(incoming),
+            InputKind::Club => return self.on_club(incoming),
             InputKind::Ball => return self.on_ball(incoming),
         }
         let rig = self.rig.clone();
@@ -374,7 +380,7 @@ impl Worker {
         let mut any_event = false;
         let received = incoming.received;
         let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
-        pipeline.on_sample_with(&sample, &mut |event| {
+        pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |event| {
             any_event = true;
             self.on_event(&rig, event, received);
         });
@@ -412,6 +418,7 @@ impl Worker {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
                 self.sinks.failed();
             }
+            Event::ClubChanged(change) => self.record_club_change(wall_ns(), &change),
         }
     }
 

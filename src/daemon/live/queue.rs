@@ -20,6 +20,8 @@ pub(super) enum InputKind {
     Labels,
     /// A synthetic rig's truth (`sim/<rig>/truth`).
     Truth,
+    /// A club put (`golf/<rig>/club`), loaded and ready in `club`.
+    Club,
     /// A tracked ball's sample (`mocap/<rig>/ball`).
     Ball,
 }
@@ -31,6 +33,8 @@ pub(super) struct Incoming {
     pub(super) log_time_ns: u64,
     pub(super) payload: Vec<u8>,
     pub(super) encoding: String,
+    /// A loaded club ([`InputKind::Club`]).
+    pub(super) club: Option<Box<crate::pipeline::ClubSwitch>>,
 }
 
 /// Subscribes to `key`; each payload joins the rig's queue as `kind` (a full queue is counted in `dropped`).
@@ -50,6 +54,7 @@ pub(super) async fn subscribe(
                 log_time_ns: wall_ns(),
                 payload: sample.payload().to_bytes().into_owned(),
                 encoding: sample.encoding().to_string(),
+                club: None,
             };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);

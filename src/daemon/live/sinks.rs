@@ -204,6 +204,12 @@ impl RigSinks {
         );
     }
 
+    /// Records the rig's club from now on (`golf/<rig>/club`).
+    pub fn club_change(&self, log_time_ns: u64, change: &crate::wire::ClubChange) {
+        let data = serde_json::to_vec(change).unwrap_or_default();
+        self.record::<crate::wire::ClubChange>(&crate::wire::keys::club(&self.rig), log_time_ns, log_time_ns, data);
+    }
+
     /// Records a tracked ball's sample as it arrived (`mocap/<rig>/ball`).
     pub fn ball(&self, log_time_ns: u64, t_ns: u64, payload: Vec<u8>) {
         self.record::<crate::wire::BallSampleMsg>(&crate::wire::keys::ball(&self.rig), log_time_ns, t_ns, payload);

@@ -28,6 +28,9 @@ pub struct ReplayInput {
     /// A synthetic rig's recorded truths (`sim/<rig>/truth`): `(i, rig, t_impact_ns, payload)`, recorded again by a
     /// replay's recording before sample `i`.
     pub truths: Vec<(usize, String, u64, Vec<u8>)>,
+    /// Clubs switched by a put (`golf/<rig>/club`, recorded as a `ClubChange` from a put): `(i, rig, change)`
+    /// switch that rig's club before sample `i` (a replay loads the same preset or file and checks its hash).
+    pub club_puts: Vec<(usize, String, crate::wire::ClubChange)>,
     /// The configuration the recording was made with.
     pub config_toml: Option<String>,
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
@@ -140,6 +143,16 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
             match crate::wire::ShotLabels::parse(&message.data) {
                 Ok(l) => input.labels.push((input.samples.len(), rig.to_string(), l)),
                 Err(e) => damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time)),
+            }
+        } else if let Some(rig) = keys::rig_of_club(topic) {
+            match serde_json::from_slice::<crate::wire::ClubChange>(&message.data) {
+                Ok(c) if c.source == crate::wire::ClubSource::Put => {
+                    input.club_puts.push((input.samples.len(), rig.to_string(), c))
+                }
+                Ok(_) => {}
+                Err(e) => input
+                    .damage
+                    .push(format!("a recorded club change at log time {} does not parse: {e}", message.log_time)),
             }
         } else if keys::rig_of_launch(topic).is_some() {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {

@@ -60,7 +60,7 @@ pub fn replay(
         };
         pace(msg.t_ns);
         events.clear();
-        p.on_sample(&msg.to_sample(), &mut events);
+        p.on_body_sample_with(msg.body.as_deref(), &msg.to_sample(), &mut |e| events.push(e));
         for e in events.iter_mut() {
             match e {
                 Event::Launch(l) => {

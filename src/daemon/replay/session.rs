@@ -99,6 +99,31 @@ struct ReplayRig {
     next_status_ns: u64,
 }
 
+/// A recorded put's club, loaded again from the same preset or file: switched and recorded when its SHA-256 is
+/// the recorded one; otherwise the rig keeps its club, says so, and the replay reproduces nothing after it.
+fn replay_club_put(
+    rig: &mut ReplayRig,
+    config: &crate::daemon::config::RigConfig,
+    change: &crate::wire::ClubChange,
+    log_time_ns: u64,
+) {
+    match config.prepare_club(&change.club.file, "club") {
+        Ok(switch) if switch.club_ref.as_ref() == Some(&change.club) => {
+            rig.pipeline.switch_club(switch);
+            let now = rig.pipeline.club_change(crate::wire::ClubSource::Put, None);
+            rig.sinks.club_change(log_time_ns, &now);
+        }
+        Ok(switch) => tracing::warn!(
+            "rig {}: the recorded club {} is not the file there now (sha256 {}, recorded {}); the club is unchanged",
+            change.rig,
+            change.club.file,
+            switch.club_ref.map(|c| c.sha256).unwrap_or_default(),
+            change.club.sha256
+        ),
+        Err((_, e)) => tracing::warn!("rig {}: the recorded club cannot be loaded: {e}", change.rig),
+    }
+}
+
 impl ReplayRig {
     /// `t_ns` on the rig's clock (for the uptime), stamped `log_time_ns` (the recording's receive time).
     fn publish_status(&self, t_ns: u64, log_time_ns: u64) {
@@ -150,6 +175,8 @@ pub async fn run(
             _ => None,
         };
         let sinks = RigSinks::new(&pipeline, publishers, handle.clone());
+        let first = input.log_time_ns.first().copied().unwrap_or_else(wall_ns);
+        sinks.club_change(first, &pipeline.club_change(crate::wire::ClubSource::Config, None));
         rigs.insert(
             name,
             ReplayRig { pipeline, sinks, latency: LatencyWindow::new(1024), first_t_ns: None, next_status_ns: 0 },
@@ -178,6 +205,7 @@ pub async fn run(
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
     let mut labels = input.labels.iter().peekable();
     let mut truths = input.truths.iter().peekable();
+    let mut club_puts = input.club_puts.iter().peekable();
     let mut balls = input.balls.iter().peekable();
     for (i, msg) in input.samples.iter().enumerate() {
         while let Some((_, ball, payload)) = balls.next_if(|(at, ..)| *at <= i) {
@@ -190,6 +218,12 @@ pub async fn run(
             if let Some(rig) = rigs.get_mut(name) {
                 rig.sinks.labels(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), l);
                 rig.pipeline.set_labels(l.clone());
+            }
+        }
+        while let Some((_, name, change)) = club_puts.next_if(|(at, ..)| *at <= i) {
+            if let (Some(rig), Some(rig_config)) = (rigs.get_mut(name), config.rigs.iter().find(|r| &r.name == name)) {
+                let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
+                replay_club_put(rig, rig_config, change, log_time_ns);
             }
         }
         while let Some((_, name, t_impact_ns, payload)) = truths.next_if(|(at, ..)| *at <= i) {
@@ -224,7 +258,7 @@ pub async fn run(
             rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(msg).unwrap_or_default());
         }
         events.clear();
-        rig.pipeline.on_sample(&sample, &mut events);
+        rig.pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |e| events.push(e));
         for e in events.iter_mut() {
             match e {
                 Event::Launch(l) => {
@@ -245,6 +279,10 @@ pub async fn run(
                     on_event(e, &[]);
                 }
                 Event::Rejected { .. } => on_event(e, &[]),
+                Event::ClubChanged(change) => {
+                    rig.sinks.club_change(log_time_ns, change);
+                    on_event(e, &[]);
+                }
             }
         }
         if handle.enabled() && events.is_empty() && !sample.occluded {

@@ -123,6 +123,7 @@ impl<R: Read + Seek> CaptureSamples<R> {
             occluded,
             fit_residual_m: residual,
             exposure_t_ns: None,
+            body: None,
         }))
     }
 }

@@ -1,0 +1,132 @@
+//! A rig's club during a session: a put on `golf/<rig>/club` (a preset name or a club file's path) is loaded and
+//! its models built on a loader thread, off the rig's sample path, then joins the rig's queue as a ready switch;
+//! another tracked body coming into view switches to its club (`[rig.clubs]`, in the pipeline). Every change,
+//! and the club at start, is recorded on `golf/<rig>/club`; a bad put is logged and changes nothing.
+
+use std::collections::HashMap;
+use std::sync::atomic::Ordering;
+use std::sync::mpsc::{sync_channel, Receiver};
+use std::time::{Duration, Instant};
+
+use super::inputs::Route;
+use super::queue::{Incoming, InputKind};
+use super::stats::RateLimiter;
+use super::Worker;
+use crate::daemon::config::RigConfig;
+use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::wire::{self, keys, ClubSource};
+
+/// Club puts waiting for the loader; a put beyond them is refused (logged), never blocking zenoh.
+const PENDING_PUTS: usize = 64;
+
+/// A put as received.
+struct Put {
+    rig: String,
+    payload: Vec<u8>,
+}
+
+/// The subscribers to every rig's `golf/<rig>/club` and the loader thread they feed. Undeclaring the
+/// subscribers ends the loader (its queue closes), which then lets go of the rigs' queues.
+pub(super) struct ClubLoader {
+    pub(super) subscribers: Vec<zenoh::pubsub::Subscriber<()>>,
+    pub(super) thread: std::thread::JoinHandle<()>,
+}
+
+/// Starts the loader and subscribes each rig's club key.
+pub(super) async fn start(
+    session: &zenoh::Session,
+    config: &DaemonConfig,
+    routes: &HashMap<String, Route>,
+) -> Result<ClubLoader, DaemonError> {
+    let (tx, rx) = sync_channel::<Put>(PENDING_PUTS);
+    let rigs: HashMap<String, (RigConfig, Route)> = config
+        .rigs
+        .iter()
+        .filter_map(|r| routes.get(&r.name).map(|route| (r.name.clone(), (r.clone(), route.clone()))))
+        .collect();
+    let thread = std::thread::Builder::new()
+        .name("impactd-clubs".into())
+        .spawn(move || load(rx, rigs))
+        .map_err(|e| DaemonError::Io { what: "starting the club loader".into(), source: e })?;
+    let mut subscribers = Vec::new();
+    for rig in &config.rigs {
+        let (tx, name, key) = (tx.clone(), rig.name.clone(), keys::club(&rig.name));
+        let subscriber = session
+            .declare_subscriber(key.clone())
+            .callback(move |sample| {
+                let put = Put { rig: name.clone(), payload: sample.payload().to_bytes().into_owned() };
+                if tx.try_send(put).is_err() {
+                    tracing::warn!("put on {key} refused: {PENDING_PUTS} club puts are already waiting");
+                }
+            })
+            .await
+            .map_err(DaemonError::zenoh)?;
+        subscribers.push(subscriber);
+    }
+    Ok(ClubLoader { subscribers, thread })
+}
+
+/// The loader: each put parsed, loaded and built for its rig, then queued for the rig's worker.
+fn load(rx: Receiver<Put>, rigs: HashMap<String, (RigConfig, Route)>) {
+    let mut limiter = RateLimiter::new(Duration::from_secs(1));
+    for put in rx {
+        let Some((config, (tx, dropped))) = rigs.get(&put.rig) else { continue };
+        let key = keys::club(&put.rig);
+        let switch = wire::parse_club_put(&put.payload)
+            .map_err(|e| e.to_string())
+            .and_then(|spec| config.prepare_club(&spec, "club").map_err(|(_, reason)| reason));
+        match switch {
+            Ok(switch) => {
+                let incoming = Incoming {
+                    kind: InputKind::Club,
+                    received: Instant::now(),
+                    log_time_ns: wall_ns(),
+                    payload: Vec::new(),
+                    encoding: String::new(),
+                    club: Some(Box::new(switch)),
+                };
+                if tx.try_send(incoming).is_err() {
+                    dropped.fetch_add(1, Ordering::Relaxed);
+                    tracing::warn!("put on {key} refused: the rig's queue is full");
+                }
+            }
+            Err(e) => {
+                if let Some(n) = limiter.allow(&put.rig) {
+                    tracing::warn!("put on {key} refused, the club is unchanged: {e} ({n} more suppressed)");
+                }
+            }
+        }
+    }
+}
+
+impl Worker {
+    /// A put's club, loaded: the rig's club from now on, recorded.
+    pub(super) fn on_club(&mut self, incoming: Incoming) {
+        let Some(switch) = incoming.club else { return };
+        if let Some(p) = self.pipeline.as_mut() {
+            p.switch_club(*switch);
+        }
+        self.record_club(incoming.log_time_ns, ClubSource::Put, None);
+    }
+
+    /// Records (and logs) the rig's club from a pipeline's change (a body's club).
+    pub(super) fn record_club_change(&mut self, log_time_ns: u64, change: &wire::ClubChange) {
+        tracing::info!(
+            "rig {}: club {} ({}, sha256 {}) from {:?}{}",
+            self.rig,
+            change.club.name,
+            change.club.file,
+            change.club.sha256.get(..12).unwrap_or_default(),
+            change.source,
+            change.body.as_deref().map(|b| format!(" (body {b})")).unwrap_or_default()
+        );
+        self.sinks.club_change(log_time_ns, change);
+    }
+
+    /// Records (and logs) the rig's club as it is now.
+    pub(super) fn record_club(&mut self, log_time_ns: u64, source: ClubSource, body: Option<String>) {
+        let Some(p) = self.pipeline.as_ref() else { return };
+        let change = p.club_change(source, body);
+        self.record_club_change(log_time_ns, &change);
+    }
+}
