@@ -26,6 +26,8 @@
 //! [rig.simulator]               # send each shot to a golf simulator over Open Connect v1 (GSPro, OpenGolfSim)
 //! open_connect = "127.0.0.1:921"
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
+//! # or, instead of open_connect, OpenGolfSim's developer API: opengolfsim = "127.0.0.1:3111"
+//! # (opengolfsim_unit = "metric" (m/s, default) or "imperial" (mph))
 //! [rig.input]                   # read the rig's body straight from Motive (natnet) or QTM (qtm)
 //! natnet = "192.168.1.20"
 //! body = "driver"

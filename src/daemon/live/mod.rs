@@ -26,6 +26,7 @@ use zenoh::Wait;
 
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
+use crate::daemon::bridges::opengolfsim;
 use crate::daemon::live::sinks::{RigPublishers, RigSinks, StatusInputs};
 use crate::daemon::live::stats::{
     Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
@@ -125,6 +126,7 @@ pub async fn run(
             &handle,
         )
         .await?;
+        let simulator = simulator.or_else(|| opengolfsim::spawn(&name, rig_config.simulator.as_ref()?, &handle));
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
