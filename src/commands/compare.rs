@@ -38,6 +38,19 @@ pub struct CompareArgs {
     /// One JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and
+    /// model after the table, or `residuals` in the JSON.
+    #[arg(long)]
+    pub residuals: bool,
+}
+
+/// One shot's residuals under one model (`None`: the model failed on it).
+#[derive(Debug, serde::Serialize)]
+struct ShotResiduals {
+    model: String,
+    /// 1-based, in the files' order.
+    shot: usize,
+    residual: Option<impactd::wire::LaunchFields>,
 }
 
 /// The shots of the files: dataset lines, the recordings' comparisons, and the club a recording names.
@@ -124,6 +137,7 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
     let club_name = club_spec(args.club.as_deref(), &loaded);
     let club = super::args::load_club(&club_name)?;
     let mut tables: Vec<ModelTable> = Vec::new();
+    let mut per_shot: Vec<ShotResiduals> = Vec::new();
     #[cfg(feature = "daemon")]
     if args.models.is_none() && loaded.any_recording {
         let mut models: Vec<String> = loaded.comparisons.iter().map(|c| c.model.clone()).collect();
@@ -151,13 +165,37 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
         for name in models.split(',').map(str::trim) {
             let model = registry::build_one(name, &club, &BuildOptions { ball, ..Default::default() })?;
             tables.push(model_table(name, model.as_ref(), &equipment, &shots));
+            if args.residuals {
+                let predicted = impactd::identify::cost::predict_all(model.as_ref(), &equipment, &shots);
+                for (i, (p, s)) in predicted.iter().zip(&shots).enumerate() {
+                    let residual = p.map(|p| {
+                        let r: [f64; 5] = std::array::from_fn(|k| p[k] - s.measured[k]);
+                        impactd::identify::dataset::launch_fields(&r)
+                    });
+                    per_shot.push(ShotResiduals { model: name.to_string(), shot: i + 1, residual });
+                }
+            }
         }
+    } else if args.residuals {
+        bail!("--residuals needs --models (a recording's comparisons are tabled as recorded)");
     }
     if args.json {
-        let out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        let mut out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        if args.residuals {
+            out["residuals"] = serde_json::to_value(&per_shot)?;
+        }
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
         print!("{}", render(&club_name, &tables));
+        for s in &per_shot {
+            match &s.residual {
+                Some(r) => println!(
+                    "shot {:>4} {}: ball speed {:+.3} mph, launch {:+.3} deg, direction {:+.3} deg, backspin {:+.1} rpm, sidespin {:+.1} rpm",
+                    s.shot, s.model, r.ball_speed_mph, r.launch_angle_deg, r.launch_direction_deg, r.backspin_rpm, r.sidespin_rpm
+                ),
+                None => println!("shot {:>4} {}: the model failed", s.shot, s.model),
+            }
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
