@@ -38,6 +38,9 @@ pub struct CompareArgs {
     /// One JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Units of the table (the JSON keeps mph, as the field names say).
+    #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
+    pub units: impactd::session::Units,
     /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and
     /// model after the table, or `residuals` in the JSON.
     #[arg(long)]
@@ -186,13 +189,19 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
         }
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        print!("{}", render(&club_name, &tables));
+        print!("{}", render(&club_name, &tables, args.units));
         for s in &per_shot {
             match &s.residual {
-                Some(r) => println!(
-                    "shot {:>4} {}: ball speed {:+.3} mph, launch {:+.3} deg, direction {:+.3} deg, backspin {:+.1} rpm, sidespin {:+.1} rpm",
-                    s.shot, s.model, r.ball_speed_mph, r.launch_angle_deg, r.launch_direction_deg, r.backspin_rpm, r.sidespin_rpm
-                ),
+                Some(r) => {
+                    let (speed, unit) = match args.units {
+                        impactd::session::Units::Imperial => (r.ball_speed_mph, "mph"),
+                        impactd::session::Units::Metric => (r.ball_speed_mph * impactd::units::MPS_PER_MPH, "m/s"),
+                    };
+                    println!(
+                        "shot {:>4} {}: ball speed {speed:+.3} {unit}, launch {:+.3} deg, direction {:+.3} deg, backspin {:+.1} rpm, sidespin {:+.1} rpm",
+                        s.shot, s.model, r.launch_angle_deg, r.launch_direction_deg, r.backspin_rpm, r.sidespin_rpm
+                    )
+                }
                 None => println!("shot {:>4} {}: the model failed", s.shot, s.model),
             }
         }
@@ -201,7 +210,7 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
 }
 
 /// The seed's table layout: one row per field, a column group (MAE, STD, each with % of the mean) per model.
-pub fn render(club: &str, tables: &[ModelTable]) -> String {
+pub fn render(club: &str, tables: &[ModelTable], units: impactd::session::Units) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let shots = tables.first().map_or(0, |t| t.shots);
@@ -216,12 +225,18 @@ pub fn render(club: &str, tables: &[ModelTable]) -> String {
         let _ = write!(s, " | {:>8} {:>6} {:>8} {:>6}", "MAE", "%", "STD", "%");
     }
     let _ = writeln!(s);
+    let metric = units == impactd::session::Units::Metric;
     for (i, (_, label)) in FIELDS.iter().enumerate() {
-        let mean = tables.first().map_or(0.0, |t| t.fields[i].measured_mean);
+        // Ball speed in m/s for metric tables; the percentages do not change.
+        let (label, scale) = match (i, metric) {
+            (0, true) => ("Speed (m/s)", impactd::units::MPS_PER_MPH),
+            _ => (*label, 1.0),
+        };
+        let mean = tables.first().map_or(0.0, |t| t.fields[i].measured_mean) * scale;
         let _ = write!(s, "{label:<16} {mean:>9.2}");
         for t in tables {
             let f = &t.fields[i];
-            let _ = write!(s, " | {:>8.2} {:>6.1} {:>8.2} {:>6.1}", f.mae, f.mae_pct, f.std, f.std_pct);
+            let _ = write!(s, " | {:>8.2} {:>6.1} {:>8.2} {:>6.1}", f.mae * scale, f.mae_pct, f.std * scale, f.std_pct);
         }
         let _ = writeln!(s);
     }

@@ -3,6 +3,7 @@
 //!
 //! ```toml
 //! status_period_s = 1.0
+//! units = "imperial"            # or "metric": the lines logged per shot (messages keep both)
 //!
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
@@ -55,6 +56,9 @@ use crate::pipeline::RigSetup;
 pub struct DaemonConfig {
     #[serde(default = "default_status_period")]
     pub status_period_s: f64,
+    /// The units of the lines logged per shot: `imperial` (mph, yd) or `metric` (m/s, m); the messages keep both.
+    #[serde(default)]
+    pub units: crate::session::Units,
     #[serde(rename = "rig")]
     pub rigs: Vec<RigConfig>,
 }
@@ -161,6 +165,7 @@ impl Default for DaemonConfig {
     fn default() -> Self {
         DaemonConfig {
             status_period_s: 1.0,
+            units: crate::session::Units::Imperial,
             rigs: vec![RigConfig {
                 name: "rig1".into(),
                 club: default_club(),

@@ -41,6 +41,7 @@ mod inputs;
 mod labels;
 mod measured;
 mod queue;
+mod shot_log;
 use queue::{Incoming, InputKind};
 pub mod sinks;
 pub mod stats;
@@ -156,6 +157,7 @@ pub async fn run(
             live_view: foxglove.as_ref().map(FoxgloveServer::status_source),
             pairer: Pairer::new(&name, window),
             input: input_slots.entry(name.clone()).or_default().clone(),
+            units: config.units,
         };
         workers.push(
             std::thread::Builder::new()
@@ -280,6 +282,8 @@ struct Worker {
     pairer: Pairer,
     /// The NatNet or QTM client feeding this rig (`[rig.input]`), once started.
     input: InputSlot,
+    /// The units of the lines logged per shot.
+    units: crate::session::Units,
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
@@ -401,11 +405,7 @@ impl Worker {
                 for c in self.pairer.on_prediction(&l) {
                     self.publish_comparison(c, received);
                 }
-                tracing::info!(
-                    "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
-                    l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
-                    l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
-                );
+                tracing::info!("{}", shot_log::launch(&rig, &l, self.units));
             }
             Event::Failed { shot, frame, reason, .. } => {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
