@@ -333,7 +333,8 @@ async fn compare_on_the_export_reproduces_the_recorded_residuals() {
     assert_eq!(residuals.len() as u64, shots);
     // The export's rows, in compare's order: each row's shot number.
     let text = std::fs::read_to_string(&csv_path).unwrap();
-    let mut rows = csv::ReaderBuilder::new().has_headers(false).from_reader(text.split_once('\n').unwrap().1.as_bytes());
+    let mut rows =
+        csv::ReaderBuilder::new().has_headers(false).from_reader(text.split_once('\n').unwrap().1.as_bytes());
     let records: Vec<csv::StringRecord> = rows.records().map(Result::unwrap).collect();
     let tmd_no = records[0].iter().position(|h| h == "TMD No").unwrap();
     let fields = ["ball_speed_mph", "launch_angle_deg", "launch_direction_deg", "backspin_rpm", "sidespin_rpm"];

@@ -143,7 +143,10 @@ fn assert_each_once(shots: &[ShotMessage], launches: &[LaunchPrediction]) {
         assert_eq!((c.path_deg, c.face_to_target_deg), (Some(d.club_path_deg), Some(d.face_angle_deg)));
         assert!((c.face_to_target_deg.unwrap() - c.path_deg.unwrap() - d.face_to_path_deg).abs() < 1e-9);
         assert_eq!((c.loft_deg, c.lie_deg), (Some(d.dynamic_loft_deg), Some(d.dynamic_lie_deg)));
-        assert_eq!((c.horizontal_face_impact_mm, c.vertical_face_impact_mm), (Some(d.impact_h_mm), Some(d.impact_v_mm)));
+        assert_eq!(
+            (c.horizontal_face_impact_mm, c.vertical_face_impact_mm),
+            (Some(d.impact_h_mm), Some(d.impact_v_mm))
+        );
         assert_eq!(c.closure_rate, Some(d.closure_rate_degps));
         assert!(d.club_speed_mph > 80.0 && d.dynamic_loft_deg > 5.0 && d.dynamic_lie_deg > 30.0, "a drive: {d:?}");
         assert!(b.speed_mph > 50.0 && s.api_version == "1" && s.units == "Yards");
@@ -190,8 +193,16 @@ async fn a_simulator_following_the_specification_gets_every_shot_once() {
     for raw in got.raw.lock().unwrap().iter() {
         let names = |o: &serde_json::Value| o.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
         let club = [
-            "Speed", "AngleOfAttack", "FaceToTarget", "Lie", "Loft", "Path", "SpeedAtImpact", "VerticalFaceImpact",
-            "HorizontalFaceImpact", "ClosureRate",
+            "Speed",
+            "AngleOfAttack",
+            "FaceToTarget",
+            "Lie",
+            "Loft",
+            "Path",
+            "SpeedAtImpact",
+            "VerticalFaceImpact",
+            "HorizontalFaceImpact",
+            "ClosureRate",
         ];
         assert_eq!(names(&raw["ClubData"]).len(), club.len(), "{raw}");
         assert!(club.iter().all(|k| raw["ClubData"][k].is_number()), "{raw}");
@@ -251,8 +262,16 @@ async fn a_simulator_that_closes_the_connection_gets_every_shot_once() {
     for raw in got.raw.lock().unwrap().iter() {
         let names = |o: &serde_json::Value| o.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
         let club = [
-            "Speed", "AngleOfAttack", "FaceToTarget", "Lie", "Loft", "Path", "SpeedAtImpact", "VerticalFaceImpact",
-            "HorizontalFaceImpact", "ClosureRate",
+            "Speed",
+            "AngleOfAttack",
+            "FaceToTarget",
+            "Lie",
+            "Loft",
+            "Path",
+            "SpeedAtImpact",
+            "VerticalFaceImpact",
+            "HorizontalFaceImpact",
+            "ClosureRate",
         ];
         assert_eq!(names(&raw["ClubData"]).len(), club.len(), "{raw}");
         assert!(club.iter().all(|k| raw["ClubData"][k].is_number()), "{raw}");

@@ -42,9 +42,8 @@ pub fn run(args: &ExportArgs) -> Result<ExitCode> {
         for d in &r.damage {
             eprintln!("{}: {d}", path.display());
         }
-        let comparisons = impactd::daemon::recording::shots::read(path)
-            .with_context(|| path.display().to_string())?
-            .comparisons;
+        let comparisons =
+            impactd::daemon::recording::shots::read(path).with_context(|| path.display().to_string())?.comparisons;
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
         for p in &r.launches {
             let t = std::time::UNIX_EPOCH + std::time::Duration::from_nanos(p.t_impact_ns);

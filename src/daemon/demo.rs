@@ -50,7 +50,11 @@ pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>, units: crate
         let tm = &t.launch.launch;
         s.push_str(&format!(
             "   truth {:>6.1} {unit} {:>5.1}° {:>5.1}° {:>5.0} {:>5.0}",
-            tm.ball_speed_mph * speed, tm.launch_angle_deg, tm.launch_direction_deg, tm.backspin_rpm, tm.sidespin_rpm
+            tm.ball_speed_mph * speed,
+            tm.launch_angle_deg,
+            tm.launch_direction_deg,
+            tm.backspin_rpm,
+            tm.sidespin_rpm
         ));
     }
     s

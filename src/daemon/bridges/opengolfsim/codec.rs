@@ -146,7 +146,15 @@ mod tests {
         assert_eq!(bytes.last(), Some(&b'\n'), "one message a line");
         assert_eq!(serde_json::from_slice::<Outgoing>(&bytes).unwrap(), m);
         let text = String::from_utf8(bytes).unwrap();
-        for name in ["\"type\":\"shot\"", "\"unit\":\"metric\"", "\"ballSpeed\"", "\"verticalLaunchAngle\"", "\"horizontalLaunchAngle\"", "\"spinSpeed\"", "\"spinAxis\""] {
+        for name in [
+            "\"type\":\"shot\"",
+            "\"unit\":\"metric\"",
+            "\"ballSpeed\"",
+            "\"verticalLaunchAngle\"",
+            "\"horizontalLaunchAngle\"",
+            "\"spinSpeed\"",
+            "\"spinAxis\"",
+        ] {
             assert!(text.contains(name), "{name} in {text}");
         }
         let ready = encode(&Outgoing::Device { status: DeviceStatus::Ready }).unwrap();
@@ -161,6 +169,9 @@ mod tests {
         let m: Incoming = serde_json::from_str(r).unwrap();
         assert_eq!(m.kind, "result");
         let d = m.data.unwrap().result;
-        assert_eq!((d.carry, d.total, d.lateral), (Some(196.06776428222656), Some(202.54876708984375), Some(-0.07558325678110123)));
+        assert_eq!(
+            (d.carry, d.total, d.lateral),
+            (Some(196.06776428222656), Some(202.54876708984375), Some(-0.07558325678110123))
+        );
     }
 }
