@@ -408,7 +408,7 @@ impl Worker {
                 for c in self.pairer.on_prediction(&l) {
                     self.publish_comparison(c, received);
                 }
-                tracing::info!("{}", shot_log::launch(&rig, &l, self.units));
+                tracing::info!("{}", shot_log::launch(rig, &l, self.units));
             }
             Event::Failed { shot, frame, reason, .. } => {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
