@@ -218,6 +218,7 @@ mod tests {
             dynamic_loft_deg: Some(1.0),
             club_angular_velocity_radps: Some([0.0; 3]),
             handedness: Some(Handedness::Left),
+            dynamic_lie_deg: Some(57.0),
             ..Default::default()
         };
         let value = serde_json::to_value(full).unwrap();
