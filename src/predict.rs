@@ -74,7 +74,8 @@ impl DeliveryError {
 pub fn state_of(input: &DeliveryInput, club: &ClubSpec, equipment: &Equipment) -> Result<ImpactState, DeliveryError> {
     input.check_finite().map_err(|e| DeliveryError::new(e, input))?;
     input.check_plausible()?;
-    input.to_delivery(club.loft_deg()).to_state(equipment).map_err(|e| DeliveryError::new(e, input))
+    let lie_rad = input.dynamic_lie_deg.map(f64::to_radians);
+    input.to_delivery(club.loft_deg()).to_state_with_lie(equipment, lie_rad).map_err(|e| DeliveryError::new(e, input))
 }
 
 fn answer(

@@ -3,6 +3,9 @@
 //! `impactd export --format trackman-csv` on the recording, checked against an independent reader (Python's `mcap`
 //! and `csv` modules, computing the statistics with `statistics`).
 //!
+//! `compare` on the export reproduces, shot by shot and number by number, the residuals the daemon recorded live
+//! on `golf/<rig>/comparison` against a launch monitor's measurements.
+//!
 //! The ten clubs are the presets of a driver, 3-wood, hybrid, 4- to 9-iron and pitching wedge
 //! (`clubs/presets/`); each rig holds one of them.
 
@@ -203,7 +206,9 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     let csv = dir.path().join("export.csv");
     impactd(&["export", rec, "--format", "trackman-csv", "-o", csv.to_str().unwrap()]);
     let club_names: Vec<&str> = CLUBS.iter().map(|c| c.1).collect();
-    let header: Vec<&str> = impactd::session::trackman_csv::COLUMNS.iter().map(|c| c.0).collect();
+    // TrackMan's header, then impactd's columns after it.
+    let (trackman, ours) = (impactd::session::trackman_csv::COLUMNS, impactd::session::trackman_csv::IMPACTD_COLUMNS);
+    let header: Vec<&str> = trackman.iter().chain(ours.iter()).map(|c| c.0).collect();
     let out = python()
         .args(["-c", CHECK, rec, by_club.to_str().unwrap(), by_player.to_str().unwrap(), csv.to_str().unwrap()])
         .arg(serde_json::to_string(&club_names).unwrap())
@@ -231,4 +236,101 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     assert!(
         svg.contains("target line") && svg.contains("carry (m)") && svg.contains("side (m; right of the target +)")
     );
+}
+
+/// What the test's "launch monitor" adds to each predicted field (ball speed mph, launch deg, direction deg,
+/// backspin rpm, sidespin rpm), so each recorded residual (predicted - measured) is known: minus these.
+const OFFSET: [f64; 5] = [1.25, -0.5, 0.75, 120.0, -45.0];
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn compare_on_the_export_reproduces_the_recorded_residuals() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = "status_period_s = 1.0\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\nmodel = \"adjusted\"\n";
+    let recording = dir.path().join("measured.mcap");
+    let options = RunOptions { record: Some(recording.clone()), ..Default::default() };
+    let daemon = start_daemon(config, options).await;
+    let session = client(&daemon.endpoint).await;
+    // The launch monitor: each prediction measured 0.2 s after its impact, every field offset by OFFSET.
+    let lm = session.declare_publisher(keys::measured_launch("bay1")).await.unwrap();
+    assert!(
+        common::wait_until(Duration::from_secs(10), || lm.matching_status().wait().is_ok_and(|m| m.matching())).await
+    );
+    let (tx, mut rx) = tokio::sync::mpsc::unbounded_channel::<impactd::wire::LaunchPrediction>();
+    let _sub = session
+        .declare_subscriber(keys::launch("bay1"))
+        .callback(move |s| {
+            let _ = tx.send(serde_json::from_slice(&s.payload().to_bytes()).unwrap());
+        })
+        .wait()
+        .unwrap();
+    let shots = 8u64;
+    let measure = async {
+        for _ in 0..shots {
+            let p = rx.recv().await.unwrap();
+            let m = &p.launch.launch;
+            let measured = serde_json::json!({
+                "rig": "bay1", "t_ns": p.t_impact_ns + 200_000_000, "device": "test monitor", "shot_number": p.shot,
+                "ball_speed_mph": m.ball_speed_mph + OFFSET[0], "launch_angle_deg": m.launch_angle_deg + OFFSET[1],
+                "launch_direction_deg": m.launch_direction_deg + OFFSET[2],
+                "backspin_rpm": m.backspin_rpm + OFFSET[3], "sidespin_rpm": m.sidespin_rpm + OFFSET[4]});
+            lm.put(measured.to_string()).await.unwrap();
+        }
+    };
+    let sim = SimOptions {
+        rigs: vec!["bay1".into()],
+        club: impactd::equipment::ClubSpec::driver(),
+        shots,
+        interval_s: 0.6,
+        seed: 21,
+        ..SimOptions::default()
+    };
+    let (swung, ()) = tokio::join!(run_sim(&session, sim, std::future::pending()), measure);
+    swung.unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    daemon.stop().await;
+    session.close().await.unwrap();
+
+    let topics = common::recorded(&recording);
+    let recorded = &topics["/golf/bay1/comparison"];
+    assert_eq!(recorded.len() as u64, shots, "one comparison per shot");
+    let rec = recording.to_str().unwrap();
+    let csv_path = dir.path().join("export.csv");
+    impactd(&["export", rec, "--format", "trackman-csv", "-o", csv_path.to_str().unwrap()]);
+    let out = impactd(&[
+        "compare",
+        csv_path.to_str().unwrap(),
+        "--models",
+        "adjusted",
+        "--club",
+        "driver",
+        "--json",
+        "--residuals",
+    ]);
+    let out: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let residuals = out["residuals"].as_array().unwrap();
+    assert_eq!(residuals.len() as u64, shots);
+    // The export's rows, in compare's order: each row's shot number.
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let mut rows =
+        csv::ReaderBuilder::new().has_headers(false).from_reader(text.split_once('\n').unwrap().1.as_bytes());
+    let records: Vec<csv::StringRecord> = rows.records().map(Result::unwrap).collect();
+    let tmd_no = records[0].iter().position(|h| h == "TMD No").unwrap();
+    let fields = ["ball_speed_mph", "launch_angle_deg", "launch_direction_deg", "backspin_rpm", "sidespin_rpm"];
+    // Tolerances: the export writes the delivery to 6 decimals (1e-6 deg, mph, mm), which moves a launch by
+    // far less than these (about 1e-5 mph, 1e-5 deg, 1e-3 rpm per 1e-6 deg of face or loft).
+    let tolerance = [1e-4, 1e-4, 1e-4, 0.02, 0.02];
+    let mut worst = [0.0f64; 5];
+    for (row, r) in records[2..].iter().zip(residuals) {
+        let shot: u64 = row[tmd_no].parse().unwrap();
+        let c = recorded.iter().find(|c| c["shot"] == shot).unwrap();
+        for (k, field) in fields.iter().enumerate() {
+            let live = c["residual"][field].as_f64().unwrap();
+            // The recorded residual is the launch monitor's offset, as sent.
+            assert!((live + OFFSET[k]).abs() < 1e-6, "shot {shot} {field}: recorded {live}");
+            let again = r["residual"][field].as_f64().unwrap();
+            worst[k] = worst[k].max((again - live).abs());
+            assert!((again - live).abs() <= tolerance[k], "shot {shot} {field}: compare {again}, recorded {live}");
+        }
+    }
+    eprintln!("compare on the export against the recorded residuals, largest differences: {worst:?}");
 }

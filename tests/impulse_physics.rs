@@ -287,6 +287,7 @@ fn left_handed_delivery_mirrors_the_launch() {
                         rng.uniform(-5.0, 5.0),
                     ]),
                     handedness: None,
+                    dynamic_lie_deg: None,
                 };
                 // The left-hander's world is the mirror: z -> -z; path and face angles change sign, the angular
                 // velocity mirrors as an axial vector.

@@ -38,6 +38,8 @@ enum Behaviour {
 #[derive(Clone, Default)]
 struct Received {
     shots: Arc<Mutex<Vec<ShotMessage>>>,
+    /// The same shots as the JSON objects read, for the field names.
+    raw: Arc<Mutex<Vec<serde_json::Value>>>,
     heartbeats: Arc<AtomicU64>,
     connections: Arc<AtomicU64>,
 }
@@ -69,6 +71,7 @@ async fn serve(mut stream: TcpStream, behaviour: Behaviour, got: Received) {
                 continue;
             }
             got.shots.lock().unwrap().push(m);
+            got.raw.lock().unwrap().push(serde_json::from_slice(&o).unwrap());
             match behaviour {
                 Behaviour::Spec | Behaviour::Stalls(_) => {
                     let _ = stream.write_all(GLUED_REPLY).await;
@@ -130,12 +133,22 @@ fn assert_each_once(shots: &[ShotMessage], launches: &[LaunchPrediction]) {
         assert_eq!((b.back_spin_rpm, b.side_spin_rpm), (Some(m.backspin_rpm), Some(m.sidespin_rpm)));
         assert_eq!((b.total_spin_rpm, b.spin_axis_deg), (Some(m.total_spin_rpm), Some(m.spin_axis_deg)));
         assert_eq!(b.carry_yd, l.flight.as_ref().map(|f| f.carry_yd));
+        // Every ClubData field of the specification, from the delivery (TrackMan's definitions; the face
+        // impact in mm, toe + and up +). Face to path has no field of its own: it is FaceToTarget - Path.
         let c = s.club_data.as_ref().unwrap();
-        assert_eq!(c.speed_mph, Some(l.delivery.club_speed_mph));
+        let d = &l.delivery;
+        assert!(s.shot_data_options.contains_club_data);
+        assert_eq!((c.speed_mph, c.speed_at_impact_mph), (Some(d.club_speed_mph), Some(d.club_speed_mph)));
+        assert_eq!(c.angle_of_attack_deg, Some(d.attack_angle_deg));
+        assert_eq!((c.path_deg, c.face_to_target_deg), (Some(d.club_path_deg), Some(d.face_angle_deg)));
+        assert!((c.face_to_target_deg.unwrap() - c.path_deg.unwrap() - d.face_to_path_deg).abs() < 1e-9);
+        assert_eq!((c.loft_deg, c.lie_deg), (Some(d.dynamic_loft_deg), Some(d.dynamic_lie_deg)));
         assert_eq!(
-            (c.path_deg, c.face_to_target_deg),
-            (Some(l.delivery.club_path_deg), Some(l.delivery.face_angle_deg))
+            (c.horizontal_face_impact_mm, c.vertical_face_impact_mm),
+            (Some(d.impact_h_mm), Some(d.impact_v_mm))
         );
+        assert_eq!(c.closure_rate, Some(d.closure_rate_degps));
+        assert!(d.club_speed_mph > 80.0 && d.dynamic_loft_deg > 5.0 && d.dynamic_lie_deg > 30.0, "a drive: {d:?}");
         assert!(b.speed_mph > 50.0 && s.api_version == "1" && s.units == "Yards");
     }
 }
@@ -176,6 +189,26 @@ async fn a_simulator_following_the_specification_gets_every_shot_once() {
     let received = got.shots.lock().unwrap().clone();
     assert_eq!(received.len() as u64, shots);
     assert_each_once(&received, &launches);
+    // On the wire, every field of the specification's ClubData and BallData is there by its name.
+    for raw in got.raw.lock().unwrap().iter() {
+        let names = |o: &serde_json::Value| o.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+        let club = [
+            "Speed",
+            "AngleOfAttack",
+            "FaceToTarget",
+            "Lie",
+            "Loft",
+            "Path",
+            "SpeedAtImpact",
+            "VerticalFaceImpact",
+            "HorizontalFaceImpact",
+            "ClosureRate",
+        ];
+        assert_eq!(names(&raw["ClubData"]).len(), club.len(), "{raw}");
+        assert!(club.iter().all(|k| raw["ClubData"][k].is_number()), "{raw}");
+        let ball = ["Speed", "SpinAxis", "TotalSpin", "BackSpin", "SideSpin", "HLA", "VLA", "CarryDistance"];
+        assert!(ball.iter().all(|k| raw["BallData"][k].is_number()), "{raw}");
+    }
     let s = &summary.simulators["bay1"];
     assert_eq!((s.sent, s.acknowledged, s.failed, s.dropped, s.refused), (shots, shots, 0, 0, 0), "{s:?}");
     assert_eq!((s.connects, s.state), (1, ConnectionState::Connected));
@@ -225,6 +258,26 @@ async fn a_simulator_that_closes_the_connection_gets_every_shot_once() {
     let received = got.shots.lock().unwrap().clone();
     assert_eq!(received.len() as u64, shots);
     assert_each_once(&received, &launches);
+    // On the wire, every field of the specification's ClubData and BallData is there by its name.
+    for raw in got.raw.lock().unwrap().iter() {
+        let names = |o: &serde_json::Value| o.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+        let club = [
+            "Speed",
+            "AngleOfAttack",
+            "FaceToTarget",
+            "Lie",
+            "Loft",
+            "Path",
+            "SpeedAtImpact",
+            "VerticalFaceImpact",
+            "HorizontalFaceImpact",
+            "ClosureRate",
+        ];
+        assert_eq!(names(&raw["ClubData"]).len(), club.len(), "{raw}");
+        assert!(club.iter().all(|k| raw["ClubData"][k].is_number()), "{raw}");
+        let ball = ["Speed", "SpinAxis", "TotalSpin", "BackSpin", "SideSpin", "HLA", "VLA", "CarryDistance"];
+        assert!(ball.iter().all(|k| raw["BallData"][k].is_number()), "{raw}");
+    }
     let s = &summary.simulators["bay1"];
     assert_eq!((s.sent, s.acknowledged, s.failed, s.dropped), (shots, shots, 0, 0), "{s:?}");
     assert!(s.connects >= shots, "reconnected after each close: {} connections", s.connects);

@@ -129,6 +129,7 @@ impl DeliveryArgs {
             impact_v_mm: self.impact_v_mm,
             club_angular_velocity_radps: None,
             handedness: None,
+            dynamic_lie_deg: None,
         }
     }
 }

@@ -38,6 +38,22 @@ pub struct CompareArgs {
     /// One JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Units of the table (the JSON keeps mph, as the field names say).
+    #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
+    pub units: impactd::session::Units,
+    /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and
+    /// model after the table, or `residuals` in the JSON.
+    #[arg(long)]
+    pub residuals: bool,
+}
+
+/// One shot's residuals under one model (`None`: the model failed on it).
+#[derive(Debug, serde::Serialize)]
+struct ShotResiduals {
+    model: String,
+    /// 1-based, in the files' order.
+    shot: usize,
+    residual: Option<impactd::wire::LaunchFields>,
 }
 
 /// The shots of the files: dataset lines, the recordings' comparisons, and the club a recording names.
@@ -124,6 +140,7 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
     let club_name = club_spec(args.club.as_deref(), &loaded);
     let club = super::args::load_club(&club_name)?;
     let mut tables: Vec<ModelTable> = Vec::new();
+    let mut per_shot: Vec<ShotResiduals> = Vec::new();
     #[cfg(feature = "daemon")]
     if args.models.is_none() && loaded.any_recording {
         let mut models: Vec<String> = loaded.comparisons.iter().map(|c| c.model.clone()).collect();
@@ -151,19 +168,49 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
         for name in models.split(',').map(str::trim) {
             let model = registry::build_one(name, &club, &BuildOptions { ball, ..Default::default() })?;
             tables.push(model_table(name, model.as_ref(), &equipment, &shots));
+            if args.residuals {
+                let predicted = impactd::identify::cost::predict_all(model.as_ref(), &equipment, &shots);
+                for (i, (p, s)) in predicted.iter().zip(&shots).enumerate() {
+                    let residual = p.map(|p| {
+                        let r: [f64; 5] = std::array::from_fn(|k| p[k] - s.measured[k]);
+                        impactd::identify::dataset::launch_fields(&r)
+                    });
+                    per_shot.push(ShotResiduals { model: name.to_string(), shot: i + 1, residual });
+                }
+            }
         }
+    } else if args.residuals {
+        bail!("--residuals needs --models (a recording's comparisons are tabled as recorded)");
     }
     if args.json {
-        let out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        let mut out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        if args.residuals {
+            out["residuals"] = serde_json::to_value(&per_shot)?;
+        }
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        print!("{}", render(&club_name, &tables));
+        print!("{}", render(&club_name, &tables, args.units));
+        for s in &per_shot {
+            match &s.residual {
+                Some(r) => {
+                    let (speed, unit) = match args.units {
+                        impactd::session::Units::Imperial => (r.ball_speed_mph, "mph"),
+                        impactd::session::Units::Metric => (r.ball_speed_mph * impactd::units::MPS_PER_MPH, "m/s"),
+                    };
+                    println!(
+                        "shot {:>4} {}: ball speed {speed:+.3} {unit}, launch {:+.3} deg, direction {:+.3} deg, backspin {:+.1} rpm, sidespin {:+.1} rpm",
+                        s.shot, s.model, r.launch_angle_deg, r.launch_direction_deg, r.backspin_rpm, r.sidespin_rpm
+                    )
+                }
+                None => println!("shot {:>4} {}: the model failed", s.shot, s.model),
+            }
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
 
 /// The seed's table layout: one row per field, a column group (MAE, STD, each with % of the mean) per model.
-pub fn render(club: &str, tables: &[ModelTable]) -> String {
+pub fn render(club: &str, tables: &[ModelTable], units: impactd::session::Units) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let shots = tables.first().map_or(0, |t| t.shots);
@@ -178,12 +225,18 @@ pub fn render(club: &str, tables: &[ModelTable]) -> String {
         let _ = write!(s, " | {:>8} {:>6} {:>8} {:>6}", "MAE", "%", "STD", "%");
     }
     let _ = writeln!(s);
+    let metric = units == impactd::session::Units::Metric;
     for (i, (_, label)) in FIELDS.iter().enumerate() {
-        let mean = tables.first().map_or(0.0, |t| t.fields[i].measured_mean);
+        // Ball speed in m/s for metric tables; the percentages do not change.
+        let (label, scale) = match (i, metric) {
+            (0, true) => ("Speed (m/s)", impactd::units::MPS_PER_MPH),
+            _ => (*label, 1.0),
+        };
+        let mean = tables.first().map_or(0.0, |t| t.fields[i].measured_mean) * scale;
         let _ = write!(s, "{label:<16} {mean:>9.2}");
         for t in tables {
             let f = &t.fields[i];
-            let _ = write!(s, " | {:>8.2} {:>6.1} {:>8.2} {:>6.1}", f.mae, f.mae_pct, f.std, f.std_pct);
+            let _ = write!(s, " | {:>8.2} {:>6.1} {:>8.2} {:>6.1}", f.mae * scale, f.mae_pct, f.std * scale, f.std_pct);
         }
         let _ = writeln!(s);
     }

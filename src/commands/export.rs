@@ -1,6 +1,8 @@
 //! `impactd export FILE.mcap... --format trackman-csv [-o OUT]`: a recording's predicted shots in TrackMan
 //! Performance Studio's CSV layout (`sep=,`, header, units row; right positive for path, face and direction), one
-//! row per shot (the first model's prediction, or `--model`'s), for a coach's spreadsheet or TrackMan's tools.
+//! row per shot (the first model's prediction, or `--model`'s), for a coach's spreadsheet or TrackMan's tools. After
+//! TrackMan's columns come impactd's (`session::trackman_csv::IMPACTD_COLUMNS`): the head's angular velocity and,
+//! for a shot a launch monitor measured live (a comparison in the recording), the measurement.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -40,11 +42,21 @@ pub fn run(args: &ExportArgs) -> Result<ExitCode> {
         for d in &r.damage {
             eprintln!("{}: {d}", path.display());
         }
+        let comparisons =
+            impactd::daemon::recording::shots::read(path).with_context(|| path.display().to_string())?.comparisons;
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
         for p in &r.launches {
             let t = std::time::UNIX_EPOCH + std::time::Duration::from_nanos(p.t_impact_ns);
             let date = humantime::format_rfc3339_seconds(t).to_string();
-            rows.push(trackman_csv::row(p, &name, &date));
+            // The shot's measurement as compared live with this prediction's model, else with any model.
+            let of_shot = |c: &&impactd::wire::ComparisonMessage| c.rig == p.rig && c.shot == p.shot;
+            let measured = comparisons
+                .iter()
+                .filter(of_shot)
+                .find(|c| c.model == p.model)
+                .or_else(|| comparisons.iter().find(of_shot))
+                .map(|c| (&c.measured, c.device.as_str()));
+            rows.push(trackman_csv::row(p, &name, &date, measured));
         }
     }
     match &args.output {

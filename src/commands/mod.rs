@@ -50,6 +50,8 @@ mod run;
 mod session;
 #[cfg(feature = "daemon")]
 mod sim;
+#[cfg(feature = "daemon")]
+mod watch;
 
 /// Predicts golf ball launch conditions from motion-capture samples of the clubhead.
 #[derive(Debug, Parser)]
@@ -122,6 +124,9 @@ pub enum Command {
     /// A recording's shots in another program's layout (TrackMan Performance Studio's CSV).
     #[cfg(feature = "daemon")]
     Export(export::ExportArgs),
+    /// A live table of each shot as it lands: TrackMan's metrics, one line a swing.
+    #[cfg(feature = "daemon")]
+    Watch(watch::WatchArgs),
 }
 
 /// Logs to stderr: at info (zenoh at warn), except for the demo, which prints its own lines; `RUST_LOG` overrides.
@@ -208,6 +213,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Session(args) => session::run(&args),
         #[cfg(feature = "daemon")]
         Command::Export(args) => export::run(&args),
+        #[cfg(feature = "daemon")]
+        Command::Watch(args) => watch::run(&args),
     }
 }
 

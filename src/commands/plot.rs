@@ -52,6 +52,9 @@ pub struct TrajectoryArgs {
     /// Read launches from this file instead of stdin.
     #[arg(long, short)]
     pub input: Option<PathBuf>,
+    /// Units of the axes and labels.
+    #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
+    pub units: impactd::session::Units,
     /// Output SVG file.
     #[arg(short = 'o', long = "output", default_value = "trajectory.svg")]
     pub output: PathBuf,
@@ -114,6 +117,7 @@ fn forces(args: &ForcesArgs) -> Result<ExitCode> {
 fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
     let flight = args.conditions.flight(args.firmness)?;
     let mut flights = Vec::new();
+    let mut clubs = Vec::new();
     for (i, line) in open_input(args.input.as_deref())?.lines().enumerate() {
         let line = line.context("reading input")?;
         if line.trim().is_empty() {
@@ -123,6 +127,10 @@ fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
             impactd::jsonl::parse_line(&line).with_context(|| format!("line {}", i + 1))?;
         let launch = l.to_launch().map_err(|e| anyhow::anyhow!("line {}: {e}", i + 1))?;
         flights.push(flight.fly(&launch, 0.05));
+        // The club a line names (its `club` field, or the labels' of a recorded launch): its shots share a colour.
+        let v: serde_json::Value = serde_json::from_str(&line).unwrap_or_default();
+        let club = v["labels"]["club"].as_str().or_else(|| v["club"].as_str()).unwrap_or_default();
+        clubs.push(club.to_string());
     }
     if flights.is_empty() {
         bail!("no launches read");
@@ -138,6 +146,6 @@ fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
         c.pressure_hpa.map_or(String::new(), |p| format!("{p:.0} hPa, ")),
         args.firmness
     );
-    write_output(&args.output, &impactd::plot::trajectories_figure(&flights, Some(&conditions)))?;
+    write_output(&args.output, &impactd::plot::trajectories_figure(&flights, &clubs, args.units, Some(&conditions)))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -62,6 +62,7 @@ pub fn run(args: &GroundPlotArgs) -> Result<ExitCode> {
             impact_v_mm: v_mm,
             club_angular_velocity_radps: Some([0.0, args.turn_radps * plane.cos(), args.turn_radps * plane.sin()]),
             handedness: None,
+            dynamic_lie_deg: None,
         };
         let state = impactd::predict::state_of(&input, &club, &equipment)?;
         Ok(model.run(&state, &equipment, &RunOptions::traced(2))?)

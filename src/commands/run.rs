@@ -36,6 +36,9 @@ pub struct BridgeArgs {
     /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
     pub foxglove: Option<String>,
+    /// Units of the lines printed and logged per shot (default: the configuration's `units`, imperial).
+    #[arg(long, value_enum)]
+    pub units: Option<impactd::session::Units>,
 }
 
 impl BridgeArgs {
@@ -46,6 +49,9 @@ impl BridgeArgs {
                 bail!("--open-connect `{a}` is not HOST:PORT");
             }
             config.set_default_open_connect(a);
+        }
+        if let Some(u) = self.units {
+            config.units = u;
         }
         Ok(())
     }

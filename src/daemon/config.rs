@@ -3,6 +3,7 @@
 //!
 //! ```toml
 //! status_period_s = 1.0
+//! units = "imperial"            # or "metric": the lines logged per shot (messages keep both)
 //!
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
@@ -29,6 +30,8 @@
 //! [rig.simulator]               # send each shot to a golf simulator over Open Connect v1 (GSPro, OpenGolfSim)
 //! open_connect = "127.0.0.1:921"
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
+//! # or, instead of open_connect, OpenGolfSim's developer API: opengolfsim = "127.0.0.1:3111"
+//! # (opengolfsim_unit = "metric" (m/s, default) or "imperial" (mph))
 //! [rig.input]                   # read the rig's body straight from Motive (natnet) or QTM (qtm)
 //! natnet = "192.168.1.20"
 //! body = "driver"
@@ -57,6 +60,9 @@ use crate::pipeline::{ClubSwitch, RigSetup};
 pub struct DaemonConfig {
     #[serde(default = "default_status_period")]
     pub status_period_s: f64,
+    /// The units of the lines logged per shot: `imperial` (mph, yd) or `metric` (m/s, m); the messages keep both.
+    #[serde(default)]
+    pub units: crate::session::Units,
     #[serde(rename = "rig")]
     pub rigs: Vec<RigConfig>,
 }
@@ -212,6 +218,7 @@ impl Default for DaemonConfig {
     fn default() -> Self {
         DaemonConfig {
             status_period_s: 1.0,
+            units: crate::session::Units::Imperial,
             rigs: vec![RigConfig {
                 name: "rig1".into(),
                 club: default_club(),

@@ -25,14 +25,22 @@ pub struct DemoOptions {
 }
 
 /// One readable line for a prediction, with the truth when known.
-pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
+pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>, units: crate::session::Units) -> String {
     let m = &l.launch.launch;
-    let carry =
-        l.flight.as_ref().map(|f| format!("  carry {:>3.0} yd {:>+4.0}", f.carry_yd, f.offline_yd)).unwrap_or_default();
+    let metric = units == crate::session::Units::Metric;
+    let (speed, unit, length) = if metric { (crate::units::MPS_PER_MPH, "m/s", "m ") } else { (1.0, "mph", "yd") };
+    let carry = l
+        .flight
+        .as_ref()
+        .map(|f| {
+            let (carry, side) = if metric { (f.carry_m, f.offline_m) } else { (f.carry_yd, f.offline_yd) };
+            format!("  carry {carry:>3.0} {length} {side:>+4.0}")
+        })
+        .unwrap_or_default();
     let mut s = format!(
-        "{} shot {:>2}  {:<6} {:>6.1} mph  launch {:>5.1}°  dir {:>5.1}°  back {:>5.0} rpm  side {:>5.0} rpm{carry}  club {:>5.1} mph  {:>4.0} us",
-        l.rig, l.shot, l.club, m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm,
-        l.delivery.club_speed_mph, l.latency_us
+        "{} shot {:>2}  {:<6} {:>6.1} {unit}  launch {:>5.1}°  dir {:>5.1}°  back {:>5.0} rpm  side {:>5.0} rpm{carry}  club {:>5.1} {unit}  {:>4.0} us",
+        l.rig, l.shot, l.club, m.ball_speed_mph * speed, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm,
+        l.delivery.club_speed_mph * speed, l.latency_us
     );
     if !l.launch.warnings.is_empty() {
         let names: Vec<&str> = l.launch.warnings.iter().map(|w| w.as_str()).collect();
@@ -41,8 +49,12 @@ pub fn describe(l: &LaunchPrediction, truth: Option<&TruthMessage>) -> String {
     if let Some(t) = truth {
         let tm = &t.launch.launch;
         s.push_str(&format!(
-            "   truth {:>6.1} mph {:>5.1}° {:>5.1}° {:>5.0} {:>5.0}",
-            tm.ball_speed_mph, tm.launch_angle_deg, tm.launch_direction_deg, tm.backspin_rpm, tm.sidespin_rpm
+            "   truth {:>6.1} {unit} {:>5.1}° {:>5.1}° {:>5.0} {:>5.0}",
+            tm.ball_speed_mph * speed,
+            tm.launch_angle_deg,
+            tm.launch_direction_deg,
+            tm.backspin_rpm,
+            tm.sidespin_rpm
         ));
     }
     s
@@ -73,6 +85,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         .await
         .map_err(DaemonError::zenoh)?;
     let (json, notify, count_cb, truths_cb) = (options.json, predicted.clone(), count.clone(), truths.clone());
+    let units = options.config.units;
     let _launch_sub = rig_session
         .declare_subscriber(crate::wire::keys::LAUNCH_ALL)
         .callback(move |s| {
@@ -83,7 +96,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
                 // The truth is published just after the impact frame passes; give it a moment.
                 std::thread::sleep(std::time::Duration::from_millis(5));
                 let truth = truths_cb.lock().ok().and_then(|m| m.get(&(l.rig.clone(), l.shot)).cloned());
-                println!("{}", describe(&l, truth.as_ref()));
+                println!("{}", describe(&l, truth.as_ref(), units));
             }
             count_cb.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             notify.notify_one();

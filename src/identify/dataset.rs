@@ -57,8 +57,7 @@ impl DatasetLine {
     /// The shot on `equipment`: the delivery's state, the measurement mirrored for a left-hander.
     pub fn to_shot(&self, equipment: &Equipment) -> Result<Shot, crate::impact::ImpactError> {
         self.delivery.check_finite()?;
-        let delivery = self.delivery.to_delivery(equipment.club.face.loft_rad.to_degrees());
-        let state = delivery.to_state(equipment)?;
+        let state = self.delivery.to_state(equipment)?;
         let mut measured = fields_of_launch(&self.measured);
         if self.delivery.handedness == Some(Handedness::Left) {
             measured[2] = -measured[2];

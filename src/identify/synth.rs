@@ -103,6 +103,7 @@ impl DeliveryRanges {
             impact_v_mm: u(self.impact_v_mm),
             club_angular_velocity_radps: None,
             handedness: None,
+            dynamic_lie_deg: None,
         }
     }
 }

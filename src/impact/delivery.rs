@@ -9,6 +9,10 @@
 //! - Dynamic lie and closure rate (TrackMan's club data, docs/club-data.md) from the state alone: the shaft axis
 //!   `a = R (0, sin λ, -cos λ)` at the static lie λ gives `dynamic_lie = asin(a_y)` (above the static lie: the shaft
 //!   more upright and the toe down; below: toe up, as TrackMan reads it) and `closure_rate = ω · a` (closing +: the face turning left for a right-hander).
+//! - A dynamic lie λ_d given with the delivery (TrackMan's club data) fixes the last degree of freedom of the
+//!   orientation: `world_from_club` is turned about the face-centre normal `n` (which keeps face angle and loft)
+//!   by the angle θ nearest zero with `(Rot(n, θ) a)_y = sin λ_d`, a closed form
+//!   `A cos θ + B sin θ = sin λ_d - C` (A, B, C from `a`, `n`); a lie no turn reaches is refused.
 //! - The ball rests at the world origin and touches the face at the contact point, so the contact point is at
 //!   `-R_ball n` and the CG at `-R_ball n - r(CG -> contact)`.
 
@@ -61,12 +65,25 @@ impl Delivery {
 
     /// The impact state of this delivery on the given equipment, the ball at rest at the world origin.
     pub fn to_state(&self, equipment: &Equipment) -> Result<ImpactState, ImpactError> {
+        self.to_state_with_lie(equipment, None)
+    }
+
+    /// [`Self::to_state`] with the shaft at `dynamic_lie_rad` above the ground (TrackMan's dynamic lie), when
+    /// given; without it the lie is the club's static lie turned by the loft and face alone.
+    pub fn to_state_with_lie(
+        &self,
+        equipment: &Equipment,
+        dynamic_lie_rad: Option<Real>,
+    ) -> Result<ImpactState, ImpactError> {
         self.validate()?;
         let club = &equipment.club;
         if !club.on_face(self.impact_h_m, self.impact_v_m) {
             return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
         }
-        let world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
+        let mut world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
+        if let Some(lie) = dynamic_lie_rad {
+            world_from_club_rot = lie_twist(&world_from_club_rot, club, lie)? * world_from_club_rot;
+        }
         let rot = world_from_club_rot.matrix();
         let contact = club.face.contact(self.impact_h_m, self.impact_v_m)?;
         let v_face = self.club_speed_mps * self.direction();
@@ -86,6 +103,31 @@ impl Delivery {
             impact_v_m: self.impact_v_m,
         })
     }
+}
+
+/// The turn about the face-centre normal that brings the shaft to `lie_rad` above the ground.
+fn lie_twist(
+    world_from_club_rot: &crate::math::Rotation3,
+    club: &crate::equipment::ClubSpec,
+    lie_rad: Real,
+) -> Result<crate::math::Rotation3, ImpactError> {
+    if !lie_rad.is_finite() {
+        return Err(ImpactError::NotFinite { field: "dynamic_lie_deg" });
+    }
+    let n = world_from_club_rot * club.face.n0();
+    let a = world_from_club_rot * club.shaft_axis_up();
+    let na = n.dot(&a);
+    let (big_a, big_b, big_c) = (a.y - n.y * na, n.cross(&a).y, n.y * na);
+    let rho = big_a.hypot(big_b);
+    let c = (lie_rad.sin() - big_c) / rho;
+    if !(rho > 1e-12 && c.abs() <= 1.0) {
+        return Err(ImpactError::LieUnreachable { lie_deg: lie_rad.to_degrees() });
+    }
+    let phi = big_b.atan2(big_a);
+    let wrap = |t: Real| (t + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+    let (t1, t2) = (wrap(phi + c.acos()), wrap(phi - c.acos()));
+    let theta = if t1.abs() <= t2.abs() { t1 } else { t2 };
+    Ok(crate::math::Rotation3::from_axis_angle(&crate::math::Unit::new_normalize(n), theta))
 }
 
 /// Delivery numbers read back from any impact state, plus spin loft and face-to-path.
@@ -211,6 +253,38 @@ mod tests {
             let contact = s.world_from_club.translation.vector + g.r_club_m;
             assert!((contact.norm() - eq.ball.radius_m).abs() < 1e-12);
             assert!((contact + eq.ball.radius_m * g.world_from_impact.column(0)).norm() < 1e-12);
+        }
+    }
+
+    /// A dynamic lie given with the delivery is the lie read back from the state, and face angle, loft, speed,
+    /// attack and path stay as given; a lie no turn about the face normal reaches is refused.
+    #[test]
+    fn a_given_dynamic_lie_is_the_lie_of_the_state() {
+        for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+            let eq = Equipment::new(club.clone());
+            let d = Delivery {
+                club_speed_mps: 45.0,
+                attack_angle_rad: (-3.0f64).to_radians(),
+                club_path_rad: 2.5f64.to_radians(),
+                face_angle_rad: (-1.2f64).to_radians(),
+                dynamic_loft_rad: 14.0f64.to_radians(),
+                impact_h_m: 0.012,
+                impact_v_m: -0.006,
+                club_angular_velocity_radps: Vector3::new(3.0, -40.0, 8.0),
+            };
+            let free = DeliveryMetrics::from_state(&d.to_state(&eq).unwrap(), &club).dynamic_lie_deg;
+            for lie_deg in [free - 4.0, free, free + 3.0] {
+                let s = d.to_state_with_lie(&eq, Some(lie_deg.to_radians())).unwrap();
+                let m = DeliveryMetrics::from_state(&s, &club);
+                assert!((m.dynamic_lie_deg - lie_deg).abs() < 1e-9, "{lie_deg} -> {}", m.dynamic_lie_deg);
+                assert!((m.face_angle_deg + 1.2).abs() < 1e-9 && (m.dynamic_loft_deg - 14.0).abs() < 1e-9);
+                assert!((m.club_path_deg - 2.5).abs() < 1e-9 && (m.attack_angle_deg + 3.0).abs() < 1e-9);
+                assert!((m.club_speed_mps - 45.0).abs() < 1e-9);
+            }
+            assert!(matches!(
+                d.to_state_with_lie(&eq, Some(89.0f64.to_radians())),
+                Err(ImpactError::LieUnreachable { .. })
+            ));
         }
     }
 

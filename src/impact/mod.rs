@@ -37,6 +37,8 @@ pub enum ImpactError {
     NotFinite { field: &'static str },
     #[error("club speed {speed_mps:.2} m/s is outside 1-100 m/s")]
     SpeedOutOfRange { speed_mps: Real },
+    #[error("field `dynamic_lie_deg`: {lie_deg:.1} deg is no lie the face's loft and angle allow")]
+    LieUnreachable { lie_deg: Real },
     #[error("the club is not moving toward the ball at the contact point")]
     NotApproaching,
     #[error("the contact solve is singular")]

@@ -141,12 +141,15 @@ pub fn face_map(
     let label = metric.label();
     let cg_mm = [-club.face.center_m.dot(&club.face.t0()) * 1e3, -club.face.center_m.dot(&club.face.u0()) * 1e3];
     Ok(Heatmap {
+        // The toe (+h) is drawn right: the face of a right-handed club as seen from behind the head, looking
+        // toward the target (from the ball, a right-handed club's toe is on the left).
         title: format!(
-            "{}, {}: {}\n{}",
+            "{}, {}: {}\n{}\n{}",
             club.name,
             model.name(),
             label,
-            delivery_conditions(delivery, club.loft_deg())
+            delivery_conditions(delivery, club.loft_deg()),
+            FACE_SIDE
         ),
         x_label: "impact location toward the toe (mm)".into(),
         y_label: "impact location up the face (mm)".into(),
@@ -160,6 +163,10 @@ pub fn face_map(
         note: first_error.map(|e| format!("{failed} cells on the face left blank: no prediction ({e})")),
     })
 }
+
+/// Which side of the face a map shows, in its title.
+pub const FACE_SIDE: &str =
+    "face of a right-handed club seen from behind the head, looking toward the target: toe right, heel left, crown up";
 
 #[cfg(test)]
 mod tests {

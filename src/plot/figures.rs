@@ -7,7 +7,8 @@ use crate::flight::Trajectory;
 use crate::impact::continuous::law::maw::MawParams;
 use crate::impact::continuous::plate;
 use crate::impact::{LaunchMetrics, ModelRun};
-use crate::units::{m_to_yd, radps_to_rpm};
+use crate::session::Units;
+use crate::units::radps_to_rpm;
 use crate::wire::DeliveryInput;
 
 /// A model's normal and tangential force and the ball's and cover's spin through one impact `r` of `club_name`
@@ -82,9 +83,9 @@ pub fn maw_plate_chart(params: &MawParams, speed_mps: f64, incidence_deg: f64) -
     }
 }
 
-/// Side and top views of flights (sampled with their `points`), as one SVG.
+/// Side and top views of flights (sampled with their `points`), as one SVG, in yards.
 pub fn trajectories_svg(flights: &[Trajectory]) -> String {
-    trajectories_figure(flights, None)
+    trajectories_figure(flights, &[], Units::Imperial, None)
 }
 
 /// The delivery of a picture's title, in TrackMan's names.
@@ -109,66 +110,170 @@ pub fn delivery_conditions(d: &DeliveryInput, static_loft_deg: f64) -> String {
     )
 }
 
-/// The side view (downrange to the right, height up) above a true top view as TrackMan draws it: downrange up
-/// the page, right of the target to the right, to the same scale both ways. Each shot's landing is marked with
-/// its carry; `conditions` (wind, temperature, altitude, firmness) is printed under the titles.
-pub fn trajectories_figure(flights: &[Trajectory], conditions: Option<&str>) -> String {
+/// The most landing labels a view carries; beyond them the legend's means speak.
+const MAX_LABELS: usize = 10;
+
+/// The side view (downrange to the right, height up) above a top view (downrange up the page, right of the
+/// target to the right), each scaled to the shots. `clubs` names each flight's club (empty: none): the shots of a
+/// club share its colour and one legend entry with its mean carry, total and offline; an unnamed shot has its own.
+/// Landings are marked, and labelled with their carry where a label clears the others (at most
+/// [`MAX_LABELS`] per view). Distances in yards or metres (`units`); `conditions` is printed under the titles.
+pub fn trajectories_figure(flights: &[Trajectory], clubs: &[String], units: Units, conditions: Option<&str>) -> String {
+    let (unit, scale) = match units {
+        Units::Imperial => ("yd", 1.0 / crate::units::M_PER_YD),
+        Units::Metric => ("m", 1.0),
+    };
+    // Groups in order of first appearance: a club's shots, or an unnamed shot alone.
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for k in 0..flights.len() {
+        match clubs.get(k).filter(|c| !c.is_empty()) {
+            Some(c) => match groups.iter_mut().find(|g| &g.0 == c) {
+                Some(g) => g.1.push(k),
+                None => groups.push((c.clone(), vec![k])),
+            },
+            None => groups.push((String::new(), vec![k])),
+        }
+    }
     let mut side = Vec::new();
     let mut top = Vec::new();
     let (mut side_marks, mut top_marks) = (Vec::new(), Vec::new());
-    for (k, t) in flights.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
-        let name = format!(
-            "shot {}: carry {:.0} yd, total {:.0} yd, apex {:.0} yd, offline {:+.0} yd (right +)",
-            k + 1,
-            t.carry_yd,
-            t.total_yd,
-            t.apex_yd,
-            t.offline_yd
+    for (g, (club, shots)) in groups.iter().enumerate() {
+        let color = PALETTE[g % PALETTE.len()];
+        let n = shots.len() as f64;
+        let mean = |f: fn(&Trajectory) -> f64| shots.iter().map(|&k| f(&flights[k])).sum::<f64>() / n * scale;
+        let numbers = format!(
+            "carry {:.0} {unit}, total {:.0} {unit}, apex {:.0} {unit}, offline {:+.0} {unit} (right +)",
+            mean(|t| t.carry_m),
+            mean(|t| t.total_m),
+            mean(|t| t.apex_m),
+            mean(|t| t.offline_m)
         );
-        side.push(Series {
-            name: name.clone(),
-            points: t.points.iter().map(|p| (m_to_yd(p[1]), m_to_yd(p[2]))).collect(),
-            color,
-            right_axis: false,
-        });
-        // World frame: x downrange, z right of the target line. On the page: right is +z, up is +x.
-        top.push(Series {
-            name,
-            points: t.points.iter().map(|p| (m_to_yd(p[3]), m_to_yd(p[1]))).collect(),
-            color,
-            right_axis: false,
-        });
-        // Landing: the first sampled point back on the ground after the apex.
-        let apex = t.points.iter().enumerate().fold((0, f64::MIN), |a, (i, p)| if p[2] > a.1 { (i, p[2]) } else { a });
-        if let Some(land) = t.points.iter().skip(apex.0).find(|p| p[2] <= 1e-3) {
-            let label = Some(format!("{:.0} yd", t.carry_yd));
-            side_marks.push(Mark { x: m_to_yd(land[1]), y: m_to_yd(land[2]), color, label: label.clone() });
-            top_marks.push(Mark { x: m_to_yd(land[3]), y: m_to_yd(land[1]), color, label });
+        let legend = if club.is_empty() {
+            format!("shot {}: {numbers}", shots[0] + 1)
+        } else {
+            format!("{club} ({} shots, mean): {numbers}", shots.len())
+        };
+        for (i, &k) in shots.iter().enumerate() {
+            let t = &flights[k];
+            let name = if i == 0 { legend.clone() } else { String::new() };
+            side.push(Series {
+                name: name.clone(),
+                points: t.points.iter().map(|p| (p[1] * scale, p[2] * scale)).collect(),
+                color,
+                right_axis: false,
+            });
+            // World frame: x downrange, z right of the target line. On the page: right is +z, up is +x.
+            top.push(Series {
+                name,
+                points: t.points.iter().map(|p| (p[3] * scale, p[1] * scale)).collect(),
+                color,
+                right_axis: false,
+            });
+            // Landing: the first sampled point back on the ground after the apex.
+            let apex =
+                t.points.iter().enumerate().fold((0, f64::MIN), |a, (i, p)| if p[2] > a.1 { (i, p[2]) } else { a });
+            if let Some(land) = t.points.iter().skip(apex.0).find(|p| p[2] <= 1e-3) {
+                let label = Some(format!("{:.0} {unit}", t.carry_m * scale));
+                side_marks.push(Mark { x: land[1] * scale, y: land[2] * scale, color, label: label.clone() });
+                top_marks.push(Mark { x: land[3] * scale, y: land[1] * scale, color, label });
+            }
         }
     }
+    clear_labels(&mut side_marks, &side);
+    clear_labels(&mut top_marks, &top);
     let side = LineChart {
         title: "side view".into(),
-        x_label: "downrange (yd)".into(),
-        y_label: "height (yd)".into(),
+        x_label: format!("downrange ({unit})"),
+        y_label: format!("height ({unit})"),
         y2_label: None,
         series: side,
         equal_axes: false,
     };
     let top = LineChart {
         title: "top view (downrange up, right of the target to the right)".into(),
-        x_label: "offline (yd, right +)".into(),
-        y_label: "downrange (yd)".into(),
+        x_label: format!("offline ({unit}, right +)"),
+        y_label: format!("downrange ({unit})"),
         y2_label: None,
         series: top,
-        equal_axes: true,
+        equal_axes: false,
     };
     let w = 900.0;
-    let (h1, h2) = (side.total_height(380.0), top.total_height(640.0));
+    let (h1, h2) = (side.total_height(380.0), top.total_height(560.0));
     let side = side.svg_with(w, 380.0, &Extras { marks: &side_marks, note: conditions });
-    let top = top.svg_with(w, 640.0, &Extras { marks: &top_marks, note: conditions });
+    let top = top.svg_with(w, 560.0, &Extras { marks: &top_marks, note: conditions });
     format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><g>{side}</g><g transform="translate(0,{h1})">{top}</g></svg>"#,
         h1 + h2
     )
+}
+
+/// Drops the labels that would overlap one already kept or another mark (a label, written to the right of its
+/// mark, is about 6 % of the x range wide and 4 % of the y range high on these charts), keeping at most
+/// [`MAX_LABELS`]; the marks stay.
+fn clear_labels(marks: &mut [Mark], series: &[Series]) {
+    let range = |f: fn(&(f64, f64)) -> f64| {
+        let v = series.iter().flat_map(|s| s.points.iter().map(f)).filter(|v| v.is_finite());
+        let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)));
+        (hi - lo).max(1e-9)
+    };
+    let (dx, dy) = (0.06 * range(|p| p.0), 0.04 * range(|p| p.1));
+    let at: Vec<(f64, f64)> = marks.iter().map(|m| (m.x, m.y)).collect();
+    let mut kept: Vec<(f64, f64)> = Vec::new();
+    for (i, m) in marks.iter_mut().enumerate() {
+        let clear = kept.iter().all(|&(x, y)| (m.x - x).abs() > dx || (m.y - y).abs() > dy);
+        // No other mark's circle on the label's span.
+        let uncovered = at
+            .iter()
+            .enumerate()
+            .all(|(j, &(x, y))| j == i || !(x - m.x > -0.01 * dx && x - m.x < dx && (y - m.y).abs() < dy));
+        if clear && uncovered && kept.len() < MAX_LABELS {
+            kept.push((m.x, m.y));
+        } else {
+            m.label = None;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mark(x: f64, y: f64) -> Mark {
+        Mark { x, y, color: PALETTE[0], label: Some(format!("{x:.0}")) }
+    }
+
+    /// Labels never overlap another label or a mark's circle, and no view carries more than ten.
+    #[test]
+    fn landing_labels_clear_each_other_and_the_marks() {
+        let series =
+            vec![Series { name: String::new(), points: vec![(0.0, 0.0), (300.0, 40.0)], color: "", right_axis: false }];
+        // On the ground (y = 0): 6 % of 300 yd is 18 yd; 150 is covered by the mark at 160, 200 and 205 by 210.
+        let mut marks: Vec<Mark> = [150.0, 160.0, 200.0, 205.0, 210.0].iter().map(|&x| mark(x, 0.0)).collect();
+        clear_labels(&mut marks, &series);
+        let labelled: Vec<f64> = marks.iter().filter(|m| m.label.is_some()).map(|m| m.x).collect();
+        assert_eq!(labelled, [160.0, 210.0]);
+        let mut many: Vec<Mark> = (0..30).map(|i| mark(i as f64 * 10.0, 0.0)).collect();
+        clear_labels(&mut many, &series);
+        assert!(many.iter().filter(|m| m.label.is_some()).count() <= MAX_LABELS);
+    }
+
+    /// A club's shots share a colour and one legend entry; metric axes are in metres.
+    #[test]
+    fn shots_of_a_club_share_a_colour_and_an_entry() {
+        let flight = crate::flight::Flight::default();
+        let launch = |speed_mps: f64, launch_deg: f64| {
+            let (s, c) = launch_deg.to_radians().sin_cos();
+            crate::flight::LaunchState {
+                velocity_mps: crate::math::Vector3::new(speed_mps * c, speed_mps * s, 0.0),
+                spin_radps: crate::math::Vector3::new(0.0, 0.0, -250.0),
+            }
+        };
+        let flights: Vec<Trajectory> =
+            [(70.0, 11.0), (68.0, 12.0), (50.0, 18.0)].iter().map(|&(v, a)| flight.fly(&launch(v, a), 0.05)).collect();
+        let clubs = ["Driver".to_string(), "Driver".to_string(), "7 Iron".to_string()];
+        let svg = trajectories_figure(&flights, &clubs, Units::Metric, None);
+        assert_eq!(svg.matches("Driver (2 shots, mean)").count(), 2, "one entry per view");
+        assert_eq!(svg.matches("7 Iron (1 shots, mean)").count(), 2);
+        assert!(svg.contains("downrange (m)") && svg.contains("offline (m, right +)") && !svg.contains("(yd"));
+    }
 }

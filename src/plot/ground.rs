@@ -64,10 +64,12 @@ pub fn ground_svg(title: &str, strikes: &[(&'static str, &ModelRun)]) -> Result<
         series: angles,
         equal_axes: false,
     };
+    // Each chart's legend goes below its plot, inside the canvas: the charts are stacked by their full heights.
     let (w, h) = (900.0, 420.0);
+    let (h1, h2) = (top.total_height(h), bottom.total_height(h));
     Ok(format!(
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><rect width="100%" height="100%" fill="white"/><g>{}</g><g transform="translate(0,{h})">{}</g></svg>"#,
-        2.0 * h,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}"><rect width="100%" height="100%" fill="white"/><g>{}</g><g transform="translate(0,{h1})">{}</g></svg>"#,
+        h1 + h2,
         top.svg(w, h),
         bottom.svg(w, h)
     ))

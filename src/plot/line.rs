@@ -77,8 +77,9 @@ impl LineChart {
         height + self.legend_px()
     }
 
+    /// Series with an empty name draw no legend row (several curves under one entry).
     fn legend_px(&self) -> f64 {
-        LEGEND_ROW_PX * self.series.len() as f64 + 8.0
+        LEGEND_ROW_PX * self.series.iter().filter(|s| !s.name.is_empty()).count() as f64 + 8.0
     }
 
     /// The chart with marks and a note; the legend below the plot adds its rows to `height`.
@@ -195,7 +196,8 @@ impl LineChart {
                 escape(l)
             );
         }
-        for (i, s) in self.series.iter().enumerate() {
+        let mut row = 0usize;
+        for s in &self.series {
             let pts: Vec<String> = s
                 .points
                 .iter()
@@ -209,8 +211,12 @@ impl LineChart {
                 s.color,
                 pts.join(" ")
             );
+            if s.name.is_empty() {
+                continue;
+            }
             // The legend, below the x axis' label: clear of every curve.
-            let ly = height - legend_px + 4.0 + LEGEND_ROW_PX * (i as f64 + 0.75);
+            let ly = height - legend_px + 4.0 + LEGEND_ROW_PX * (row as f64 + 0.75);
+            row += 1;
             let _ = write!(
                 out,
                 r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="2"{dash}/>"#,

@@ -9,7 +9,7 @@ use crate::units::{MPS_PER_MPH, M_PER_YD};
 use crate::wire::LaunchPrediction;
 
 /// Which units human-readable output uses (JSON carries both).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum Units {
     /// mph, yd, ft, in.

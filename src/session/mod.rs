@@ -3,6 +3,7 @@
 //! when the user says so, excluded). Pure: the shots come in as [`LaunchPrediction`]s, read by the caller.
 
 pub mod metrics;
+pub mod shot_table;
 pub mod stats;
 pub mod trackman_csv;
 

@@ -3,6 +3,13 @@
 //! Out: a recorded prediction per row (club data from the rig's delivery, ball data from the launch and its
 //! flight). In: rows with club and ball data as measured shots for `compare` and `fit` (the club data is the
 //! delivery, the ball data the measurement), in imperial or metric units as the units row says.
+//!
+//! TrackMan's layout has no column for what a model needs beyond its club data (the head's angular velocity)
+//! nor for a shot that is both predicted and measured, so an export adds [`IMPACTD_COLUMNS`] after TrackMan's,
+//! each named `impactd: ...`: the head's angular velocity (world frame) and, for a shot a launch monitor measured
+//! live, its measured ball data and device. Reading, TrackMan's `Dynamic Lie` and the angular velocity complete the
+//! delivery, and the measured columns, when filled, are the measurement (TrackMan's ball columns then hold the
+//! recorded prediction), so `compare` on an export reproduces the residuals the daemon recorded live.
 
 use crate::identify::DatasetLine;
 use crate::math::Real;
@@ -74,6 +81,19 @@ pub const COLUMNS: [(&str, &str); 61] = [
     ("Email", ""),
 ];
 
+/// impactd's columns after TrackMan's, with their units row.
+pub const IMPACTD_COLUMNS: [(&str, &str); 9] = [
+    ("impactd: Club Angular Velocity X", "[rad/s]"),
+    ("impactd: Club Angular Velocity Y", "[rad/s]"),
+    ("impactd: Club Angular Velocity Z", "[rad/s]"),
+    ("impactd: Measured Ball Speed", "[mph]"),
+    ("impactd: Measured Launch Angle", "[deg]"),
+    ("impactd: Measured Launch Direction", "[deg]"),
+    ("impactd: Measured Backspin", "[rpm]"),
+    ("impactd: Measured Sidespin", "[rpm]"),
+    ("impactd: Measured By", ""),
+];
+
 /// Why a TrackMan CSV cannot be read; each names the row (1-based, as a spreadsheet counts) and column.
 #[derive(Debug, thiserror::Error)]
 pub enum TrackmanCsvError {
@@ -103,8 +123,9 @@ fn num(v: Real, decimals: usize) -> String {
     }
 }
 
-/// The row of one prediction (imperial, as [`COLUMNS`]'s units row). `file` names the recording.
-pub fn row(p: &LaunchPrediction, file: &str, date: &str) -> Vec<String> {
+/// The row of one prediction (imperial, as [`COLUMNS`]'s units row), then [`IMPACTD_COLUMNS`]: `measured` is the
+/// shot's measurement and the device that made it, when a launch monitor measured it. `file` names the recording.
+pub fn row(p: &LaunchPrediction, file: &str, date: &str, measured: Option<(&LaunchFields, &str)>) -> Vec<String> {
     let d = &p.delivery;
     let l = &p.launch;
     let arc = d.swing_arc;
@@ -112,9 +133,9 @@ pub fn row(p: &LaunchPrediction, file: &str, date: &str) -> Vec<String> {
     let yd = |m: Real| m / M_PER_YD;
     let ft = |m: Real| m / 0.3048;
     let opt = |v: Option<Real>, decimals| v.map_or(String::new(), |v| num(v, decimals));
-    let mut cells = vec![String::new(); COLUMNS.len()];
+    let mut cells = vec![String::new(); COLUMNS.len() + IMPACTD_COLUMNS.len()];
     let mut set = |name: &str, value: String| {
-        if let Some(i) = COLUMNS.iter().position(|(n, _)| *n == name) {
+        if let Some(i) = COLUMNS.iter().chain(IMPACTD_COLUMNS.iter()).position(|(n, _)| *n == name) {
             cells[i] = value;
         }
     };
@@ -153,6 +174,17 @@ pub fn row(p: &LaunchPrediction, file: &str, date: &str) -> Vec<String> {
     set("Low Point Height", opt(arc.map(|a| a.low_point_height_mm), 6));
     set("Use In Stat", "TRUE".into());
     set("Tags", p.labels.tags.join(";"));
+    for (axis, w) in ["X", "Y", "Z"].iter().zip(d.club_angular_velocity_radps) {
+        set(&format!("impactd: Club Angular Velocity {axis}"), num(w, 9));
+    }
+    if let Some((m, device)) = measured {
+        set("impactd: Measured Ball Speed", num(m.ball_speed_mph, 9));
+        set("impactd: Measured Launch Angle", num(m.launch_angle_deg, 9));
+        set("impactd: Measured Launch Direction", num(m.launch_direction_deg, 9));
+        set("impactd: Measured Backspin", num(m.backspin_rpm, 9));
+        set("impactd: Measured Sidespin", num(m.sidespin_rpm, 9));
+        set("impactd: Measured By", device.to_string());
+    }
     cells
 }
 
@@ -164,8 +196,9 @@ pub fn write(out: impl std::io::Write, rows: &[Vec<String>]) -> Result<(), Track
         .quote_style(csv::QuoteStyle::Always)
         .terminator(csv::Terminator::CRLF)
         .from_writer(out);
-    w.write_record(COLUMNS.iter().map(|c| c.0)).map_err(TrackmanCsvError::Write)?;
-    w.write_record(COLUMNS.iter().map(|c| c.1)).map_err(TrackmanCsvError::Write)?;
+    let columns = || COLUMNS.iter().chain(IMPACTD_COLUMNS.iter());
+    w.write_record(columns().map(|c| c.0)).map_err(TrackmanCsvError::Write)?;
+    w.write_record(columns().map(|c| c.1)).map_err(TrackmanCsvError::Write)?;
     for r in rows {
         w.write_record(r).map_err(TrackmanCsvError::Write)?;
     }
@@ -181,7 +214,7 @@ pub fn is_trackman_csv(text: &str) -> bool {
 /// How many base units (mph, deg, rpm, yd, mm) one of `unit` is.
 fn factor(column: &str, unit: &str) -> Result<Real, TrackmanCsvError> {
     let f = match unit {
-        "" | "[]" | "[mph]" | "[deg]" | "[rpm]" | "[yds]" | "[mm]" => 1.0,
+        "" | "[]" | "[mph]" | "[deg]" | "[rpm]" | "[yds]" | "[mm]" | "[rad/s]" => 1.0,
         "[km/h]" => 1.0 / 1.609344,
         "[m/s]" => 1.0 / MPS_PER_MPH,
         "[m]" if column.contains("Length") => 1.0 / M_PER_YD,
@@ -252,6 +285,11 @@ pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
         };
         let must = |name: &'static str| value(name)?.ok_or(TrackmanCsvError::Missing { row, column: name });
         let (spin, axis) = (must("Spin Rate")?, value("Spin Axis")?.unwrap_or(0.0));
+        let w = [
+            value("impactd: Club Angular Velocity X")?,
+            value("impactd: Club Angular Velocity Y")?,
+            value("impactd: Club Angular Velocity Z")?,
+        ];
         let delivery = DeliveryInput {
             club_speed_mph: club_speed,
             attack_angle_deg: value("Attack Angle")?.unwrap_or(0.0),
@@ -260,17 +298,32 @@ pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
             dynamic_loft_deg: value("Dyn. Loft")?,
             impact_h_mm: value("Impact Offset")?.unwrap_or(0.0),
             impact_v_mm: value("Impact Height")?.unwrap_or(0.0),
-            club_angular_velocity_radps: None,
+            club_angular_velocity_radps: match w {
+                [Some(x), Some(y), Some(z)] => Some([x, y, z]),
+                _ => None,
+            },
             handedness: None,
+            dynamic_lie_deg: value("Dynamic Lie")?,
         };
         let axis_rad = axis.to_radians();
-        let measured = LaunchFields {
-            ball_speed_mph: ball_speed,
-            launch_angle_deg: must("Launch Angle")?,
-            launch_direction_deg: must("Launch Direction")?,
-            backspin_rpm: spin * axis_rad.cos(),
-            sidespin_rpm: spin * axis_rad.sin(),
-            carry_yd: value("Carry Flat - Length")?,
+        let measured = match value("impactd: Measured Ball Speed")? {
+            // A shot measured live: the launch monitor's numbers (the ball columns hold the prediction).
+            Some(ball_speed_mph) => LaunchFields {
+                ball_speed_mph,
+                launch_angle_deg: must("impactd: Measured Launch Angle")?,
+                launch_direction_deg: must("impactd: Measured Launch Direction")?,
+                backspin_rpm: must("impactd: Measured Backspin")?,
+                sidespin_rpm: must("impactd: Measured Sidespin")?,
+                carry_yd: None,
+            },
+            None => LaunchFields {
+                ball_speed_mph: ball_speed,
+                launch_angle_deg: must("Launch Angle")?,
+                launch_direction_deg: must("Launch Direction")?,
+                backspin_rpm: spin * axis_rad.cos(),
+                sidespin_rpm: spin * axis_rad.sin(),
+                carry_yd: value("Carry Flat - Length")?,
+            },
         };
         lines.push(DatasetLine { delivery, measured });
     }

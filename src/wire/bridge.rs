@@ -28,17 +28,21 @@ pub struct SimulatorPlayer {
     pub club: Option<String>,
 }
 
-/// The Open Connect client of a rig, in [`StatusMessage`](super::StatusMessage)`.simulator`.
+/// The simulator client of a rig (Open Connect or OpenGolfSim), in
+/// [`StatusMessage`](super::StatusMessage)`.simulator`.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SimulatorStatus {
     /// `HOST:PORT` of the simulator.
     pub address: String,
+    /// The protocol spoken: `open_connect` or `opengolfsim`.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub protocol: String,
     pub state: ConnectionState,
     /// Connections made so far.
     pub connects: u64,
     /// Shots written to the simulator's socket.
     pub sent: u64,
-    /// Shots the simulator answered with a 2xx code.
+    /// Shots the simulator answered with a 2xx code (Open Connect) or a `result` (OpenGolfSim).
     pub acknowledged: u64,
     /// Shots answered with a failure code, or whose write failed (never sent again: no duplicates).
     pub failed: u64,

@@ -43,6 +43,10 @@ pub struct DeliveryInput {
     pub club_angular_velocity_radps: Option<[Real; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub handedness: Option<Handedness>,
+    /// TrackMan's dynamic lie (deg, the shaft's angle above the ground at impact): fixes the head's turn about
+    /// the face normal; default the club's static lie turned by loft and face alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_lie_deg: Option<Real>,
 }
 
 /// The largest angular velocity of a clubhead `predict` accepts (rad/s): a driver's head turns at about 30-60
@@ -61,7 +65,7 @@ pub struct OutOfBounds {
 
 impl DeliveryInput {
     /// The fields a delivery reads (the others of a line pass through `impactd predict`).
-    pub const FIELDS: [&'static str; 9] = [
+    pub const FIELDS: [&'static str; 10] = [
         "club_speed_mph",
         "attack_angle_deg",
         "club_path_deg",
@@ -71,6 +75,7 @@ impl DeliveryInput {
         "impact_v_mm",
         "club_angular_velocity_radps",
         "handedness",
+        "dynamic_lie_deg",
     ];
 
     /// Every angle and the angular velocity within plausible bounds (a model would answer nonsense beyond them;
@@ -88,6 +93,9 @@ impl DeliveryInput {
         within("face_angle_deg", self.face_angle_deg, -60.0, 60.0)?;
         if let Some(l) = self.dynamic_loft_deg {
             within("dynamic_loft_deg", l, -30.0, 90.0)?;
+        }
+        if let Some(l) = self.dynamic_lie_deg {
+            within("dynamic_lie_deg", l, 0.0, 90.0)?;
         }
         if let Some(w) = self.club_angular_velocity_radps {
             let m = MAX_CLUB_ANGULAR_VELOCITY_RADPS;
@@ -114,6 +122,12 @@ impl DeliveryInput {
         }
     }
 
+    /// The impact state of this delivery on `equipment` (the dynamic lie applied when given).
+    pub fn to_state(&self, equipment: &crate::impact::Equipment) -> Result<crate::impact::ImpactState, ImpactError> {
+        let delivery = self.to_delivery(equipment.club.face.loft_rad.to_degrees());
+        delivery.to_state_with_lie(equipment, self.dynamic_lie_deg.map(deg_to_rad))
+    }
+
     /// The first non-finite field, named.
     pub fn check_finite(&self) -> Result<(), ImpactError> {
         let mut fields = vec![
@@ -126,6 +140,9 @@ impl DeliveryInput {
         ];
         if let Some(l) = self.dynamic_loft_deg {
             fields.push(("dynamic_loft_deg", l));
+        }
+        if let Some(l) = self.dynamic_lie_deg {
+            fields.push(("dynamic_lie_deg", l));
         }
         if let Some(w) = self.club_angular_velocity_radps {
             fields.extend(w.iter().map(|v| ("club_angular_velocity_radps", *v)));
@@ -201,6 +218,7 @@ mod tests {
             dynamic_loft_deg: Some(1.0),
             club_angular_velocity_radps: Some([0.0; 3]),
             handedness: Some(Handedness::Left),
+            dynamic_lie_deg: Some(57.0),
             ..Default::default()
         };
         let value = serde_json::to_value(full).unwrap();

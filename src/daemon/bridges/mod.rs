@@ -1,7 +1,9 @@
-//! Bridges between the daemon and other programs: golf simulators and launch monitors over Open Connect, the
+//! Bridges between the daemon and other programs: golf simulators (Open Connect, OpenGolfSim's developer API)
+//! and launch monitors over Open Connect, the
 //! Foxglove live view, and motion-capture servers (OptiTrack NatNet, Qualisys QTM) read natively.
 
 pub mod foxglove;
 pub mod mocap;
 pub mod open_connect;
+pub mod opengolfsim;
 pub mod peers;

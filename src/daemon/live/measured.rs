@@ -46,10 +46,6 @@ impl Worker {
     pub(super) fn publish_comparison(&mut self, mut c: ComparisonMessage, received: Instant) {
         c.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
         self.sinks.comparison(&c, wall_ns());
-        tracing::info!(
-            "rig {} shot {} ({}) vs {}: ball speed {:+.1} mph, launch {:+.1} deg, direction {:+.1} deg, backspin {:+.0} rpm, sidespin {:+.0} rpm ({:.0} us)",
-            self.rig, c.shot, c.model, c.device, c.residual.ball_speed_mph, c.residual.launch_angle_deg,
-            c.residual.launch_direction_deg, c.residual.backspin_rpm, c.residual.sidespin_rpm, c.latency_us
-        );
+        tracing::info!("{}", super::shot_log::comparison(&self.rig, &c, self.units));
     }
 }

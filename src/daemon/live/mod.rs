@@ -26,6 +26,7 @@ use zenoh::Wait;
 
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
+use crate::daemon::bridges::opengolfsim;
 use crate::daemon::live::sinks::{RigPublishers, RigSinks, StatusInputs};
 use crate::daemon::live::stats::{
     Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
@@ -42,6 +43,7 @@ mod inputs;
 mod labels;
 mod measured;
 mod queue;
+mod shot_log;
 use queue::{Incoming, InputKind};
 pub mod sinks;
 pub mod stats;
@@ -127,6 +129,7 @@ pub async fn run(
             &handle,
         )
         .await?;
+        let simulator = simulator.or_else(|| opengolfsim::spawn(&name, rig_config.simulator.as_ref()?, &handle));
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
@@ -157,6 +160,7 @@ pub async fn run(
             live_view: foxglove.as_ref().map(FoxgloveServer::status_source),
             pairer: Pairer::new(&name, window),
             input: input_slots.entry(name.clone()).or_default().clone(),
+            units: config.units,
         };
         workers.push(
             std::thread::Builder::new()
@@ -284,6 +288,8 @@ struct Worker {
     pairer: Pairer,
     /// The NatNet or QTM client feeding this rig (`[rig.input]`), once started.
     input: InputSlot,
+    /// The units of the lines logged per shot.
+    units: crate::session::Units,
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
@@ -408,11 +414,7 @@ impl Worker {
                 for c in self.pairer.on_prediction(&l) {
                     self.publish_comparison(c, received);
                 }
-                tracing::info!(
-                    "rig {rig} shot {} ({}): {:.1} mph, launch {:.1} deg, direction {:.1} deg, backspin {:.0} rpm, sidespin {:.0} rpm ({:.0} us)",
-                    l.shot, l.model, l.launch.launch.ball_speed_mph, l.launch.launch.launch_angle_deg,
-                    l.launch.launch.launch_direction_deg, l.launch.launch.backspin_rpm, l.launch.launch.sidespin_rpm, l.latency_us
-                );
+                tracing::info!("{}", shot_log::launch(rig, &l, self.units));
             }
             Event::Failed { shot, frame, reason, .. } => {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");

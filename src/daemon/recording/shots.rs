@@ -39,6 +39,7 @@ pub fn delivery_input(p: &LaunchPrediction) -> DeliveryInput {
         impact_v_mm: d.impact_v_mm,
         club_angular_velocity_radps: Some(d.club_angular_velocity_radps),
         handedness: None,
+        dynamic_lie_deg: Some(d.dynamic_lie_deg),
     }
 }
 

@@ -9,6 +9,9 @@
 //! swing goes out, a shot is written at most once (a failed write is counted, never repeated), and a shot
 //! older than `max_shot_age_s` when the connection comes back is dropped and counted rather than sent late.
 //! Every message both ways is recorded as `OpenConnectTraffic` on `golf/<rig>/simulator`.
+//!
+//! The connection, queue, ages, counts and recording are the client's; what goes on the wire is a
+//! [`Protocol`]'s: Open Connect v1 ([`OpenConnect`]) or OpenGolfSim's developer API (the opengolfsim bridge).
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -19,7 +22,7 @@ use tokio::sync::mpsc;
 
 use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
-use super::{SimulatorConfig, MAX_MESSAGE_BYTES};
+use super::{OpenConnectError, SimulatorConfig, MAX_MESSAGE_BYTES};
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::wall_ns;
@@ -33,6 +36,67 @@ pub const QUEUE: usize = 64;
 /// A write that takes longer than this means the simulator is gone.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(3);
+
+/// A simulator's wire protocol: the bytes of each message out and the meaning of each JSON object back.
+pub trait Protocol: Send + Sync + 'static {
+    /// The protocol's name in the status (`open_connect`, `opengolfsim`).
+    fn name(&self) -> &'static str;
+    /// Sent once each connection is up (OpenGolfSim: the device is ready).
+    fn greeting(&self) -> Option<Vec<u8>>;
+    /// Sent when the daemon stops with the connection up (OpenGolfSim: the device is busy).
+    fn farewell(&self) -> Option<Vec<u8>>;
+    /// Sent while idle every `heartbeat_s`, if the protocol has heartbeats.
+    fn heartbeat(&self) -> Option<Vec<u8>>;
+    /// Shot `number` (1, 2, ... on this client) of a prediction, or why it must not go out.
+    fn shot(&self, launch: &LaunchPrediction, number: u64) -> Result<Vec<u8>, OpenConnectError>;
+    /// What one JSON object from the simulator says, or why it is unreadable.
+    fn answer(&self, object: &[u8]) -> Result<Answer, String>;
+}
+
+/// What a reply from the simulator means to the client.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Answer {
+    /// It answers the oldest shot not yet answered.
+    pub answers_shot: bool,
+    /// A success (counted as acknowledged) or a failure (counted as failed).
+    pub success: bool,
+    /// A line for the status's `last_reply` and the log.
+    pub summary: String,
+    pub player: Option<SimulatorPlayer>,
+}
+
+/// Open Connect v1 (GSPro's page): glued JSON objects, heartbeats, 200/201/5xx replies.
+pub struct OpenConnect {
+    pub device_id: String,
+}
+
+impl Protocol for OpenConnect {
+    fn name(&self) -> &'static str {
+        "open_connect"
+    }
+    fn greeting(&self) -> Option<Vec<u8>> {
+        None
+    }
+    fn farewell(&self) -> Option<Vec<u8>> {
+        None
+    }
+    fn heartbeat(&self) -> Option<Vec<u8>> {
+        serde_json::to_vec(&ShotMessage::heartbeat(&self.device_id, true)).ok()
+    }
+    fn shot(&self, launch: &LaunchPrediction, number: u64) -> Result<Vec<u8>, OpenConnectError> {
+        let message = ShotMessage::from_prediction(launch, &self.device_id, number)?;
+        serde_json::to_vec(&message).map_err(|e| OpenConnectError::Invalid(e.to_string()))
+    }
+    fn answer(&self, object: &[u8]) -> Result<Answer, String> {
+        let reply = serde_json::from_slice::<Reply>(object).map_err(|e| e.to_string())?;
+        Ok(Answer {
+            answers_shot: reply.code != 201,
+            success: reply.is_success(),
+            summary: format!("{} {}", reply.code, reply.message),
+            player: reply.player.map(|p| SimulatorPlayer { handed: p.handed, club: p.club }),
+        })
+    }
+}
 
 /// How one rig's client behaves.
 #[derive(Debug, Clone)]
@@ -76,11 +140,23 @@ pub struct SimulatorClient {
 }
 
 impl SimulatorClient {
-    /// Starts the client's task on the current tokio runtime.
+    /// Starts an Open Connect client's task on the current tokio runtime.
     pub fn spawn(options: SimulatorOptions, recorder: RecorderHandle) -> Self {
+        let protocol = OpenConnect { device_id: options.device_id.clone() };
+        Self::spawn_with(options, protocol, recorder)
+    }
+
+    /// Starts a client speaking `protocol` on the current tokio runtime.
+    pub fn spawn_with(options: SimulatorOptions, protocol: impl Protocol, recorder: RecorderHandle) -> Self {
         let (tx, rx) = mpsc::channel(QUEUE);
-        let status = Arc::new(Mutex::new(SimulatorStatus { address: options.address.clone(), ..Default::default() }));
-        let task = Task { key: keys::simulator_traffic(&options.rig), options, status: status.clone(), recorder };
+        let status = SimulatorStatus {
+            address: options.address.clone(),
+            protocol: protocol.name().to_string(),
+            ..Default::default()
+        };
+        let status = Arc::new(Mutex::new(status));
+        let key = keys::simulator_traffic(&options.rig);
+        let task = Task { key, options, protocol, status: status.clone(), recorder };
         let task = tokio::spawn(task.run(rx));
         SimulatorClient { tx, status, last_offered: None, task }
     }
@@ -132,14 +208,15 @@ enum End {
     Lost(String),
 }
 
-struct Task {
+struct Task<P> {
     options: SimulatorOptions,
+    protocol: P,
     key: String,
     status: Arc<Mutex<SimulatorStatus>>,
     recorder: RecorderHandle,
 }
 
-impl Task {
+impl<P: Protocol> Task<P> {
     fn update(&self, f: impl FnOnce(&mut SimulatorStatus)) {
         if let Ok(mut s) = self.status.lock() {
             f(&mut s);
@@ -228,11 +305,26 @@ impl Task {
         let start = tokio::time::Instant::now() + o.heartbeat;
         let mut heartbeat = tokio::time::interval_at(start, o.heartbeat);
         heartbeat.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+        let heartbeat_bytes = self.protocol.heartbeat();
+        if let Some(bytes) = self.protocol.greeting() {
+            match tokio::time::timeout(WRITE_TIMEOUT, wr.write_all(&bytes)).await {
+                Ok(Ok(())) => self.record(TrafficDirection::Sent, &bytes, None, None),
+                Ok(Err(e)) => return End::Lost(format!("greeting: {e}")),
+                Err(_) => return End::Lost("greeting: the write timed out".into()),
+            }
+        }
         loop {
             tokio::select! {
                 biased;
                 item = rx.recv() => {
-                    let Some(item) = item else { return End::Shutdown };
+                    let Some(item) = item else {
+                        if let Some(bytes) = self.protocol.farewell() {
+                            if let Ok(Ok(())) = tokio::time::timeout(WRITE_TIMEOUT, wr.write_all(&bytes)).await {
+                                self.record(TrafficDirection::Sent, &bytes, None, None);
+                            }
+                        }
+                        return End::Shutdown;
+                    };
                     let shot = Some(item.launch.shot);
                     let age = item.predicted_at.elapsed();
                     if age > o.max_shot_age {
@@ -242,7 +334,7 @@ impl Task {
                         self.record(TrafficDirection::Sent, b"", shot, Some(note));
                         continue;
                     }
-                    let message = match ShotMessage::from_prediction(&item.launch, &o.device_id, *shot_number + 1) {
+                    let bytes = match self.protocol.shot(&item.launch, *shot_number + 1) {
                         Ok(m) => m,
                         Err(e) => {
                             self.update(|s| s.refused += 1);
@@ -251,7 +343,6 @@ impl Task {
                             continue;
                         }
                     };
-                    let bytes = serde_json::to_vec(&message).unwrap_or_default();
                     // The number is used even if the write fails: the simulator never sees one twice.
                     *shot_number += 1;
                     match tokio::time::timeout(WRITE_TIMEOUT, wr.write_all(&bytes)).await {
@@ -276,8 +367,8 @@ impl Task {
                         self.on_reply(frame, &mut awaiting);
                     }
                 }
-                _ = heartbeat.tick() => {
-                    let bytes = serde_json::to_vec(&ShotMessage::heartbeat(&o.device_id, true)).unwrap_or_default();
+                _ = heartbeat.tick(), if heartbeat_bytes.is_some() => {
+                    let bytes = heartbeat_bytes.clone().unwrap_or_default();
                     match tokio::time::timeout(WRITE_TIMEOUT, wr.write_all(&bytes)).await {
                         Ok(Ok(())) => {
                             self.update(|s| s.heartbeats += 1);
@@ -309,31 +400,31 @@ impl Task {
                 return;
             }
         };
-        let reply = match serde_json::from_slice::<Reply>(&text) {
-            Ok(r) => r,
+        let answer = match self.protocol.answer(&text) {
+            Ok(a) => a,
             Err(e) => {
                 self.record(TrafficDirection::Received, &text, None, Some(format!("unreadable reply: {e}")));
                 return;
             }
         };
         self.record(TrafficDirection::Received, &text, None, None);
-        let shot_answered = *awaiting > 0 && reply.code != 201;
+        let shot_answered = *awaiting > 0 && answer.answers_shot;
         if shot_answered {
             *awaiting -= 1;
         }
-        if reply.code >= 300 {
-            tracing::warn!("rig {}: simulator answered {} {}", self.options.rig, reply.code, reply.message);
+        if !answer.success {
+            tracing::warn!("rig {}: simulator answered {}", self.options.rig, answer.summary);
         }
         self.update(|s| {
-            if shot_answered && reply.is_success() {
+            if shot_answered && answer.success {
                 s.acknowledged += 1;
             } else if shot_answered {
                 s.failed += 1;
             }
-            if let Some(p) = &reply.player {
-                s.player = Some(SimulatorPlayer { handed: p.handed.clone(), club: p.club.clone() });
+            if let Some(p) = answer.player {
+                s.player = Some(p);
             }
-            s.last_reply = Some(format!("{} {}", reply.code, reply.message));
+            s.last_reply = Some(answer.summary);
         });
     }
 }

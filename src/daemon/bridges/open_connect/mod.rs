@@ -44,6 +44,12 @@ pub struct SimulatorConfig {
     /// The simulator's Open Connect address, `HOST:PORT` (GSPro listens on 921).
     #[serde(default)]
     pub open_connect: Option<String>,
+    /// Or OpenGolfSim's developer API, `HOST:PORT` (it listens on 3111); one simulator per rig.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub opengolfsim: Option<String>,
+    /// The `unit` of OpenGolfSim shots: `metric` (ball speed in m/s, the default) or `imperial` (mph).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub opengolfsim_unit: Option<String>,
     /// A shot older than this when the connection comes back is dropped and counted, never sent late.
     #[serde(default = "default_max_shot_age_s")]
     pub max_shot_age_s: f64,
@@ -69,6 +75,8 @@ impl Default for SimulatorConfig {
     fn default() -> Self {
         SimulatorConfig {
             open_connect: None,
+            opengolfsim: None,
+            opengolfsim_unit: None,
             max_shot_age_s: default_max_shot_age_s(),
             heartbeat_s: default_heartbeat_s(),
             device_id: default_device_id(),
@@ -136,10 +144,16 @@ pub fn valid_host_port(address: &str) -> bool {
 impl SimulatorConfig {
     /// Checks every field; the error names the field (relative to `[rig.simulator]`) and the reason.
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        if let Some(a) = &self.open_connect {
-            if !valid_host_port(a) {
-                return Err(("open_connect", format!("`{a}` is not HOST:PORT")));
+        for (field, address) in [("open_connect", &self.open_connect), ("opengolfsim", &self.opengolfsim)] {
+            if let Some(a) = address.as_ref().filter(|a| !valid_host_port(a)) {
+                return Err((field, format!("`{a}` is not HOST:PORT")));
             }
+        }
+        if self.open_connect.is_some() && self.opengolfsim.is_some() {
+            return Err(("opengolfsim", "one simulator per rig: give open_connect or opengolfsim, not both".into()));
+        }
+        if let Some(u) = self.opengolfsim_unit.as_deref().filter(|u| !["metric", "imperial"].contains(u)) {
+            return Err(("opengolfsim_unit", format!("`{u}` is neither `metric` nor `imperial`")));
         }
         if !(self.max_shot_age_s > 0.0 && self.max_shot_age_s <= 600.0) {
             return Err(("max_shot_age_s", "must be within 0 and 600 s".into()));
