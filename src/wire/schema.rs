@@ -25,6 +25,7 @@ pub enum MessageType {
     OpenConnectTraffic,
     MocapInputStatus,
     ShotLabels,
+    BallSample,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -74,6 +75,7 @@ messages! {
     OpenConnectTraffic => OpenConnectTraffic,
     MocapInputStatus => MocapInputStatus,
     ShotLabels => ShotLabels,
+    BallSample => BallSampleMsg,
 }
 
 impl MessageType {

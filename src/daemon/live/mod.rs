@@ -36,6 +36,7 @@ use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
+mod ball;
 mod inputs;
 mod labels;
 mod measured;
@@ -134,6 +135,7 @@ pub async fn run(
             (keys::measured_launch(&name), InputKind::Measured),
             (keys::session(&name), InputKind::Labels),
             (keys::truth(&name), InputKind::Truth),
+            (keys::ball(&name), InputKind::Ball),
         ] {
             measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
         }
@@ -342,6 +344,7 @@ impl Worker {
             InputKind::Measured => return self.on_measured(incoming),
             InputKind::Labels => return self.on_labels(incoming),
             InputKind::Truth => return self.on_truth(incoming),
+            InputKind::Ball => return self.on_ball(incoming),
         }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
