@@ -4,6 +4,7 @@
 #   impactd compare --json                         -> region compare-iron7 (the seed's Tables 3.2-3.7 layout)
 #   impactd fit --json (under /usr/bin/time -v)    -> regions recovery-*, cv, fit-time, crb
 #   tests/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> region live-latency
+#   scripts/docs-identify-likelihood.sh            -> region likelihood (eq. 3.13 against the likelihood over seeds)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/docs-identify.sh   (about 10 minutes on 2 cores at load 8, most of it the two-layer fit with its
 # 5-fold cross-validation; IDENTIFY_OUT=DIR keeps the JSON there and reuses what is already in it)
@@ -261,3 +262,4 @@ replace("docs/identify.md", {
     "valley": valley_line(),
 })
 PY
+bash scripts/docs-identify-likelihood.sh

@@ -163,7 +163,9 @@ fn noise_free_club_data_match_the_truth() {
         print(&format!("{} arc, noise free", club.name), &r);
         assert!(r.direction_deg.1 < 1e-6 && r.plane_deg.1 < 1e-6, "{}", club.name);
         assert!(r.low_distance_mm.1 < 1e-3 && r.low_height_mm.1 < 1e-3, "{}", club.name);
-        assert!(r.lie_deg.1 < 1e-3, "{} dynamic lie max {}", club.name, r.lie_deg.1);
+        // 1.05e-3 deg for the 7-iron since the tour golfer de-lofts it 9 deg (impact::tour): the truncation grows
+        // with the head's attitude away from its static pose; 0.84e-3 before.
+        assert!(r.lie_deg.1 < 1.5e-3, "{} dynamic lie max {}", club.name, r.lie_deg.1);
         assert!(r.closure_degps.1 < 1.0, "{} closure rate max {}", club.name, r.closure_degps.1);
         assert!(r.face_to_path_deg.1 < 2e-3, "{} face to path max {}", club.name, r.face_to_path_deg.1);
     }

@@ -156,3 +156,23 @@ fn map_runs_the_ground_model_over_the_face() {
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.contains("ground") && text.matches("<rect").count() > 25, "5 x 5 cells drawn");
 }
+
+/// `--soil none`: the same fat strike off a tee. The strike reads `teed`, no ground acts (no divot, no speed lost
+/// before the ball), and the fat strike on firm soil differs from it by what the turf did (docs/ground.md: within a
+/// few mph at v = +15 mm).
+#[test]
+fn soil_none_is_the_same_strike_off_a_tee() {
+    let args = |soil: &'static str| ["predict", "--club", "iron7", "--model", "ground", "--soil", soil];
+    let teed = answers(&args("none"), &line(15.0));
+    let fat = answers(&args("firm"), &line(15.0));
+    let (t, f) = (&teed[0], &fat[0]);
+    assert_eq!((t["ground"]["strike"].as_str(), f["ground"]["strike"].as_str()), (Some("teed"), Some("fat")));
+    assert_eq!(t["ground"]["divot_depth_mm"].as_f64(), Some(0.0));
+    // The shaft's own response to the ball's first microsecond, nothing from the turf.
+    assert!(t["ground"]["club_speed_loss_mph"].as_f64().unwrap().abs() < 1e-3, "{t}");
+    let mph = |v: &serde_json::Value| v["ball_speed_mph"].as_f64().unwrap();
+    assert!(mph(t) > 100.0 && (mph(t) - mph(f)).abs() < 5.0, "teed {} vs fat {}", mph(t), mph(f));
+    let refused = impactd(&args("mud"), &line(15.0));
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("none"));
+}

@@ -77,12 +77,13 @@ pub fn one_model(name: &str, club: &LoadedClub, cor: f64) -> Result<Arc<dyn Impa
     Ok(registry::build_one(name, club, &options)?)
 }
 
-/// `--soil`: the turf of the ground model (a preset or a soil file), as the club's `[soil]` section.
+/// `--soil`: the turf of the ground model (a preset, a soil file, or `none` for a teed ball), as the club's
+/// `[soil]` section.
 pub fn set_soil(club: &mut LoadedClub, soil: Option<&str>, model: &str) -> Result<()> {
     let Some(soil) = soil else { return Ok(()) };
     registry::resolve(model, true).context("--soil")?;
-    let spec = impactd::equipment::soil::SoilSpec::load(soil).context("--soil")?;
-    club.sections.insert("soil", impactd::impact::continuous::iron_ground::sections::soil_section(&spec));
+    let section = impactd::impact::continuous::iron_ground::sections::soil_arg_section(soil).context("--soil")?;
+    club.sections.insert("soil", section);
     Ok(())
 }
 

@@ -2,7 +2,10 @@
 //! model's parameters by minimising eq. 3.13 over measured shots (differential evolution within the parameters'
 //! bounds, then Nelder-Mead; parallel over shots; deterministic for a seed), reports k-fold cross-validated
 //! errors before and after, and writes the club file with the fitted section, which `predict --club` and `run`
-//! accept. A progress bar with the best cost on a terminal, plain lines otherwise.
+//! accept. A progress bar with the best cost on a terminal, plain lines otherwise. `--objective likelihood`
+//! minimises the launch monitor's noise likelihood instead (weighted least squares with `--noise`, or with the
+//! noise estimated from the residuals; identify::objective), which reaches the Cramér-Rao bound where eq. 3.13
+//! scatters more (docs/identify.md).
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -15,7 +18,7 @@ use impactd::equipment::BallSpec;
 use impactd::identify::club_toml::to_toml;
 use impactd::identify::dataset::resolve;
 use impactd::identify::fit::{run as fit_run, FitOptions, FitReport};
-use impactd::identify::{FitModel, ParamSpace, FIELDS};
+use impactd::identify::{FitModel, Objective, ParamSpace, FIELDS};
 use impactd::impact::Equipment;
 
 #[derive(Debug, Args)]
@@ -56,6 +59,15 @@ pub struct FitArgs {
     /// Stop the global search when its best cost gains under 0.1 % in this many generations (0: never).
     #[arg(long, default_value_t = 10, value_parser = super::checked::count_or_zero_usize)]
     pub stall_generations: usize,
+    /// What to minimise: eq. 3.13's least-absolute criterion (the seed's), or the likelihood of the launch
+    /// monitor's noise (normal, independent per field).
+    #[arg(long, value_enum, default_value_t = ObjectiveArg::LeastAbsolute)]
+    pub objective: ObjectiveArg,
+    /// With --objective likelihood: the noise's standard deviation per field, ball speed (mph), launch (deg),
+    /// direction (deg), backspin (rpm), sidespin (rpm), e.g. synth's default 0.5,0.2,0.3,150,150; without it
+    /// the noise is estimated from the residuals (the profile likelihood).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub noise: Option<Vec<f64>>,
     /// Where to write the fitted club file.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -67,10 +79,34 @@ pub struct FitArgs {
     pub json: bool,
 }
 
+/// `--objective`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ObjectiveArg {
+    /// Eq. 3.13: mean absolute errors over the measured means (the seed's).
+    #[value(name = "least-absolute", alias = "eq-3.13")]
+    LeastAbsolute,
+    /// The launch monitor's noise likelihood (weighted least squares).
+    Likelihood,
+}
+
+fn objective(args: &FitArgs) -> Result<Objective> {
+    let noise = match &args.noise {
+        Some(v) if v.len() == 5 => Some([v[0], v[1], v[2], v[3], v[4]]),
+        Some(v) => bail!("--noise: expected 5 standard deviations, got {}", v.len()),
+        None => None,
+    };
+    match args.objective {
+        ObjectiveArg::LeastAbsolute if noise.is_some() => bail!("--noise needs --objective likelihood"),
+        ObjectiveArg::LeastAbsolute => Ok(Objective::LeastAbsolute),
+        ObjectiveArg::Likelihood => Ok(Objective::likelihood(noise)?),
+    }
+}
+
 pub fn run(args: &FitArgs) -> Result<ExitCode> {
     if let Some(path) = args.output.as_ref().filter(|p| !args.overwrite && p.exists()) {
         anyhow::bail!("{} exists; choose a new name or pass --overwrite", path.display());
     }
+    let objective = objective(args)?;
     let model = FitModel::parse(&args.model)?;
     let space = ParamSpace::new(model, &args.params)?;
     let loaded = super::compare::load_files(&args.files)?;
@@ -89,6 +125,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
         global_shots: args.global_shots,
         coarse_global: !args.exact_global,
         stall_generations: args.stall_generations,
+        objective,
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new_spinner();
@@ -125,8 +162,8 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
     }
     if let Some(path) = &args.output {
         let comment = format!(
-            "{} parameters fitted by `impactd fit` (eq. 3.13 over {} shots: {:.5} -> {:.5}, seed {})",
-            report.model, report.shots, report.cost_before, report.cost, report.seed
+            "{} parameters fitted by `impactd fit` (objective {}; eq. 3.13 over {} shots: {:.5} -> {:.5}, seed {})",
+            report.model, report.objective, report.shots, report.cost_before, report.cost, report.seed
         );
         super::args::write_new_output(path, &to_toml(&fitted, &comment)?, args.overwrite)?;
     }
@@ -166,12 +203,14 @@ fn render(r: &FitReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{} on {} ({} shots, seed {}): eq. 3.13 {:.5} -> {:.5} ({} evaluations, {} impacts, {:.1} s; \
-         cross-validation {} impacts, {:.1} s)",
+        "{} on {} ({} shots, seed {}, objective {} {:.5}): eq. 3.13 {:.5} -> {:.5} ({} evaluations, {} impacts, \
+         {:.1} s; cross-validation {} impacts, {:.1} s)",
         r.model,
         r.club,
         r.shots,
         r.seed,
+        r.objective,
+        r.objective_value,
         r.cost_before,
         r.cost,
         r.evaluations,

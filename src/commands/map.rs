@@ -25,7 +25,8 @@ pub struct MapArgs {
     /// Grid cells along each face axis.
     #[arg(long, default_value_t = 21)]
     pub cells: usize,
-    /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
+    /// With --model ground: the turf, soft, medium or firm (Table 4.3), a soil .toml file, or none (the ball
+    /// on a tee, no ground).
     #[arg(long)]
     pub soil: Option<String>,
     /// The SVG file to write.

@@ -18,7 +18,7 @@ pub struct GroundPlotArgs {
     /// An iron preset or club .toml file.
     #[arg(long, default_value = "iron7")]
     pub club: String,
-    /// soft, medium or firm (Table 4.3), or a soil .toml file.
+    /// soft, medium or firm (Table 4.3), a soil .toml file, or none (the same strike off a tee).
     #[arg(long, default_value = "firm")]
     pub soil: String,
     /// Club speed of both strikes (mph).

@@ -27,7 +27,8 @@ pub struct PredictArgs {
     /// With a model resolved in time (continuous): add the normal and tangential force and the ball's spin over time.
     #[arg(long)]
     pub trace: bool,
-    /// With --model ground: the turf, soft, medium or firm (Table 4.3), or a soil .toml file.
+    /// With --model ground: the turf, soft, medium or firm (Table 4.3), a soil .toml file, or none (the ball
+    /// on a tee, no ground).
     #[arg(long)]
     pub soil: Option<String>,
     /// Also fly each ball: add carry, total, apex, offline, hang time and land angle to each line.

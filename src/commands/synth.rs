@@ -30,7 +30,7 @@ pub struct SynthArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Launch-monitor noise: ball speed (mph), launch (deg), direction (deg), backspin (rpm), sidespin (rpm).
-    #[arg(long, value_delimiter = ',', num_args = 5, default_values_t = LmNoise::default().as_array())]
+    #[arg(long, value_delimiter = ',', default_values_t = LmNoise::default().as_array())]
     pub noise: Vec<f64>,
     /// The JSONL file to write (standard output without it).
     #[arg(short, long)]
@@ -51,6 +51,11 @@ pub fn run(args: &SynthArgs) -> Result<ExitCode> {
         club = ParamSpace::new(model, &names)?.club_with(&club, &values);
     }
     let n = &args.noise;
+    if n.len() != 5 || n.iter().any(|s| !(s.is_finite() && *s >= 0.0)) {
+        return Err(anyhow!(
+            "--noise: expected 5 standard deviations (mph, deg, deg, rpm, rpm), none negative, got {n:?}"
+        ));
+    }
     let spec = SynthSpec {
         ranges: DeliveryRanges::for_club(&club.club),
         club,

@@ -9,7 +9,8 @@
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
 //! club = "driver"               # a preset (driver, wood3, hybrid, iron4-iron9, pw, gw, sw, lw) or a club .toml
 //! model = "adjusted"            # a model of the registry (`impactd models`), or a comma-separated list
-//! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml;
+//! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml |
+//!                               # none (the ball on a tee);
 //!                               # with model = "both" it stands for "adjusted,ground"
 //! cor = 0.83
 //! estimator = "arc"             # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
@@ -82,7 +83,7 @@ pub struct RigConfig {
     pub model: String,
     #[serde(default = "default_cor")]
     pub cor: f64,
-    /// The turf under the ball for the ground model (a preset or a soil file).
+    /// The turf under the ball for the ground model (a preset, a soil file, or `none`: the ball on a tee).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub soil: Option<String>,
     #[serde(default = "default_estimator")]
@@ -178,8 +179,9 @@ fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
 fn soil_model(r: &RigConfig, club: &mut crate::equipment::LoadedClub) -> Result<String, String> {
     let Some(soil) = &r.soil else { return Ok(r.model.clone()) };
     let model = registry::resolve(&r.model, true).map_err(|e| e.to_string())?;
-    let spec = crate::equipment::soil::SoilSpec::load(soil).map_err(|e| e.to_string())?;
-    club.sections.insert("soil", crate::impact::continuous::iron_ground::sections::soil_section(&spec));
+    let section =
+        crate::impact::continuous::iron_ground::sections::soil_arg_section(soil).map_err(|e| e.to_string())?;
+    club.sections.insert("soil", section);
     Ok(model)
 }
 
@@ -427,6 +429,9 @@ mod tests {
         assert_eq!(names, ["impulse/adjusted", "ground"]);
         let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"firm\"")).unwrap();
         assert_eq!(r[0].models.len(), 1);
+        // `none`: the ground model with no ground, the ball on a tee.
+        let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"none\"")).unwrap();
+        assert_eq!(r[0].models[0].name(), "ground");
         let (_, r) = DaemonConfig::parse(&rig("model = \"both\"")).unwrap();
         assert_eq!(r[0].models[1].name(), "continuous/two_layer");
         let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();

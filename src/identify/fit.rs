@@ -1,12 +1,13 @@
 //! The seed's identification procedure (section 3.1.3): a global search of the parameters' bounds, then a local
-//! refinement of the best point, minimising eq. 3.13 over the shots; and k-fold cross-validation of the mean
-//! absolute errors before and after.
+//! refinement of the best point, minimising eq. 3.13 over the shots (or the launch monitor's noise likelihood,
+//! [`super::objective`]); and k-fold cross-validation of the mean absolute errors before and after.
 
 use serde::{Deserialize, Serialize};
 
 use super::cost::{cost, evaluate, evaluate_with, field_stats, CostScales, FieldStats};
 use super::dataset::Shot;
 use super::fisher;
+use super::objective::Objective;
 use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
 use super::params::{BuildFn, ParamSpace};
 use super::IdentifyError;
@@ -34,6 +35,8 @@ pub struct FitOptions {
     /// The global stage stops when its best cost has gained less than 0.1 % in this many generations (0: it
     /// runs every generation).
     pub stall_generations: usize,
+    /// What the fit minimises (eq. 3.13 by default).
+    pub objective: Objective,
 }
 
 /// The global stage's subsample for a model resolved in time: enough shots to find the basin of eq. 3.13
@@ -51,6 +54,7 @@ impl Default for FitOptions {
             global_shots: None,
             coarse_global: true,
             stall_generations: 10,
+            objective: Objective::LeastAbsolute,
         }
     }
 }
@@ -99,7 +103,12 @@ pub struct FitReport {
     pub shots: usize,
     pub seed: u64,
     pub params: Vec<ParamReport>,
-    /// Eq. 3.13 on all shots with the starting and the fitted parameters.
+    /// What the fit minimised ([`Objective::name`]) and its value per shot at the fitted parameters.
+    #[serde(default = "eq_3_13")]
+    pub objective: String,
+    #[serde(default)]
+    pub objective_value: Real,
+    /// Eq. 3.13 on all shots with the starting and the fitted parameters (whatever the objective).
     pub cost_before: Real,
     pub cost: Real,
     pub evaluations: usize,
@@ -116,7 +125,11 @@ pub struct FitReport {
     pub cv: Option<CvReport>,
 }
 
-/// One fit's result: SI values, the cost and the evaluations spent.
+fn eq_3_13() -> String {
+    Objective::LeastAbsolute.name().to_string()
+}
+
+/// One fit's result: SI values, the objective's value and the evaluations spent.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fitted {
     pub values: Vec<Real>,
@@ -126,7 +139,8 @@ pub struct Fitted {
     pub simulations: u64,
 }
 
-/// Minimises eq. 3.13 over `shots` for the parameters of `space`, starting from `club`'s values.
+/// Minimises the objective (eq. 3.13 by default) over `shots` for the parameters of `space`, starting from
+/// `club`'s values.
 pub fn fit_once(
     space: &ParamSpace,
     club: &LoadedClub,
@@ -141,7 +155,8 @@ pub fn fit_once(
     let coarse = space.model.coarse.filter(|_| options.coarse_global);
     let objective_on = |u: &[Real], shots: &[Shot], scales: &CostScales, coarse: Option<BuildFn>| {
         let candidate = space.club_with(club, &space.from_unit(u));
-        evaluate_with(space, coarse, &candidate, ball, shots).map_or(Real::INFINITY, |p| cost(&p, shots, scales))
+        evaluate_with(space, coarse, &candidate, ball, shots)
+            .map_or(Real::INFINITY, |p| options.objective.value(&p, shots, scales))
     };
     let global_shots = options.global_shots.or(space.model.coarse.map(|_| GLOBAL_SHOTS_IN_TIME));
     let subsample: Vec<Shot> = match global_shots {
@@ -247,7 +262,8 @@ pub fn run(
     let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
     let fit_seconds = started.elapsed().as_secs_f64();
     let fitted_club = space.club_with(club, &fitted.values);
-    let sigma = fisher::residual_sigma(&evaluate(space, &fitted_club, ball, shots)?, shots, space.defs.len());
+    let fitted_predictions = evaluate(space, &fitted_club, ball, shots)?;
+    let sigma = fisher::residual_sigma(&fitted_predictions, shots, space.defs.len());
     let jacobian = fisher::jacobian(space, &fitted_club, ball, shots, &fitted.values)?;
     let bounds = fisher::bounds(&fisher::information_of(&jacobian, &sigma));
     let scales = CostScales::of(shots);
@@ -278,8 +294,10 @@ pub fn run(
         shots: shots.len(),
         seed: options.seed,
         params,
+        objective: options.objective.name().to_string(),
+        objective_value: fitted.cost,
         cost_before,
-        cost: fitted.cost,
+        cost: cost(&fitted_predictions, shots, &scales),
         evaluations: fitted.evaluations,
         simulations: fitted.simulations,
         cv_simulations,

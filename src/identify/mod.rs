@@ -16,6 +16,7 @@
 //! - [`cost`]: eq. 3.13 and the seed's table statistics, evaluated in parallel over shots in a fixed order.
 //! - [`params`]: each model's identifiable parameters with bounds ([`params::ParamSet`]).
 //! - [`optimize`]: differential evolution (the global search) and Nelder-Mead (the local refinement).
+//! - [`objective`]: what a fit minimises: eq. 3.13 (the default) or the launch monitor's noise likelihood.
 //! - [`fit`]: the seed's procedure (global, then local) and k-fold cross-validation.
 //! - [`fisher`]: the Fisher information of the shots and each parameter's Cramér-Rao bound.
 //! - [`synth`]: synthetic datasets with known parameters and launch-monitor noise.
@@ -29,6 +30,7 @@ pub mod cost;
 pub mod dataset;
 pub mod fisher;
 pub mod fit;
+pub mod objective;
 pub mod optimize;
 pub mod pairing;
 pub mod params;
@@ -37,6 +39,7 @@ pub mod synth;
 pub use cost::{CostScales, FieldStats, ModelTable, FIELDS};
 pub use dataset::{DatasetLine, Shot};
 pub use fit::{FitOptions, FitReport};
+pub use objective::Objective;
 pub use params::{FitModel, ParamDef, ParamSpace};
 
 /// Errors of the identification layer.
@@ -58,6 +61,8 @@ pub enum IdentifyError {
     Impact(#[from] crate::impact::ImpactError),
     #[error(transparent)]
     Equipment(#[from] crate::equipment::EquipmentError),
+    #[error("noise: {0}")]
+    Noise(String),
     #[error("writing the club file: {0}")]
     Write(String),
 }

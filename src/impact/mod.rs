@@ -14,6 +14,7 @@ mod launch;
 pub mod registry;
 pub mod report;
 pub mod sanity;
+pub mod tour;
 
 pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics, SwingArc};

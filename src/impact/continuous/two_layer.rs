@@ -16,8 +16,8 @@
 //!   units of `k_ball` (N m/rad) and `c_ball` (ms/rad) cannot be recovered from the thesis: no scaling of them
 //!   meets every comparison (`docs/models-notes.md`).
 //!
-//! The `ground` model reuses this ball contact with Table 3.5 as transcribed ([`TwoLayerParams::seed_for`])
-//! unless its club file has a `[continuous]` section.
+//! The `ground` model reuses this ball contact with the same default reading and the same `[continuous]`
+//! section, so with no ground under the ball it is this model with a flexible shaft (tests/ground_teed.rs).
 //!
 //! Assumptions (seed 3.2.1): the contact never reaches the face's edges; a face whose bulge and roll differ is
 //! taken as a sphere of their geometric-mean radius.
@@ -112,11 +112,6 @@ impl TwoLayerParams {
     pub const ONE_CYCLE_IRON7: TwoLayerParams =
         TwoLayerParams { k_ball_nm_per_rad: 1000.0, c_ball_nms_per_rad: 0.05, d_s_per_m: 4.5e-3, ..Self::IRON7 };
 
-    /// Table 3.5 for a club: the driver's for a curved face, the 7-iron's for a flat one.
-    pub fn seed_for(club: &ClubSpec) -> Self {
-        Self::preset(club, TwoLayerReading::Table)
-    }
-
     /// A reading of Table 3.5 for a club: the driver's for a curved face, the 7-iron's for a flat one.
     pub fn preset(club: &ClubSpec, reading: TwoLayerReading) -> Self {
         match (reading, club.is_wood()) {
@@ -208,7 +203,7 @@ impl ContinuousModel {
         trace_every: usize,
     ) -> Result<ContinuousResult, ImpactError> {
         let club = &equipment.club;
-        let params = self.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::OneCycle));
+        let params = self.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::default()));
         params.validate(&equipment.ball)?;
         let start = super::start::Start::new(state, equipment)?;
         let assembly = Assembly {

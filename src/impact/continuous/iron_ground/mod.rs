@@ -43,14 +43,15 @@ pub struct GroundModel {
     pub mesh: ShaftMesh,
     /// Shaft modes above this are dropped (Hz); infinite keeps them all.
     pub max_mode_hz: Real,
-    /// Ball parameters; `None` uses the club's (Table 3.5).
+    /// Ball parameters; `None` uses the club's in the continuous model's default reading of Table 3.5 (the
+    /// one-cycle reading, `TwoLayerReading`), the same ball as `continuous`.
     pub params: Option<TwoLayerParams>,
     /// Steps during the ball's contact and while only the ground acts (s).
     pub ball_step_s: Real,
     pub ground_step_s: Real,
     /// How long to follow the ground contact after the ball leaves (s).
     pub follow_s: Real,
-    /// `false`: the same club on a teed ball, no ground.
+    /// `false`: the same club on a teed ball, no ground (`[soil] preset = "none"`, `--soil none`).
     pub with_ground: bool,
     /// World-frame multipliers of the ground's force components, ones by default (the seed's model);
     /// `(0, 1, 0)` keeps the vertical part alone, `(1, 0, 1)` the horizontal: what each part does to the strike

@@ -19,6 +19,8 @@ pub enum Strike {
     Good,
     /// The ground before the ball.
     Fat,
+    /// No ground at all: the ball on a tee (`--soil none`).
+    Teed,
 }
 
 /// Ground contact this soon after the ball's (about two ball-contact times) still counts as a good strike.

@@ -14,6 +14,7 @@ impl Strike {
             Strike::Thin => "thin",
             Strike::Good => "good",
             Strike::Fat => "fat",
+            Strike::Teed => "teed",
         }
     }
 }

@@ -1,7 +1,7 @@
 //! One shot of the iron-plus-ground model: placement, stepping and the measures of the strike.
 
 use super::dynamics::{State, System};
-use super::placement::{classify, first_ground_contact_s};
+use super::placement::{classify, first_ground_contact_s, Strike};
 use super::{GroundResult, GroundTracePoint, PreparedGround};
 use crate::impact::continuous::ball::TwoLayerBall;
 use crate::impact::continuous::club::Head as BodyMotion;
@@ -9,7 +9,7 @@ use crate::impact::continuous::ground::{GroundForces, GroundPhase};
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::ModalState;
 use crate::impact::continuous::surface::FaceSurface;
-use crate::impact::continuous::TwoLayerParams;
+use crate::impact::continuous::{TwoLayerParams, TwoLayerReading};
 use crate::impact::{ImpactError, ImpactState, Launch};
 use crate::math::{Real, Vector3};
 use crate::units::MPS_PER_MPH;
@@ -28,7 +28,7 @@ pub(super) fn simulate(
 ) -> Result<GroundResult, ImpactError> {
     let model = &p.model;
     let club = &p.equipment.club;
-    let params = model.params.unwrap_or_else(|| TwoLayerParams::seed_for(club));
+    let params = model.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::default()));
     params.validate(&p.equipment.ball)?;
     let mut ground = p.ground_for(state)?;
     let motion = ConstantTwist {
@@ -200,7 +200,7 @@ pub(super) fn simulate(
     let launch = launch.ok_or_else(|| ImpactError::NotConverged { model: "ground", reason: "no launch".into() })?;
     Ok(GroundResult {
         launch,
-        strike: classify(first_ground),
+        strike: if model.with_ground { classify(first_ground) } else { Strike::Teed },
         ground_contact_before_ball_ms: out.first_ground_s.map(|t| (out.t_ball_s - t) * 1e3),
         club_speed_loss_mph: out.speed_loss_mps / MPS_PER_MPH,
         face_angle_change_deg: out.face_change_deg,

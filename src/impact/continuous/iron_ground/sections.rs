@@ -2,7 +2,7 @@
 //!
 //! ```toml
 //! [soil]                   # Table 4.3: a preset, or every field of a soil file (equipment::soil)
-//! preset = "firm"          # soft | medium | firm
+//! preset = "firm"          # soft | medium | firm | none (no ground: the ball on a tee)
 //! [sole]                   # any field of equipment::sole::SoleSpec; the rest keep the typical 7-iron's
 //! lie_deg = 63.0
 //! leading_edge_below_face_centre_m = 0.020
@@ -55,6 +55,28 @@ fn invalid(section: &str, e: EquipmentError) -> ImpactError {
     ImpactError::InvalidParameter { field: format!("[{section}]"), reason: e.to_string() }
 }
 
+/// The name that stands for no ground at all: the same strike off a tee (`--soil none`).
+pub const TEED: &str = "none";
+
+/// Whether a `[soil]` section means no ground (`preset = "none"`).
+pub fn is_teed(table: &toml::Table) -> bool {
+    table.get("preset").and_then(|v| v.as_str()) == Some(TEED)
+}
+
+/// The `[soil]` section a `--soil` or daemon `soil` value stands for: a preset, a soil file, or `none`.
+pub fn soil_arg_section(name_or_path: &str) -> Result<toml::Table, ImpactError> {
+    if name_or_path == TEED {
+        let mut t = toml::Table::new();
+        t.insert("preset".into(), toml::Value::String(TEED.into()));
+        return Ok(t);
+    }
+    let spec = SoilSpec::load(name_or_path).map_err(|e| ImpactError::InvalidParameter {
+        field: "[soil]".into(),
+        reason: format!("{e}; or {TEED} for the ball on a tee"),
+    })?;
+    Ok(soil_section(&spec))
+}
+
 /// The soil of a `[soil]` section: `preset = "..."` or a soil file's fields.
 pub fn soil_of(table: &toml::Table) -> Result<SoilSpec, ImpactError> {
     if let Some(preset) = table.get("preset") {
@@ -66,7 +88,7 @@ pub fn soil_of(table: &toml::Table) -> Result<SoilSpec, ImpactError> {
         }
         let name = preset.as_str().ok_or_else(|| ImpactError::InvalidParameter {
             field: "[soil].preset".into(),
-            reason: "must be a string (soft, medium or firm)".into(),
+            reason: "must be a string (soft, medium, firm or none)".into(),
         })?;
         return SoilSpec::preset(name).map_err(|e| invalid("soil", e));
     }
@@ -90,8 +112,10 @@ impl GroundModel {
     /// The model of a club file's `[soil]`, `[sole]` and `[shaft]` sections (defaults above), each validated.
     /// The sole's lie is the club's static lie (`club_lie_deg`) unless `[sole]` gives its own.
     pub fn from_sections(sections: &ModelSections, club_lie_deg: Real) -> Result<Self, ImpactError> {
-        let soil = sections.get("soil").map(soil_of).transpose()?.unwrap_or_else(SoilSpec::firm);
+        let teed = sections.get("soil").is_some_and(is_teed);
+        let soil = sections.get("soil").filter(|_| !teed).map(soil_of).transpose()?.unwrap_or_else(SoilSpec::firm);
         let mut model = GroundModel::new(soil);
+        model.with_ground = !teed;
         model.sole.lie_deg = club_lie_deg;
         model.sole.validate().map_err(|e| invalid("sole", e))?;
         if let Some(s) = section::<SoleSection>(sections, "sole")? {
@@ -167,6 +191,12 @@ bounce_deg = 6.0
         assert_eq!(m.soil.n, 0.9);
         assert_eq!(soil_of(&soil_section(&m.soil)).unwrap(), m.soil);
         assert_eq!(soil_section(&SoilSpec::medium()).get("preset").and_then(|v| v.as_str()), Some("medium"));
+        // `none`: no ground, the same club on a teed ball.
+        assert!(GroundModel::from_sections(&ModelSections::default(), iron).unwrap().with_ground);
+        let m = GroundModel::from_sections(&sections("[soil]\npreset = \"none\"\n"), iron).unwrap();
+        assert!(!m.with_ground);
+        assert!(is_teed(&soil_arg_section("none").unwrap()));
+        assert!(soil_arg_section("mud").unwrap_err().to_string().contains("soil"));
         for (text, field) in [
             ("[soil]\npreset = \"mud\"\n", "[soil]"),
             ("[sole]\nlie_deg = 120.0\n", "[sole]"),
