@@ -36,6 +36,9 @@ pub struct BridgeArgs {
     /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
     pub foxglove: Option<String>,
+    /// Serve the bay screen (a web page per rig) on this address (default 127.0.0.1:8080; overrides `[web]`).
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = impactd::daemon::bridges::web::DEFAULT_ADDRESS)]
+    pub web: Option<String>,
 }
 
 impl BridgeArgs {
@@ -48,6 +51,11 @@ impl BridgeArgs {
             config.set_default_open_connect(a);
         }
         Ok(())
+    }
+
+    /// The bay screen's address: `--web`, else the configuration's `[web] listen`.
+    pub(super) fn web(&self, config: &DaemonConfig) -> Option<String> {
+        self.web.clone().or_else(|| config.web.as_ref().map(|w| w.listen.clone()))
     }
 }
 
@@ -92,6 +100,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
     let (mut config, _) = load_config(args.config.as_deref())?;
     args.bridges.apply(&mut config)?;
     let setups = config.setups()?;
+    let web = args.bridges.web(&config);
     let rt = runtime()?;
     rt.block_on(async {
         let session = args.zenoh.open().await?;
@@ -113,6 +122,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
                 record: args.record.clone(),
                 overwrite: args.overwrite,
                 foxglove: args.bridges.foxglove.clone(),
+                web,
             },
             shutdown_signal(),
         )

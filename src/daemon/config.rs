@@ -33,6 +33,9 @@
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"
 //! pair_window_s = [0.05, 5.0]   # a measurement pairs with the prediction it follows by this delay (s)
+//!
+//! [web]                         # the bay screen (`--web` overrides); a page per rig at http://ADDR/
+//! listen = "127.0.0.1:8080"
 //! ```
 
 use std::path::Path;
@@ -55,6 +58,22 @@ pub struct DaemonConfig {
     pub status_period_s: f64,
     #[serde(rename = "rig")]
     pub rigs: Vec<RigConfig>,
+    /// The bay screen (`[web] listen = "127.0.0.1:8080"`), served when given (or with `--web`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub web: Option<WebConfig>,
+}
+
+/// `[web]`: where the bay screen is served.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WebConfig {
+    /// `HOST:PORT`; loopback by default (a bay's screen is usually on the same machine).
+    #[serde(default = "default_web_listen")]
+    pub listen: String,
+}
+
+fn default_web_listen() -> String {
+    "127.0.0.1:8080".into()
 }
 
 fn default_status_period() -> f64 {
@@ -159,6 +178,7 @@ impl Default for DaemonConfig {
     fn default() -> Self {
         DaemonConfig {
             status_period_s: 1.0,
+            web: None,
             rigs: vec![RigConfig {
                 name: "rig1".into(),
                 club: default_club(),

@@ -5,6 +5,7 @@
 //!
 //! This module holds the JSON forms only; it depends on no transport.
 
+mod bay;
 mod bridge;
 mod delivery;
 mod flight;
@@ -16,6 +17,7 @@ mod mocap;
 mod sample;
 mod schema;
 
+pub use bay::{club_text, ControlError, DisplaySettings, DisplayUnits, ShotExclusion, MAX_CLUB_BYTES};
 pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,

@@ -25,6 +25,8 @@ pub enum MessageType {
     OpenConnectTraffic,
     MocapInputStatus,
     ShotLabels,
+    ShotExclusion,
+    DisplaySettings,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -74,6 +76,8 @@ messages! {
     OpenConnectTraffic => OpenConnectTraffic,
     MocapInputStatus => MocapInputStatus,
     ShotLabels => ShotLabels,
+    ShotExclusion => ShotExclusion,
+    DisplaySettings => DisplaySettings,
 }
 
 impl MessageType {

@@ -1,5 +1,5 @@
 //! The rig worker's queue fed from zenoh: measured launches (`lm/<rig>/launch`), session labels
-//! (`golf/<rig>/session`) and a synthetic rig's truth (`sim/<rig>/truth`) join it behind the samples that came
+//! (`golf/<rig>/session`), shot exclusions (`golf/<rig>/exclude`) and a synthetic rig's truth (`sim/<rig>/truth`) join it behind the samples that came
 //! before them, so each is handled in order by the rig's one worker.
 
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -20,6 +20,8 @@ pub(super) enum InputKind {
     Labels,
     /// A synthetic rig's truth (`sim/<rig>/truth`).
     Truth,
+    /// A shot left out of the session or taken back (`golf/<rig>/exclude`).
+    Exclusion,
 }
 
 /// A payload in the rig's queue, with when it arrived.
