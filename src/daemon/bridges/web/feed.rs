@@ -56,6 +56,8 @@ pub struct Bay {
     /// Bus payloads that did not parse, and payloads dropped at a full queue.
     pub refused: AtomicU64,
     pub dropped: AtomicU64,
+    /// Set when the screen stops: every open page is closed (and reconnects to the next daemon).
+    pub closing: tokio::sync::watch::Sender<bool>,
 }
 
 impl Bay {
@@ -69,6 +71,7 @@ impl Bay {
             recording_name,
             refused: AtomicU64::new(0),
             dropped: AtomicU64::new(0),
+            closing: tokio::sync::watch::Sender::new(false),
         })
     }
 

@@ -51,6 +51,7 @@ pub struct WebServer {
 impl Drop for WebServer {
     fn drop(&mut self) {
         self.acceptor.abort();
+        self.bay.closing.send_replace(true);
     }
 }
 

@@ -61,8 +61,18 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
         return;
     }
     let mut ping = tokio::time::interval(PING_PERIOD);
+    let mut closing = page.bay.closing.subscribe();
     loop {
         tokio::select! {
+            changed = closing.changed() => {
+                if changed.is_ok() && !*closing.borrow() {
+                    continue;
+                }
+                use tokio_tungstenite::tungstenite::protocol::{frame::coding::CloseCode, CloseFrame};
+                let frame = CloseFrame { code: CloseCode::Away, reason: "the daemon is stopping".into() };
+                let _ = tokio::time::timeout(SEND_TIMEOUT, ws.close(Some(frame))).await;
+                break;
+            }
             incoming = ws.next() => match incoming {
                 Some(Ok(Message::Text(t))) => {
                     page.slot.touch();

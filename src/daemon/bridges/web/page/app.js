@@ -49,6 +49,9 @@ function onMessage(m) {
     case "status": r.status = m.status; break;
   }
   if (m.rig !== bay.rig && m.type !== "shot" && m.type !== "snapshot") return;
+  // The status changes nothing drawn; labels only their line (the tables are not redrawn under a click).
+  if (m.type === "status") return;
+  if (m.type === "labels") return drawLabels(r);
   draw(m.rig);
   if (m.type === "shot" && m.rig === bay.rig) {
     const published = m.published_ns / 1e6;
@@ -76,12 +79,16 @@ function draw(rigName) {
   if (rigName !== bay.rig) return;
   const r = rigData(bay.rig);
   $("units").value = r.units;
-  const l = r.labels || {};
-  $("labels-now").textContent = [l.player, ...(l.tags || [])].filter(Boolean).join(" · ");
+  drawLabels(r);
   $("csv").href = `/rig/${encodeURIComponent(bay.rig)}/session.csv`;
   $("csv").setAttribute("download", `${bay.rig}-session.csv`);
   if (bay.view === "shot") Views.shot(r, r.units);
   else Views.session(r, r.units, bay.sort, bay.filter);
+}
+
+function drawLabels(r) {
+  const l = r.labels || {};
+  $("labels-now").textContent = [l.player, ...(l.tags || [])].filter(Boolean).join(" · ");
 }
 
 let socket = null, backoffMs = 250;
