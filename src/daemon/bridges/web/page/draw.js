@@ -67,38 +67,46 @@ const Draw = (() => {
 
   const COLOURS = ["#4fd18b", "#5ab0ff", "#ffb020", "#ff6f91", "#c792ea", "#f2f5f0", "#7fdbca", "#ff8c42"];
 
-  // Dispersion: `groups` = [{club, points: [[side, carry], ...]}] in the unit shown.
+  // Dispersion: `groups` = [{club, points: [[side, carry], ...]}] in the unit shown. Both axes have the same
+  // scale, so the spread left and right reads against the spread in carry.
   function dispersion(svg, groups, unit) {
     clear(svg);
-    const W = 500, H = 400, L = 40, B = 24, T = 10, R = 10;
-    let cMax = 10, sMax = 5;
-    for (const g of groups) for (const [s, c] of g.points) { cMax = Math.max(cMax, c); sMax = Math.max(sMax, Math.abs(s)); }
-    cMax *= 1.1; sMax *= 1.3;
-    const px = (s) => L + (W - L - R) / 2 + (s / sMax) * (W - L - R) / 2;
-    const py = (c) => H - B - (c / cMax) * (H - T - B);
-    const step = niceStep(cMax);
-    for (let c = 0; c <= cMax; c += step) {
+    const W = 500, H = 400, L = 44, B = 26, T = 10, R = 10;
+    // 95 % of a bivariate normal lies within sqrt(chi2(2, 0.95)) = 2.448 SDs along each principal axis.
+    const outlines = groups.map((g) => {
+      const e = ellipse(g.points);
+      if (!e) return null;
+      const k = 2.448, norm = Math.hypot(e.vx, e.vy), u = [e.vx / norm, e.vy / norm], pts = [];
+      for (let j = 0; j <= 48; j++) {
+        const t = (2 * Math.PI * j) / 48, a = k * Math.sqrt(e.l1) * Math.cos(t), b = k * Math.sqrt(e.l2) * Math.sin(t);
+        pts.push([e.ms + a * u[0] - b * u[1], e.mc + a * u[1] + b * u[0]]);
+      }
+      return pts;
+    });
+    const all = groups.flatMap((g) => g.points).concat(outlines.filter(Boolean).flat());
+    let cLo = Infinity, cHi = -Infinity, sMax = 5;
+    for (const [s, c] of all) { cLo = Math.min(cLo, c); cHi = Math.max(cHi, c); sMax = Math.max(sMax, Math.abs(s)); }
+    if (!Number.isFinite(cLo)) { cLo = 0; cHi = 100; }
+    const w = W - L - R, h = H - T - B;
+    const scale = Math.min(w / (2 * sMax * 1.1), h / Math.max((cHi - cLo) * 1.1, 10));
+    const cMid = (cLo + cHi) / 2;
+    const px = (s) => L + w / 2 + s * scale;
+    const py = (c) => T + h / 2 - (c - cMid) * scale;
+    const step = niceStep(h / scale);
+    for (let c = Math.ceil((cMid - h / 2 / scale) / step) * step; c <= cMid + h / 2 / scale; c += step) {
       svg.appendChild(el("line", { x1: L, x2: W - R, y1: py(c), y2: py(c), class: "grid" }));
-      svg.appendChild(el("text", { x: 2, y: py(c) + 4 }, `${Math.round(c)}`));
+      svg.appendChild(el("text", { x: 2, y: py(c) + 5 }, `${Math.round(c)}`));
     }
     svg.appendChild(el("line", { x1: px(0), x2: px(0), y1: T, y2: H - B, class: "ground" }));
-    svg.appendChild(el("text", { x: W - 60, y: H - 6 }, `right ${unit}`));
+    svg.appendChild(el("text", { x: L, y: H - 6 }, `◀ left   carry ${unit}, side ${unit}   right ▶`));
     groups.forEach((g, i) => {
       const colour = COLOURS[i % COLOURS.length];
-      for (const [s, c] of g.points) svg.appendChild(el("circle", { cx: px(s), cy: py(c), r: 4, fill: colour }));
-      const e = ellipse(g.points);
-      if (e) {
-        // 95 % of a bivariate normal lies within sqrt(chi2(2, 0.95)) = 2.448 SDs along each principal axis;
-        // the outline is drawn in data units, then scaled, so unequal axis scales keep it right.
-        const k = 2.448, norm = Math.hypot(e.vx, e.vy), u = [e.vx / norm, e.vy / norm];
-        const pts = [];
-        for (let j = 0; j <= 48; j++) {
-          const t = (2 * Math.PI * j) / 48, a = k * Math.sqrt(e.l1) * Math.cos(t), b = k * Math.sqrt(e.l2) * Math.sin(t);
-          pts.push(`${px(e.ms + a * u[0] - b * u[1]).toFixed(1)},${py(e.mc + a * u[1] + b * u[0]).toFixed(1)}`);
-        }
-        svg.appendChild(el("polygon", { points: pts.join(" "), fill: "none", stroke: colour, "stroke-width": 2 }));
+      for (const [s, c] of g.points) svg.appendChild(el("circle", { cx: px(s), cy: py(c), r: 6, fill: colour }));
+      if (outlines[i]) {
+        const points = outlines[i].map(([s, c]) => `${px(s).toFixed(1)},${py(c).toFixed(1)}`).join(" ");
+        svg.appendChild(el("polygon", { points, fill: "none", stroke: colour, "stroke-width": 2.5 }));
       }
-      svg.appendChild(el("text", { x: L + 4, y: T + 16 + 18 * i, fill: colour, style: `fill:${colour}` }, g.club));
+      svg.appendChild(el("text", { x: W - R - 4, y: T + 18 + 20 * i, "text-anchor": "end", style: `fill:${colour}` }, g.club));
     });
   }
 
