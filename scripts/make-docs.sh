@@ -10,6 +10,7 @@
 #   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
+#   scripts/docs-hostile.sh            -> docs/hostile-peers.md (the honest rig's latency beside each hostile probe)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
 #   impactd models [--sections]         -> README.md region models, docs/club-files.md region sections
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
@@ -128,6 +129,8 @@ echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
 scripts/club-data-docs.sh
+echo "hostile peers" >&2
+scripts/docs-hostile.sh
 
 # docs/identify.md: comparison, recovery, fit time and live latency (about 20 minutes more on 2 shared cores).
 scripts/docs-identify.sh

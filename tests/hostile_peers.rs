@@ -17,6 +17,21 @@ use impactd::daemon::bus::free_loopback_port;
 use impactd::wire::{keys, LaunchPrediction, StatusMessage};
 
 const RSS_LIMIT_KB: u64 = 150 * 1024;
+
+/// One line for `scripts/docs-hostile.sh` (docs/hostile-peers.md): the honest rig's sample-to-launch latencies
+/// (the daemon's own `latency_us`) and the daemon's peak RSS while a case ran. The docs compare each case's p99
+/// with the quiet run's; timing is measured and documented here, not asserted (the suite runs on a shared
+/// machine).
+fn report_latency(case: &str, latencies_us: &[f64], peak_rss_kb: u64) {
+    let mut sorted = latencies_us.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let q = |p: f64| sorted[((sorted.len() - 1) as f64 * p).round() as usize];
+    let line = serde_json::json!({
+        "case": case, "shots": sorted.len(), "p50_us": q(0.5), "p99_us": q(0.99), "max_us": q(1.0),
+        "peak_rss_kb": peak_rss_kb,
+    });
+    eprintln!("\nHOSTILE_PEERS {line}");
+}
 const HEARTBEAT: &str = r#"{"DeviceID":"lm","ShotNumber":0,"APIversion":"1","ShotDataOptions":{"IsHeartBeat":true}}"#;
 
 struct Daemon {
@@ -157,7 +172,7 @@ impl Rig {
         let (launches, s1) = common::collect::<LaunchPrediction>(&session, &keys::launch("bay1"));
         let (statuses, s2) = common::collect::<StatusMessage>(&session, &keys::status("bay1"));
         let sim = Command::new(env!("CARGO_BIN_EXE_impactd"))
-            .args(["sim", "--rig", "bay1", "--shots", &shots.to_string(), "--interval", "0.5"])
+            .args(["sim", "--rig", "bay1", "--shots", &shots.to_string(), "--interval", "0.2"])
             .args(["-e", &d.zenoh, "--no-multicast-scouting"])
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -190,7 +205,7 @@ async fn open_connect_probes_are_answered_bounded_and_counted() {
     let d = Daemon::start_recording(None, Some(&recording));
     let started = Instant::now();
     let rss0 = d.rss_kb();
-    let rig = Rig::start(&d, 6).await;
+    let rig = Rig::start(&d, 30).await;
     let oc = d.open_connect.clone();
     let probes = tokio::task::spawn_blocking(move || {
         // 10 MB of `{`: answered at the cap, not never.
@@ -262,8 +277,9 @@ async fn open_connect_probes_are_answered_bounded_and_counted() {
     };
     common::wait_until(Duration::from_secs(3), || counted(&rig.last_status())).await;
     let status = rig.last_status();
-    let latencies = rig.finish(6).await;
-    eprintln!("RSS {rss0} kB at start, peak {peak} kB; honest rig latencies {latencies:?} us");
+    let latencies = rig.finish(30).await;
+    eprintln!("RSS {rss0} kB at start, peak {peak} kB");
+    report_latency("open_connect", &latencies, peak);
     assert!(peak < RSS_LIMIT_KB, "peak RSS {peak} kB");
     let lm = status.and_then(|s| s.launch_monitor).expect("the status carries the listener's counts");
     for kind in kinds {
@@ -290,14 +306,19 @@ async fn under_the_descriptor_limit_an_idle_crowd_starves_nothing() {
     let crowd = tokio::task::spawn_blocking(move || {
         let idle: Vec<TcpStream> = (0..1100).filter_map(|_| TcpStream::connect(&oc).ok()).collect();
         let (reply, took) = honest_shot(&oc, 7, Duration::from_secs(2));
-        (idle.len(), reply, took)
+        (idle, reply, took)
     });
-    let (idle, reply, took) = crowd.await.unwrap();
+    // The crowd stays connected while the rig swings.
+    let (crowd, reply, took) = crowd.await.unwrap();
+    let idle = crowd.len();
     assert!(reply.contains("200"), "honest shot behind {idle} idle connections: {reply:?}");
     assert!(took < Duration::from_secs(2), "answered in {took:?}");
-    let rig = Rig::start(&d, 2).await;
-    rig.finish(2).await;
-    assert!(d.rss_kb() < RSS_LIMIT_KB);
+    let rig = Rig::start(&d, 10).await;
+    let latencies = rig.finish(10).await;
+    let rss = d.rss_kb();
+    report_latency("descriptor_limit", &latencies, rss);
+    drop(crowd);
+    assert!(rss < RSS_LIMIT_KB);
     assert!(d.stop().success());
 }
 
@@ -346,7 +367,7 @@ asyncio.run(main(sys.argv[1]))
 #[tokio::test(flavor = "multi_thread")]
 async fn foxglove_probes_are_refused_bounded_and_counted() {
     let d = Daemon::start(None);
-    let rig = Rig::start(&d, 4).await;
+    let rig = Rig::start(&d, 20).await;
     let client = common::python()
         .arg("-c")
         .arg(FOXGLOVE_CLIENT)
@@ -380,6 +401,19 @@ async fn foxglove_probes_are_refused_bounded_and_counted() {
     for kind in kinds {
         assert!(view.rejected.get(kind).copied().unwrap_or(0) > 0, "no {kind} in {:?}", view.rejected);
     }
-    rig.finish(4).await;
+    let latencies = rig.finish(20).await;
+    report_latency("foxglove", &latencies, peak);
+    assert!(d.stop().success());
+}
+
+/// The same daemon and rig with no hostile peer: the reference the cases' latencies are compared with.
+#[tokio::test(flavor = "multi_thread")]
+async fn quiet_reference() {
+    let d = Daemon::start(None);
+    let rig = Rig::start(&d, 30).await;
+    let latencies = rig.finish(30).await;
+    let rss = d.rss_kb();
+    report_latency("quiet", &latencies, rss);
+    assert!(rss < RSS_LIMIT_KB);
     assert!(d.stop().success());
 }

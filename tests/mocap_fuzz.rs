@@ -116,6 +116,7 @@ proptest! {
         let (_, payload) = natnet::split(&bytes).unwrap();
         let m = natnet::decode_model_def(payload, VERSIONS[v]).unwrap();
         prop_assert_eq!(m.rigid_bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(), names);
+        prop_assert!(m.complete, "force plate, device and camera walked in every version");
         for (i, b) in edits {
             let len = bytes.len();
             bytes[i % len] = b;

@@ -30,11 +30,15 @@ c.set_client_address("127.0.0.1"); c.set_server_address("127.0.0.1"); c.set_use_
 c.multicast_address = "255.255.255.255"   # unicast: no group joined
 c.command_port = port
 c.set_print_level(0)
-models, frames = [], []
+models, others, frames = [], [], []
 dd = c._NatNetClient__unpack_data_descriptions
 def on_dd(*a):
     r = dd(*a)
-    models.append([(rb.sz_name.decode() if isinstance(rb.sz_name, bytes) else rb.sz_name, rb.id_num) for rb in r[1].rigid_body_list])
+    s = lambda v: v.decode() if isinstance(v, bytes) else v
+    d = r[1]
+    models.append([(s(rb.sz_name), rb.id_num) for rb in d.rigid_body_list])
+    others.append(dict(plates=[s(p.serial_number) for p in d.force_plate_list],
+        devices=[s(x.name) for x in d.device_list], cameras=[s(x.name) for x in d.camera_list]))
     return r
 c._NatNetClient__unpack_data_descriptions = on_dd
 md = c._NatNetClient__unpack_mocap_data
@@ -53,7 +57,7 @@ end = time.time() + 10
 while (len(frames) < want or not models) and time.time() < end:
     time.sleep(0.05)
 print("RESULT " + json.dumps(dict(app=c.get_application_name(), natnet=list(c.get_nat_net_version_server()),
-    server=list(c.get_server_version()), models=models, frames=frames)), flush=True)
+    server=list(c.get_server_version()), models=models, others=others, frames=frames)), flush=True)
 import os
 os._exit(0)   # the SDK's shutdown() waits forever on its unicast data socket, which nothing is sent to
 "#;
@@ -77,12 +81,19 @@ fn frame_of(s: &ClubheadSample, other_id: i32) -> Frame {
     }
 }
 
-/// The test server is what OptiTrack's client expects, in NatNet 3.1 and 4.1: the server info, the model
-/// (body names and ids) and every frame's bodies (ids, f32 positions and quaternions, tracking flag), frame
-/// number, timestamp and mid-exposure stamp decode to what was sent.
+/// The test server is what OptiTrack's client expects, in NatNet 3.1, 4.0 and 4.1: the server info, the model
+/// (body names and ids, with a force plate, a device and a camera described between the bodies) and every
+/// frame's bodies (ids, f32 positions and quaternions, tracking flag), frame number, timestamp and mid-exposure
+/// stamp decode to what was sent; impactd's own decoder reads the same model definition to its last body.
 #[test]
 fn optitracks_python_client_reads_the_test_server() {
-    for version in [Version::V3_1, Version::V4_1] {
+    for version in [Version::V3_1, Version::V4_0, Version::V4_1] {
+        let model = impactd::mocap::natnet_encode::model_def(version, &[(7, "wand"), (3, "club")]).unwrap();
+        let (_, payload) = impactd::mocap::natnet::split(&model).unwrap();
+        let ours = impactd::mocap::natnet::decode_model_def(payload, version).unwrap();
+        assert!(ours.complete, "{version}: every data set walked");
+        let names: Vec<(&str, i32)> = ours.rigid_bodies.iter().map(|b| (b.name.as_str(), b.id)).collect();
+        assert_eq!(names, [("wand", 7), ("club", 3)], "{version}");
         let server = NatNetServer::start(version, &[(7, "wand"), (3, "club")]);
         let child = python()
             .args(["-c", CHECK, &server.port.to_string(), "20"])
@@ -114,6 +125,8 @@ fn optitracks_python_client_reads_the_test_server() {
         assert_eq!(r["natnet"], serde_json::json!([version.major, version.minor, 0, 0]));
         assert_eq!(r["server"], serde_json::json!([3, 1, 0, 0]));
         assert_eq!(r["models"][0], serde_json::json!([["wand", 7], ["club", 3]]), "{version}");
+        let others = serde_json::json!({"plates": ["FP-0001"], "devices": ["NI-DAQ"], "cameras": ["Prime 41 #1"]});
+        assert_eq!(r["others"][0], others, "{version}: the force plate, device and camera as natnetsdk reads them");
         let frames = r["frames"].as_array().unwrap();
         assert_eq!(frames.len(), sent.len(), "{version}: every frame decoded");
         for (got, f) in frames.iter().zip(&sent) {

@@ -5,6 +5,7 @@
 
 pub mod bytes;
 pub mod natnet;
+pub mod natnet_descriptions;
 pub mod natnet_encode;
 pub mod qtm;
 pub mod qtm_encode;

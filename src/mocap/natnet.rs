@@ -24,6 +24,7 @@
 //! Bounded allocation: nothing is reserved from a count; a body is pushed only after its bytes were read.
 
 use super::bytes::{Reader, Truncated};
+use super::natnet_descriptions::{self as descriptions, DescriptionError};
 
 pub const NAT_CONNECT: u16 = 0;
 pub const NAT_SERVERINFO: u16 = 1;
@@ -89,6 +90,15 @@ pub enum NatNetError {
     NegativeCount { what: &'static str, count: i32 },
     #[error("{what}: byte size {size} does not fit {count} items of at least {min} bytes")]
     BadSize { what: &'static str, size: i32, count: i32, min: usize },
+}
+
+impl From<DescriptionError> for NatNetError {
+    fn from(e: DescriptionError) -> Self {
+        match e {
+            DescriptionError::Truncated(t) => NatNetError::Truncated(t),
+            DescriptionError::NegativeCount { what, count } => NatNetError::NegativeCount { what, count },
+        }
+    }
 }
 
 impl NatNetError {
@@ -161,7 +171,8 @@ pub struct RigidBodyDef {
 }
 
 /// `NAT_MODELDEF`: the rigid bodies it names. `complete` is false when a data set of a kind this decoder does
-/// not read came before the end in a layout without byte sizes (NatNet 3.x, 4.0): the bodies before it are kept.
+/// not know (beyond the seven of NatNet 4.x) came before the end in a layout without byte sizes (NatNet 3.x,
+/// 4.0): the bodies before it are kept.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ModelDef {
     pub rigid_bodies: Vec<RigidBodyDef>,
@@ -226,6 +237,10 @@ pub fn decode_model_def(payload: &[u8], version: Version) -> Result<ModelDef, Na
                     rigid_body_description(&mut r, version)?;
                 }
             }
+            3 => descriptions::skip_force_plate(&mut r)?,
+            4 => descriptions::skip_device(&mut r)?,
+            5 => descriptions::skip_camera(&mut r)?,
+            6 => descriptions::skip_asset(&mut r, |r| rigid_body_description(r, version).map(drop))?,
             _ => return Ok(out),
         }
     }

@@ -60,11 +60,14 @@ pub fn server_info(info: &ServerInfo) -> Vec<u8> {
     packet(NAT_SERVERINFO, &p).unwrap_or_default()
 }
 
-/// `NAT_MODELDEF` with one marker set (named after the first body, three markers) and the rigid bodies
-/// `(id, name)`, each with no markers of its own.
+/// `NAT_MODELDEF` as a capture volume with a force plate describes itself: one marker set (named after the
+/// first body, three markers), the first rigid body, a force plate, a device and a camera, then the other rigid
+/// bodies `(id, name)`, each with no markers of its own. A reader of NatNet 3.x or 4.0 (no byte sizes) must walk
+/// the plate, the device and the camera to reach the bodies after them.
 pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
     let mut p = Vec::new();
-    p.put_i32(bodies.len() as i32 + 1);
+    let others = if bodies.is_empty() { 0 } else { 3 };
+    p.put_i32(bodies.len() as i32 + 1 + others);
     let set_name = bodies.first().map_or("all", |b| b.1);
     dataset(&mut p, version, 0, |d| {
         d.put_cstr(set_name);
@@ -73,7 +76,7 @@ pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
             d.put_cstr(m);
         }
     });
-    for &(id, name) in bodies {
+    for (i, &(id, name)) in bodies.iter().enumerate() {
         dataset(&mut p, version, 1, |d| {
             d.put_cstr(name);
             d.put_i32(id);
@@ -83,8 +86,61 @@ pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
             }
             d.put_i32(0);
         });
+        if i == 0 {
+            dataset(&mut p, version, 3, force_plate);
+            dataset(&mut p, version, 4, device);
+            dataset(&mut p, version, 5, camera);
+        }
     }
     packet(NAT_MODELDEF, &p)
+}
+
+/// A force plate description: id 1, serial `FP-0001`, 0.6 x 0.4 m, an identity calibration matrix, six channels.
+fn force_plate(d: &mut Vec<u8>) {
+    d.put_i32(1);
+    d.put_cstr("FP-0001");
+    d.put_f32(0.6);
+    d.put_f32(0.4);
+    for v in [0.0, 0.0, -0.04] {
+        d.put_f32(v);
+    }
+    for row in 0..12 {
+        for col in 0..12 {
+            d.put_f32(if row == col { 1.0 } else { 0.0 });
+        }
+    }
+    for corner in [[0.3, 0.2, 0.0], [-0.3, 0.2, 0.0], [-0.3, -0.2, 0.0], [0.3, -0.2, 0.0]] {
+        for v in corner {
+            d.put_f32(v);
+        }
+    }
+    d.put_i32(2);
+    d.put_i32(0);
+    let channels = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
+    d.put_i32(channels.len() as i32);
+    for c in channels {
+        d.put_cstr(c);
+    }
+}
+
+/// A device description (an analog board): id 2, two channels.
+fn device(d: &mut Vec<u8>) {
+    d.put_i32(2);
+    d.put_cstr("NI-DAQ");
+    d.put_cstr("DAQ-0002");
+    d.put_i32(1);
+    d.put_i32(0);
+    d.put_i32(2);
+    d.put_cstr("trigger");
+    d.put_cstr("sync");
+}
+
+/// A camera description: name, position, orientation (x y z w).
+fn camera(d: &mut Vec<u8>) {
+    d.put_cstr("Prime 41 #1");
+    for v in [2.0, 2.5, 3.0, 0.0, 0.0, 0.0, 1.0] {
+        d.put_f32(v);
+    }
 }
 
 fn dataset(p: &mut Vec<u8>, version: Version, kind: i32, body: impl FnOnce(&mut Vec<u8>)) {

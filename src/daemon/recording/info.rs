@@ -8,8 +8,8 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::{Duration, UNIX_EPOCH};
 
+use crate::daemon::recording::reader::OnDamage;
 use crate::daemon::recording::recover::RECOVERED_METADATA;
-use crate::daemon::replay::{is_mcap, read_file};
 use crate::daemon::DaemonError;
 
 /// A description of a recording for `impactd info`, and whether it could be read whole.
@@ -22,18 +22,10 @@ pub struct Info {
 
 /// Describes a recording: dates, channels, counts and rates, shots, metadata, and anything it could not read.
 pub fn info(path: &Path) -> Result<Info, DaemonError> {
-    let bytes = read_file(path)?;
-    if !is_mcap(&bytes) {
-        return Err(DaemonError::NotMcap { path: path.display().to_string() });
-    }
-    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
     let mut counts: BTreeMap<String, (String, u64)> = BTreeMap::new();
-    let (mut first, mut last) = (u64::MAX, 0u64);
     let mut shots: BTreeMap<String, u64> = BTreeMap::new();
-    for m in &scan.messages {
-        first = first.min(m.log_time);
-        last = last.max(m.log_time);
-        let (topic, schema) = match scan.channels.get(&m.channel_id) {
+    let scan = crate::daemon::recording::stream::read_messages(path, OnDamage::Stop, |scan, channel, m| {
+        let (topic, schema) = match channel {
             Some(c) => (c.topic.clone(), scan.schemas.get(&c.schema_id).map(|s| s.name.clone()).unwrap_or_default()),
             None => (format!("(unknown channel {})", m.channel_id), String::new()),
         };
@@ -41,7 +33,8 @@ pub fn info(path: &Path) -> Result<Info, DaemonError> {
             *shots.entry(rig.to_string()).or_default() += 1;
         }
         counts.entry(topic).or_insert((schema, 0)).1 += 1;
-    }
+    })?;
+    let (first, last) = (scan.first_log_time_ns.unwrap_or(u64::MAX), scan.last_log_time_ns.unwrap_or(0));
     let mut metadata = Vec::new();
     let mut recovered = None;
     for (name, m) in &scan.metadata {
@@ -54,7 +47,7 @@ pub fn info(path: &Path) -> Result<Info, DaemonError> {
     }
     let total: u64 = counts.values().map(|c| c.1).sum();
     let duration_ns = last.saturating_sub(first);
-    let mut out = format!("file:        {} ({})\n", path.display(), human_bytes(bytes.len() as u64));
+    let mut out = format!("file:        {} ({})\n", path.display(), human_bytes(scan.file_bytes));
     out += &format!(
         "complete:    {}\n",
         if scan.intact() {

@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use super::reader::OnDamage;
+use super::stream::read_messages;
 use crate::daemon::DaemonError;
 use crate::wire::{keys, LaunchPrediction};
 
@@ -22,15 +24,11 @@ pub struct RecordedLaunches {
 
 /// Reads the launches of `path`; with `model`, only that model's (an error when the recording has none of it).
 pub fn read(path: &Path, model: Option<&str>) -> Result<RecordedLaunches, DaemonError> {
-    let bytes = crate::daemon::replay::read_file(path)?;
-    if !crate::daemon::replay::is_mcap(&bytes) {
-        return Err(DaemonError::BadOption { option: "FILE", reason: "not an MCAP recording" });
-    }
-    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
-    let mut out = RecordedLaunches { damage: scan.problems(), ..Default::default() };
+    let mut out = RecordedLaunches::default();
     let mut seen = std::collections::HashSet::new();
-    for m in &scan.messages {
-        let Some(channel) = scan.channels.get(&m.channel_id) else { continue };
+    let mut damage = Vec::new();
+    let scan = read_messages(path, OnDamage::Stop, |_, channel, m| {
+        let Some(channel) = channel else { return };
         if let Some(rig) = keys::rig_of_golf(channel.topic.trim_start_matches('/'), "exclude") {
             match crate::wire::ShotExclusion::parse(&m.data) {
                 Ok(x) if x.excluded => {
@@ -39,30 +37,32 @@ pub fn read(path: &Path, model: Option<&str>) -> Result<RecordedLaunches, Daemon
                 Ok(x) => {
                     out.excluded.remove(&(rig.to_string(), x.shot));
                 }
-                Err(e) => out.damage.push(format!("an exclusion at log time {} does not parse: {e}", m.log_time)),
+                Err(e) => damage.push(format!("an exclusion at log time {} does not parse: {e}", m.log_time)),
             }
-            continue;
+            return;
         }
         if keys::rig_of_launch(channel.topic.trim_start_matches('/')).is_none() {
-            continue;
+            return;
         }
         let p = match serde_json::from_slice::<LaunchPrediction>(&m.data) {
             Ok(p) => p,
             Err(e) => {
-                out.damage.push(format!("a prediction at log time {} does not parse: {e}", m.log_time));
-                continue;
+                damage.push(format!("a prediction at log time {} does not parse: {e}", m.log_time));
+                return;
             }
         };
         if !out.models.contains(&p.model) {
             out.models.push(p.model.clone());
         }
         if model.is_some_and(|name| name != p.model) {
-            continue;
+            return;
         }
         if seen.insert((p.rig.clone(), p.shot)) {
             out.launches.push(p);
         }
-    }
+    })?;
+    out.damage = scan.problems();
+    out.damage.extend(damage);
     if let Some(name) = model {
         if out.launches.is_empty() && !out.models.is_empty() {
             return Err(DaemonError::Config {

@@ -10,4 +10,6 @@ pub mod record;
 mod records;
 pub mod recover;
 pub mod shots;
+pub mod source;
+pub mod stream;
 pub mod writer;

@@ -13,6 +13,8 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::source::{Source, MAX_RECORD_BYTES};
+
 pub use crate::daemon::recording::records::MAX_CHUNK_BYTES;
 use crate::daemon::recording::records::{op, parse, unpack, Rec};
 pub use crate::daemon::recording::records::{ChannelDef, RawMessage, SchemaDef};
@@ -47,8 +49,19 @@ pub struct ChunkSpan {
 pub struct Scan {
     pub schemas: HashMap<u16, SchemaDef>,
     pub channels: HashMap<u16, ChannelDef>,
-    /// Messages in file order.
+    /// Messages in file order ([`scan`] keeps them; [`scan_source`] hands them to its visitor instead).
     pub messages: Vec<RawMessage>,
+    /// Messages read.
+    pub message_count: u64,
+    /// The size of the file read.
+    pub file_bytes: u64,
+    /// The earliest and the latest log time of the messages read.
+    pub first_log_time_ns: Option<u64>,
+    pub last_log_time_ns: Option<u64>,
+    /// The log time of the last message read, in file order.
+    pub last_message_ns: Option<u64>,
+    /// Per entry of `damage`: the log times of the messages read just before and just after it.
+    pub damage_neighbours_ns: Vec<(Option<u64>, Option<u64>)>,
     pub metadata: Vec<(String, BTreeMap<String, String>)>,
     /// Messages per channel the summary's statistics record counts (when the summary was read).
     pub statistics: Option<BTreeMap<u16, u64>>,
@@ -91,7 +104,28 @@ pub enum OnDamage {
 }
 
 /// The (opcode, body, next offset) of the record at `pos`, if its length fits the file.
-fn frame(bytes: &[u8], pos: usize) -> Result<(u8, &[u8], usize), String> {
+fn frame<S: Source>(src: &mut S, pos: u64) -> Result<(u8, &[u8], u64), String> {
+    let left = src.size_bytes() - pos;
+    if left < 9 {
+        return Err(format!("cut off inside a record header ({left} bytes left)"));
+    }
+    let header = src.get(pos, 9).map_err(|e| format!("unreadable: {e}"))?;
+    let opcode = header[0];
+    let mut len = [0u8; 8];
+    len.copy_from_slice(&header[1..9]);
+    let len = u64::from_le_bytes(len);
+    if len > left - 9 {
+        return Err(format!("record 0x{opcode:02x} claims {len} bytes; {} are left", left - 9));
+    }
+    if len > MAX_RECORD_BYTES {
+        return Err(format!("record 0x{opcode:02x} claims {len} bytes, more than any record impactd reads"));
+    }
+    let body = src.get(pos + 9, len as usize).map_err(|e| format!("unreadable: {e}"))?;
+    Ok((opcode, body, pos + 9 + len))
+}
+
+/// [`frame`] inside a chunk's records, in memory.
+fn frame_in(bytes: &[u8], pos: usize) -> Result<(u8, &[u8], usize), String> {
     let left = bytes.len() - pos;
     if left < 9 {
         return Err(format!("cut off inside a record header ({left} bytes left)"));
@@ -108,7 +142,7 @@ fn frame(bytes: &[u8], pos: usize) -> Result<(u8, &[u8], usize), String> {
 }
 
 /// Whether a valid record starts at `pos` (a chunk only when it unpacks and its CRC matches).
-fn valid_at(bytes: &[u8], pos: usize) -> bool {
+fn valid_at<S: Source>(src: &mut S, pos: u64) -> bool {
     const STARTS: [u8; 9] = [
         op::CHUNK,
         op::METADATA,
@@ -120,10 +154,10 @@ fn valid_at(bytes: &[u8], pos: usize) -> bool {
         op::METADATA_INDEX,
         op::SUMMARY_OFFSET,
     ];
-    if !STARTS.contains(&bytes[pos]) {
+    if !src.get(pos, 1).is_ok_and(|b| STARTS.contains(&b[0])) {
         return false;
     }
-    let Ok((opcode, body, _)) = frame(bytes, pos) else { return false };
+    let Ok((opcode, body, _)) = frame(src, pos) else { return false };
     match parse(opcode, body) {
         Ok(Rec::Chunk(c)) => unpack(&c).is_ok(),
         Ok(_) => true,
@@ -131,24 +165,90 @@ fn valid_at(bytes: &[u8], pos: usize) -> bool {
     }
 }
 
-/// Reads everything readable from `bytes` (a whole MCAP file).
+/// Reads everything readable from `bytes` (a whole MCAP file in memory), keeping every message in file order.
 pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
-    let mut s = Scan::default();
-    if !bytes.starts_with(MAGIC) {
+    let mut messages = Vec::new();
+    let mut s = scan_source(&mut { bytes }, on_damage, &mut |_, m| messages.push(m));
+    s.messages = messages;
+    s
+}
+
+/// The CRCs a scan keeps as it goes: the data section's up to the current record, and the bytes after the data
+/// end (the summary section, which the footer's CRC covers) while they stay small.
+#[derive(Default)]
+struct Crcs {
+    data: crc32fast::Hasher,
+    /// Where the data end record starts, once it was read; the bytes from there are kept in `summary`.
+    data_end_at: Option<u64>,
+    summary: Vec<u8>,
+    summary_too_big: bool,
+}
+
+/// Summary sections up to this size have their CRC checked.
+const MAX_CHECKED_SUMMARY_BYTES: usize = 64 << 20;
+
+impl Crcs {
+    /// Feeds the bytes `[from, to)` of `src`, a bounded piece at a time.
+    fn feed<S: Source>(&mut self, src: &mut S, from: u64, to: u64) {
+        let mut at = from;
+        while at < to {
+            let n = (to - at).min(1 << 20) as usize;
+            let Ok(piece) = src.get(at, n) else { return };
+            if self.data_end_at.is_none() {
+                self.data.update(piece);
+            } else if !self.summary_too_big {
+                if self.summary.len() + piece.len() > MAX_CHECKED_SUMMARY_BYTES {
+                    self.summary_too_big = true;
+                    self.summary = Vec::new();
+                } else {
+                    self.summary.extend_from_slice(piece);
+                }
+            }
+            at += n as u64;
+        }
+    }
+}
+
+/// Reads everything readable from `src`, handing each message to `visit` in file order with the scan so far
+/// (its channels and schemas as read up to that message); the returned scan keeps no messages.
+pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn FnMut(&Scan, RawMessage)) -> Scan {
+    let len = src.size_bytes();
+    let mut s = Scan { file_bytes: len, ..Scan::default() };
+    let magic_ok = src.get(0, MAGIC.len()).is_ok_and(|b| b == MAGIC);
+    if !magic_ok {
         // A damaged magic costs nothing more when the records behind it are found.
-        if on_damage == OnDamage::Stop || bytes.len() <= MAGIC.len() {
+        if on_damage == OnDamage::Stop || len <= MAGIC.len() as u64 {
             s.stopped = Some("not an MCAP file (no magic)".into());
             return s;
         }
         let reason = "the opening magic is damaged".to_string();
         s.damage.push(Damage { offset: 0, bytes: MAGIC.len() as u64, time_range_ns: None, after_message: 0, reason });
     }
-    let mut pos = MAGIC.len();
-    while pos < bytes.len() {
-        let damaged = match frame(bytes, pos) {
+    let mut crcs = Crcs::default();
+    crcs.feed(src, 0, MAGIC.len() as u64);
+    let mut pos = MAGIC.len() as u64;
+    while pos < len {
+        let damaged = match frame(src, pos) {
             Ok((opcode, body, next)) => match parse(opcode, body) {
                 Ok(rec) => {
-                    if s.take(rec, pos, next, bytes) {
+                    if let Rec::DataEnd { .. } = rec {
+                        crcs.data_end_at = Some(pos);
+                    }
+                    let footer = s.take(rec, pos, next, &crcs, visit);
+                    crcs.feed(src, pos, next);
+                    if footer {
+                        let magic =
+                            len - next == MAGIC.len() as u64 && src.get(next, MAGIC.len()).is_ok_and(|b| b == MAGIC);
+                        s.finished = magic;
+                        if !magic {
+                            s.damage.push(Damage {
+                                offset: next,
+                                bytes: len - next,
+                                time_range_ns: None,
+                                after_message: s.message_count as usize,
+                                reason: "the footer is not followed by the closing magic".into(),
+                            });
+                        }
                         break;
                     }
                     pos = next;
@@ -158,12 +258,13 @@ pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
                     // The length is intact as far as anyone can tell: step over the record.
                     let reason = format!("record 0x{opcode:02x}: {e}");
                     s.damage.push(Damage {
-                        offset: pos as u64,
-                        bytes: (next - pos) as u64,
+                        offset: pos,
+                        bytes: next - pos,
                         time_range_ns: None,
-                        after_message: s.messages.len(),
+                        after_message: s.message_count as usize,
                         reason,
                     });
+                    crcs.feed(src, pos, next);
                     pos = next;
                     continue;
                 }
@@ -175,26 +276,24 @@ pub fn scan(bytes: &[u8], on_damage: OnDamage) -> Scan {
             s.stopped = Some(format!("at byte {pos}: {damaged}"));
             return s;
         }
-        let next = (pos + 1..bytes.len()).find(|&p| valid_at(bytes, p)).unwrap_or(bytes.len());
-        let after_message = s.messages.len();
-        s.damage.push(Damage {
-            offset: pos as u64,
-            bytes: (next - pos) as u64,
-            time_range_ns: None,
-            after_message,
-            reason: damaged,
-        });
+        let next = (pos + 1..len).find(|&p| valid_at(src, p)).unwrap_or(len);
+        let after_message = s.message_count as usize;
+        s.damage.push(Damage { offset: pos, bytes: next - pos, time_range_ns: None, after_message, reason: damaged });
+        crcs.feed(src, pos, next);
         pos = next;
     }
-    if !bytes.starts_with(MAGIC) && s.chunks.is_empty() && s.messages.is_empty() {
+    if !magic_ok && s.chunks.is_empty() && s.message_count == 0 {
         s.stopped = Some("not an MCAP file (no magic, no readable record)".into());
+    }
+    while s.damage_neighbours_ns.len() < s.damage.len() {
+        s.damage_neighbours_ns.push((s.last_message_ns, None));
     }
     s
 }
 
 impl Scan {
-    /// Takes one record; true when the file ends here (footer and magic).
-    fn take(&mut self, rec: Rec, pos: usize, next: usize, bytes: &[u8]) -> bool {
+    /// Takes one record at `pos..next` (0..0 inside a chunk); true when it is the footer.
+    fn take(&mut self, rec: Rec, pos: u64, next: u64, crcs: &Crcs, visit: &mut dyn FnMut(&Scan, RawMessage)) -> bool {
         match rec {
             Rec::Schema(id, d) => {
                 self.schemas.entry(id).or_insert(d);
@@ -202,18 +301,27 @@ impl Scan {
             Rec::Channel(id, d) => {
                 self.channels.entry(id).or_insert(d);
             }
-            Rec::Message(m) => self.messages.push(m),
+            Rec::Message(m) => {
+                self.message_count += 1;
+                self.first_log_time_ns = Some(self.first_log_time_ns.map_or(m.log_time, |t| t.min(m.log_time)));
+                self.last_log_time_ns = Some(self.last_log_time_ns.map_or(m.log_time, |t| t.max(m.log_time)));
+                while self.damage_neighbours_ns.len() < self.damage.len() {
+                    self.damage_neighbours_ns.push((self.last_message_ns, Some(m.log_time)));
+                }
+                self.last_message_ns = Some(m.log_time);
+                visit(self, m);
+            }
             Rec::Metadata(name, m) => self.metadata.push((name, m)),
             Rec::Statistics(counts) => self.statistics = Some(counts),
             Rec::DataEnd { crc } => {
                 // 0: the writer computed none. Covers everything before the record, the opening magic included.
-                let actual = crc32fast::hash(&bytes[..pos.min(bytes.len())]);
-                if crc != 0 && !bytes.is_empty() && actual != crc {
+                let actual = crcs.data.clone().finalize();
+                if crc != 0 && actual != crc {
                     self.damage.push(Damage {
                         offset: 0,
-                        bytes: pos as u64,
+                        bytes: pos,
                         time_range_ns: None,
-                        after_message: self.messages.len(),
+                        after_message: self.message_count as usize,
                         reason: format!(
                             "the data section's CRC is {actual:08x}, its DataEnd record says {crc:08x}: a record in \
                              it (a message, the metadata, the recorded configuration) changed after it was written"
@@ -221,19 +329,31 @@ impl Scan {
                     });
                 }
             }
-            Rec::Footer { summary_start, summary_crc } => {
+            Rec::Footer { summary_start, summary_offset_start, summary_crc } => {
                 // The summary CRC covers the summary section (or nothing) through the footer's two offsets.
-                let start = if summary_start == 0 { pos as u64 } else { summary_start };
-                let end = pos + 1 + 8 + 16;
-                if summary_crc != 0 && !bytes.is_empty() {
-                    let covered = usize::try_from(start).ok().filter(|s| *s <= pos && end <= bytes.len());
-                    let actual = covered.map(|s| crc32fast::hash(&bytes[s..end]));
-                    if actual != Some(summary_crc) {
+                let start = if summary_start == 0 { pos } else { summary_start };
+                if summary_crc != 0 {
+                    let mut footer = vec![op::FOOTER];
+                    footer.extend_from_slice(&(8u64 + 8 + 4).to_le_bytes());
+                    footer.extend_from_slice(&summary_start.to_le_bytes());
+                    footer.extend_from_slice(&summary_offset_start.to_le_bytes());
+                    let summary = crcs.data_end_at.and_then(|at| {
+                        let from = usize::try_from(start.checked_sub(at)?).ok()?;
+                        (!crcs.summary_too_big && start <= pos).then(|| crcs.summary.get(from..)).flatten()
+                    });
+                    let actual = summary.map(|bytes| {
+                        let mut h = crc32fast::Hasher::new();
+                        h.update(bytes);
+                        h.update(&footer);
+                        h.finalize()
+                    });
+                    let unchecked = crcs.summary_too_big && start >= crcs.data_end_at.unwrap_or(u64::MAX);
+                    if actual != Some(summary_crc) && !unchecked {
                         self.damage.push(Damage {
                             offset: start,
-                            bytes: (end as u64).saturating_sub(start),
+                            bytes: (pos + 1 + 8 + 16).saturating_sub(start),
                             time_range_ns: None,
-                            after_message: self.messages.len(),
+                            after_message: self.message_count as usize,
                             reason: format!(
                                 "the summary's CRC does not match its footer ({summary_crc:08x}): the summary, \
                                  its statistics or indexes changed after they were written"
@@ -241,45 +361,37 @@ impl Scan {
                         });
                     }
                 }
-                self.finished = &bytes[next..] == MAGIC;
-                if !self.finished {
-                    self.damage.push(Damage {
-                        offset: next as u64,
-                        bytes: (bytes.len() - next) as u64,
-                        time_range_ns: None,
-                        after_message: self.messages.len(),
-                        reason: "the footer is not followed by the closing magic".into(),
-                    });
-                }
                 return true;
             }
             Rec::Other => {}
-            Rec::Chunk(c) => {
-                let span = (pos as u64, (next - pos) as u64);
-                match unpack(&c).and_then(|records| self.chunk_records(&records)) {
-                    Ok(messages) => {
-                        self.chunks.push(ChunkSpan { offset: span.0, bytes: span.1, messages });
-                        *self.compression.entry(c.compression.clone()).or_default() += 1;
-                    }
-                    Err(reason) => self.damage.push(Damage {
-                        offset: span.0,
-                        bytes: span.1,
-                        time_range_ns: Some((c.start_ns, c.end_ns)),
-                        after_message: self.messages.len(),
-                        reason,
-                    }),
+            Rec::Chunk(c) => match unpack(&c).and_then(|records| self.chunk_records(&records, crcs, visit)) {
+                Ok(messages) => {
+                    self.chunks.push(ChunkSpan { offset: pos, bytes: next - pos, messages });
+                    *self.compression.entry(c.compression.clone()).or_default() += 1;
                 }
-            }
+                Err(reason) => self.damage.push(Damage {
+                    offset: pos,
+                    bytes: next - pos,
+                    time_range_ns: Some((c.start_ns, c.end_ns)),
+                    after_message: self.message_count as usize,
+                    reason,
+                }),
+            },
         }
         false
     }
 
     /// The records of an unpacked chunk: all of them or none.
-    fn chunk_records(&mut self, records: &[u8]) -> Result<u64, String> {
+    fn chunk_records(
+        &mut self,
+        records: &[u8],
+        crcs: &Crcs,
+        visit: &mut dyn FnMut(&Scan, RawMessage),
+    ) -> Result<u64, String> {
         let mut pos = 0;
         let mut recs = Vec::new();
         while pos < records.len() {
-            let (opcode, body, next) = frame(records, pos).map_err(|e| format!("inside a chunk: {e}"))?;
+            let (opcode, body, next) = frame_in(records, pos).map_err(|e| format!("inside a chunk: {e}"))?;
             recs.push(parse(opcode, body).map_err(|e| format!("inside a chunk, record 0x{opcode:02x}: {e}"))?);
             pos = next;
         }
@@ -288,7 +400,7 @@ impl Scan {
         }
         let messages = recs.iter().filter(|r| matches!(r, Rec::Message(_))).count() as u64;
         for rec in recs {
-            self.take(rec, 0, 0, &[]);
+            self.take(rec, 0, 0, crcs, visit);
         }
         Ok(messages)
     }

@@ -134,6 +134,7 @@ pub(super) enum Rec<'a> {
     /// The start of the summary section (0: none) and the CRC of the summary through the footer's offsets.
     Footer {
         summary_start: u64,
+        summary_offset_start: u64,
         summary_crc: u32,
     },
     /// The CRC of the data section (everything before this record).
@@ -162,8 +163,8 @@ pub(super) fn parse(opcode: u8, body: &[u8]) -> Parse<Rec<'_>> {
         }
         op::FOOTER => {
             let summary_start = c.u64()?;
-            c.u64()?;
-            Rec::Footer { summary_start, summary_crc: c.u32()? }
+            let summary_offset_start = c.u64()?;
+            Rec::Footer { summary_start, summary_offset_start, summary_crc: c.u32()? }
         }
         op::SCHEMA => {
             let id = c.u16()?;

@@ -10,7 +10,8 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use crate::daemon::recording::reader::{scan, OnDamage, Scan};
+use super::stream::read_opened;
+use crate::daemon::recording::reader::{ChannelDef, OnDamage, RawMessage, Scan};
 use crate::daemon::DaemonError;
 
 /// Messages of one channel: kept, and lost when the file says how many there were.
@@ -76,22 +77,23 @@ fn mcap_err(path: &Path, e: mcap::McapError) -> DaemonError {
 }
 
 /// The losses a scan found, with time ranges.
-fn losses(s: &Scan, file_bytes: u64) -> Vec<Loss> {
-    let time = |i: usize| s.messages.get(i).map(|m| m.log_time);
+fn losses(s: &Scan) -> Vec<Loss> {
+    let file_bytes = s.file_bytes;
     let mut out: Vec<Loss> = s
         .damage
         .iter()
-        .map(|d| {
+        .zip(&s.damage_neighbours_ns)
+        .map(|(d, &(before_ns, after_ns))| {
             let (from_ns, to_ns) = match d.time_range_ns {
                 Some((a, b)) if a <= b => (Some(a), Some(b)),
-                _ => (d.after_message.checked_sub(1).and_then(time), time(d.after_message)),
+                _ => (before_ns, after_ns),
             };
             Loss { offset: d.offset, bytes: d.bytes, from_ns, to_ns, reason: d.reason.clone() }
         })
         .collect();
     let damaged_to_the_end = s.damage.last().is_some_and(|d| d.offset + d.bytes >= file_bytes);
     if !s.finished && s.stopped.is_none() && !damaged_to_the_end {
-        let end_ns = s.messages.last().map(|m| m.log_time);
+        let end_ns = s.last_message_ns;
         out.push(Loss {
             offset: 0,
             bytes: 0,
@@ -109,10 +111,16 @@ pub const RECOVERED_METADATA: &str = "recovered";
 /// Copies every readable message and metadata record of `input` into a new, finished MCAP file at `output`.
 /// An existing `output` is replaced only with `overwrite`.
 pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered, DaemonError> {
-    let bytes = crate::daemon::replay::read_file(input)?;
-    let s = scan(&bytes, OnDamage::Resync);
-    if let Some(reason) = &s.stopped {
-        return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
+    // Nothing readable at all (not an MCAP file): refused before the output is created. Only a damaged magic
+    // makes this take a pass of its own.
+    // (A pipe is read into memory once, and only when it starts with the magic.)
+    let mut opened = super::source::Opened::open(input)?;
+    if !opened.is_mcap() {
+        let s = read_opened(opened, input, OnDamage::Resync, |_, _, _| {})?;
+        if let Some(reason) = &s.stopped {
+            return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
+        }
+        opened = super::source::Opened::open(input)?;
     }
     let file = super::writer::create_output(output, overwrite)?;
     let mut w = mcap::WriteOptions::new()
@@ -120,53 +128,29 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         .profile("")
         .create(std::io::BufWriter::new(file))
         .map_err(|e| mcap_err(output, e))?;
-    for (name, metadata) in &s.metadata {
-        w.write_metadata(&mcap::records::Metadata { name: name.clone(), metadata: metadata.clone() })
-            .map_err(|e| mcap_err(output, e))?;
-    }
     let mut schema_ids: HashMap<u16, u16> = HashMap::new();
     let mut channel_ids: HashMap<u16, u16> = HashMap::new();
     let mut kept: BTreeMap<u16, u64> = BTreeMap::new();
-    for m in &s.messages {
-        let id = match channel_ids.get(&m.channel_id) {
-            Some(id) => *id,
-            None => {
-                let id = match s.channels.get(&m.channel_id) {
-                    Some(c) => {
-                        let schema_id = match (c.schema_id, s.schemas.get(&c.schema_id)) {
-                            (0, _) | (_, None) => 0,
-                            (sid, Some(schema)) => match schema_ids.get(&sid) {
-                                Some(id) => *id,
-                                None => {
-                                    let id = w
-                                        .add_schema(&schema.name, &schema.encoding, &schema.data)
-                                        .map_err(|e| mcap_err(output, e))?;
-                                    schema_ids.insert(sid, id);
-                                    id
-                                }
-                            },
-                        };
-                        w.add_channel(schema_id, &c.topic, &c.message_encoding, &c.metadata)
-                    }
-                    // Its channel record is lost everywhere: keep the bytes under a name that says so.
-                    None => w.add_channel(0, &format!("/unknown_channel_{}", m.channel_id), "", &BTreeMap::new()),
-                }
-                .map_err(|e| mcap_err(output, e))?;
-                channel_ids.insert(m.channel_id, id);
-                id
-            }
-        };
-        w.write_to_known_channel(
-            &mcap::records::MessageHeader {
-                channel_id: id,
-                sequence: m.sequence,
-                log_time: m.log_time,
-                publish_time: m.publish_time,
-            },
-            &m.data,
-        )
-        .map_err(|e| mcap_err(output, e))?;
-        *kept.entry(m.channel_id).or_default() += 1;
+    let mut failed: Option<mcap::McapError> = None;
+    let s = read_opened(opened, input, OnDamage::Resync, |s, channel, m| {
+        if failed.is_some() {
+            return;
+        }
+        let written = copy_message(&mut w, s, channel, &m, &mut schema_ids, &mut channel_ids);
+        match written {
+            Ok(()) => *kept.entry(m.channel_id).or_default() += 1,
+            Err(e) => failed = Some(e),
+        }
+    })?;
+    if let Some(e) = failed {
+        return Err(mcap_err(output, e));
+    }
+    if let Some(reason) = &s.stopped {
+        return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
+    }
+    for (name, metadata) in &s.metadata {
+        w.write_metadata(&mcap::records::Metadata { name: name.clone(), metadata: metadata.clone() })
+            .map_err(|e| mcap_err(output, e))?;
     }
     // Say so in the file: `impactd info` reports a recovered recording and what it was recovered from.
     let mut note = BTreeMap::new();
@@ -176,7 +160,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
     );
     note.insert("input_complete".to_string(), s.intact().to_string());
-    note.insert("messages".to_string(), s.messages.len().to_string());
+    note.insert("messages".to_string(), s.message_count.to_string());
     w.write_metadata(&mcap::records::Metadata { name: RECOVERED_METADATA.into(), metadata: note })
         .map_err(|e| mcap_err(output, e))?;
     w.finish().map_err(|e| mcap_err(output, e))?;
@@ -190,10 +174,53 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         channels.insert(topic(id), ChannelTally { kept: k, lost });
     }
     Ok(Recovered {
-        messages: s.messages.len() as u64,
+        messages: s.message_count,
         complete: s.intact(),
         chunks: s.chunks.len() as u64,
         channels,
-        losses: losses(&s, bytes.len() as u64),
+        losses: losses(&s),
     })
+}
+
+/// Writes one message, declaring its schema and channel in the output the first time they are used.
+fn copy_message<W: std::io::Write + std::io::Seek>(
+    w: &mut mcap::Writer<W>,
+    s: &Scan,
+    channel: Option<&ChannelDef>,
+    m: &RawMessage,
+    schema_ids: &mut HashMap<u16, u16>,
+    channel_ids: &mut HashMap<u16, u16>,
+) -> Result<(), mcap::McapError> {
+    let id = match channel_ids.get(&m.channel_id) {
+        Some(id) => *id,
+        None => {
+            let id = match channel {
+                Some(c) => {
+                    let schema_id = match (c.schema_id, s.schemas.get(&c.schema_id)) {
+                        (0, _) | (_, None) => 0,
+                        (sid, Some(schema)) => match schema_ids.get(&sid) {
+                            Some(id) => *id,
+                            None => {
+                                let id = w.add_schema(&schema.name, &schema.encoding, &schema.data)?;
+                                schema_ids.insert(sid, id);
+                                id
+                            }
+                        },
+                    };
+                    w.add_channel(schema_id, &c.topic, &c.message_encoding, &c.metadata)?
+                }
+                // Its channel record is lost everywhere: keep the bytes under a name that says so.
+                None => w.add_channel(0, &format!("/unknown_channel_{}", m.channel_id), "", &BTreeMap::new())?,
+            };
+            channel_ids.insert(m.channel_id, id);
+            id
+        }
+    };
+    let header = mcap::records::MessageHeader {
+        channel_id: id,
+        sequence: m.sequence,
+        log_time: m.log_time,
+        publish_time: m.publish_time,
+    };
+    w.write_to_known_channel(&header, &m.data)
 }

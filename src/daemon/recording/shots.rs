@@ -5,6 +5,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use super::reader::OnDamage;
+use super::stream::read_messages;
 use crate::daemon::DaemonError;
 use crate::identify::DatasetLine;
 use crate::wire::{ComparisonMessage, DeliveryInput, LaunchPrediction};
@@ -45,22 +47,20 @@ pub const TRUTH_WINDOW_NS: u64 = 5_000_000;
 
 /// Reads the comparisons and predictions of an MCAP recording.
 pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
-    let bytes = crate::daemon::replay::read_file(path)?;
-    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
-    let mut out = RecordedShots { damage: scan.problems(), ..Default::default() };
+    let mut out = RecordedShots::default();
     let mut predictions: BTreeMap<(String, u64), LaunchPrediction> = BTreeMap::new();
     let mut truths: Vec<crate::wire::TruthMessage> = Vec::new();
-    for m in &scan.messages {
-        let Some(channel) = scan.channels.get(&m.channel_id) else { continue };
+    let scan = read_messages(path, OnDamage::Stop, |_, channel, m| {
+        let Some(channel) = channel else { return };
         let topic = channel.topic.as_str();
         if crate::wire::keys::rig_of_truth(topic.trim_start_matches('/')).is_some() {
             if let Ok(t) = serde_json::from_slice::<crate::wire::TruthMessage>(&m.data) {
                 truths.push(t);
             }
-            continue;
+            return;
         }
         if !topic.starts_with("/golf/") {
-            continue;
+            return;
         }
         if topic.ends_with("/comparison") {
             if let Ok(c) = serde_json::from_slice::<ComparisonMessage>(&m.data) {
@@ -72,7 +72,8 @@ pub fn read(path: &Path) -> Result<RecordedShots, DaemonError> {
                 predictions.entry((p.rig.clone(), p.shot)).or_insert(p);
             }
         }
-    }
+    })?;
+    out.damage = scan.problems();
     let mut seen = BTreeMap::new();
     for c in &out.comparisons {
         let key = (c.rig.clone(), c.shot);

@@ -39,41 +39,7 @@ pub struct ReplayInput {
 /// Skipped lines whose reason is kept.
 pub const KEPT_SKIPPED_LINES: usize = 100;
 
-/// A recording's bytes. A file that is not a regular file (`/dev/zero`, a pipe) is read only when it starts with
-/// the MCAP magic and only up to [`MAX_STREAMED_RECORDING_BYTES`]; a regular file is read whole (its size is
-/// known, and the reader bounds every allocation by it).
-pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, DaemonError> {
-    use std::io::Read;
-    let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
-    let file = std::fs::File::open(path).map_err(io)?;
-    if file.metadata().map_err(io)?.is_file() {
-        let mut bytes = Vec::new();
-        std::io::BufReader::new(file).read_to_end(&mut bytes).map_err(io)?;
-        return Ok(bytes);
-    }
-    let mut bytes = Vec::new();
-    let mut capped = file.take(MAX_STREAMED_RECORDING_BYTES + 1);
-    (&mut capped).take(mcap::MAGIC.len() as u64).read_to_end(&mut bytes).map_err(io)?;
-    if !is_mcap(&bytes) {
-        return Err(DaemonError::NotMcap { path: path.display().to_string() });
-    }
-    capped.read_to_end(&mut bytes).map_err(io)?;
-    if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-        return Err(DaemonError::Unreadable {
-            path: path.display().to_string(),
-            reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
-        });
-    }
-    Ok(bytes)
-}
-
-/// The most read of a recording that is not a regular file (a pipe, a device).
-pub const MAX_STREAMED_RECORDING_BYTES: u64 = 1 << 30;
-
-/// Whether the bytes start with the MCAP magic.
-pub fn is_mcap(bytes: &[u8]) -> bool {
-    bytes.starts_with(mcap::MAGIC)
-}
+pub use crate::daemon::recording::source::is_mcap;
 
 /// Reads an MCAP recording or a JSONL file of `ClubheadSample`s. A JSONL file is read a line at a time, each
 /// at most [`crate::jsonl::MAX_LINE_BYTES`], so `/dev/zero` or a huge file that is not JSONL is an error, not a
@@ -116,14 +82,27 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         }
         return Ok(input);
     }
-    let mut bytes = Vec::new();
-    file.read_to_end(&mut bytes).map_err(io)?;
-    let scan = crate::daemon::recording::reader::scan(&bytes, crate::daemon::recording::reader::OnDamage::Stop);
-    let mut input = ReplayInput { damage: scan.problems(), ..ReplayInput::default() };
-    input.config_toml =
-        scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
-    for message in &scan.messages {
-        let Some(channel) = scan.channels.get(&message.channel_id) else { continue };
+    // A regular file is read a record at a time; a pipe that starts with the magic is read into memory (capped).
+    use crate::daemon::recording::source::{Opened, MAX_STREAMED_RECORDING_BYTES};
+    let opened = if file.get_ref().metadata().map_err(io)?.is_file() {
+        drop(file);
+        Opened::open(path)?
+    } else {
+        let mut bytes = Vec::new();
+        file.take(MAX_STREAMED_RECORDING_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
+        if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
+            return Err(DaemonError::Unreadable {
+                path: path.display().to_string(),
+                reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
+            });
+        }
+        Opened::Bytes(bytes)
+    };
+    let mut input = ReplayInput::default();
+    let mut damage = Vec::new();
+    let on_damage = crate::daemon::recording::reader::OnDamage::Stop;
+    let scan = crate::daemon::recording::stream::read_opened(opened, path, on_damage, |_, channel, message| {
+        let Some(channel) = channel else { return };
         let topic = channel.topic.trim_start_matches('/');
         if keys::rig_of_clubhead(topic).is_some() {
             match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
@@ -132,29 +111,29 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                     input.samples.push(msg);
                 }
                 Err(e) => {
-                    input.damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                    damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
                 }
             }
         } else if let Some(rig) = keys::rig_of_truth(topic) {
             match serde_json::from_slice::<crate::wire::TruthMessage>(&message.data) {
-                Ok(t) => input.truths.push((input.samples.len(), rig.to_string(), t.t_impact_ns, message.data.clone())),
-                Err(e) => {
-                    input.damage.push(format!("a recorded truth at log time {} does not parse: {e}", message.log_time))
-                }
+                Ok(t) => input.truths.push((input.samples.len(), rig.to_string(), t.t_impact_ns, message.data)),
+                Err(e) => damage.push(format!("a recorded truth at log time {} does not parse: {e}", message.log_time)),
             }
         } else if let Some(rig) = keys::rig_of_session(topic) {
             match crate::wire::ShotLabels::parse(&message.data) {
                 Ok(l) => input.labels.push((input.samples.len(), rig.to_string(), l)),
-                Err(e) => {
-                    input.damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time))
-                }
+                Err(e) => damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time)),
             }
         } else if keys::rig_of_launch(topic).is_some() {
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
                 input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
-            input.recorded_launches.push(message.data.clone());
+            input.recorded_launches.push(message.data);
         }
-    }
+    })?;
+    input.damage = scan.problems();
+    input.damage.extend(damage);
+    input.config_toml =
+        scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
     Ok(input)
 }

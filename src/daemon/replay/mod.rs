@@ -15,7 +15,6 @@ mod session;
 mod verdict;
 
 pub use capture::load_capture;
-pub(crate) use load::read_file;
 pub use load::{is_mcap, load, ReplayInput};
 pub use pause::PauseControl;
 pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport};
