@@ -71,11 +71,7 @@ fn main() {
                 let now = Instant::now();
                 if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&s.payload().to_bytes()) {
                     if let Some(frame) = v["frame"].as_u64() {
-                        let mut f = f.lock().unwrap();
-                        if f.len() > 100_000 {
-                            f.clear();
-                        }
-                        f.insert(frame, now);
+                        f.lock().unwrap().insert(frame, now);
                     }
                 }
             })
@@ -114,6 +110,8 @@ fn main() {
             let tasks: Vec<_> =
                 (0..pages).map(|_| tokio::spawn(page(web.clone(), bytes.clone(), stop_rx.clone()))).collect();
             tokio::time::sleep(Duration::from_millis(300)).await;
+            // Each block's rig numbers its frames from the start again.
+            frames.lock().unwrap().clear();
             open_pages.store(pages as u64, Ordering::Relaxed);
             let options = SimOptions { shots: per_block, interval_s: 0.25, seed, wait_for_subscriber_s: 0.0, ..SimOptions::default() };
             seed += 1;
