@@ -57,8 +57,11 @@ try:
     emit("READY", {"load_ms": nav["load"], "dom_ms": nav["dom"], "first_draw_ms": js("return bay.firstDrawMs"), "timing": nav})
 
     wait("the shots", lambda: js(f"return bay.data['{rig}'].shots.length >= {shots}"), 120)
+    wait("the last shot's comparison", lambda: js(f"const c = bay.data['{rig}'].comparisons; return c.length && c[c.length - 1].shot === {shots}"), 10)
     time.sleep(0.3)
     seen = js("return window.__seen")
+    comparison = js("return [...document.querySelectorAll('#cmp-rows tr')].map(r => [...r.cells].map(c => c.textContent))")
+    comparison_shot = driver.find_element(By.ID, "cmp-shot").text
     unit = driver.find_element(By.ID, "u-ball_speed").text
     driver.save_screenshot(os.path.join(out_dir, "shot-view.png"))
 
@@ -98,7 +101,7 @@ try:
     wait("imperial units", lambda: driver.find_element(By.ID, "u-ball_speed").text == "mph")
 
     emit("DONE", {
-        "seen": seen, "unit": unit, "table": table, "summary_shots": summary_shots, "sorted_down": down,
+        "seen": seen, "unit": unit, "comparison": comparison, "comparison_shot": comparison_shot, "table": table, "summary_shots": summary_shots, "sorted_down": down,
         "csv": csv_path, "metric_speed": metric_speed, "latencies_ms": js("return bay.latencies"),
     })
 

@@ -6,7 +6,9 @@
 //! (page text, mph with one decimal) must be those published on `golf/<rig>/launch`; the club typed into the
 //! page must reach `golf/<rig>/club`; a shot excluded with a click must be left out by `impactd session` on
 //! the recording; the CSV the page downloads must be byte for byte what `impactd export --format trackman-csv`
-//! writes from the recording; after the daemon restarts the page must reconnect by itself. Screenshots of each
+//! writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show beside the
+//! prediction with its residual; the units switched on the page must come back through `golf/<rig>/display`;
+//! after the daemon restarts the page must reconnect by itself. Screenshots of each
 //! view are saved under target/web-page/.
 //!
 //! Times, from the page's own clocks: launch published (the daemon's wall clock when the launch reached the
@@ -62,7 +64,8 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     let recording = dir.path().join("bay.mcap");
     let web = format!("127.0.0.1:{}", impactd::daemon::bus::free_loopback_port().unwrap());
     let config = "status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n";
-    let options = |record: &Path| RunOptions { record: Some(record.to_path_buf()), web: Some(web.clone()), ..Default::default() };
+    let options =
+        |record: &Path| RunOptions { record: Some(record.to_path_buf()), web: Some(web.clone()), ..Default::default() };
     let daemon = start_daemon(config, options(&recording)).await;
     let observer = common::client(&daemon.endpoint).await;
     let (launches, _s1) = common::collect::<LaunchPrediction>(&observer, "golf/bay1/launch");
@@ -73,6 +76,39 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
         .callback(move |s| sink.lock().unwrap().push(String::from_utf8_lossy(&s.payload().to_bytes()).into_owned()))
         .wait()
         .unwrap();
+
+    // A launch monitor paired with the rig: 100 ms after each prediction, a measurement 1.5 mph faster (so the
+    // page's ball-speed residual, predicted - measured, is -1.5 mph).
+    let (tx, mut to_measure) = tokio::sync::mpsc::unbounded_channel::<LaunchPrediction>();
+    let _s3 = observer
+        .declare_subscriber("golf/bay1/launch")
+        .callback(move |s| {
+            if let Ok(p) = serde_json::from_slice(&s.payload().to_bytes()) {
+                let _ = tx.send(p);
+            }
+        })
+        .wait()
+        .unwrap();
+    let monitor = observer.clone();
+    tokio::spawn(async move {
+        while let Some(p) = to_measure.recv().await {
+            tokio::time::sleep(Duration::from_millis(100)).await;
+            let l = &p.launch.launch;
+            let m = impactd::wire::MeasuredLaunch {
+                rig: "bay1".into(),
+                t_ns: p.t_impact_ns + 100_000_000,
+                device: "LM 1".into(),
+                shot_number: Some(p.shot),
+                ball_speed_mph: l.ball_speed_mph + 1.5,
+                launch_angle_deg: l.launch_angle_deg,
+                launch_direction_deg: l.launch_direction_deg,
+                backspin_rpm: Some(l.backspin_rpm),
+                sidespin_rpm: Some(l.sidespin_rpm),
+                ..Default::default()
+            };
+            monitor.put("lm/bay1/launch", serde_json::to_vec(&m).unwrap()).await.unwrap();
+        }
+    });
 
     let mut browser = common::python()
         .arg("-c")
@@ -111,6 +147,13 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     let last = published.last().unwrap();
     let metric = format!("{:.1}", last.launch.launch.ball_speed_mps);
     assert_eq!(done["metric_speed"], metric.as_str(), "metric ball speed of the last shot");
+    // Measured beside predicted: the last shot's comparison, with its residuals.
+    let cmp: Vec<Vec<String>> = serde_json::from_value(done["comparison"].clone()).unwrap();
+    let speed_row = cmp.iter().find(|r| r[0].starts_with("Ball speed")).unwrap();
+    let last_speed = format!("{:.1}", published.last().unwrap().launch.launch.ball_speed_mph);
+    let measured_speed = format!("{:.1}", published.last().unwrap().launch.launch.ball_speed_mph + 1.5);
+    assert_eq!(speed_row[1..], [last_speed, measured_speed, "-1.5".to_string()], "comparison rows: {cmp:?}");
+    assert_eq!(done["comparison_shot"], SHOTS.to_string());
     // Excluding shot 2 left four shots in the per-club average; sorting put the table in descending speed.
     assert_eq!(done["summary_shots"], (SHOTS - 1).to_string());
     let down: Vec<f64> = serde_json::from_value(done["sorted_down"].clone()).unwrap();
@@ -131,6 +174,14 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
         quantile(&latencies, 1.0),
         latencies.len()
     );
+    // The numbers for docs/bay-screen.md (scripts/docs-web.sh).
+    let measured = serde_json::json!({
+        "date": humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(), "shots": latencies.len(), "latency_ms": latencies,
+        "latency_p50_ms": quantile(&latencies, 0.5), "latency_p99_ms": p99,
+        "load_ms": load_ms, "first_draw_ms": first_draw_ms,
+        "loadavg": std::fs::read_to_string("/proc/loadavg").unwrap_or_default().trim(),
+    });
+    std::fs::write(out_dir.join("measured.json"), measured.to_string()).unwrap();
     assert!(p99 <= 100.0, "launch published -> numbers drawn p99 {p99:.1} ms > 100 ms: {latencies:?}");
     assert!(load_ms <= 300.0 && first_draw_ms <= 300.0, "first load {load_ms} ms / {first_draw_ms} ms > 300 ms");
 

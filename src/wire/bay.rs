@@ -48,7 +48,8 @@ pub const MAX_CLUB_BYTES: usize = 512;
 
 impl ShotExclusion {
     pub fn parse(payload: &[u8]) -> Result<Self, ControlError> {
-        serde_json::from_slice(payload).map_err(|e| ControlError::Parse { what: "a shot exclusion", reason: e.to_string() })
+        serde_json::from_slice(payload)
+            .map_err(|e| ControlError::Parse { what: "a shot exclusion", reason: e.to_string() })
     }
 }
 
@@ -74,7 +75,10 @@ mod tests {
 
     #[test]
     fn controls_parse_and_refuse_with_a_reason() {
-        assert_eq!(ShotExclusion::parse(br#"{"shot":3,"excluded":true}"#), Ok(ShotExclusion { shot: 3, excluded: true }));
+        assert_eq!(
+            ShotExclusion::parse(br#"{"shot":3,"excluded":true}"#),
+            Ok(ShotExclusion { shot: 3, excluded: true })
+        );
         assert!(matches!(ShotExclusion::parse(br#"{"shot":-1,"excluded":true}"#), Err(ControlError::Parse { .. })));
         assert_eq!(DisplaySettings::parse(br#"{"units":"metric"}"#).map(|d| d.units), Ok(DisplayUnits::Metric));
         assert!(DisplaySettings::parse(br#"{"units":"furlongs"}"#).is_err());

@@ -104,11 +104,15 @@ mod tests {
         let club = Control::parse(r#"{"op":"club","rig":"bay1","club":" iron7 "}"#, &rigs).unwrap();
         assert_eq!(club.put(&none).unwrap(), ("golf/bay1/club".to_string(), b"iron7".to_vec()));
         let kept = ShotLabels { club: Some("7i".into()), ..Default::default() };
-        let labels = Control::parse(r#"{"op":"labels","rig":"bay1","player":"ann","tags":["fit"," "]}"#, &rigs).unwrap();
+        let labels =
+            Control::parse(r#"{"op":"labels","rig":"bay1","player":"ann","tags":["fit"," "]}"#, &rigs).unwrap();
         let (key, payload) = labels.put(&kept).unwrap();
         assert_eq!(key, "golf/bay1/session");
         let sent = ShotLabels::parse(&payload).unwrap();
-        assert_eq!((sent.player.as_deref(), sent.tags.as_slice(), sent.club.as_deref()), (Some("ann"), &["fit".to_string()][..], Some("7i")));
+        assert_eq!(
+            (sent.player.as_deref(), sent.tags.as_slice(), sent.club.as_deref()),
+            (Some("ann"), &["fit".to_string()][..], Some("7i"))
+        );
         let x = Control::parse(r#"{"op":"exclude","rig":"bay1","shot":4,"excluded":true}"#, &rigs).unwrap();
         assert_eq!(ShotExclusion::parse(&x.put(&none).unwrap().1), Ok(ShotExclusion { shot: 4, excluded: true }));
         let u = Control::parse(r#"{"op":"units","rig":"bay1","units":"metric"}"#, &rigs).unwrap();

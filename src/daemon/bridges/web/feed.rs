@@ -29,6 +29,9 @@ enum Kind {
 
 type KeyOf = fn(&str) -> String;
 
+/// How long after a prediction arrives the screens take it up (the page's budget is 100 ms).
+pub const LAUNCH_DEFER: std::time::Duration = std::time::Duration::from_millis(10);
+
 const KINDS: [(Kind, KeyOf); 6] = [
     (Kind::Launch, keys::launch),
     (Kind::Comparison, keys::comparison),
@@ -41,6 +44,7 @@ const KINDS: [(Kind, KeyOf); 6] = [
 struct Update {
     kind: Kind,
     rig: String,
+    received: std::time::Instant,
     received_ns: u64,
     payload: Vec<u8>,
 }
@@ -155,6 +159,7 @@ impl Feed {
                         let update = Update {
                             kind,
                             rig: rig.clone(),
+                            received: std::time::Instant::now(),
                             received_ns: wall_ns(),
                             payload: sample.payload().to_bytes().into_owned(),
                         };
@@ -169,6 +174,12 @@ impl Feed {
         }
         let task = tokio::spawn(async move {
             while let Some(u) = rx.recv().await {
+                // The screens' work on a shot (its flight line, the session's numbers, a message to every page)
+                // waits until zenoh has delivered the prediction to every other subscriber, so on a loaded
+                // machine it never competes with that delivery.
+                if u.kind == Kind::Launch {
+                    tokio::time::sleep_until((u.received + LAUNCH_DEFER).into()).await;
+                }
                 bay.apply(u);
             }
         });

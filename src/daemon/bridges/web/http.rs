@@ -52,7 +52,8 @@ pub fn classify(head: &[u8]) -> Request {
     let path = req.path.unwrap_or("/");
     let path = path.split(['?', '#']).next().unwrap_or("/").to_string();
     let upgrade = req.headers.iter().any(|h| {
-        h.name.eq_ignore_ascii_case("upgrade") && std::str::from_utf8(h.value).is_ok_and(|v| v.eq_ignore_ascii_case("websocket"))
+        h.name.eq_ignore_ascii_case("upgrade")
+            && std::str::from_utf8(h.value).is_ok_and(|v| v.eq_ignore_ascii_case("websocket"))
     });
     if upgrade {
         return if path == "/ws" { Request::Upgrade } else { Request::Refused { status: 404, kind: "not_found" } };

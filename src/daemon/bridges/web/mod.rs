@@ -166,7 +166,8 @@ impl Connection {
             Err(http::HeadError::Closed) => return,
             Err(e @ http::HeadError::TooLarge) => {
                 self.peers.reject("oversized", || format!("{peer}: {e}"));
-                return http::answer(stream, http::Response::text(431, "request head too large"), limits::SEND_TIMEOUT).await;
+                return http::answer(stream, http::Response::text(431, "request head too large"), limits::SEND_TIMEOUT)
+                    .await;
             }
             Err(e) => return self.peers.reject("protocol", || format!("{peer}: {e}")),
         };
@@ -184,7 +185,12 @@ impl Connection {
 
     fn get(&self, path: &str) -> http::Response {
         if let Some(a) = assets::find(path) {
-            return http::Response { status: 200, content_type: a.content_type, body: a.body.into(), extra: Vec::new() };
+            return http::Response {
+                status: 200,
+                content_type: a.content_type,
+                body: a.body.into(),
+                extra: Vec::new(),
+            };
         }
         if let Some(rig) = download::rig_of_path(path) {
             if let Some(csv) = download::session_csv(&self.bay, rig) {
@@ -197,7 +203,8 @@ impl Connection {
                 };
             }
         }
-        self.peers.reject("not_found", || format!("{}: no page at {}", self.peer, path.chars().take(80).collect::<String>()));
+        self.peers
+            .reject("not_found", || format!("{}: no page at {}", self.peer, path.chars().take(80).collect::<String>()));
         http::Response::text(404, "no such page")
     }
 
@@ -213,7 +220,8 @@ impl Connection {
         };
         self.slot.touch();
         tracing::info!("bay screen: page {peer} connected");
-        let page = socket::Page { peer: self.peer, slot: self.slot, peers: self.peers, bay: self.bay, session: self.session };
+        let page =
+            socket::Page { peer: self.peer, slot: self.slot, peers: self.peers, bay: self.bay, session: self.session };
         socket::serve(ws, page).await;
         tracing::info!("bay screen: page {peer} left");
     }

@@ -123,13 +123,8 @@ async fn on_control(page: &Page, text: &str) {
         Ok(c) => c,
         Err(e) => return page.peers.reject(e.kind(), || format!("{peer}: control refused: {e}")),
     };
-    let labels = page
-        .bay
-        .states
-        .lock()
-        .ok()
-        .and_then(|s| s.get(control.rig()).map(|r| r.labels.clone()))
-        .unwrap_or_default();
+    let labels =
+        page.bay.states.lock().ok().and_then(|s| s.get(control.rig()).map(|r| r.labels.clone())).unwrap_or_default();
     let (key, payload) = match control.put(&labels) {
         Ok(p) => p,
         Err(e) => return page.peers.reject(e.kind(), || format!("{peer}: control refused: {e}")),

@@ -155,7 +155,8 @@ impl RigState {
         if let Some(s) = &self.summary {
             return s.clone();
         }
-        let excluded: BTreeSet<ShotId> = self.excluded.iter().map(|&shot| ShotId { rig: self.rig.clone(), shot }).collect();
+        let excluded: BTreeSet<ShotId> =
+            self.excluded.iter().map(|&shot| ShotId { rig: self.rig.clone(), shot }).collect();
         let s = summarize(&self.shots, GroupBy::Club, &excluded, false);
         let groups: Vec<Value> = s
             .groups
@@ -181,7 +182,8 @@ impl RigState {
     pub fn snapshot(&mut self) -> String {
         let from = self.shot_texts.len().saturating_sub(PAGE_SHOTS);
         let shots = format!("[{}]", self.shot_texts[from..].join(","));
-        let flights: Vec<Value> = self.flights.iter().map(|(shot, line)| json!({ "shot": shot, "line": line })).collect();
+        let flights: Vec<Value> =
+            self.flights.iter().map(|(shot, line)| json!({ "shot": shot, "line": line })).collect();
         let head = json!({
             "type": "snapshot", "rig": self.rig, "excluded": self.excluded, "labels": self.labels,
             "units": self.units, "flights": flights, "comparisons": self.comparisons, "status": self.status,
@@ -241,7 +243,10 @@ mod tests {
         }
         let mean = |s: &mut RigState| {
             let v: Value = serde_json::from_str(&s.summary_json()).unwrap();
-            (v["groups"][0]["shots"].as_u64().unwrap(), v["groups"][0]["stats"]["ball_speed_mps"]["mean"].as_f64().unwrap())
+            (
+                v["groups"][0]["shots"].as_u64().unwrap(),
+                v["groups"][0]["stats"]["ball_speed_mps"]["mean"].as_f64().unwrap(),
+            )
         };
         let full = prediction(1).launch.launch.ball_speed_mps;
         let (n, m) = mean(&mut s);
