@@ -103,7 +103,6 @@ fn main() {
         });
         tokio::time::sleep(Duration::from_millis(300)).await;
         let bytes = Arc::new(AtomicU64::new(0));
-        let mut seed = 1;
         for block in 0..blocks {
             let pages = if block % 2 == 1 { PAGES } else { 0 };
             let (stop_pages, stop_rx) = tokio::sync::watch::channel(false);
@@ -113,8 +112,7 @@ fn main() {
             // Each block's rig numbers its frames from the start again.
             frames.lock().unwrap().clear();
             open_pages.store(pages as u64, Ordering::Relaxed);
-            let options = SimOptions { shots: per_block, interval_s: 0.25, seed, wait_for_subscriber_s: 0.0, ..SimOptions::default() };
-            seed += 1;
+            let options = SimOptions { shots: per_block, interval_s: 0.25, seed: block + 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() };
             run_sim(&rig, options, std::future::pending()).await.unwrap();
             tokio::time::sleep(Duration::from_millis(300)).await;
             let _ = stop_pages.send(true);
