@@ -109,7 +109,9 @@ async fn the_bay_screen_refuses_and_counts_what_it_cannot_use_and_serves_the_nex
     let want = ["not_found", "method", "oversized", "malformed", "unknown_rig", "evicted_at_cap"];
     let counted = common::wait_until(Duration::from_secs(5), || {
         let s = statuses.lock().unwrap();
-        s.last().and_then(|s| s.web.as_ref()).is_some_and(|w| want.iter().all(|k| w.rejected.get(*k).is_some_and(|n| *n >= 1)))
+        s.last()
+            .and_then(|s| s.web.as_ref())
+            .is_some_and(|w| want.iter().all(|k| w.rejected.get(*k).is_some_and(|n| *n >= 1)))
     })
     .await;
     let last = statuses.lock().unwrap().last().and_then(|s| s.web.clone());
