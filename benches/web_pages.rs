@@ -61,8 +61,9 @@ fn main() {
         let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
         let rig = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
         let frames: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
-        // (pages open, end to end us, in the daemon us)
-        let results: Arc<Mutex<Vec<(usize, f64, f64)>>> = Default::default();
+        // (pages open, block, end to end us, in the daemon us)
+        let results: Arc<Mutex<Vec<(usize, u64, f64, f64)>>> = Default::default();
+        let block_now = Arc::new(AtomicU64::new(0));
         let open_pages = Arc::new(AtomicU64::new(0));
         let f = frames.clone();
         let _frames_sub = rig
@@ -77,7 +78,7 @@ fn main() {
             })
             .wait()
             .unwrap();
-        let (f, r, pages_now) = (frames.clone(), results.clone(), open_pages.clone());
+        let (f, r, pages_now, block_cb) = (frames.clone(), results.clone(), open_pages.clone(), block_now.clone());
         let _launch_sub = rig
             .declare_subscriber("golf/rig1/launch")
             .callback(move |s| {
@@ -85,7 +86,8 @@ fn main() {
                 if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&s.payload().to_bytes()) {
                     if let Some(t) = f.lock().unwrap().get(&l.frame) {
                         let pages = pages_now.load(Ordering::Relaxed) as usize;
-                        r.lock().unwrap().push((pages, now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
+                        let block = block_cb.load(Ordering::Relaxed);
+                        r.lock().unwrap().push((pages, block, now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
                     }
                 }
             })
@@ -112,6 +114,7 @@ fn main() {
             // Each block's rig numbers its frames from the start again.
             frames.lock().unwrap().clear();
             open_pages.store(pages as u64, Ordering::Relaxed);
+            block_now.store(block, Ordering::Relaxed);
             let options = SimOptions { shots: per_block, interval_s: 0.25, seed: block + 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() };
             run_sim(&rig, options, std::future::pending()).await.unwrap();
             tokio::time::sleep(Duration::from_millis(300)).await;
@@ -125,8 +128,8 @@ fn main() {
         let results = results.lock().unwrap().clone();
         let mut rows = Vec::new();
         for pages in [0, PAGES] {
-            let e2e: Vec<f64> = results.iter().filter(|r| r.0 == pages).map(|r| r.1).collect();
-            let inside: Vec<f64> = results.iter().filter(|r| r.0 == pages).map(|r| r.2).collect();
+            let e2e: Vec<f64> = results.iter().filter(|r| r.0 == pages).map(|r| r.2).collect();
+            let inside: Vec<f64> = results.iter().filter(|r| r.0 == pages).map(|r| r.3).collect();
             if e2e.is_empty() {
                 continue;
             }
@@ -144,6 +147,13 @@ fn main() {
             }
             rows.push(row);
         }
+        // The same comparison with no page on either side (the first half of the no-page blocks against the
+        // second): how far the p99 moves on this machine with nothing changed.
+        let zero = |later: bool| -> Vec<f64> {
+            results.iter().filter(|r| r.0 == 0 && (r.1 >= blocks / 2) == later).map(|r| r.2).collect()
+        };
+        let (early, late) = (zero(false), zero(true));
+        let noise = (!early.is_empty() && !late.is_empty()).then(|| quantile(&late, 0.99) / quantile(&early, 0.99));
         let ratio = (rows.len() == 2).then(|| rows[1]["p99_us"].as_f64().unwrap() / rows[0]["p99_us"].as_f64().unwrap());
         let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
         let out = serde_json::json!({
@@ -151,7 +161,7 @@ fn main() {
             "cpus": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
             "loadavg": load.split_whitespace().take(3).collect::<Vec<_>>(),
             "shots_per_block": per_block, "blocks": blocks, "page_bytes": bytes.load(Ordering::Relaxed),
-            "rows": rows, "p99_ratio_20_to_0": ratio,
+            "rows": rows, "p99_ratio_20_to_0": ratio, "p99_ratio_0_to_0": noise,
         });
         if json {
             println!("{out}");

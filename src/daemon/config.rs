@@ -308,6 +308,18 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_bay_screen_is_served_where_web_listen_says_loopback_by_default() {
+        let rig = "[[rig]]\nname = \"bay1\"\n";
+        assert_eq!(DaemonConfig::parse(rig).unwrap().0.web, None);
+        let (c, _) = DaemonConfig::parse(&format!("{rig}[web]\nlisten = \"127.0.0.1:9090\"\n")).unwrap();
+        assert_eq!(c.web.unwrap().listen, "127.0.0.1:9090");
+        let (c, _) = DaemonConfig::parse(&format!("{rig}[web]\n")).unwrap();
+        assert_eq!(c.web.unwrap().listen, "127.0.0.1:8080");
+        let e = DaemonConfig::parse(&format!("{rig}[web]\nlisten_on = \"x\"\n")).unwrap_err().to_string();
+        assert!(e.contains("listen_on"), "{e}");
+    }
+
+    #[test]
     fn errors_name_the_field() {
         let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
         assert!(err("[[rig]]\nname = \"a\"\ncolour = 1").contains("colour"));

@@ -98,7 +98,7 @@ const Draw = (() => {
       svg.appendChild(el("text", { x: 2, y: py(c) + 5 }, `${Math.round(c)}`));
     }
     svg.appendChild(el("line", { x1: px(0), x2: px(0), y1: T, y2: H - B, class: "ground" }));
-    svg.appendChild(el("text", { x: L, y: H - 6 }, `◀ left   carry ${unit}, side ${unit}   right ▶`));
+    svg.appendChild(el("text", { x: L, y: H - 6 }, `◀ left   (carry up, side across, ${unit})   right ▶`));
     groups.forEach((g, i) => {
       const colour = COLOURS[i % COLOURS.length];
       for (const [s, c] of g.points) svg.appendChild(el("circle", { cx: px(s), cy: py(c), r: 6, fill: colour }));
