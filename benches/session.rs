@@ -52,6 +52,7 @@ fn recorded(n: usize) -> Vec<Vec<u8>> {
                 flight: Some(traj),
                 reports: Default::default(),
                 labels: ShotLabels::default(),
+                ball: None,
             }
         })
         .collect();

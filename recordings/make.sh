@@ -5,6 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 for club in driver iron7; do
-  target/release/impactd demo --club "$club" --shots 3 --seed 7 --record "recordings/$club.mcap" > /dev/null
+  target/release/impactd demo --club "$club" --shots 3 --seed 7 --record "recordings/$club.mcap" --overwrite > /dev/null
 done
 ls -l recordings/*.mcap

@@ -7,11 +7,12 @@ use crate::equipment::ClubSpec;
 use std::sync::Arc;
 
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use crate::kinematics::ball_tracker::{BallIgnored, BallTracker, BallTrackerConfig};
 use crate::kinematics::track::Accepted;
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
-use crate::wire::{ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
+use crate::wire::{BallSource, BallUsed, ImpactMessage, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// Everything one rig's pipeline needs.
 #[derive(Debug, Clone)]
@@ -87,6 +88,8 @@ pub struct Pipeline {
     track: Track,
     detector: ImpactDetector,
     estimators: Vec<EstimatorSpec>,
+    /// A tracked ball's rest position (the fixed `ball_position_m` until one has rested).
+    ball: BallTracker,
     pub counts: Counts,
 }
 
@@ -97,6 +100,7 @@ impl Pipeline {
             track: Track::new(setup.calibration, setup.track),
             detector: ImpactDetector::new(setup.detector.clone()),
             estimators: vec![setup.estimator.clone()],
+            ball: BallTracker::new(BallTrackerConfig::new(setup.detector.ball_position_m)),
             setup,
             counts: Counts::default(),
         }
@@ -105,6 +109,24 @@ impl Pipeline {
     /// The labels of the shots from now on (a put on `golf/<rig>/session`).
     pub fn set_labels(&mut self, labels: ShotLabels) {
         self.setup.labels = labels;
+    }
+
+    /// Takes an observation of a tracked ball's centre (lab frame, m; `None` when occluded): a ball at rest sets
+    /// the position of the next impact ([`BallTracker`]). `Ok(true)` when it moved that position.
+    pub fn on_ball(&mut self, position_lab_m: Option<[f64; 3]>) -> Result<bool, BallIgnored> {
+        let world_from_lab = &self.setup.calibration.world_from_lab;
+        let world = position_lab_m.map(|p| (world_from_lab * crate::math::Point3::from(p)).coords);
+        let moved = self.ball.observe(world)?;
+        if moved {
+            self.detector.config.ball_position_m = self.ball.position().0;
+        }
+        Ok(moved)
+    }
+
+    /// The ball position the next impact uses, and where it comes from.
+    pub fn ball_used(&self) -> BallUsed {
+        let (p, tracked) = self.ball.position();
+        BallUsed { position_m: p.into(), source: if tracked { BallSource::Tracked } else { BallSource::Config } }
     }
 
     /// Feeds one sample; events are appended to `out`.
@@ -175,6 +197,7 @@ impl Pipeline {
             delivery,
             quality: est.quality,
             labels: self.setup.labels.clone(),
+            ball: Some(self.ball_used()),
         }));
         for i in 0..self.setup.models.len() {
             let m = Arc::clone(&self.setup.models[i]);
@@ -210,6 +233,7 @@ impl Pipeline {
                         }),
                         reports: report.into(),
                         labels: self.setup.labels.clone(),
+                        ball: Some(self.ball_used()),
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),

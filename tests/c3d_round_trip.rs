@@ -246,3 +246,49 @@ fn a_capture_of_markers_gives_the_json_swings_launches() {
         }
     }
 }
+
+/// A marker on top of the ball (14 mm marker, so its centre 28.35 mm above the ball's) 4 mm right of the
+/// configured ball, read with `--ball-marker BALL --ball-offset-mm` (the offset in the capture's own z-up axes):
+/// every launch says its ball was tracked, at the ball's centre; `import` writes the ball's lines beside the
+/// samples and a replay of the import agrees with the replay of the capture.
+#[test]
+fn a_ball_marker_sets_the_ball_of_each_shot() {
+    use impactd::wire::BallSource;
+    let dir = tempfile::tempdir().unwrap();
+    let set = MarkerSet::from_toml(MARKERS).unwrap();
+    let config = dir.path().join("impactd.toml");
+    std::fs::write(&config, CONFIG).unwrap();
+    let set_path = dir.path().join("club.toml");
+    std::fs::write(&set_path, MARKERS).unwrap();
+    let world_from_lab = calibration().world_from_lab;
+    let ball_world = Vector3::new(0.0, 0.0, 0.004);
+    let above_m = 0.021335 + 0.007;
+    let marker_lab = world_from_lab.inverse() * nalgebra::Point3::from(ball_world + Vector3::new(0.0, above_m, 0.0));
+    let offset_lab_mm = world_from_lab.rotation.inverse() * Vector3::new(0.0, -above_m * 1e3, 0.0);
+    let mut frames = capture(&set, None).frames;
+    for row in &mut frames {
+        row.push((marker_lab.coords, true));
+    }
+    let mut labels = set.labels.clone();
+    labels.push("BALL".into());
+    let c3d_path = dir.path().join("ball.c3d");
+    c3d_writer::write_c3d(&labels, RATE_HZ, &frames, &c3d_path);
+    let offset = format!("{:.6},{:.6},{:.6}", offset_lab_mm.x, offset_lab_mm.y, offset_lab_mm.z);
+    let (c, s, cfg) = (c3d_path.to_str().unwrap(), set_path.to_str().unwrap(), config.to_str().unwrap());
+    let ball_flags = ["--ball-marker", "BALL", "--ball-offset-mm", offset.as_str()];
+    let direct = impactd(&[&["replay", c, "--markers", s, "-c", cfg], &ball_flags[..]].concat());
+    let launches: Vec<LaunchPrediction> = direct.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(launches.len(), SWINGS);
+    for l in &launches {
+        let used = l.ball.unwrap();
+        assert_eq!(used.source, BallSource::Tracked);
+        let err = (Vector3::from(used.position_m) - ball_world).norm();
+        assert!(err < 1e-6, "shot {}: ball at {:?} ({err} m off)", l.shot, used.position_m);
+    }
+    let imported = dir.path().join("imported.jsonl");
+    let i = imported.to_str().unwrap();
+    impactd(&[&["import", c, "--markers", s, "--rig", "bay1", "-o", i], &ball_flags[..]].concat());
+    let text = std::fs::read_to_string(&imported).unwrap();
+    assert_eq!(text.lines().filter(|l| l.contains("\"occluded\"") && !l.contains("orientation")).count(), frames.len());
+    assert_eq!(impactd(&["replay", i, "-c", cfg]), direct, "the import replays as the capture does");
+}

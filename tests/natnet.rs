@@ -455,3 +455,76 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
     let (first, last) = (rss[1.min(rss.len() - 1)], *rss.last().unwrap());
     assert!(last < first + 4096, "RSS grew from {first} to {last} KiB");
 }
+
+/// A rig's `ball_body` (and the bridge's `--ball`): a body whose origin is the ball's centre, 4 mm right of the
+/// configured ball, sets the shot's ball position; the launch says it was tracked, at the body's f32 position.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn a_ball_body_sets_the_shots_ball() {
+    use impactd::wire::{BallSampleMsg, BallSource};
+    let ball_at = [0.0f32, 0.0, 0.004];
+    let frames = |samples: &[ClubheadSample]| -> Vec<Frame> {
+        samples
+            .iter()
+            .map(|s| {
+                let mut f = frame_of(s, 9);
+                f.rigid_bodies[0].position_m = ball_at;
+                f
+            })
+            .collect()
+    };
+    let samples = swing::samples(1, 720.0, 11);
+    let server = NatNetServer::start(Version::V4_1, &[(9, "ball"), (3, "club")]);
+    let config = input_config(server.port) + "ball_body = \"ball\"\n";
+    let daemon = start_daemon(&config, RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    assert!(
+        wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    for f in frames(&samples) {
+        server.send_frame(&f);
+    }
+    assert!(wait_until(Duration::from_secs(10), || !launches.lock().unwrap().is_empty()).await, "a launch");
+    let used = launches.lock().unwrap()[0].ball.unwrap();
+    daemon.stop().await;
+    assert_eq!(used.source, BallSource::Tracked);
+    assert_eq!(used.position_m, ball_at.map(f64::from), "the ball body's position, as sent");
+    drop(server);
+
+    // The bridge publishes the same body on mocap/rig1/ball.
+    let server = NatNetServer::start(Version::V4_1, &[(9, "ball"), (3, "club")]);
+    let daemon = start_daemon(RIG, RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (balls, _b) = collect::<BallSampleMsg>(&session, "mocap/rig1/ball");
+    let source =
+        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+    let bridge_session = client(&daemon.endpoint).await;
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let bridge = tokio::spawn(async move {
+        let routes = vec![("club".to_string(), "rig1".to_string())];
+        let balls = vec![("ball".to_string(), "rig1".to_string())];
+        impactd::daemon::bridges::mocap::run_bridge_with_balls(&bridge_session, source, routes, balls, async {
+            let _ = stopped.await;
+        })
+        .await
+        .unwrap()
+    });
+    assert!(
+        wait_until(Duration::from_secs(10), || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0)
+            .await
+    );
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let sent = frames(&samples[..50]);
+    for f in &sent {
+        server.send_frame(f);
+    }
+    assert!(wait_until(Duration::from_secs(10), || balls.lock().unwrap().len() >= sent.len()).await);
+    let _ = stop.send(());
+    let statuses = bridge.await.unwrap();
+    daemon.stop().await;
+    let got = balls.lock().unwrap().clone();
+    assert!(got.iter().all(|b| b.position_m == ball_at.map(f64::from) && !b.occluded), "{:?}", got.first());
+    assert_eq!(statuses.len(), 2, "the club's route and the ball's");
+}

@@ -41,6 +41,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         flight: None,
         reports: Default::default(),
         labels: Default::default(),
+        ball: None,
     }
 }
 

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Subcommand};
 use impactd::daemon::bridges::mocap::input::{NATNET_COMMAND_PORT, NATNET_DATA_PORT, NATNET_MULTICAST_GROUP, QTM_PORT};
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::bridges::mocap::{run_bridge_with_balls, Source};
 
 use super::args::ZenohArgs;
 use super::run::{runtime, shutdown_signal};
@@ -27,6 +27,10 @@ pub struct NatNetArgs {
     /// A rigid body and the rig it feeds, NAME=RIG (repeatable; several rigs share the connection).
     #[arg(long = "body", value_name = "NAME=RIG", required = true)]
     pub body: Vec<String>,
+    /// A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): published on
+    /// mocap/<RIG>/ball, it sets each shot's ball position.
+    #[arg(long = "ball", value_name = "NAME=RIG")]
+    pub ball: Vec<String>,
     /// Motive's command port.
     #[arg(long, default_value_t = NATNET_COMMAND_PORT)]
     pub command_port: u16,
@@ -54,22 +58,26 @@ pub struct QtmArgs {
     /// A 6DOF body and the rig it feeds, NAME=RIG (repeatable; several rigs share the connection).
     #[arg(long = "body", value_name = "NAME=RIG", required = true)]
     pub body: Vec<String>,
+    /// A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): published on
+    /// mocap/<RIG>/ball, it sets each shot's ball position.
+    #[arg(long = "ball", value_name = "NAME=RIG")]
+    pub ball: Vec<String>,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
 }
 
-fn routes(bodies: &[String]) -> Result<Vec<(String, String)>> {
+fn routes(flag: &str, bodies: &[String]) -> Result<Vec<(String, String)>> {
     bodies
         .iter()
         .map(|b| match b.split_once('=') {
             Some((name, rig)) if !name.is_empty() && !rig.is_empty() => Ok((name.to_string(), rig.to_string())),
-            _ => bail!("--body {b}: expected NAME=RIG (the body's name in the capture software, then the rig)"),
+            _ => bail!("{flag} {b}: expected NAME=RIG (the body's name in the capture software, then the rig)"),
         })
         .collect()
 }
 
 pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
-    let (source, routes, zenoh) = match command {
+    let (source, routes, balls, zenoh) = match command {
         BridgeCommand::Natnet(a) => {
             if !a.unicast && !a.multicast_group.is_multicast() {
                 bail!("--multicast-group {} is not a multicast address", a.multicast_group);
@@ -83,14 +91,18 @@ pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
                 data_port: a.data_port,
                 multicast_group: (!a.unicast).then_some(a.multicast_group),
             };
-            (source, routes(&a.body)?, &a.zenoh)
+            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.zenoh)
         }
-        BridgeCommand::Qtm(a) => (Source::Qtm { host: a.server.clone(), port: a.port }, routes(&a.body)?, &a.zenoh),
+        BridgeCommand::Qtm(a) => {
+            let source = Source::Qtm { host: a.server.clone(), port: a.port };
+            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.zenoh)
+        }
     };
     let rt = runtime()?;
     rt.block_on(async {
         let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
-        let statuses = run_bridge(&session, source, routes, shutdown_signal()).await.context("bridge")?;
+        let statuses =
+            run_bridge_with_balls(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
         let _ = session.close().await;
         for s in statuses {
             eprintln!(

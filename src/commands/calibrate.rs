@@ -177,7 +177,8 @@ fn lab(a: &LabArgs) -> Result<ExitCode> {
 }
 
 fn club(a: &ClubArgs) -> Result<ExitCode> {
-    let fitter = super::import::FitArgs { reject_mm: 3.0 }.fitter(&a.markers)?;
+    let fit = super::import::FitArgs { reject_mm: 3.0, ball_marker: None, ball_offset_mm: Vec::new() };
+    let fitter = fit.fitter(&a.markers)?;
     let set = &fitter.set;
     let mut labels = set.labels.clone();
     labels.extend(a.face.iter().cloned());

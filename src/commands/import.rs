@@ -1,5 +1,6 @@
 //! `impactd import CAPTURE.c3d --markers SET.toml --rig RIG -o samples.jsonl`: a C3D capture's marker
-//! trajectories as clubhead samples (JSONL, one per frame), the marker set fitted to each frame.
+//! trajectories as clubhead samples (JSONL, one per frame), the marker set fitted to each frame; with
+//! `--ball-marker`, a ball sample before each frame's sample.
 
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -33,9 +34,28 @@ pub struct FitArgs {
     /// A marker further than this from its fitted place is dropped as a swap or a ghost (mm).
     #[arg(long, default_value_t = 3.0)]
     pub reject_mm: f64,
+    /// A marker on the ball: each frame's position (plus --ball-offset-mm) is the rig's tracked ball, which sets
+    /// each shot's ball position (written as `mocap/<rig>/ball` lines before the frame's sample).
+    #[arg(long, value_name = "LABEL")]
+    pub ball_marker: Option<String>,
+    /// From the ball marker to the ball's centre, in the capture's lab axes (mm): `0,0,-28` for a 14 mm marker
+    /// on top of a ball in a Z-up lab.
+    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', allow_hyphen_values = true, requires = "ball_marker")]
+    pub ball_offset_mm: Vec<f64>,
 }
 
 impl FitArgs {
+    /// The ball marker's label and its offset to the ball's centre (lab, m), when one is given.
+    pub fn ball(&self) -> Result<Option<(&str, impactd::math::Vector3)>> {
+        let Some(label) = &self.ball_marker else { return Ok(None) };
+        let offset = match self.ball_offset_mm.as_slice() {
+            [] => [0.0; 3],
+            [x, y, z] if [x, y, z].iter().all(|v| v.is_finite() && v.abs() <= 200.0) => [*x, *y, *z],
+            _ => bail!("--ball-offset-mm takes three finite numbers within 200 mm"),
+        };
+        Ok(Some((label.as_str(), impactd::math::Vector3::from(offset) * 1e-3)))
+    }
+
     pub fn fitter(&self, markers: &std::path::Path) -> Result<MarkerFitter> {
         if !(self.reject_mm.is_finite() && self.reject_mm > 0.0) {
             bail!("--reject-mm must be a positive number of millimetres");
@@ -57,6 +77,9 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
     }
     let mut samples =
         CaptureSamples::new(reader, fitter, &args.rig).with_context(|| format!("{}", args.file.display()))?;
+    if let Some((label, offset)) = args.fit.ball()? {
+        samples = samples.with_ball_marker(label, offset).with_context(|| format!("{}", args.file.display()))?;
+    }
     let sink: Box<dyn Write> = if args.output.as_os_str() == "-" {
         Box::new(std::io::stdout().lock())
     } else {
@@ -64,6 +87,10 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
     };
     let mut out = BufWriter::with_capacity(1 << 16, sink);
     while let Some(s) = samples.next_sample().with_context(|| format!("{}", args.file.display()))? {
+        if let Some(ball) = samples.ball() {
+            serde_json::to_writer(&mut out, &ball)?;
+            out.write_all(b"\n")?;
+        }
         serde_json::to_writer(&mut out, &s)?;
         out.write_all(b"\n")?;
     }

@@ -190,8 +190,8 @@ fn load(args: &ReplayArgs) -> Result<ReplayInput> {
         }
         (None, None) => "c3d".to_string(),
     };
-    let (input, counts, warnings) =
-        replay::load_capture(&args.file, fitter, &rig).with_context(|| format!("{}", args.file.display()))?;
+    let (input, counts, warnings) = replay::load_capture(&args.file, fitter, &rig, args.fit.ball()?)
+        .with_context(|| format!("{}", args.file.display()))?;
     for w in &warnings {
         eprintln!("{}: warning: {w}", args.file.display());
     }

@@ -3,6 +3,7 @@
 //! contact between the face and the ball.
 
 pub mod arc;
+pub mod ball_tracker;
 pub mod calibrate;
 pub mod club_data;
 pub mod detect;

@@ -43,6 +43,17 @@ impl BodySample {
             fit_residual_m: None,
         }
     }
+
+    /// The body as a tracked ball (its origin the ball's centre): a sample for `mocap/<rig>/ball`.
+    pub fn to_ball_msg(&self, rig: &str) -> crate::wire::BallSampleMsg {
+        crate::wire::BallSampleMsg {
+            rig: rig.to_string(),
+            frame: self.frame,
+            t_ns: self.t_ns,
+            position_m: self.position_m,
+            occluded: self.occluded,
+        }
+    }
 }
 
 /// Why a body's frame was published occluded although the server said it was tracked.

@@ -14,6 +14,11 @@ pub fn rejected(rig: &str) -> String {
 pub fn mocap_input(rig: &str) -> String {
     format!("mocap/{rig}/input")
 }
+/// In: [`BallSampleMsg`](super::BallSampleMsg), the tracked ball's centre (lab frame), `mocap/<rig>/ball`; a
+/// ball at rest sets the position of the rig's next impact. Recorded.
+pub fn ball(rig: &str) -> String {
+    format!("mocap/{rig}/ball")
+}
 /// Every rig's clubhead samples.
 pub const CLUBHEAD_ALL: &str = "mocap/*/clubhead";
 /// Recorded only: [`RejectedInput`](super::RejectedInput)s of samples on the keys of rigs no daemon serves.
@@ -126,6 +131,12 @@ pub fn rig_of_launch(key: &str) -> Option<&str> {
 pub fn rig_of_clubhead(key: &str) -> Option<&str> {
     let rest = key.strip_prefix("mocap/")?;
     let rig = rest.strip_suffix("/clubhead")?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
+/// The rig name of a `mocap/<rig>/ball` key.
+pub fn rig_of_ball(key: &str) -> Option<&str> {
+    let rest = key.strip_prefix("mocap/")?;
+    let rig = rest.strip_suffix("/ball")?;
     (!rig.is_empty() && !rig.contains('/')).then_some(rig)
 }
 /// Whether a rig name can stand in a key expression.

@@ -147,6 +147,10 @@ pub struct ImpactMessage {
     /// The shot's labels (player, club, tags, note) when it has any.
     #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
     pub labels: super::ShotLabels,
+    /// The ball position this impact used (world frame) and where it came from (absent in recordings made
+    /// before it was reported: the rig's fixed `ball_position_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball: Option<super::BallUsed>,
 }
 
 /// A predicted launch, on `golf/<rig>/launch`.
@@ -178,6 +182,10 @@ pub struct LaunchPrediction {
     /// The shot's labels (player, club, tags, note) when it has any.
     #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
     pub labels: super::ShotLabels,
+    /// The ball position this impact used (world frame) and where it came from (absent in recordings made
+    /// before it was reported: the rig's fixed `ball_position_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball: Option<super::BallUsed>,
 }
 
 /// Health of one rig, once a second on `golf/<rig>/status`.

@@ -5,6 +5,7 @@
 //!
 //! This module holds the JSON forms only; it depends on no transport.
 
+mod ball;
 mod bay;
 mod bridge;
 mod delivery;
@@ -17,6 +18,7 @@ mod mocap;
 mod sample;
 mod schema;
 
+pub use ball::{BallSampleMsg, BallSource, BallUsed};
 pub use bay::{club_text, ControlError, DisplaySettings, DisplayUnits, ShotExclusion, MAX_CLUB_BYTES};
 pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,

@@ -25,6 +25,7 @@ pub enum MessageType {
     OpenConnectTraffic,
     MocapInputStatus,
     ShotLabels,
+    BallSample,
     ShotExclusion,
     DisplaySettings,
 }
@@ -76,6 +77,7 @@ messages! {
     OpenConnectTraffic => OpenConnectTraffic,
     MocapInputStatus => MocapInputStatus,
     ShotLabels => ShotLabels,
+    BallSample => BallSampleMsg,
     ShotExclusion => ShotExclusion,
     DisplaySettings => DisplaySettings,
 }

@@ -38,6 +38,7 @@ use crate::identify::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
+mod ball;
 mod inputs;
 mod labels;
 mod measured;
@@ -141,6 +142,7 @@ pub async fn run(
             (keys::session(&name), InputKind::Labels),
             (keys::truth(&name), InputKind::Truth),
             (keys::exclude(&name), InputKind::Exclusion),
+            (keys::ball(&name), InputKind::Ball),
         ] {
             measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
         }
@@ -353,6 +355,7 @@ impl Worker {
             InputKind::Labels => return self.on_labels(incoming),
             InputKind::Truth => return self.on_truth(incoming),
             InputKind::Exclusion => return self.on_exclusion(incoming),
+            InputKind::Ball => return self.on_ball(incoming),
         }
         let rig = self.rig.clone();
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {

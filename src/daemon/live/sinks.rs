@@ -157,7 +157,7 @@ impl RigSinks {
                 rig: self.rig.clone(),
                 t_ns: m.t_impact_ns,
                 log_time_ns: now_ns,
-                ball_position_m: self.ball_position_m,
+                ball_position_m: m.ball.map_or(self.ball_position_m, |b| b.position_m),
                 ball_radius_m: self.ball_radius_m,
                 club: m.state,
             });
@@ -202,6 +202,11 @@ impl RigSinks {
             t_impact_ns,
             payload,
         );
+    }
+
+    /// Records a tracked ball's sample as it arrived (`mocap/<rig>/ball`).
+    pub fn ball(&self, log_time_ns: u64, t_ns: u64, payload: Vec<u8>) {
+        self.record::<crate::wire::BallSampleMsg>(&crate::wire::keys::ball(&self.rig), log_time_ns, t_ns, payload);
     }
 
     /// Records the session labels a put set (`golf/<rig>/session`).

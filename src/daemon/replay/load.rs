@@ -22,6 +22,9 @@ pub struct ReplayInput {
     /// Session labels as recorded (`golf/<rig>/session`): `(i, rig, labels)` label that rig's shots from sample
     /// `i` of `samples` on.
     pub labels: Vec<(usize, String, crate::wire::ShotLabels)>,
+    /// A tracked ball's samples (`mocap/<rig>/ball`, or ball lines in a JSONL file): `(i, payload)` are taken
+    /// before sample `i` of `samples`, in order.
+    pub balls: Vec<(usize, crate::wire::BallSampleMsg, Vec<u8>)>,
     /// A synthetic rig's recorded truths (`sim/<rig>/truth`): `(i, rig, t_impact_ns, payload)`, recorded again by a
     /// replay's recording before sample `i`.
     pub truths: Vec<(usize, String, u64, Vec<u8>)>,
@@ -72,7 +75,14 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                         input.samples.push(msg);
                         continue;
                     }
-                    Err(e) => crate::capped::quote(&e.to_string()).into_owned(),
+                    Err(e) => match crate::wire::BallSampleMsg::parse(text.as_bytes()) {
+                        // A ball line (`impactd import --ball-marker`): taken before the next sample.
+                        Ok(ball) => {
+                            input.balls.push((input.samples.len(), ball, text.as_bytes().to_vec()));
+                            continue;
+                        }
+                        Err(_) => crate::capped::quote(&e.to_string()).into_owned(),
+                    },
                 },
             };
             input.skipped += 1;
@@ -112,6 +122,13 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 }
                 Err(e) => {
                     damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
+                }
+            }
+        } else if keys::rig_of_ball(topic).is_some() {
+            match crate::wire::BallSampleMsg::parse(&message.data) {
+                Ok(b) => input.balls.push((input.samples.len(), b, message.data)),
+                Err(e) => {
+                    damage.push(format!("a recorded ball sample at log time {} does not parse: {e}", message.log_time))
                 }
             }
         } else if let Some(rig) = keys::rig_of_truth(topic) {

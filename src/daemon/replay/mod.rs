@@ -40,7 +40,19 @@ pub fn replay(
         setups.into_iter().map(|s| (s.name.clone(), Pipeline::new(s))).collect();
     let mut stats = ReplayStats::default();
     let mut events = Vec::with_capacity(8);
-    for msg in &input.samples {
+    let mut labels = input.labels.iter().peekable();
+    let mut balls = input.balls.iter().peekable();
+    for (i, msg) in input.samples.iter().enumerate() {
+        while let Some((_, rig, l)) = labels.next_if(|(at, ..)| *at <= i) {
+            if let Some(p) = pipelines.get_mut(rig) {
+                p.set_labels(l.clone());
+            }
+        }
+        while let Some((_, ball, _)) = balls.next_if(|(at, ..)| *at <= i) {
+            if let Some(p) = pipelines.get_mut(&ball.rig) {
+                let _ = p.on_ball((!ball.occluded).then_some(ball.position_m));
+            }
+        }
         stats.samples += 1;
         let Some(p) = pipelines.get_mut(&msg.rig) else {
             stats.unknown_rig += 1;

@@ -178,7 +178,14 @@ pub async fn run(
     let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
     let mut labels = input.labels.iter().peekable();
     let mut truths = input.truths.iter().peekable();
+    let mut balls = input.balls.iter().peekable();
     for (i, msg) in input.samples.iter().enumerate() {
+        while let Some((_, ball, payload)) = balls.next_if(|(at, ..)| *at <= i) {
+            if let Some(rig) = rigs.get_mut(&ball.rig) {
+                rig.sinks.ball(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), ball.t_ns, payload.clone());
+                let _ = rig.pipeline.on_ball((!ball.occluded).then_some(ball.position_m));
+            }
+        }
         while let Some((_, name, l)) = labels.next_if(|(at, _, _)| *at <= i) {
             if let Some(rig) = rigs.get_mut(name) {
                 rig.sinks.labels(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), l);

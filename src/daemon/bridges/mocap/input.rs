@@ -28,6 +28,7 @@ pub const QTM_PORT: u16 = 22223;
 /// [rig.input]
 /// natnet = "192.168.1.20"    # or qtm = "192.168.1.20"
 /// body = "driver"            # the rigid body's name in Motive (6DOF body in QTM)
+/// ball_body = "ball"         # optional: a body whose origin is the ball's centre (mocap/<rig>/ball)
 /// unicast = true             # NatNet: unicast (default: multicast on multicast_group)
 /// # command_port = 1510; data_port = 1511; multicast_group = "239.255.42.99"; port = 22223 (QTM)
 /// ```
@@ -39,6 +40,10 @@ pub struct MocapInputConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub qtm: Option<String>,
     pub body: String,
+    /// A body (a marker or a rigid body) whose origin is the ball's centre: its frames are the rig's tracked ball,
+    /// which sets each shot's ball position (`mocap/<rig>/ball`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball_body: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub command_port: Option<u16>,
     /// NatNet data port (0: any free port, for unicast).
@@ -81,6 +86,11 @@ impl MocapInputConfig {
     pub fn source(&self) -> Result<Source, (&'static str, String)> {
         if self.body.trim().is_empty() {
             return Err(("body", "must name the rigid body".into()));
+        }
+        if let Some(b) = &self.ball_body {
+            if b.trim().is_empty() || *b == self.body {
+                return Err(("ball_body", "must name a body other than the club's".into()));
+            }
         }
         let host = |h: &String, field| {
             if h.trim().is_empty() || h.contains(char::is_whitespace) {

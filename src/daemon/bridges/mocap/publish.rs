@@ -19,19 +19,35 @@ pub async fn run_bridge(
     routes: Vec<(String, String)>,
     shutdown: impl Future<Output = ()>,
 ) -> Result<Vec<MocapInputStatus>, DaemonError> {
+    run_bridge_with_balls(session, source, routes, Vec::new(), shutdown).await
+}
+
+/// [`run_bridge`], with `balls` (`(body, rig)`): bodies whose origin is a ball's centre, published as the rig's
+/// tracked ball on `mocap/<rig>/ball`. Statuses are returned for the clubs' routes, then the balls'.
+pub async fn run_bridge_with_balls(
+    session: &zenoh::Session,
+    source: Source,
+    routes: Vec<(String, String)>,
+    balls: Vec<(String, String)>,
+    shutdown: impl Future<Output = ()>,
+) -> Result<Vec<MocapInputStatus>, DaemonError> {
     let mut samples = Vec::new();
     let mut statuses = Vec::new();
-    for (_, rig) in &routes {
+    let clubs = routes.len();
+    let routes: Vec<(String, String)> = routes.into_iter().chain(balls).collect();
+    for (i, (_, rig)) in routes.iter().enumerate() {
         if !keys::valid_rig_name(rig) {
             return Err(DaemonError::BadRigName(rig.clone()));
         }
-        samples.push(
-            session
-                .declare_publisher(keys::clubhead(rig))
-                .encoding(MessageType::ClubheadSample.encoding())
-                .await
-                .map_err(DaemonError::zenoh)?,
-        );
+        let (key, message) = if i < clubs {
+            (keys::clubhead(rig), MessageType::ClubheadSample)
+        } else {
+            (keys::ball(rig), MessageType::BallSample)
+        };
+        samples.push(session.declare_publisher(key).encoding(message.encoding()).await.map_err(DaemonError::zenoh)?);
+        if i >= clubs {
+            continue;
+        }
         statuses.push(
             session
                 .declare_publisher(keys::mocap_input(rig))
@@ -43,7 +59,12 @@ pub async fn run_bridge(
     let rigs: Vec<String> = routes.iter().map(|r| r.1.clone()).collect();
     let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, _received| {
         let (Some(publisher), Some(rig)) = (samples.get(i), rigs.get(i)) else { return };
-        if let Err(e) = publisher.put(serde_json::to_vec(&sample.to_msg(rig)).unwrap_or_default()).wait() {
+        let payload = if i < clubs {
+            serde_json::to_vec(&sample.to_msg(rig))
+        } else {
+            serde_json::to_vec(&sample.to_ball_msg(rig))
+        };
+        if let Err(e) = publisher.put(payload.unwrap_or_default()).wait() {
             tracing::warn!("rig {rig}: publishing a sample: {e}");
         }
     });

@@ -31,6 +31,8 @@ pub struct CaptureSamples<R> {
     frame: Frame,
     lab_m: Vec<Option<Vector3>>,
     last_pose: Isometry3,
+    /// The ball marker's point index and the offset from it to the ball's centre (lab, m).
+    ball: Option<(usize, Vector3)>,
     pub counts: ImportCounts,
 }
 
@@ -48,7 +50,36 @@ impl<R: Read + Seek> CaptureSamples<R> {
             indices,
             frame: Frame::default(),
             last_pose: Isometry3::identity(),
+            ball: None,
             counts: ImportCounts::default(),
+        })
+    }
+
+    /// Reads the marker `label` as the ball: its position plus `offset_m` (lab frame, m; from a marker on the
+    /// ball's surface to the ball's centre) is the ball's centre of each frame ([`CaptureSamples::ball`]).
+    pub fn with_ball_marker(mut self, label: &str, offset_m: Vector3) -> Result<Self, C3dError> {
+        let labels = &self.reader.info.labels;
+        let index = labels
+            .iter()
+            .position(|l| l.trim() == label.trim())
+            .ok_or_else(|| C3dError::MissingMarker { label: label.to_string(), available: labels.join(", ") })?;
+        self.ball = Some((index, offset_m));
+        Ok(self)
+    }
+
+    /// The ball's sample of the frame [`CaptureSamples::next_sample`] read last (with a ball marker; occluded when
+    /// the marker is not valid in that frame).
+    pub fn ball(&self) -> Option<crate::wire::BallSampleMsg> {
+        let (index, offset) = self.ball?;
+        let info = &self.reader.info;
+        let at = self.frame.points_m.get(index).copied().flatten();
+        let p = at.map_or([0.0; 3], |p| (p + offset).into());
+        Some(crate::wire::BallSampleMsg {
+            rig: self.rig.clone(),
+            frame: info.first_frame + self.frame.index,
+            t_ns: (self.frame.index as f64 * 1e9 / info.rate_hz).round() as u64,
+            position_m: p,
+            occluded: at.is_none(),
         })
     }
 
