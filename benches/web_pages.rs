@@ -26,6 +26,9 @@ use zenoh::Wait;
 
 const PAGES: usize = 20;
 
+/// Per shot: pages open, block, end to end (us), in the daemon (us).
+type Results = Arc<Mutex<Vec<(usize, u64, f64, f64)>>>;
+
 fn quantile(v: &[f64], q: f64) -> f64 {
     let mut v = v.to_vec();
     v.sort_by(f64::total_cmp);
@@ -62,7 +65,7 @@ fn main() {
         let rig = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
         let frames: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
         // (pages open, block, end to end us, in the daemon us)
-        let results: Arc<Mutex<Vec<(usize, u64, f64, f64)>>> = Default::default();
+        let results: Results = Default::default();
         let block_now = Arc::new(AtomicU64::new(0));
         let open_pages = Arc::new(AtomicU64::new(0));
         let f = frames.clone();
