@@ -58,8 +58,8 @@ const Draw = (() => {
     }
     svg.appendChild(el("line", { x1: -8, x2: 8, y1: 0, y2: 0, class: "grid" }));
     svg.appendChild(el("line", { x1: 0, x2: 0, y1: -8, y2: 8, class: "grid" }));
-    svg.appendChild(el("text", { x: 46, y: 36 }, "toe"));
-    svg.appendChild(el("text", { x: -66, y: 36 }, "heel"));
+    svg.appendChild(el("text", { x: 68, y: 37, "text-anchor": "end" }, "toe"));
+    svg.appendChild(el("text", { x: -68, y: 37 }, "heel"));
     if (Number.isFinite(hMm) && Number.isFinite(vMm)) {
       svg.appendChild(el("circle", { class: "impact", cx: hMm.toFixed(1), cy: (-vMm).toFixed(1), r: 5 }));
     }
