@@ -109,6 +109,22 @@ try:
     line = sys.stdin.readline()
     assert line.strip() == "RESTARTED", line
     wait("the page to notice", lambda: js(f"return bay.data['{rig}'].shots.length === 0 && bay.connected"), 30)
-    emit("RECONNECTED", {"connection": driver.find_element(By.ID, "connection").text})
+    connection = driver.find_element(By.ID, "connection").text
+    # A day at the bay in one go: 1500 shots (with flights) and 200 comparisons through the page's own message
+    # handler; what the page keeps stays within its bounds.
+    js(f"""
+        const rig = '{rig}', line = [[0, 0, 0], [50, 10, 1], [100, 0, 2]];
+        for (let i = 0; i < 1500; i++) {{
+          onMessage({{type: 'shot', rig, shot: 10000 + i, published_ns: Date.now() * 1e6, club: 'driver',
+                     club_file: 'driver', labels: {{}}, warnings: [], m: {{ball_speed_mph: 150}}, flight: line}});
+          if (i % 7 === 0) onMessage({{type: 'comparison', rig, comparison: {{shot: 10000 + i, device: 'LM',
+                     predicted: {{}}, measured: {{}}, residual: {{}}}}}});
+        }}""")
+    time.sleep(0.5)  # the drawn times are taken in the next animation frame
+    kept = js(f"""
+        const d = bay.data['{rig}'];
+        return {{shots: d.shots.length, flights: d.flights.length, comparisons: d.comparisons.length,
+                latencies: bay.latencies.length, rows: document.querySelectorAll('#shots tbody tr').length}};""")
+    emit("RECONNECTED", {"connection": connection, "kept": kept})
 finally:
     driver.quit()

@@ -8,7 +8,8 @@
 //! the recording; the CSV the page downloads must be byte for byte what `impactd export --format trackman-csv`
 //! writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show beside the
 //! prediction with its residual; the units switched on the page must come back through `golf/<rig>/display`;
-//! after the daemon restarts the page must reconnect by itself. Screenshots of each
+//! after the daemon restarts the page must reconnect by itself; and 1500 shots later the page must still hold
+//! no more than its bounds (1000 shots, 12 flights, 50 comparisons, 1000 drawn times). Screenshots of each
 //! view are saved under target/web-page/.
 //!
 //! Times, from the page's own clocks: launch published (the daemon's wall clock when the launch reached the
@@ -195,6 +196,14 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     stdin.flush().unwrap();
     let reconnected = tokio::task::block_in_place(|| expect(&mut lines, "RECONNECTED"));
     assert_eq!(reconnected["connection"], "live");
+    // A page open for a day keeps at most its bounds (app.js: MAX_SHOTS, MAX_FLIGHTS, MAX_COMPARISONS,
+    // MAX_LATENCIES).
+    let kept = &reconnected["kept"];
+    assert_eq!(
+        [&kept["shots"], &kept["flights"], &kept["comparisons"], &kept["latencies"]],
+        [&serde_json::json!(1000), &serde_json::json!(12), &serde_json::json!(50), &serde_json::json!(1000)],
+        "{kept}"
+    );
     assert!(browser.wait().unwrap().success(), "the browser script failed");
     daemon.stop().await;
 
