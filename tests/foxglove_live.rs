@@ -94,6 +94,7 @@ async fn a_foxglove_client_receives_every_channel_during_a_demo() {
         overwrite: false,
         json: true,
         foxglove: Some(address),
+        web: None,
     };
     let summary = demo(options, std::future::pending()).await.unwrap();
     assert_eq!(summary.rigs["rig1"].predictions, 3);

@@ -48,6 +48,9 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
     args.bridges.apply(&mut config)?;
+    if let Some(a) = args.bridges.web(&config) {
+        eprintln!("impactd demo: the bay screen is on http://{a}/ (Ctrl-C stops the demo after the shots)");
+    }
     let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
     eprintln!(
         "impactd demo: daemon and a synthetic {} rig on loopback zenoh, {} shots at {} Hz; recording to {}",
@@ -59,12 +62,13 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     let rt = runtime()?;
     let summary = rt.block_on(demo(
         DemoOptions {
-            config,
+            config: config.clone(),
             sim,
             record: Some(args.record.clone()),
             overwrite: args.overwrite,
             json: args.json,
             foxglove: args.bridges.foxglove.clone(),
+            web: args.bridges.web(&config),
         },
         shutdown_signal(),
     ))?;

@@ -39,6 +39,9 @@ pub struct BridgeArgs {
     /// Units of the lines printed and logged per shot (default: the configuration's `units`, imperial).
     #[arg(long, value_enum)]
     pub units: Option<impactd::session::Units>,
+    /// Serve the bay screen (a web page per rig) on this address (default 127.0.0.1:8080; overrides `[web]`).
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = impactd::daemon::bridges::web::DEFAULT_ADDRESS)]
+    pub web: Option<String>,
 }
 
 impl BridgeArgs {
@@ -54,6 +57,11 @@ impl BridgeArgs {
             config.units = u;
         }
         Ok(())
+    }
+
+    /// The bay screen's address: `--web`, else the configuration's `[web] listen`.
+    pub(super) fn web(&self, config: &DaemonConfig) -> Option<String> {
+        self.web.clone().or_else(|| config.web.as_ref().map(|w| w.listen.clone()))
     }
 }
 
@@ -98,6 +106,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
     let (mut config, _) = load_config(args.config.as_deref())?;
     args.bridges.apply(&mut config)?;
     let setups = config.setups()?;
+    let web = args.bridges.web(&config);
     let rt = runtime()?;
     rt.block_on(async {
         let session = args.zenoh.open().await?;
@@ -119,6 +128,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
                 record: args.record.clone(),
                 overwrite: args.overwrite,
                 foxglove: args.bridges.foxglove.clone(),
+                web,
             },
             shutdown_signal(),
         )

@@ -2,6 +2,7 @@
 //! session as coaches read it: per group the count, mean, SD and median of TrackMan's metrics, the carry gaps
 //! between clubs, and the mishits flagged. `--exclude RIG:SHOT` leaves a shot out and keeps that choice beside the
 //! recording (`FILE.mcap.session.json`), so every later summary leaves it out too; `--include` takes it back.
+//! Shots left out on the bay (a put on `golf/<rig>/exclude`, kept in the recording) are left out as well.
 
 use std::collections::BTreeSet;
 use std::io::Write;
@@ -107,6 +108,14 @@ pub fn run(args: &SessionArgs) -> Result<ExitCode> {
         }
         let ids: BTreeSet<ShotId> = r.launches.iter().map(|p| ShotId { rig: p.rig.clone(), shot: p.shot }).collect();
         excluded.extend(exclusions(path, &ids, args)?);
+        // Shots left out on the bay (a put on golf/<rig>/exclude, recorded), unless `--include` takes them back.
+        let taken_back: BTreeSet<String> = args.include.iter().map(ToString::to_string).collect();
+        excluded.extend(
+            r.excluded
+                .iter()
+                .map(|(rig, shot)| ShotId { rig: rig.clone(), shot: *shot })
+                .filter(|s| !taken_back.contains(&s.to_string())),
+        );
         launches.extend(r.launches);
     }
     let all: BTreeSet<String> = launches.iter().map(|p| format!("{}:{}", p.rig, p.shot)).collect();

@@ -40,6 +40,9 @@
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"
 //! pair_window_s = [0.05, 5.0]   # a measurement pairs with the prediction it follows by this delay (s)
+//!
+//! [web]                         # the bay screen (`--web` overrides); a page per rig at http://ADDR/
+//! listen = "127.0.0.1:8080"
 //! ```
 
 use std::collections::BTreeMap;
@@ -66,6 +69,22 @@ pub struct DaemonConfig {
     pub units: crate::session::Units,
     #[serde(rename = "rig")]
     pub rigs: Vec<RigConfig>,
+    /// The bay screen (`[web] listen = "127.0.0.1:8080"`), served when given (or with `--web`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub web: Option<WebConfig>,
+}
+
+/// `[web]`: where the bay screen is served.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WebConfig {
+    /// `HOST:PORT`; loopback by default (a bay's screen is usually on the same machine).
+    #[serde(default = "default_web_listen")]
+    pub listen: String,
+}
+
+fn default_web_listen() -> String {
+    "127.0.0.1:8080".into()
 }
 
 fn default_status_period() -> f64 {
@@ -221,6 +240,7 @@ impl Default for DaemonConfig {
         DaemonConfig {
             status_period_s: 1.0,
             units: crate::session::Units::Imperial,
+            web: None,
             rigs: vec![RigConfig {
                 name: "rig1".into(),
                 club: default_club(),
@@ -359,6 +379,18 @@ impl DaemonConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_bay_screen_is_served_where_web_listen_says_loopback_by_default() {
+        let rig = "[[rig]]\nname = \"bay1\"\n";
+        assert_eq!(DaemonConfig::parse(rig).unwrap().0.web, None);
+        let (c, _) = DaemonConfig::parse(&format!("{rig}[web]\nlisten = \"127.0.0.1:9090\"\n")).unwrap();
+        assert_eq!(c.web.unwrap().listen, "127.0.0.1:9090");
+        let (c, _) = DaemonConfig::parse(&format!("{rig}[web]\n")).unwrap();
+        assert_eq!(c.web.unwrap().listen, "127.0.0.1:8080");
+        let e = DaemonConfig::parse(&format!("{rig}[web]\nlisten_on = \"x\"\n")).unwrap_err().to_string();
+        assert!(e.contains("listen_on"), "{e}");
+    }
 
     #[test]
     fn errors_name_the_field() {

@@ -22,6 +22,8 @@ pub struct DemoOptions {
     pub json: bool,
     /// Serve the Foxglove live view on this `HOST:PORT`.
     pub foxglove: Option<String>,
+    /// Serve the bay screen on this `HOST:PORT` (the demo then runs until `shutdown`, for the page).
+    pub web: Option<String>,
 }
 
 /// One readable line for a prediction, with the truth when known.
@@ -109,11 +111,13 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let record = options.record.clone();
     let overwrite = options.overwrite;
     let foxglove = options.foxglove.clone();
+    let web = options.web.clone();
+    let keep_serving = web.is_some();
     let daemon = tokio::spawn(async move {
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let options = RunOptions { record, overwrite, foxglove };
+        let options = RunOptions { record, overwrite, foxglove, web };
         let r = crate::daemon::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r
@@ -134,13 +138,19 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
             predicted.notified().await;
         }
     };
+    tokio::pin!(shutdown);
+    let mut stopped = false;
     tokio::select! {
         _ = all_predicted => {}
-        _ = shutdown => { eprintln!("stopping"); }
+        _ = &mut shutdown => { eprintln!("stopping"); stopped = true; }
         _ = async {
             // The rig finished but a shot went unpredicted: give the daemon a moment, then stop.
             let _ = tokio::time::sleep(std::time::Duration::from_secs_f64(options.sim.interval_s * (options.sim.shots as f64 + 2.0) + 5.0)).await;
         } => { eprintln!("not every shot was predicted; stopping"); }
+    }
+    // With a bay screen the page stays up after the shots until the demo is stopped.
+    if keep_serving && !stopped {
+        shutdown.await;
     }
     let _ = stop_sim_tx.send(());
     let _ = sim.await;

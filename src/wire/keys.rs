@@ -90,6 +90,25 @@ pub fn session(rig: &str) -> String {
 pub fn club(rig: &str) -> String {
     format!("golf/{rig}/club")
 }
+/// In: [`ShotExclusion`](super::ShotExclusion), a shot left out of (or taken back into) the session's numbers.
+/// Recorded, so `impactd session` leaves it out too.
+pub fn exclude(rig: &str) -> String {
+    format!("golf/{rig}/exclude")
+}
+/// In: [`DisplaySettings`](super::DisplaySettings), the units the rig's bay screens show.
+pub fn display(rig: &str) -> String {
+    format!("golf/{rig}/display")
+}
+/// Every rig's shot exclusions.
+pub const EXCLUDE_ALL: &str = "golf/*/exclude";
+/// Every rig's display settings.
+pub const DISPLAY_ALL: &str = "golf/*/display";
+/// The rig name of a `golf/<rig>/<leaf>` key.
+pub fn rig_of_golf<'a>(key: &'a str, leaf: &str) -> Option<&'a str> {
+    let rest = key.strip_prefix("golf/")?;
+    let rig = rest.strip_suffix(leaf)?.strip_suffix('/')?;
+    (!rig.is_empty() && !rig.contains('/')).then_some(rig)
+}
 /// Every rig's session labels.
 pub const SESSION_ALL: &str = "golf/*/session";
 /// The rig name of a `golf/<rig>/session` key.

@@ -252,6 +252,9 @@ pub struct StatusMessage {
     /// The daemon's Foxglove live view (`--foxglove`), when it serves one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub live_view: Option<super::LiveViewStatus>,
+    /// The daemon's bay screen (`--web`), when it serves one: pages and file requests open, rejections by kind.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub web: Option<super::LiveViewStatus>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

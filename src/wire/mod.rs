@@ -6,6 +6,7 @@
 //! This module holds the JSON forms only; it depends on no transport.
 
 mod ball;
+mod bay;
 mod bridge;
 mod club;
 mod delivery;
@@ -19,6 +20,7 @@ mod sample;
 mod schema;
 
 pub use ball::{BallSampleMsg, BallSource, BallUsed};
+pub use bay::{club_text, ControlError, DisplaySettings, DisplayUnits, ShotExclusion, MAX_CLUB_BYTES};
 pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,

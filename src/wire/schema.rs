@@ -27,6 +27,8 @@ pub enum MessageType {
     ShotLabels,
     ClubChange,
     BallSample,
+    ShotExclusion,
+    DisplaySettings,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -78,6 +80,8 @@ messages! {
     ShotLabels => ShotLabels,
     ClubChange => ClubChange,
     BallSample => BallSampleMsg,
+    ShotExclusion => ShotExclusion,
+    DisplaySettings => DisplaySettings,
 }
 
 impl MessageType {

@@ -1,8 +1,9 @@
 //! A rig worker's session labels: each put on `golf/<rig>/session` joins the rig's queue behind the samples
-//! before it, is recorded, and labels the shots after it (a bad put is logged and changes nothing).
+//! before it, is recorded, and labels the shots after it (a bad put is logged and changes nothing). A put on
+//! `golf/<rig>/exclude` is recorded, so `impactd session` leaves the shot out.
 
 use super::{Incoming, Worker};
-use crate::wire::{keys, ShotLabels};
+use crate::wire::{keys, ShotExclusion, ShotLabels};
 
 impl Worker {
     /// New labels for the shots from now on: recorded, then set on the pipeline.
@@ -18,6 +19,21 @@ impl Worker {
         tracing::info!("rig {}: shots labelled {}", self.rig, serde_json::to_string(&labels).unwrap_or_default());
         if let Some(p) = self.pipeline.as_mut() {
             p.set_labels(labels);
+        }
+    }
+
+    /// A shot left out of the session (or taken back): recorded as it came, once it parses.
+    pub(super) fn on_exclusion(&mut self, incoming: Incoming) {
+        match ShotExclusion::parse(&incoming.payload) {
+            Ok(x) => {
+                self.sinks.exclusion(incoming.log_time_ns, &x);
+                let what = if x.excluded { "left out of" } else { "taken back into" };
+                tracing::info!("rig {}: shot {} {what} the session", self.rig, x.shot);
+            }
+            Err(e) => {
+                let key = keys::exclude(&self.rig);
+                self.warn("bad_exclusion", || format!("put on {key} refused: {e}"));
+            }
         }
     }
 }

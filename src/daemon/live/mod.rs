@@ -7,7 +7,8 @@
 //! being handed to zenoh. Status goes out once per `status_period_s`.
 //!
 //! Optional edges run on their own tasks, so none can delay a prediction: a rig's Open Connect client and
-//! listener ([`crate::daemon::bridges::open_connect`]) and the Foxglove live view ([`crate::daemon::bridges::foxglove::live`]).
+//! listener ([`crate::daemon::bridges::open_connect`]), the Foxglove live view ([`crate::daemon::bridges::foxglove::live`])
+//! and the bay screen ([`crate::daemon::bridges::web`]).
 //!
 //! Measured launches (`lm/<rig>/launch`, from the Open Connect listener or any publisher) go through the same
 //! queue to the same worker, which records them, pairs them with its predictions ([`crate::identify::pairing`])
@@ -27,7 +28,8 @@ use zenoh::Wait;
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use crate::daemon::bridges::opengolfsim;
-use crate::daemon::live::sinks::{RigPublishers, RigSinks, StatusInputs};
+use crate::daemon::bridges::web::{WebServer, WebStatusSource};
+use crate::daemon::live::sinks::{RigPublishers, RigSinks};
 use crate::daemon::live::stats::{
     Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
 };
@@ -44,6 +46,7 @@ mod labels;
 mod measured;
 mod queue;
 mod shot_log;
+mod status;
 use queue::{Incoming, InputKind};
 pub mod sinks;
 pub mod stats;
@@ -61,6 +64,8 @@ pub struct RunOptions {
     pub overwrite: bool,
     /// Serve the Foxglove live view on this `HOST:PORT`.
     pub foxglove: Option<String>,
+    /// Serve the bay screen on this `HOST:PORT`.
+    pub web: Option<String>,
 }
 
 /// What a run did, per rig.
@@ -92,6 +97,8 @@ pub async fn run(
         Some(address) => Some(FoxgloveServer::start(address, &config).await?),
         None => None,
     };
+    let rig_names = config.rigs.iter().map(|r| r.name.clone()).collect();
+    let web = WebServer::start_if(options.web.as_deref(), rig_names, session, options.record.as_deref()).await?;
     let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
     let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();
@@ -139,6 +146,7 @@ pub async fn run(
             (keys::measured_launch(&name), InputKind::Measured),
             (keys::session(&name), InputKind::Labels),
             (keys::truth(&name), InputKind::Truth),
+            (keys::exclude(&name), InputKind::Exclusion),
             (keys::ball(&name), InputKind::Ball),
         ] {
             measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
@@ -158,6 +166,7 @@ pub async fn run(
             simulator,
             launch_monitor,
             live_view: foxglove.as_ref().map(FoxgloveServer::status_source),
+            web: web.as_ref().map(WebServer::status_source),
             pairer: Pairer::new(&name, window),
             input: input_slots.entry(name.clone()).or_default().clone(),
             units: config.units,
@@ -261,6 +270,7 @@ pub async fn run(
         l.stop().await;
     }
     drop(foxglove);
+    drop(web);
     drop(handle);
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
@@ -284,6 +294,7 @@ struct Worker {
     simulator: Option<SimulatorClient>,
     launch_monitor: Option<Arc<std::sync::Mutex<LaunchMonitorStatus>>>,
     live_view: Option<crate::daemon::bridges::foxglove::live::LiveViewSource>,
+    web: Option<WebStatusSource>,
     /// Measured launches waiting for their prediction and predictions waiting for their measurement.
     pairer: Pairer,
     /// The NatNet or QTM client feeding this rig (`[rig.input]`), once started.
@@ -356,6 +367,7 @@ impl Worker {
             InputKind::Labels => return self.on_labels(incoming),
             InputKind::Truth => return self.on_truth(incoming),
             InputKind::Club => return self.on_club(incoming),
+            InputKind::Exclusion => return self.on_exclusion(incoming),
             InputKind::Ball => return self.on_ball(incoming),
         }
         let rig = self.rig.clone();
@@ -422,26 +434,5 @@ impl Worker {
             }
             Event::ClubChanged(change) => self.record_club_change(wall_ns(), &change),
         }
-    }
-
-    fn publish_status(&mut self) -> wire::StatusMessage {
-        let inputs = StatusInputs {
-            counts: &self.p().counts,
-            queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
-            latency: &self.latency,
-            uptime_s: self.started.elapsed().as_secs_f64(),
-            t_ns: wall_ns(),
-            unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
-            rejected_not_recorded: self.budget.refused,
-            recorder_error: self.sinks.recorder().error(),
-        };
-        let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
-        status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
-        status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
-        status.input = self.input.lock().ok().and_then(|s| s.as_ref().map(|s| s.status()));
-        status.comparison = Some(self.pairer.status());
-        status.live_view = self.live_view.as_ref().map(|v| v.status());
-        self.sinks.status(&status);
-        status
     }
 }

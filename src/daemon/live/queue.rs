@@ -1,6 +1,7 @@
 //! The rig worker's queue fed from zenoh: measured launches (`lm/<rig>/launch`), session labels
-//! (`golf/<rig>/session`), a synthetic rig's truth (`sim/<rig>/truth`) and a tracked ball (`mocap/<rig>/ball`) join it behind the samples that came
-//! before them, so each is handled in order by the rig's one worker.
+//! (`golf/<rig>/session`), shot exclusions (`golf/<rig>/exclude`), a synthetic rig's truth (`sim/<rig>/truth`)
+//! and a tracked ball (`mocap/<rig>/ball`) join it behind the samples that came before them, so each is handled
+//! in order by the rig's one worker.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::SyncSender;
@@ -24,6 +25,8 @@ pub(super) enum InputKind {
     Club,
     /// A tracked ball's sample (`mocap/<rig>/ball`).
     Ball,
+    /// A shot left out of the session or taken back (`golf/<rig>/exclude`).
+    Exclusion,
 }
 
 /// A payload in the rig's queue, with when it arrived.

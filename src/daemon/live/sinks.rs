@@ -221,6 +221,14 @@ impl RigSinks {
         self.record::<crate::wire::ShotLabels>(&crate::wire::keys::session(&self.rig), log_time_ns, log_time_ns, data);
     }
 
+    /// Records a shot's exclusion from the session (`golf/<rig>/exclude`).
+    pub fn exclusion(&self, log_time_ns: u64, x: &crate::wire::ShotExclusion) {
+        let data = serde_json::to_vec(x).unwrap_or_default();
+        let key = crate::wire::keys::exclude(&self.rig);
+        self.record::<crate::wire::ShotExclusion>(&key, log_time_ns, log_time_ns, data);
+        self.recorder.send(Record::Flush);
+    }
+
     /// Records a measured-launch payload that could not be used, beside the reason.
     pub fn measured_rejected(&self, log_time_ns: u64, rejected: &RejectedInput) {
         let data = serde_json::to_vec(rejected).unwrap_or_default();
@@ -281,6 +289,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         launch_monitor: None,
         comparison: None,
         live_view: None,
+        web: None,
     }
 }
 

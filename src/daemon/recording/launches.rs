@@ -1,5 +1,6 @@
 //! The predicted launches of MCAP recordings (`golf/<rig>/launch`), one per shot: the first model's (the one
-//! published first), or the named model's.
+//! published first), or the named model's; and the shots left out of the session by puts on
+//! `golf/<rig>/exclude` (the last put for a shot wins).
 
 use std::path::Path;
 
@@ -15,6 +16,8 @@ pub struct RecordedLaunches {
     pub launches: Vec<LaunchPrediction>,
     /// Every model the recording holds predictions of, in order of first appearance.
     pub models: Vec<String>,
+    /// The shots left out of the session by a put on `golf/<rig>/exclude`, as `(rig, shot)`, after the last put.
+    pub excluded: std::collections::BTreeSet<(String, u64)>,
     /// What could not be read (a damaged tail, a prediction that does not parse).
     pub damage: Vec<String>,
 }
@@ -26,6 +29,18 @@ pub fn read(path: &Path, model: Option<&str>) -> Result<RecordedLaunches, Daemon
     let mut damage = Vec::new();
     let scan = read_messages(path, OnDamage::Stop, |_, channel, m| {
         let Some(channel) = channel else { return };
+        if let Some(rig) = keys::rig_of_golf(channel.topic.trim_start_matches('/'), "exclude") {
+            match crate::wire::ShotExclusion::parse(&m.data) {
+                Ok(x) if x.excluded => {
+                    out.excluded.insert((rig.to_string(), x.shot));
+                }
+                Ok(x) => {
+                    out.excluded.remove(&(rig.to_string(), x.shot));
+                }
+                Err(e) => damage.push(format!("an exclusion at log time {} does not parse: {e}", m.log_time)),
+            }
+            return;
+        }
         if keys::rig_of_launch(channel.topic.trim_start_matches('/')).is_none() {
             return;
         }

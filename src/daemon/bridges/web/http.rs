@@ -1,0 +1,163 @@
+//! The bay screen's HTTP side: a request head is peeked (not consumed) so a WebSocket upgrade can go to
+//! tungstenite's handshake untouched; any other request is answered here: the embedded page files, a rig's
+//! session as TrackMan CSV, 404 and 405, and every answer closes the connection (a page is five small files).
+//!
+//! Written here rather than with an HTTP framework (axum, hyper): the page needs GET of fixed paths and one
+//! upgrade, and tungstenite already parses the upgrade; hyper and axum would add a service stack and minutes of
+//! compile time to CI for that.
+
+use std::time::Duration;
+
+use tokio::io::AsyncWriteExt;
+use tokio::net::TcpStream;
+
+/// The largest request head read (a browser's is under 2 KiB).
+pub const MAX_REQUEST_HEAD_BYTES: usize = 8 * 1024;
+/// The most headers parsed.
+const MAX_HEADERS: usize = 48;
+
+/// What a client asked for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Request {
+    /// A WebSocket upgrade of `/ws`: tungstenite takes the connection as it is.
+    Upgrade,
+    /// A GET of a path (the query string removed).
+    Get { path: String },
+    /// Anything else: answered with this status.
+    Refused { status: u16, kind: &'static str },
+}
+
+/// Why a request head could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum HeadError {
+    #[error("the connection closed before a request")]
+    Closed,
+    #[error("a request head over {MAX_REQUEST_HEAD_BYTES} bytes")]
+    TooLarge,
+    #[error("reading the request: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Parses a complete request head.
+pub fn classify(head: &[u8]) -> Request {
+    let mut headers = [httparse::EMPTY_HEADER; MAX_HEADERS];
+    let mut req = httparse::Request::new(&mut headers);
+    match req.parse(head) {
+        Ok(httparse::Status::Complete(_)) => {}
+        Ok(httparse::Status::Partial) | Err(_) => return Request::Refused { status: 400, kind: "bad_request" },
+    }
+    if req.method != Some("GET") {
+        return Request::Refused { status: 405, kind: "method" };
+    }
+    let path = req.path.unwrap_or("/");
+    let path = path.split(['?', '#']).next().unwrap_or("/").to_string();
+    let upgrade = req.headers.iter().any(|h| {
+        h.name.eq_ignore_ascii_case("upgrade")
+            && std::str::from_utf8(h.value).is_ok_and(|v| v.eq_ignore_ascii_case("websocket"))
+    });
+    if upgrade {
+        return if path == "/ws" { Request::Upgrade } else { Request::Refused { status: 404, kind: "not_found" } };
+    }
+    Request::Get { path }
+}
+
+/// Waits for a whole request head without consuming it.
+///
+/// `peek` returns at once while any byte is waiting, so an incomplete head is peeked again after a short sleep
+/// (a browser sends its head in one segment: the first peek almost always has it). The caller bounds the wait
+/// with the handshake timeout.
+pub async fn peek_head(stream: &TcpStream) -> Result<Request, HeadError> {
+    let mut buf = vec![0u8; MAX_REQUEST_HEAD_BYTES];
+    loop {
+        let n = stream.peek(&mut buf).await?;
+        if n == 0 {
+            return Err(HeadError::Closed);
+        }
+        if let Some(end) = buf[..n].windows(4).position(|w| w == b"\r\n\r\n") {
+            return Ok(classify(&buf[..end + 4]));
+        }
+        if n == buf.len() {
+            return Err(HeadError::TooLarge);
+        }
+        tokio::time::sleep(Duration::from_millis(2)).await;
+    }
+}
+
+/// A response: status, content type, body and extra headers.
+pub struct Response {
+    pub status: u16,
+    pub content_type: &'static str,
+    pub body: std::borrow::Cow<'static, [u8]>,
+    pub extra: Vec<(&'static str, String)>,
+}
+
+impl Response {
+    pub fn text(status: u16, text: &str) -> Self {
+        Response {
+            status,
+            content_type: "text/plain; charset=utf-8",
+            body: text.as_bytes().to_vec().into(),
+            extra: Vec::new(),
+        }
+    }
+
+    fn reason(&self) -> &'static str {
+        match self.status {
+            200 => "OK",
+            400 => "Bad Request",
+            404 => "Not Found",
+            405 => "Method Not Allowed",
+            431 => "Request Header Fields Too Large",
+            _ => "Error",
+        }
+    }
+
+    /// The head and body as sent.
+    pub fn bytes(&self) -> Vec<u8> {
+        let mut head = format!(
+            "HTTP/1.1 {} {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-store\r\n\
+             X-Content-Type-Options: nosniff\r\nContent-Security-Policy: default-src 'self'; img-src 'self' data:\r\n\
+             Connection: close\r\n",
+            self.status,
+            self.reason(),
+            self.content_type,
+            self.body.len()
+        );
+        for (name, value) in &self.extra {
+            head.push_str(&format!("{name}: {value}\r\n"));
+        }
+        head.push_str("\r\n");
+        let mut out = head.into_bytes();
+        out.extend_from_slice(&self.body);
+        out
+    }
+}
+
+/// Sends `response` and closes the connection (the unread request is dropped with it).
+pub async fn answer(mut stream: TcpStream, response: Response, timeout: Duration) {
+    let write = async {
+        stream.write_all(&response.bytes()).await?;
+        stream.shutdown().await
+    };
+    let _ = tokio::time::timeout(timeout, write).await;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_are_told_apart() {
+        let get = b"GET /app.js?v=1 HTTP/1.1\r\nHost: x\r\n\r\n";
+        assert_eq!(classify(get), Request::Get { path: "/app.js".into() });
+        let ws = b"GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: WebSocket\r\nConnection: Upgrade\r\n\r\n";
+        assert_eq!(classify(ws), Request::Upgrade);
+        let ws_elsewhere = b"GET /other HTTP/1.1\r\nUpgrade: websocket\r\n\r\n";
+        assert_eq!(classify(ws_elsewhere), Request::Refused { status: 404, kind: "not_found" });
+        assert_eq!(classify(b"POST / HTTP/1.1\r\n\r\n"), Request::Refused { status: 405, kind: "method" });
+        assert_eq!(classify(b"\x00\x01garbage\r\n\r\n"), Request::Refused { status: 400, kind: "bad_request" });
+        let r = Response::text(404, "no such page").bytes();
+        let text = String::from_utf8(r).unwrap();
+        assert!(text.starts_with("HTTP/1.1 404 Not Found\r\n") && text.contains("Content-Length: 12\r\n"));
+    }
+}

@@ -1,0 +1,35 @@
+//! A rig worker's status, once per `status_period_s`: its pipeline's counts and latency, and the health of each
+//! edge (simulator, launch monitor, mocap input, comparisons, live view, bay screen), published and recorded.
+
+use std::sync::atomic::Ordering;
+
+use super::sinks::{self, StatusInputs};
+use super::Worker;
+use crate::daemon::bridges::open_connect::SimulatorClient;
+use crate::daemon::bridges::web::WebStatusSource;
+use crate::daemon::wall_ns;
+use crate::wire;
+
+impl Worker {
+    pub(super) fn publish_status(&mut self) -> wire::StatusMessage {
+        let inputs = StatusInputs {
+            counts: &self.p().counts,
+            queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
+            latency: &self.latency,
+            uptime_s: self.started.elapsed().as_secs_f64(),
+            t_ns: wall_ns(),
+            unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
+            rejected_not_recorded: self.budget.refused,
+            recorder_error: self.sinks.recorder().error(),
+        };
+        let mut status = sinks::status_message(&self.rig, inputs, self.sinks.recorder().dropped());
+        status.simulator = self.simulator.as_ref().map(SimulatorClient::status);
+        status.launch_monitor = self.launch_monitor.as_ref().and_then(|s| s.lock().ok().map(|s| s.clone()));
+        status.input = self.input.lock().ok().and_then(|s| s.as_ref().map(|s| s.status()));
+        status.comparison = Some(self.pairer.status());
+        status.live_view = self.live_view.as_ref().map(|v| v.status());
+        status.web = self.web.as_ref().map(WebStatusSource::status);
+        self.sinks.status(&status);
+        status
+    }
+}
