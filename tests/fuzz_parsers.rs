@@ -1,8 +1,8 @@
 //! A fuzz target per parser a peer or a file reaches (cargo-fuzz needs a nightly toolchain; these run on stable
-//! in CI in seconds): the Open Connect stream splitter and messages, the Foxglove client messages, the wire
-//! sample, and the club and daemon configuration TOML. Each is fed arbitrary bytes and mutations of a seed
-//! corpus (bytes flipped, inserted, removed, the input cut or repeated); none may panic, and a counting
-//! allocator bounds what one input may allocate at once.
+//! in CI in seconds): the Open Connect stream splitter and messages, the Foxglove client messages, the bay
+//! screen's request heads and control messages, the wire sample, and the club and daemon configuration TOML.
+//! Each is fed arbitrary bytes and mutations of a seed corpus (bytes flipped, inserted, removed, the input cut or
+//! repeated); none may panic, and a counting allocator bounds what one input may allocate at once.
 
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
@@ -66,6 +66,14 @@ const FOXGLOVE: &[&str] = &[
     r#"{"op":"subscribe","subscriptions":[{"id":1,"channelId":1},{"id":2,"channelId":8}]}"#,
     r#"{"op":"unsubscribe","subscriptionIds":[1,2]}"#,
     r#"{"op":"advertise","channels":[]}"#,
+];
+const WEB: &[&str] = &[
+    r#"{"op":"club","rig":"bay1","club":" iron7 "}"#,
+    r#"{"op":"labels","rig":"bay1","player":"ann","tags":["fit"," "]}"#,
+    r#"{"op":"exclude","rig":"bay1","shot":4,"excluded":true}"#,
+    r#"{"op":"units","rig":"bay1","units":"metric"}"#,
+    "GET /rig/bay1/session.csv HTTP/1.1\r\nHost: 127.0.0.1:8080\r\n\r\n",
+    "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n",
 ];
 const SAMPLE: &str = r#"{"rig":"bay1","frame":17,"t_ns":1000000,"position_m":[0.1,0.0,-0.2],"orientation":{"x":0.0,"y":0.0,"z":0.0,"w":1.0},"occluded":false}"#;
 const CONFIG: &str = "status_period_s = 1.0\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\nmodel = \"standard\"\n\
@@ -141,6 +149,18 @@ fn foxglove(bytes: &[u8]) {
     assert!(subscriptions.keys().all(|c| (1..=8).contains(c)));
 }
 
+/// The bay screen's two parsers: a request head and a page's control message (and the put it makes).
+fn web(bytes: &[u8]) {
+    use impactd::daemon::bridges::web::{controls::Control, download::rig_of_path, http::classify};
+    let _ = classify(bytes);
+    let text = String::from_utf8_lossy(bytes);
+    let _ = rig_of_path(&text);
+    if let Ok(c) = Control::parse(&text, &["bay1".to_string()]) {
+        assert_eq!(c.rig(), "bay1", "a control only for a rig served");
+        let _ = c.put(&impactd::wire::ShotLabels::default());
+    }
+}
+
 fn sample(bytes: &[u8]) {
     if let Ok(m) = impactd::wire::parse_sample("bay1", bytes, "application/json") {
         let _ = m.to_sample();
@@ -159,6 +179,7 @@ fn every_parser_takes_arbitrary_and_mutated_input_without_panic_or_unbounded_all
     // A stream of one endless object: answered at the cap, memory bounded by it.
     run("open connect: unclosed", (1usize..200_000).prop_map(|n| vec![b'{'; n]), open_connect);
     run("foxglove", input(FOXGLOVE), foxglove);
+    run("web page", input(WEB), web);
     run("sample", input(&[SAMPLE]), sample);
     run("config and club toml", input(&[CONFIG, CLUB]), toml);
 }
