@@ -28,13 +28,31 @@ js = driver.execute_script
 
 
 def wait(what, cond, limit=30.0):
+    # The page redraws its tables as messages arrive: an element read mid-redraw is stale, not an answer.
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
     t0 = time.time()
     while time.time() - t0 < limit:
-        v = cond()
+        try:
+            v = cond()
+        except (StaleElementReferenceException, NoSuchElementException):
+            v = None
         if v:
             return v
         time.sleep(0.02)
     raise SystemExit(f"timed out waiting for {what}")
+
+
+def retry(action, limit=5.0):
+    """Runs `action` again when the element it found was redrawn under it (stale) or is not drawn yet."""
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
+    t0 = time.time()
+    while True:
+        try:
+            return action()
+        except (StaleElementReferenceException, NoSuchElementException):
+            if time.time() - t0 > limit:
+                raise
+            time.sleep(0.02)
 
 
 def emit(tag, value):
@@ -79,12 +97,12 @@ try:
     read_table = "return [...document.querySelectorAll('#shots tbody tr')].map(r => [...r.cells].map(c => c.textContent))"
     rows = wait("the shot table", lambda: js(read_table))
     table = {r[0]: r[2] for r in rows}
-    driver.find_element(By.CSS_SELECTOR, "#shots button[data-exclude='2']").click()
+    retry(lambda: driver.find_element(By.CSS_SELECTOR, "#shots button[data-exclude='2']").click())
     wait("shot 2 excluded", lambda: "excluded" in driver.find_element(By.CSS_SELECTOR, "#shots tr[data-shot='2']").get_attribute("class"))
-    summary_shots = driver.find_element(By.CSS_SELECTOR, "#summary tbody tr td:nth-child(2)").text
+    summary_shots = retry(lambda: driver.find_element(By.CSS_SELECTOR, "#summary tbody tr td:nth-child(2)").text)
     # Sorting by ball speed (descending, then ascending on a second click).
-    header = driver.find_element(By.CSS_SELECTOR, "#shots th[data-sort=ball_speed]")
-    header.click()
+    sort_header = lambda: driver.find_element(By.CSS_SELECTOR, "#shots th[data-sort=ball_speed]").click()
+    retry(sort_header)
     down = [float(r[2]) for r in js(read_table)]
     driver.save_screenshot(os.path.join(out_dir, "session-view.png"))
     driver.find_element(By.ID, "csv").click()
