@@ -52,10 +52,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::daemon::bridges::mocap::MocapInputConfig;
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
+pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};
 use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
-use crate::math::{Isometry3, Translation3Ext, Vector3};
+use crate::math::Vector3;
 use crate::pipeline::{ClubSwitch, RigSetup};
 
 /// The whole file.
@@ -132,32 +133,6 @@ pub struct RigConfig {
     pub clubs: BTreeMap<String, BodyClub>,
 }
 
-/// A `[rig.clubs]` entry: a club (preset or file), or a club with the body's own pose in the club frame.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum BodyClub {
-    Club(String),
-    Mounted(MountedClub),
-}
-
-/// A club and where its tracked body sits on it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MountedClub {
-    pub club: String,
-    /// The body's pose in the club frame (default: the rig's `club_from_body`).
-    #[serde(default)]
-    pub club_from_body: Option<PoseConfig>,
-}
-
-impl BodyClub {
-    fn club(&self) -> &str {
-        match self {
-            BodyClub::Club(c) | BodyClub::Mounted(MountedClub { club: c, .. }) => c,
-        }
-    }
-}
-
 fn default_true() -> bool {
     true
 }
@@ -173,20 +148,6 @@ fn default_cor() -> f64 {
 }
 fn default_estimator() -> String {
     "arc".into()
-}
-
-/// A rigid transform: rotation quaternion `[x, y, z, w]` and translation (m).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PoseConfig {
-    #[serde(default = "identity_xyzw")]
-    pub rotation_xyzw: [f64; 4],
-    #[serde(default)]
-    pub translation_m: [f64; 3],
-}
-
-fn identity_xyzw() -> [f64; 4] {
-    [0.0, 0.0, 0.0, 1.0]
 }
 
 fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
@@ -220,17 +181,6 @@ impl RigConfig {
             sha256: crate::equipment::sha256_hex(&bytes),
         };
         Ok(ClubSwitch { club: club.club, models, club_ref: Some(club_ref), calibration: None })
-    }
-}
-
-impl PoseConfig {
-    fn to_isometry(self, field: String) -> Result<Isometry3, DaemonError> {
-        if self.rotation_xyzw.iter().chain(self.translation_m.iter()).any(|v| !v.is_finite()) {
-            return Err(invalid(field, "must be finite numbers"));
-        }
-        let q = crate::kinematics::sample::unit_quaternion(&self.rotation_xyzw, 1e-3)
-            .ok_or_else(|| invalid(format!("{field}.rotation_xyzw"), "must be a unit quaternion [x, y, z, w]"))?;
-        Ok(Isometry3::from_parts(Vector3::from(self.translation_m).into_translation(), q))
     }
 }
 
