@@ -51,3 +51,27 @@ fn tour_lofts_reproduce_the_tour_launch_and_the_golfer_delivers_them() {
     let (loft, _, club) = derived("iron7", &TOUR_IRON7);
     assert!(club.loft_deg() - loft > 8.0);
 }
+
+/// A delivery without `dynamic_loft_deg` gets the loft tour players deliver with the club: for the 7-iron the
+/// loft derived above (21.3 deg, not its static 30.5), which launches TrackMan's tour 7-iron (90 mph, -4.3 deg)
+/// at its 16.3 deg; every preset with a tour row derives a point of the curve, the driver adding loft and the
+/// irons taking it off (`impact::delivered_loft`).
+#[test]
+fn a_delivery_without_loft_gets_the_tour_loft_of_its_club() {
+    use impactd::impact::delivered_loft::{curve, delivered_loft_deg, TOUR_ROWS};
+    use impactd::wire::DeliveryInput;
+    assert_eq!(curve().len(), TOUR_ROWS.len());
+    let (loft, _, club) = derived("iron7", &TOUR_IRON7);
+    assert!((delivered_loft_deg(club.loft_deg()) - loft).abs() < 1e-9);
+    let input = DeliveryInput { club_speed_mph: 90.0, attack_angle_deg: -4.3, ..Default::default() };
+    let eq = Equipment::new(club.clone());
+    let model = build_one("adjusted", &load_club("iron7").unwrap(), &BuildOptions::default()).unwrap();
+    let l = model.predict(&input.to_state(&eq).unwrap(), &eq).unwrap();
+    let m = LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps);
+    assert!((m.launch_angle_deg - TOUR_IRON7.launch_angle_deg).abs() < 0.02, "{}", m.launch_angle_deg);
+    let driver = curve().iter().find(|p| p.preset == "driver").unwrap();
+    assert!(driver.delofting_deg() < -3.0, "the driver's shaft adds loft: {driver:?}");
+    for p in curve().iter().filter(|p| p.preset.starts_with("iron")) {
+        assert!((5.0..15.0).contains(&p.delofting_deg()), "{p:?}");
+    }
+}

@@ -107,7 +107,7 @@ pub struct DeliveryArgs {
     /// Face angle (deg, open/right +).
     #[arg(long, default_value_t = 0.0)]
     pub face_angle_deg: f64,
-    /// Dynamic loft (deg); default: the club's static loft.
+    /// Dynamic loft (deg); default: the loft tour players deliver with the club (`impactd models --presets`).
     #[arg(long)]
     pub dynamic_loft_deg: Option<f64>,
     /// Impact location from the face centre toward the toe (mm, toe +).

@@ -30,14 +30,15 @@ pub fn run(args: &ModelsArgs) -> Result<ExitCode> {
 }
 
 /// The presets as docs/club-files.md tables them: each preset's physical numbers, the CG as its depth behind the
-/// face plane and its height below the face centre along the face, and the models that refuse it with why.
+/// face plane and its height below the face centre along the face, the dynamic loft `predict` delivers when a line
+/// gives none (`impact::delivered_loft`), and the models that refuse it with why.
 fn presets_markdown() -> Result<String> {
     use impactd::equipment::presets::PRESETS;
     use impactd::impact::registry::{build_one, BuildOptions, MODELS};
     use impactd::impact::{Delivery, Equipment};
     let mut out = String::from(
-        "| preset | aliases | loft ° | lie ° | head g | CG behind face mm | CG below centre mm | I_xx, I_yy, I_zz g cm² | shaft g | refused by | sha256 |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| preset | aliases | loft ° | delivered loft ° | lie ° | head g | CG behind face mm | CG below centre mm | I_xx, I_yy, I_zz g cm² | shaft g | refused by | sha256 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for p in PRESETS {
         let club = p.load()?;
@@ -64,10 +65,11 @@ fn presets_markdown() -> Result<String> {
             })
             .collect();
         out.push_str(&format!(
-            "| `{}` | {} | {:.1} | {:.1} | {:.0} | {:.2} | {:.2} | {:.0}, {:.0}, {:.0} | {:.0} | {} | `{}` |\n",
+            "| `{}` | {} | {:.1} | {:.1} | {:.1} | {:.0} | {:.2} | {:.2} | {:.0}, {:.0}, {:.0} | {:.0} | {} | `{}` |\n",
             p.name,
             p.aliases.join(", "),
             c.loft_deg(),
+            impactd::impact::delivered_loft::delivered_loft_deg(c.loft_deg()),
             c.lie_deg,
             c.mass_kg * 1e3,
             (v.x * l.cos() + v.y * l.sin()) * 1e3,

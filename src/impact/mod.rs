@@ -7,6 +7,7 @@
 
 pub mod club_sections;
 pub mod continuous;
+pub mod delivered_loft;
 mod delivery;
 pub mod identifiable;
 pub mod impulse;

@@ -106,7 +106,7 @@ pub fn delivery_conditions(d: &DeliveryInput, static_loft_deg: f64) -> String {
         d.attack_angle_deg,
         d.club_path_deg,
         d.face_angle_deg,
-        d.dynamic_loft_deg.unwrap_or(static_loft_deg)
+        d.dynamic_loft_or_delivered(static_loft_deg)
     )
 }
 

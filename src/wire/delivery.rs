@@ -20,7 +20,8 @@ pub enum Handedness {
 }
 
 /// A TrackMan-style delivery as read by `impactd predict`: flat fields with units in their names. Missing numbers
-/// default to 0, except `dynamic_loft_deg`, which defaults to the club's static loft. Other fields are not read
+/// default to 0, except `dynamic_loft_deg`, which defaults to the loft tour players deliver with the club (its
+/// static loft less their shaft lean and de-lofting, `impact::delivered_loft`). Other fields are not read
 /// (`impactd predict` passes them through to its answer).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct DeliveryInput {
@@ -104,6 +105,12 @@ impl DeliveryInput {
         Ok(())
     }
 
+    /// The dynamic loft (deg): the given one, else the loft tour players deliver with a club of this static loft
+    /// (`impact::delivered_loft`).
+    pub fn dynamic_loft_or_delivered(&self, static_loft_deg: Real) -> Real {
+        self.dynamic_loft_deg.unwrap_or_else(|| crate::impact::delivered_loft::delivered_loft_deg(static_loft_deg))
+    }
+
     /// The delivery in SI for a club of the given static loft, mirrored into the right-handed world for a
     /// left-handed golfer.
     pub fn to_delivery(&self, static_loft_deg: Real) -> Delivery {
@@ -115,7 +122,7 @@ impl DeliveryInput {
             attack_angle_rad: deg_to_rad(self.attack_angle_deg),
             club_path_rad: s * deg_to_rad(self.club_path_deg),
             face_angle_rad: s * deg_to_rad(self.face_angle_deg),
-            dynamic_loft_rad: deg_to_rad(self.dynamic_loft_deg.unwrap_or(static_loft_deg)),
+            dynamic_loft_rad: deg_to_rad(self.dynamic_loft_or_delivered(static_loft_deg)),
             impact_h_m: mm_to_m(self.impact_h_mm),
             impact_v_m: mm_to_m(self.impact_v_mm),
             club_angular_velocity_radps: if left { mirror_z_axial(&w) } else { w },
