@@ -208,7 +208,7 @@ w(f"  ground needs the head {5.0 / smash5:.1f} mph slower at the ball (the teed 
 w(f"  of club speed at v = +5 mm), at least {need_ns:.2f} N s backward on the 264 g head alone (Table 3.1; the shaft's")
 w(f"  moving mass only adds): {need_ns / max(j['back'], 1e-9):.1f} times what the soil gives. Its +1000 rpm of fade needs a")
 w("  face about 5° open at the ball (at 25° of loft, sidespin is about the face-to-path angle times the backspin")
-w("  over the spin loft); the soil's drag can turn it at most about a third of that (the bound under "Fade, right"). These are")
+w("  over the spin loft); the soil's drag can turn it at most about a third of that (the bound under \"Fade, right\"). These are")
 w("  bounds on this geometry: the hosel ~70 mm toward the heel of the sole's middle (`equipment::sole`), the CG")
 w("  2.4 mm below the face centre and 5.6 mm behind the face (Table 3.1), the leading edge 12 mm below the face")
 w("  centre and the sole level heel to toe at the club's 62.5° lie. Other soles, lies and hosels:")
