@@ -255,9 +255,10 @@ fn converges_under_step_halving_and_shaft_refinement() {
     }
 }
 
-/// The ground's peak force on a fat strike, soft, medium and firm. The seed (Figure 4.10) finds soft < medium <
-/// firm; with Table 4.3's parameters only medium < firm holds here (141 N < 172 N): the soft soil's small
-/// sinkage exponent makes it press hardest at the sole's shallow sinkage (160 N), see `equipment::soil`.
+/// The ground's peak force on a fat strike, soft, medium and firm. The seed's text (section 4.3, Figure 4.10):
+/// "the predicted forces are the highest for the firm condition", which holds here (172 N against 160 and 141 N);
+/// soft and medium are not ordered: the soft soil's small sinkage exponent makes it press harder than the medium
+/// one at the sole's shallow sinkage, see `equipment::soil`.
 #[test]
 fn peak_ground_force_by_soil() {
     let peaks: Vec<Real> = [SoilSpec::soft(), SoilSpec::medium(), SoilSpec::firm()]
@@ -268,7 +269,7 @@ fn peak_ground_force_by_soil() {
         })
         .collect();
     println!("peak ground force, fat strike: soft {:.0} N, medium {:.0} N, firm {:.0} N", peaks[0], peaks[1], peaks[2]);
-    assert!(peaks[1] < peaks[2]);
+    assert!(peaks[2] > peaks[0] && peaks[2] > peaks[1], "firm highest");
     assert!(peaks[0] > peaks[1], "the shallow-sinkage crossover of Table 4.3");
 }
 
