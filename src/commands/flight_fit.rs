@@ -19,11 +19,19 @@ pub struct FlightFitArgs {
     /// One JSON object (coefficients, per-club errors, cross-validation) instead of tables.
     #[arg(long)]
     pub json: bool,
+    /// The trade-off of a single ball on the table instead: carry and land angle alone fitted (carry scaled by
+    /// 4 % of each club's, the land angle by 1-6 deg), the largest carry error each largest land-angle error
+    /// costs.
+    #[arg(long, conflicts_with = "no_cv")]
+    pub tradeoff: bool,
 }
 
 pub fn run(args: &FlightFitArgs) -> Result<ExitCode> {
     let (iterations, json) = (args.iterations, args.json);
     let rows = fit::parse_table(fit::TRACKMAN_CSV).context("TrackMan table")?;
+    if args.tradeoff {
+        return tradeoff(&rows, iterations.max(1), json);
+    }
     let current = impactd::flight::Aero::FITTED;
     let (aero, cost, worst) = if iterations == 0 {
         (current, fit::cost(&current, &rows), fit::worst(&current, &rows))
@@ -58,6 +66,8 @@ pub fn run(args: &FlightFitArgs) -> Result<ExitCode> {
             "cost": cost,
             "clubs": clubs,
             "within_4yd_3yd_3deg": clubs.iter().filter(|c| c.within(4.0, 3.0, 3.0)).count(),
+            "within_4pct_3yd_3deg": clubs.iter().filter(|c| c.within_pct(4.0, 3.0, 3.0)).count(),
+            "max_carry_error_pct": clubs.iter().map(|c| c.carry_error_pct().abs()).fold(0.0, f64::max),
             "within_3yd_2yd_2deg": clubs.iter().filter(|c| c.within(3.0, 2.0, 2.0)).count(),
             "cross_validation": validation,
         });
@@ -83,6 +93,8 @@ pub fn run(args: &FlightFitArgs) -> Result<ExitCode> {
             if c.within(3.0, 2.0, 2.0) { "yes" } else { "no" }
         );
     }
+    let n = clubs.iter().filter(|c| c.within_pct(4.0, 3.0, 3.0)).count();
+    println!("{n} of {} clubs within carry 4 %, apex 3 yd, land angle 3 deg", clubs.len());
     for (lim, name) in [
         ((4.0, 3.0, 3.0), "carry 4 yd, apex 3 yd, land angle 3 deg"),
         ((3.0, 2.0, 2.0), "carry 3 yd, apex 2 yd, land angle 2 deg"),
@@ -102,6 +114,68 @@ pub fn run(args: &FlightFitArgs) -> Result<ExitCode> {
         println!(
             "largest: carry {:.2} %, apex {:.2} yd, land angle {:.2} deg",
             v.max_carry_error_pct, v.max_apex_error_yd, v.max_land_angle_error_deg
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--tradeoff`: the front of carry against land angle for one ball.
+fn tradeoff(rows: &[fit::TourAverage], iterations: usize, json: bool) -> Result<ExitCode> {
+    use impactd::flight::tradeoff;
+    if !json {
+        eprintln!("fitting carry and land angle alone, one fit per land-angle tolerance...");
+    }
+    let mut points = Vec::new();
+    for apex in tradeoff::APEX_YD {
+        points.extend(tradeoff::front(rows, iterations, apex, |p| {
+            if !json {
+                eprintln!("  apex {:?} yd, land angle {:.1} deg: done", p.apex_tolerance_yd, p.land_tolerance_deg);
+            }
+        }));
+    }
+    let club = |i: usize| rows.get(i).map(|r| r.club.as_str()).unwrap_or("?");
+    if json {
+        let out: Vec<_> = points
+            .iter()
+            .map(|p| {
+                serde_json::json!({
+                    "apex_tolerance_yd": p.apex_tolerance_yd,
+                    "land_tolerance_deg": p.land_tolerance_deg,
+                    "max_land_angle_error_deg": p.max_land_angle_error_deg,
+                    "max_carry_error_pct": p.max_carry_error_pct,
+                    "max_apex_error_yd": p.max_apex_error_yd,
+                    "worst_carry_club": club(p.worst_carry_club),
+                    "worst_land_club": club(p.worst_land_club),
+                    "aero": p.aero,
+                })
+            })
+            .collect();
+        let current = tradeoff::largest_errors(&impactd::flight::Aero::FITTED, rows);
+        let doc = serde_json::json!({
+            "carry_tolerance_pct": tradeoff::CARRY_PCT,
+            "points": out,
+            "fitted": {
+                "max_land_angle_error_deg": current.0,
+                "max_carry_error_pct": current.1,
+                "max_apex_error_yd": current.2,
+                "worst_carry_club": club(current.3),
+                "worst_land_club": club(current.4),
+            },
+        });
+        println!("{}", serde_json::to_string_pretty(&doc)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!("{:>12} {:>14} {:>16} {:>16} {:>14}", "apex scale yd", "land scale deg", "land max deg", "carry max %", "apex max yd");
+    for p in &points {
+        println!(
+            "{:>12} {:>14.1} {:>10.2} ({:<6}) {:>10.2} ({:<6}) {:>14.2}",
+            p.apex_tolerance_yd.map_or("free".to_string(), |a| format!("{a:.0}")),
+            p.land_tolerance_deg,
+            p.max_land_angle_error_deg,
+            club(p.worst_land_club),
+            p.max_carry_error_pct,
+            club(p.worst_carry_club),
+            p.max_apex_error_yd
         );
     }
     Ok(ExitCode::SUCCESS)

@@ -24,6 +24,19 @@ impl ClubError {
             && self.apex_error_yd.abs() <= apex_yd
             && self.land_angle_error_deg.abs() <= land_deg
     }
+
+    /// The carry error in percent of the measured carry.
+    pub fn carry_error_pct(&self) -> Real {
+        let measured = self.carry_yd - self.carry_error_yd;
+        100.0 * self.carry_error_yd / measured
+    }
+
+    /// Whether carry (in percent of the measured), apex and land angle are all within the given errors.
+    pub fn within_pct(&self, carry_pct: Real, apex_yd: Real, land_deg: Real) -> bool {
+        self.carry_error_pct().abs() <= carry_pct
+            && self.apex_error_yd.abs() <= apex_yd
+            && self.land_angle_error_deg.abs() <= land_deg
+    }
 }
 
 /// Every club's predicted carry, apex and land angle with `aero`, and the errors against the table.

@@ -1,7 +1,7 @@
 //! Fitting the aerodynamic coefficients to the TrackMan PGA Tour averages: every club's carry, apex (max height)
 //! and land angle at once, on ten coordinates (one per physical number of [`Aero`], each a logistic coordinate
 //! over the range the published measurements allow, [`BOUNDS`]), with every error scaled by the accuracy it must
-//! reach ([`TOLERANCE`]: 4 yd, 3 yd, 3 deg). Two stages: Nelder-Mead on the sum of squared scaled errors plus a
+//! reach ([`TOLERANCE`]: carry 4 % of each club's, apex 3 yd, land angle 3 deg). Two stages: Nelder-Mead on the sum of squared scaled errors plus a
 //! strong penalty beyond 90 % of each, then a minimax (Chebyshev) fit from there that lowers the largest scaled
 //! error. Deterministic: the same table gives the same coefficients.
 
@@ -83,20 +83,44 @@ pub fn predict(aero: &Aero, row: &TourAverage) -> (Real, Real, Real) {
 /// Every club's carry, apex and land-angle errors, each divided by the accuracy it must reach ([`TOLERANCE`]):
 /// within the targets when every one is within ±1.
 pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
+    scaled_errors_with(aero, rows, &Tolerance::TABLE)
+}
+
+/// The accuracy every club must reach: carry within 4 % of the measured carry, apex 3 yd, land angle 3 deg.
+pub const TOLERANCE: Tolerance = Tolerance { carry_yd: 4.0, carry_pct: Some(4.0), apex_yd: Some(3.0), land_angle_deg: 3.0 };
+
+/// The accuracy a fit scales each error by: carry in yards or in percent of the measured carry, apex in yards or
+/// not fitted, land angle in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Tolerance {
+    /// Carry (yd); used when `carry_pct` is `None`.
+    pub carry_yd: Real,
+    /// Carry (% of the measured carry), instead of `carry_yd`.
+    pub carry_pct: Option<Real>,
+    /// Apex (yd); `None` leaves apex out of the fit.
+    pub apex_yd: Option<Real>,
+    pub land_angle_deg: Real,
+}
+
+impl Tolerance {
+    /// [`TOLERANCE`]: carry 4 %, apex 3 yd, land angle 3 deg.
+    pub const TABLE: Tolerance = TOLERANCE;
+}
+
+/// [`scaled_errors`] with any [`Tolerance`] (three numbers per club, apex 0 when it is left out).
+pub fn scaled_errors_with(aero: &Aero, rows: &[TourAverage], tol: &Tolerance) -> Vec<Real> {
     rows.iter()
         .flat_map(|r| {
             let (carry, apex, land) = predict(aero, r);
+            let carry_scale = tol.carry_pct.map_or(tol.carry_yd, |p| p / 100.0 * r.carry_yd);
             [
-                (carry - r.carry_yd) / TOLERANCE[0],
-                (apex - r.max_height_yd) / TOLERANCE[1],
-                (land - r.land_angle_deg) / TOLERANCE[2],
+                (carry - r.carry_yd) / carry_scale,
+                tol.apex_yd.map_or(0.0, |a| (apex - r.max_height_yd) / a),
+                (land - r.land_angle_deg) / tol.land_angle_deg,
             ]
         })
         .collect()
 }
-
-/// The accuracy every club must reach: carry 4 yd, apex 3 yd, land angle 3 deg (issue 19's targets).
-pub const TOLERANCE: [Real; 3] = [4.0, 3.0, 3.0];
 
 /// The largest scaled error (infinite if a ball never lands).
 pub fn worst(aero: &Aero, rows: &[TourAverage]) -> Real {
@@ -105,7 +129,11 @@ pub fn worst(aero: &Aero, rows: &[TourAverage]) -> Real {
 
 /// The first stage's objective: the sum of squared scaled errors plus the penalty beyond `PENALTY_FROM`.
 pub fn cost(aero: &Aero, rows: &[TourAverage]) -> Real {
-    scaled_errors(aero, rows)
+    cost_with(aero, rows, &Tolerance::TABLE)
+}
+
+fn cost_with(aero: &Aero, rows: &[TourAverage], tol: &Tolerance) -> Real {
+    scaled_errors_with(aero, rows, tol)
         .iter()
         .map(|x| if x.is_finite() { x * x + PENALTY * (x.abs() - PENALTY_FROM).max(0.0).powi(2) } else { 1e6 })
         .sum()
@@ -170,18 +198,29 @@ pub enum Step {
 /// Fits the coefficients in two stages. First Nelder-Mead on [`cost`] from `start`, restarted from its own best
 /// point up to `RESTARTS` times (a fresh simplex escapes the collapses that stall a single run), `iterations` per
 /// run. Then [`minimax`] from there, which lowers the largest scaled error that the sum of squares leaves.
-pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize, mut progress: impl FnMut(Step)) -> Fit {
-    let mut best = (*start, cost(start, rows));
+pub fn fit(rows: &[TourAverage], start: &Aero, iterations: usize, progress: impl FnMut(Step)) -> Fit {
+    fit_with(rows, start, iterations, &Tolerance::TABLE, progress)
+}
+
+/// [`fit`] with any [`Tolerance`]; `cost` and `worst` are on that tolerance's scale.
+pub fn fit_with(
+    rows: &[TourAverage],
+    start: &Aero,
+    iterations: usize,
+    tol: &Tolerance,
+    mut progress: impl FnMut(Step),
+) -> Fit {
+    let mut best = (*start, cost_with(start, rows, tol));
     for run in 1..=RESTARTS {
-        let next = nelder_mead(rows, &best.0, iterations);
+        let next = nelder_mead(rows, &best.0, iterations, tol);
         progress(Step::Run(run, next.1));
         if next.1 >= best.1 - 1e-9 {
             break;
         }
         best = next;
     }
-    let (aero, worst) = minimax(rows, &best.0, MINIMAX_ITERATIONS, |i, w| progress(Step::Minimax(i, w)));
-    Fit { aero, cost: cost(&aero, rows), worst }
+    let (aero, worst) = minimax_with(rows, &best.0, MINIMAX_ITERATIONS, tol, |i, w| progress(Step::Minimax(i, w)));
+    Fit { aero, cost: cost_with(&aero, rows, tol), worst }
 }
 
 const MINIMAX_ITERATIONS: usize = 50;
@@ -197,10 +236,20 @@ pub fn minimax(
     rows: &[TourAverage],
     start: &Aero,
     iterations: usize,
+    progress: impl FnMut(usize, Real),
+) -> (Aero, Real) {
+    minimax_with(rows, start, iterations, &Tolerance::TABLE, progress)
+}
+
+fn minimax_with(
+    rows: &[TourAverage],
+    start: &Aero,
+    iterations: usize,
+    tol: &Tolerance,
     mut progress: impl FnMut(usize, Real),
 ) -> (Aero, Real) {
     let residuals = |x: &[Real; N]| {
-        let e = scaled_errors(&to_aero(x), rows);
+        let e = scaled_errors_with(&to_aero(x), rows, tol);
         DVector::from_iterator(e.len(), e.into_iter().map(|v| if v.is_finite() { v } else { 1e3 }))
     };
     let mut x = from_aero(start);
@@ -259,8 +308,8 @@ fn lawson_step(jac: &DMatrix, r: &DVector, damping: Real) -> DVector {
     d
 }
 
-fn nelder_mead(rows: &[TourAverage], start: &Aero, iterations: usize) -> (Aero, Real) {
-    let f = |x: &[Real; N]| cost(&to_aero(x), rows);
+fn nelder_mead(rows: &[TourAverage], start: &Aero, iterations: usize, tol: &Tolerance) -> (Aero, Real) {
+    let f = |x: &[Real; N]| cost_with(&to_aero(x), rows, tol);
     let x0 = from_aero(start);
     let mut simplex: Vec<([Real; N], Real)> = vec![(x0, f(&x0))];
     for i in 0..N {

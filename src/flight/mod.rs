@@ -23,6 +23,7 @@ pub mod air;
 pub mod cv;
 pub mod fit;
 pub mod reference;
+pub mod tradeoff;
 pub mod turf;
 
 pub use aero::Aero;
