@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Regenerates the fit's tables in docs/flight.md from `impactd flight-fit --json`.
 
-Usage: scripts/flight-docs.py [FIT.json]   (without a file it runs `target/release/impactd flight-fit --json`)
+Usage: scripts/flight-docs.py [FIT.json [TRADEOFF.json]]   (without files it runs `target/release/impactd
+flight-fit --json` and `flight-fit --tradeoff --json`)
 
 Rewrites the text between `<!-- flight-fit:NAME -->` and `<!-- /flight-fit:NAME -->` for NAME in
-`coefficients`, `clubs` and `cv`; everything else in docs/flight.md is left as written.
+`coefficients`, `clubs`, `cv` and `tradeoff`; everything else in docs/flight.md is left as written.
 """
 import json
 import pathlib
@@ -52,19 +53,20 @@ def coefficients(fit):
 
 
 def clubs(fit):
-    lines = ["| club | carry (yd) | apex (yd) | land angle (deg) |", "|---|---|---|---|"]
+    lines = ["| club | carry (yd) | carry error (%) | apex (yd) | land angle (deg) |", "|---|---|---|---|---|"]
+    pct = lambda c: 100.0 * c["carry_error_yd"] / (c["carry_yd"] - c["carry_error_yd"])
     for c in fit["clubs"]:
         lines.append(
-            f"| {c['club']} | {c['carry_yd']:.1f} ({c['carry_error_yd']:+.2f}) | {c['apex_yd']:.1f} "
+            f"| {c['club']} | {c['carry_yd']:.1f} ({c['carry_error_yd']:+.2f}) | {pct(c):+.2f} | {c['apex_yd']:.1f} "
             f"({c['apex_error_yd']:+.2f}) | {c['land_angle_deg']:.1f} ({c['land_angle_error_deg']:+.2f}) |"
         )
     worst = lambda k: max(abs(c[k]) for c in fit["clubs"])
     lines.append("")
     lines.append(
-        f"Largest errors: carry {worst('carry_error_yd'):.2f} yd, apex {worst('apex_error_yd'):.2f} yd, land angle "
-        f"{worst('land_angle_error_deg'):.2f} deg (largest scaled error {fit['largest_scaled_error']:.2f}); "
-        f"{fit['within_4yd_3yd_3deg']} of {len(fit['clubs'])} clubs within 4 yd, 3 yd, 3 deg, "
-        f"{fit['within_3yd_2yd_2deg']} within 3 yd, 2 yd, 2 deg."
+        f"Largest errors: carry {fit['max_carry_error_pct']:.2f} % ({worst('carry_error_yd'):.2f} yd), apex "
+        f"{worst('apex_error_yd'):.2f} yd, land angle {worst('land_angle_error_deg'):.2f} deg (largest scaled error "
+        f"{fit['largest_scaled_error']:.2f}); {fit['within_4pct_3yd_3deg']} of {len(fit['clubs'])} clubs within 4 %, "
+        f"3 yd, 3 deg, {fit['within_4yd_3yd_3deg']} within 4 yd, 3 yd, 3 deg."
     )
     return "\n".join(lines)
 
@@ -90,14 +92,42 @@ def cv(fit):
     return "\n".join(lines)
 
 
+def tradeoff(data):
+    lines = ["| apex held to | land angle scale (deg) | largest land angle error (deg) | largest carry error (%) | "
+             "largest apex error (yd) |", "|---|---|---|---|---|"]
+    for p in data["points"]:
+        apex = "free" if p["apex_tolerance_yd"] is None else f"{p['apex_tolerance_yd']:g} yd"
+        lines.append(
+            f"| {apex} | {p['land_tolerance_deg']:g} | {p['max_land_angle_error_deg']:.2f} ({p['worst_land_club']}) | "
+            f"{p['max_carry_error_pct']:.2f} ({p['worst_carry_club']}) | {p['max_apex_error_yd']:.2f} |"
+        )
+    reach = [p for p in data["points"] if p["max_land_angle_error_deg"] <= 3.0]
+    best = min(reach, key=lambda p: p["max_carry_error_pct"]) if reach else None
+    lines.append("")
+    if best:
+        lines.append(
+            f"Land angles within 3 deg cost at least {best['max_carry_error_pct']:.2f} % of carry "
+            f"({best['worst_carry_club']}) over these fits; the shipped fit (`Aero::FITTED`): land "
+            f"{data['fitted']['max_land_angle_error_deg']:.2f} deg, carry {data['fitted']['max_carry_error_pct']:.2f} %, "
+            f"apex {data['fitted']['max_apex_error_yd']:.2f} yd."
+        )
+    return "\n".join(lines)
+
+
 def main():
+    exe = ROOT / "target" / "release" / "impactd"
     if len(sys.argv) > 1:
         fit = json.loads(pathlib.Path(sys.argv[1]).read_text())
     else:
-        exe = ROOT / "target" / "release" / "impactd"
         fit = json.loads(subprocess.run([str(exe), "flight-fit", "--json"], check=True, capture_output=True).stdout)
+    if len(sys.argv) > 2:
+        trade = json.loads(pathlib.Path(sys.argv[2]).read_text())
+    else:
+        trade = json.loads(
+            subprocess.run([str(exe), "flight-fit", "--tradeoff", "--json"], check=True, capture_output=True).stdout
+        )
     doc = DOC.read_text()
-    for name, make in [("coefficients", coefficients), ("clubs", clubs), ("cv", cv)]:
+    for name, make in [("coefficients", coefficients), ("clubs", clubs), ("cv", cv), ("tradeoff", lambda _: tradeoff(trade))]:
         pattern = re.compile(rf"(<!-- flight-fit:{name} -->\n).*?(\n<!-- /flight-fit:{name} -->)", re.S)
         if not pattern.search(doc):
             sys.exit(f"docs/flight.md has no <!-- flight-fit:{name} --> block")

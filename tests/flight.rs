@@ -135,18 +135,21 @@ fn drag_above_the_crisis_rises_no_more_than_measured() {
     }
 }
 
-/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`. Within the measured ranges the
-/// table cannot be met to issue 19's 4 yd, 3 yd, 3 deg: the driver and the 3-wood (275 and 243 yd from nearly the
-/// same launch) pull opposite ways, and the best bounded fit leaves every club within 5.7 yd, 4.3 yd and 4.3 deg,
-/// the largest error 1.41 of those targets (`impactd flight-fit`; `docs/flight.md` lists every club).
+/// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: the largest of carry / 4 %,
+/// apex / 4.5 yd and land angle / 4 deg over the twelve clubs, minimised with the drag and lift held inside the
+/// published envelope (`flight::envelope`; the test above). Every club within 3.31 % of carry, 3.73 yd of apex
+/// and 3.31 deg of land angle (`impactd flight-fit`; `docs/flight.md` lists every club). No ball inside the
+/// envelope reaches land angles within 3 deg and carry within 4 % together: `impactd flight-fit --tradeoff`
+/// traces what each costs (docs/flight.md, "Carry against land angle").
 #[test]
 fn every_club_is_near_the_trackman_table() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
     assert_eq!(rows.len(), 12);
     for c in cv::club_errors(&Aero::FITTED, &rows) {
-        assert!(c.within(5.7, 4.3, 4.3), "{c:?}");
+        assert!(c.within_pct(3.31, 3.73, 3.31), "{c:?}");
     }
-    assert!(fit::worst(&Aero::FITTED, &rows) < 1.41);
+    assert!(fit::worst(&Aero::FITTED, &rows) < 0.83);
+    assert!(impactd::flight::envelope::violations(&Aero::FITTED).iter().all(|v| *v == 0.0));
 }
 
 /// The fit is reproducible: from `fit::START` and the table, `impactd flight-fit` lands on `Aero::FITTED`.
@@ -165,20 +168,24 @@ fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
     assert!((result.worst - fit::worst(&Aero::FITTED, &rows)).abs() < 1e-6 && runs >= 1 && minimax >= 1);
 }
 
-/// Leave-one-club-out: each club predicted by a fit to the other eleven. Measured: carry within 6.2 %, apex
-/// within 3.0 yd, land angle within 5.6 deg, the driver the worst (issue 19 asks 5 %, 4 yd, 4 deg; the driver,
-/// the table's only club at its speed and spin ratio, is an extrapolation for the other eleven).
+/// Leave-one-club-out: each club predicted by a fit to the other eleven. Measured: carry within 7.2 %, apex
+/// within 3.9 yd, land angle within 6.1 deg, the driver the worst (issue 19 asks 5 %, 4 yd, 4 deg; the driver,
+/// the table's only club at its speed and spin ratio, is an extrapolation for the other eleven). Without the
+/// driver: carry within 4.7 %, apex 3.9 yd, land angle 3.7 deg (the fit before the envelope was held and carry
+/// scaled in percent: 3.7 %, 3.0 yd, 4.5 deg; its in-sample errors were 3.6 %, 4.2 yd, 4.2 deg).
 #[test]
 fn leave_one_club_out_errors() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
     let v = cv::leave_one_out(&rows, fit::ITERATIONS, |_| {});
     assert_eq!(v.holdouts.len(), 12);
-    assert!(v.max_carry_error_pct <= 6.2, "{v:?}");
-    assert!(v.max_apex_error_yd <= 3.0, "{v:?}");
-    assert!(v.max_land_angle_error_deg <= 5.6, "{v:?}");
-    // Without the driver every other club is within 4 % and 3 yd.
+    assert!(v.max_carry_error_pct <= 7.2, "{v:?}");
+    assert!(v.max_apex_error_yd <= 3.9, "{v:?}");
+    assert!(v.max_land_angle_error_deg <= 6.1, "{v:?}");
     for h in v.holdouts.iter().filter(|h| h.club != "driver") {
-        assert!(h.carry_error_pct.abs() <= 4.0 && h.apex_error_yd.abs() <= 3.0, "{h:?}");
+        assert!(
+            h.carry_error_pct.abs() <= 4.7 && h.apex_error_yd.abs() <= 3.9 && h.land_angle_error_deg.abs() <= 3.7,
+            "{h:?}"
+        );
     }
 }
 
@@ -225,4 +232,31 @@ fn bounce_and_roll() {
     let last_point = path.points.last().unwrap();
     assert!((last_point[1].hypot(last_point[3]) - path.total_m).abs() < 1e-6 && last_point[2] == 0.0);
     assert!(path.points.iter().all(|p| p[2] >= 0.0));
+}
+
+/// Carry against land angle for one ball inside the published envelope (apex left out): held to land angles
+/// within 2.5 deg the table's carries cost more than 4 % somewhere; let the land angle go to 4 deg and carry
+/// comes within 3.5 %. Measured with `impactd flight-fit --tradeoff`: 2.93 deg with 4.68 %, 3.28 deg with
+/// 3.28 % (docs/flight.md, "Carry against land angle").
+#[test]
+fn land_angle_costs_carry_for_one_ball() {
+    use impactd::flight::tradeoff::largest_errors;
+    let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
+    let at = |land_deg: f64| {
+        let tol = fit::Tolerance {
+            carry_yd: 0.0,
+            carry_pct: Some(4.0),
+            apex_yd: None,
+            land_angle_deg: land_deg,
+            envelope: Some(fit::ENVELOPE),
+        };
+        let f = fit::fit_with(&rows, &fit::START, fit::ITERATIONS, &tol, |_| {});
+        let (land, carry_pct, ..) = largest_errors(&f.aero, &rows);
+        (land, carry_pct)
+    };
+    let (tight_land, tight_carry) = at(2.5);
+    let (loose_land, loose_carry) = at(4.0);
+    println!("land 2.5 deg scale: {tight_land:.2} deg, {tight_carry:.2} %; 4 deg: {loose_land:.2} deg, {loose_carry:.2} %");
+    assert!(tight_land <= 3.0 && tight_carry > 4.0);
+    assert!(loose_carry <= 3.5 && loose_land > 3.0);
 }

