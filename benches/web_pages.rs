@@ -175,7 +175,8 @@ fn main() {
             "samples": arm.iter().map(|b| b.samples).sum::<u64>(),
         })
     };
-    let rows: Vec<Value> = [(&a, 0), (&b, PAGES)].iter().filter(|(arm, _)| !arm.is_empty()).map(|(arm, n)| row(arm, *n)).collect();
+    let rows: Vec<Value> =
+        [(&a, 0), (&b, PAGES)].iter().filter(|(arm, _)| !arm.is_empty()).map(|(arm, n)| row(arm, *n)).collect();
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let mut out = json!({
         "date": humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
@@ -214,7 +215,9 @@ fn main() {
         }
         println!(
             "{key}: {:.3} (95 % interval {:.3} .. {:.3})",
-            r["ratio"].as_f64().unwrap(), r["ci95"][0].as_f64().unwrap(), r["ci95"][1].as_f64().unwrap()
+            r["ratio"].as_f64().unwrap(),
+            r["ci95"][0].as_f64().unwrap(),
+            r["ci95"][1].as_f64().unwrap()
         );
     }
 }
