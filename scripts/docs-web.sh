@@ -3,7 +3,9 @@
 # (target/web-page/measured.json, written by `bash scripts/test.sh --test web_page`, which this runs), `pages`
 # from `cargo bench --bench web_pages -- --json` (sample -> launch latency and the rig worker's CPU time with 0
 # and 20 pages open, interleaved blocks, bootstrap intervals) and `instructions` from
-# scripts/web-pages-callgrind.sh (the rig worker's instructions per sample under callgrind, 0 and 20 pages).
+# scripts/web-pages-callgrind.sh (the rig worker's instructions per sample under callgrind, 0 and 20 pages) and
+# `feed` from `cargo bench --bench web_feed` (criterion's estimates under target/criterion/web_feed/; NO_FEED=1
+# keeps the last run's).
 # Usage: scripts/docs-web.sh [BENCH.json [CALLGRIND.json]]   (saved runs instead of new ones: the bench with 25
 # shots per block and 24 blocks, callgrind with 20 shots, 2 blocks, 2 runs per arm); NO_TEST=1 keeps
 # target/web-page/measured.json.
@@ -23,8 +25,9 @@ if [ $# -ge 2 ]; then
 else
     scripts/web-pages-callgrind.sh 20 2 2 >"$CG"
 fi
+[ "${NO_FEED:-0}" = 1 ] || cargo bench --quiet --bench web_feed -- --warm-up-time 1 --measurement-time 4 >/dev/null
 python3 - "$OUT" target/web-page/measured.json "$CG" <<'PY'
-import json, sys
+import json, os, sys
 
 sys.path.insert(0, "scripts")
 from docs_regions import replace  # noqa: E402
@@ -101,5 +104,15 @@ b = [
     "",
     f"Each shot (ms): {', '.join(f'{v:.1f}' for v in lat)}. {browser['date']}, load average {browser['loadavg']}.",
 ]
-replace("docs/bay-screen.md", {"browser": b, "pages": pages, "instructions": instructions})
+estimate = lambda name: json.load(open(os.path.join("target/criterion/web_feed", name, "new/estimates.json")))["median"]
+feed = ["| on the daemon's zenoh session | median | 95 % interval |", "|---|---|---|"]
+for name in ["put a launch, no screen", "put a launch, the screen's feed subscribed",
+             "broadcast a page message to 0 pages", "broadcast a page message to 20 pages"]:
+    e = estimate(name)
+    lo, hi = e["confidence_interval"]["lower_bound"], e["confidence_interval"]["upper_bound"]
+    feed.append(f"| {name} | {e['point_estimate']:.0f} ns | {lo:.0f} .. {hi:.0f} ns |")
+added = estimate("put a launch, the screen's feed subscribed")["point_estimate"] - estimate("put a launch, no screen")["point_estimate"]
+feed += ["", f"The screen's subscriber adds **{added / 1e3:.1f} us** to each launch the rig worker publishes, with or "
+         "without pages open (criterion, `cargo bench --bench web_feed`)."]
+replace("docs/bay-screen.md", {"browser": b, "pages": pages, "instructions": instructions, "feed": feed})
 PY
