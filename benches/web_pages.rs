@@ -75,6 +75,14 @@ fn e2e_p99(b: &[&Block]) -> f64 {
     quantile(&b.iter().flat_map(|b| b.e2e_us.iter().copied()).collect::<Vec<_>>(), 0.99)
 }
 
+fn e2e_p50(b: &[&Block]) -> f64 {
+    median(&b.iter().flat_map(|b| b.e2e_us.iter().copied()).collect::<Vec<_>>())
+}
+
+fn daemon_p50(b: &[&Block]) -> f64 {
+    median(&b.iter().flat_map(|b| b.daemon_us.iter().copied()).collect::<Vec<_>>())
+}
+
 fn daemon_p99(b: &[&Block]) -> f64 {
     quantile(&b.iter().flat_map(|b| b.daemon_us.iter().copied()).collect::<Vec<_>>(), 0.99)
 }
@@ -186,12 +194,15 @@ fn main() {
         "rows": rows,
     });
     let both = !a.is_empty() && !b.is_empty() && !a2.is_empty();
-    let comparisons: [(&str, &[&Block], &[&Block], Stat); 6] = [
+    let comparisons: [(&str, &[&Block], &[&Block], Stat); 9] = [
         ("e2e_p99", &a, &b, e2e_p99),
+        ("e2e_p50", &a, &b, e2e_p50),
         ("daemon_p99", &a, &b, daemon_p99),
+        ("daemon_p50", &a, &b, daemon_p50),
         ("block_p99_median", &a, &b, block_p99_median),
         ("worker_cpu", &a, &b, cpu_per_sample),
         ("noise_e2e_p99", &a1, &a2, e2e_p99),
+        ("noise_e2e_p50", &a1, &a2, e2e_p50),
         ("noise_worker_cpu", &a1, &a2, cpu_per_sample),
     ];
     for (key, x, y, stat) in comparisons.into_iter().filter(|_| both) {
@@ -208,7 +219,17 @@ fn main() {
             r["daemon_p99_us"].as_f64().unwrap(), r["worker_cpu_ns_per_sample"].as_f64().unwrap()
         );
     }
-    for key in ["e2e_p99", "daemon_p99", "block_p99_median", "worker_cpu", "noise_e2e_p99", "noise_worker_cpu"] {
+    for key in [
+        "e2e_p99",
+        "e2e_p50",
+        "daemon_p99",
+        "daemon_p50",
+        "block_p99_median",
+        "worker_cpu",
+        "noise_e2e_p99",
+        "noise_e2e_p50",
+        "noise_worker_cpu",
+    ] {
         let r = &out[key];
         if r.is_null() {
             continue;

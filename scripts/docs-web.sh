@@ -7,7 +7,7 @@
 # `feed` from `cargo bench --bench web_feed` (criterion's estimates under target/criterion/web_feed/; NO_FEED=1
 # keeps the last run's).
 # Usage: scripts/docs-web.sh [BENCH.json [CALLGRIND.json]]   (saved runs instead of new ones: the bench with 25
-# shots per block and 24 blocks, callgrind with 20 shots, 2 blocks, 2 runs per arm); NO_TEST=1 keeps
+# shots per block and 32 blocks, callgrind with 20 shots, 2 blocks, 2 runs per arm); NO_TEST=1 keeps
 # target/web-page/measured.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +18,7 @@ trap 'rm -f "$OUT" "$CG"' EXIT
 if [ $# -ge 1 ]; then
     cp "$1" "$OUT"
 else
-    cargo bench --quiet --bench web_pages -- 25 24 --json | tail -1 >"$OUT"
+    cargo bench --quiet --bench web_pages -- 25 32 --json | tail -1 >"$OUT"
 fi
 if [ $# -ge 2 ]; then
     cp "$2" "$CG"
@@ -60,14 +60,19 @@ def verdict(r):
 ratio_rows = [
     ("e2e_p99", "sample -> launch p99, all shots of each arm (the issue's number)"),
     ("block_p99_median", "sample -> launch: median over blocks of each block's p99"),
+    ("e2e_p50", "sample -> launch p50"),
     ("daemon_p99", "in the daemon (`latency_us`) p99"),
+    ("daemon_p50", "in the daemon (`latency_us`) p50"),
     ("worker_cpu", "rig worker thread's CPU time per sample"),
     ("noise_e2e_p99", "no page / no page (alternate A blocks): sample -> launch p99"),
+    ("noise_e2e_p50", "no page / no page (alternate A blocks): sample -> launch p50"),
     ("noise_worker_cpu", "no page / no page (alternate A blocks): worker CPU per sample"),
 ]
 pages += ["", "| ratio | measured | 95 % interval | |", "|---|---|---|---|"]
 for key, name in ratio_rows:
-    r = bench[key]
+    r = bench.get(key)
+    if r is None:
+        continue
     v = verdict(r) if not key.startswith("noise") else "nothing changed: how far it moves"
     pages.append(f"| {name} | {r['ratio']:.3f} | {r['ci95'][0]:.3f} .. {r['ci95'][1]:.3f} | {v} |")
 pages += [

@@ -1,16 +1,18 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 //! The bay screen in a real browser (issue 32): a daemon in-process on loopback zenoh (multicast scouting off)
-//! serving `--web` on 127.0.0.1, a synthetic rig swinging 24 shots (half a second apart), and Debian's Chromium (headless, driven by
-//! chromedriver through Python's selenium, tests/web_page.py) showing the page. The ball speeds on the page
-//! (page text, mph with one decimal) must be those published on `golf/<rig>/launch`; the club typed into the
-//! page must reach `golf/<rig>/club`; a shot excluded with a click must be left out by `impactd session` on
-//! the recording; the CSV the page downloads must be byte for byte what `impactd export --format trackman-csv`
-//! writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show beside the
-//! prediction with its residual; the units switched on the page must come back through `golf/<rig>/display`;
-//! after the daemon restarts the page must reconnect by itself; and 1500 shots later the page must still hold
-//! no more than its bounds (1000 shots, 12 flights, 50 comparisons, 1000 drawn times). Screenshots of each
-//! view are saved under target/web-page/.
+//! serving `--web` on 127.0.0.1, a synthetic rig swinging 24 shots (half a second apart), and Debian's Chromium
+//! (headless, driven by chromedriver through Python's selenium, tests/web_page.py) showing the page. The ball
+//! speeds on the page (page text, mph with one decimal) must be those published on `golf/<rig>/launch`; the club
+//! typed into the page must reach `golf/<rig>/club`; a shot excluded with a click must be left out by `impactd
+//! session` on the recording; the CSV the page downloads must be byte for byte what `impactd export --format
+//! trackman-csv` writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show
+//! beside the prediction with its residual; the units switched on the page must come back through
+//! `golf/<rig>/display`; the session view grouped by player and by tag must count the shots the published
+//! launches' labels put in each group; the page's header must name the rig's club and its club file's SHA-256
+//! (from the rig's status), before and after the switch; after the daemon restarts the page must reconnect by
+//! itself; and 1500 shots later the page must still hold no more than its bounds (1000 shots, 12 flights, 50
+//! comparisons, 1000 drawn times). Screenshots of each view are saved under target/web-page/.
 //!
 //! Times, from the page's own clocks: launch published (the daemon's wall clock when the launch reached the
 //! screen's zenoh subscriber) to the numbers drawn (the first animation frame after the page text changed),
