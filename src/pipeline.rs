@@ -132,13 +132,18 @@ impl Pipeline {
         }
     }
 
-    /// The rig's club as it is now, as recorded on `golf/<rig>/club`.
-    pub fn club_change(&self, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
-        let club = self.setup.club_ref.clone().unwrap_or_else(|| ClubRef {
+    /// The rig's club as it is now (its name, and its file and SHA-256 when it came from one).
+    pub fn club_ref(&self) -> ClubRef {
+        self.setup.club_ref.clone().unwrap_or_else(|| ClubRef {
             name: self.setup.club.name.clone(),
             file: String::new(),
             sha256: String::new(),
-        });
+        })
+    }
+
+    /// The rig's club as it is now, as recorded on `golf/<rig>/club`.
+    pub fn club_change(&self, source: crate::wire::ClubSource, body: Option<String>) -> crate::wire::ClubChange {
+        let club = self.club_ref();
         let models = self.setup.models.iter().map(|m| m.name().to_string()).collect();
         crate::wire::ClubChange { rig: self.setup.name.clone(), club, source, body, models }
     }

@@ -3,7 +3,8 @@
 //! a bad put is refused and changes nothing. The recording, read back by Python's `mcap` (an independent reader),
 //! says which club file each launch used (SHA-256 computed by Python's `hashlib` from the files' bytes), and the
 //! launches after each switch are those `impactd predict --club NEW` gives for the recorded delivery, not the old
-//! club's; `impactd replay` switches where the session did and reproduces every launch byte for byte.
+//! club's; the rig's status on `golf/<rig>/status` names its club now (name and the file's SHA-256) after each
+//! switch; `impactd replay` switches where the session did and reproduces every launch byte for byte.
 
 #![allow(clippy::unwrap_used)]
 
@@ -107,13 +108,33 @@ async fn a_put_and_a_body_switch_the_club_and_the_recording_says_which() {
     std::fs::write(&eight, text.replace("name = \"iron8\"", "name = \"my 8-iron\"")).unwrap();
     let eight = eight.to_str().unwrap().to_string();
     let config = format!(
-        "[[rig]]\nname = \"bay1\"\nclub = \"driver\"\nmodel = \"adjusted\"\n[rig.clubs]\neight = \"{eight}\"\n"
+        "status_period_s = 0.2\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\nmodel = \"adjusted\"\n\
+         [rig.clubs]\neight = \"{eight}\"\n"
     );
     let recording = dir.path().join("switch.mcap");
     let options = RunOptions { record: Some(recording.clone()), ..Default::default() };
     let daemon = start_daemon(&config, options).await;
     let session = client(&daemon.endpoint).await;
     let club_key = session.declare_publisher(keys::club("bay1")).await.unwrap();
+    let (statuses, _status_sub) = common::collect::<impactd::wire::StatusMessage>(&session, "golf/bay1/status");
+    // The rig's status names its club now: name and the SHA-256 of its file (as `sha256sum` prints it).
+    let sha = |path: &std::path::Path| -> String {
+        let bytes = std::fs::read(path).unwrap();
+        let digest = <sha2::Sha256 as sha2::Digest>::digest(&bytes);
+        digest.iter().map(|b| format!("{b:02x}")).collect()
+    };
+    let status_says = |name: &str, sha256: String| {
+        let statuses = statuses.clone();
+        let name = name.to_string();
+        async move {
+            let says = || {
+                let s = statuses.lock().unwrap();
+                s.last().and_then(|s| s.club.clone()).is_some_and(|c| c.name == name && c.sha256 == sha256)
+            };
+            common::wait_until(Duration::from_secs(5), says).await
+        }
+    };
+    assert!(status_says("driver", sha(&root.join("clubs/presets/driver.toml"))).await, "the status names the driver");
     assert!(
         common::wait_until(Duration::from_secs(10), || club_key.matching_status().wait().is_ok_and(|m| m.matching()))
             .await
@@ -126,7 +147,10 @@ async fn a_put_and_a_body_switch_the_club_and_the_recording_says_which() {
     club_key.put("sw").await.unwrap();
     tokio::time::sleep(Duration::from_millis(300)).await;
     swing(&session, "sw", None, 12).await;
+    assert!(status_says("sw", sha(&root.join("clubs/presets/sw.toml"))).await, "the status names the put's club");
     swing(&session, &eight, Some("eight"), 13).await;
+    let eight_sha = sha(std::path::Path::new(&eight));
+    assert!(status_says("my 8-iron", eight_sha).await, "the status names the body's club");
     tokio::time::sleep(Duration::from_millis(300)).await;
     let summary = daemon.stop().await;
     session.close().await.unwrap();

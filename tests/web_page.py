@@ -84,8 +84,11 @@ try:
     driver.save_screenshot(os.path.join(out_dir, "shot-view.png"))
 
     # The club control: the page puts the text on golf/<rig>/club.
+    club_before = driver.find_element(By.ID, "rig-club").text
     driver.find_element(By.ID, "club").send_keys("iron7")
     driver.find_element(By.ID, "club-set").click()
+    # The rig's status names its club now (the switch is loaded off the sample path, then shows in the next status).
+    rig_club = wait("the new club in the rig's status", lambda: (lambda t: t if t.startswith("iron7") else None)(driver.find_element(By.ID, "rig-club").text), 10)
     # Player and tags for the next shots.
     driver.find_element(By.ID, "player").send_keys("ann")
     driver.find_element(By.ID, "tags").send_keys("fitting, shaft A")
@@ -100,6 +103,16 @@ try:
     retry(lambda: driver.find_element(By.CSS_SELECTOR, "#shots button[data-exclude='2']").click())
     wait("shot 2 excluded", lambda: "excluded" in driver.find_element(By.CSS_SELECTOR, "#shots tr[data-shot='2']").get_attribute("class"))
     summary_shots = retry(lambda: driver.find_element(By.CSS_SELECTOR, "#summary tbody tr td:nth-child(2)").text)
+    # Grouped by player and by tag (as `impactd session --by`): each group's name and shots counted.
+    read_summary = "return [...document.querySelectorAll('#summary tbody tr')].map(r => [r.cells[0].textContent, r.cells[1].textContent])"
+    by = {}
+    for group in ["player", "tag"]:
+        driver.find_element(By.CSS_SELECTOR, f"#group-by option[value={group}]").click()
+        wait(f"the summary per {group}", lambda: driver.find_element(By.ID, "group-name").text == group)
+        by[group] = dict(wait(f"the rows per {group}", lambda: js(read_summary)))
+        if group == "player":
+            driver.save_screenshot(os.path.join(out_dir, "session-by-player.png"))
+    driver.find_element(By.CSS_SELECTOR, "#group-by option[value=club]").click()
     # Sorting by ball speed (descending, then ascending on a second click).
     sort_header = lambda: driver.find_element(By.CSS_SELECTOR, "#shots th[data-sort=ball_speed]").click()
     retry(sort_header)
@@ -119,7 +132,7 @@ try:
     wait("imperial units", lambda: driver.find_element(By.ID, "u-ball_speed").text == "mph")
 
     emit("DONE", {
-        "seen": seen, "unit": unit, "comparison": comparison, "comparison_shot": comparison_shot, "table": table, "summary_shots": summary_shots, "sorted_down": down,
+        "seen": seen, "unit": unit, "comparison": comparison, "comparison_shot": comparison_shot, "table": table, "summary_shots": summary_shots, "by": by, "club_before": club_before, "rig_club": rig_club, "sorted_down": down,
         "csv": csv_path, "metric_speed": metric_speed, "latencies_ms": js("return bay.latencies"),
     })
 

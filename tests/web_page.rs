@@ -1,16 +1,18 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 //! The bay screen in a real browser (issue 32): a daemon in-process on loopback zenoh (multicast scouting off)
-//! serving `--web` on 127.0.0.1, a synthetic rig swinging five shots, and Debian's Chromium (headless, driven by
-//! chromedriver through Python's selenium, tests/web_page.py) showing the page. The ball speeds on the page
-//! (page text, mph with one decimal) must be those published on `golf/<rig>/launch`; the club typed into the
-//! page must reach `golf/<rig>/club`; a shot excluded with a click must be left out by `impactd session` on
-//! the recording; the CSV the page downloads must be byte for byte what `impactd export --format trackman-csv`
-//! writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show beside the
-//! prediction with its residual; the units switched on the page must come back through `golf/<rig>/display`;
-//! after the daemon restarts the page must reconnect by itself; and 1500 shots later the page must still hold
-//! no more than its bounds (1000 shots, 12 flights, 50 comparisons, 1000 drawn times). Screenshots of each
-//! view are saved under target/web-page/.
+//! serving `--web` on 127.0.0.1, a synthetic rig swinging 24 shots (half a second apart), and Debian's Chromium
+//! (headless, driven by chromedriver through Python's selenium, tests/web_page.py) showing the page. The ball
+//! speeds on the page (page text, mph with one decimal) must be those published on `golf/<rig>/launch`; the club
+//! typed into the page must reach `golf/<rig>/club`; a shot excluded with a click must be left out by `impactd
+//! session` on the recording; the CSV the page downloads must be byte for byte what `impactd export --format
+//! trackman-csv` writes from the recording; a launch monitor's measurement (on `lm/<rig>/launch`) must show
+//! beside the prediction with its residual; the units switched on the page must come back through
+//! `golf/<rig>/display`; the session view grouped by player and by tag must count the shots the published
+//! launches' labels put in each group; the page's header must name the rig's club and its club file's SHA-256
+//! (from the rig's status), before and after the switch; after the daemon restarts the page must reconnect by
+//! itself; and 1500 shots later the page must still hold no more than its bounds (1000 shots, 12 flights, 50
+//! comparisons, 1000 drawn times). Screenshots of each view are saved under target/web-page/.
 //!
 //! Times, from the page's own clocks: launch published (the daemon's wall clock when the launch reached the
 //! screen's zenoh subscriber) to the numbers drawn (the first animation frame after the page text changed),
@@ -28,7 +30,7 @@ use impactd::daemon::RunOptions;
 use impactd::wire::LaunchPrediction;
 use zenoh::Wait;
 
-const SHOTS: u64 = 5;
+const SHOTS: u64 = 24;
 const SCRIPT: &str = include_str!("web_page.py");
 
 fn on_path(exe: &str) -> bool {
@@ -64,7 +66,8 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     let dir = tempfile::tempdir().unwrap();
     let recording = dir.path().join("bay.mcap");
     let web = format!("127.0.0.1:{}", impactd::daemon::bus::free_loopback_port().unwrap());
-    let config = "status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n";
+    let config = "status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n\
+                  [rig.labels]\nplayer = \"bob\"\ntags = [\"warmup\"]\n";
     let options =
         |record: &Path| RunOptions { record: Some(record.to_path_buf()), web: Some(web.clone()), ..Default::default() };
     let daemon = start_daemon(config, options(&recording)).await;
@@ -128,9 +131,16 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
 
     let rig = common::client(&daemon.endpoint).await;
     let sim = tokio::spawn(async move {
-        let options = SimOptions { rigs: vec!["bay1".into()], shots: SHOTS, interval_s: 1.0, ..SimOptions::default() };
+        let options = SimOptions { rigs: vec!["bay1".into()], shots: SHOTS, interval_s: 0.5, ..SimOptions::default() };
         run_sim(&rig, options, std::future::pending()).await.unwrap();
         rig
+    });
+    // Half way, other labels for the shots that follow (the session view groups by player and by tag).
+    let (labeller, counted) = (observer.clone(), launches.clone());
+    tokio::spawn(async move {
+        common::wait_until(Duration::from_secs(60), || counted.lock().unwrap().len() as u64 >= SHOTS / 2).await;
+        let labels = r#"{"player": "cy", "tags": ["fitting", "shaft A"]}"#;
+        labeller.put("golf/bay1/session", labels).await.unwrap();
     });
     let done = tokio::task::block_in_place(|| expect(&mut lines, "DONE"));
     let published = launches.lock().unwrap().clone();
@@ -155,11 +165,39 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     let measured_speed = format!("{:.1}", published.last().unwrap().launch.launch.ball_speed_mph + 1.5);
     assert_eq!(speed_row[1..], [last_speed, measured_speed, "-1.5".to_string()], "comparison rows: {cmp:?}");
     assert_eq!(done["comparison_shot"], SHOTS.to_string());
-    // Excluding shot 2 left four shots in the per-club average; sorting put the table in descending speed.
+    // Excluding shot 2 left one shot fewer in the per-club average; sorting put the table in descending speed.
     assert_eq!(done["summary_shots"], (SHOTS - 1).to_string());
+    // Grouped by player and by tag, the counts of the published launches' labels (shot 2 left out).
+    let mut want: std::collections::BTreeMap<&str, std::collections::BTreeMap<String, String>> = Default::default();
+    for p in published.iter().filter(|p| p.shot != 2) {
+        let player = p.labels.player.clone().unwrap_or_else(|| "-".into());
+        let tags: std::collections::BTreeSet<String> = p.labels.tags.iter().cloned().collect();
+        for (by, group) in std::iter::once(("player", player)).chain(tags.into_iter().map(|t| ("tag", t))) {
+            let n = want.entry(by).or_default().entry(group).or_insert_with(|| "0".into());
+            *n = (n.parse::<u64>().unwrap() + 1).to_string();
+        }
+    }
+    assert_eq!(want["player"].len(), 2, "both players swung: {want:?}");
+    assert_eq!(want["tag"].len(), 3, "three tags: {want:?}");
+    for by in ["player", "tag"] {
+        let shown: std::collections::BTreeMap<String, String> = serde_json::from_value(done["by"][by].clone()).unwrap();
+        assert_eq!(shown, want[by], "the session view grouped by {by}");
+    }
     let down: Vec<f64> = serde_json::from_value(done["sorted_down"].clone()).unwrap();
     assert!(down.windows(2).all(|w| w[0] >= w[1]), "not sorted: {down:?}");
 
+    // The rig's status, shown in the page's header, names its club and the first digits of the club file's SHA-256
+    // (that of clubs/presets/<name>.toml, as `sha256sum` prints it): the driver, then the iron switched to.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (key, preset) in [("club_before", "driver"), ("rig_club", "iron7")] {
+        let bytes = std::fs::read(root.join(format!("clubs/presets/{preset}.toml"))).unwrap();
+        let sha: String = sha2::Digest::finalize(<sha2::Sha256 as sha2::Digest>::new_with_prefix(&bytes))
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect();
+        let name = impactd::equipment::load_club_source(preset).unwrap().0.club.name;
+        assert_eq!(done[key], format!("{name} · {}", &sha[..8]), "the rig's club in the page header");
+    }
     // The club typed into the page reached the bus as the plain-text put another program would make.
     assert!(common::wait_until(Duration::from_secs(5), || clubs.lock().unwrap().iter().any(|c| c == "iron7")).await);
 
@@ -218,7 +256,7 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
     assert_eq!(session["excluded"], serde_json::json!(["bay1:2"]));
     assert_eq!(session["groups"][0]["shots"], SHOTS - 1);
 
-    for view in ["shot-view.png", "session-view.png", "shot-view-metric.png"] {
+    for view in ["shot-view.png", "session-view.png", "session-by-player.png", "shot-view-metric.png"] {
         let png = std::fs::read(out_dir.join(view)).unwrap();
         assert!(png.starts_with(b"\x89PNG") && png.len() > 10_000, "{view} is not a screenshot");
     }

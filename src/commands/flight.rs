@@ -1,5 +1,6 @@
 //! `impactd flight`: JSONL launches in (the fields `impactd predict` writes), each answered with its own fields
-//! and its trajectory's, with the bounce and roll; or, with `--coefficients`, the drag and lift coefficients the flight uses.
+//! and its trajectory's, with the bounce and roll (with `--table`, a table in `--units`); or, with `--coefficients`,
+//! the drag and lift coefficients the flight uses.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -9,6 +10,8 @@ use clap::Args;
 use impactd::flight::{aero, Flight};
 
 use super::args::{exit_code, open_input, ConditionArgs};
+use super::launch_table::TableLines;
+use impactd::session::Units;
 
 #[derive(Debug, Args)]
 pub struct FlightArgs {
@@ -29,6 +32,12 @@ pub struct FlightArgs {
     /// Read launches from this file instead of stdin.
     #[arg(long, short)]
     pub input: Option<PathBuf>,
+    /// Print a table to read instead of JSON lines (the JSON carries both unit systems).
+    #[arg(long, conflicts_with_all = ["coefficients", "points_s"])]
+    pub table: bool,
+    /// Units of the table.
+    #[arg(long, value_enum, default_value_t = Units::Imperial, requires = "table")]
+    pub units: Units,
 }
 
 pub fn run(args: &FlightArgs) -> Result<ExitCode> {
@@ -43,10 +52,13 @@ pub fn run(args: &FlightArgs) -> Result<ExitCode> {
         bail!("--points-s must be within {MIN_POINTS_S} and 60 s");
     }
     let input = open_input(args.input.as_deref())?;
+    let out = std::io::stdout().lock();
+    let out: Box<dyn std::io::Write> =
+        if args.table { Box::new(TableLines::new(out, args.units)) } else { Box::new(out) };
     let tally = impactd::jsonl::process(
         "impactd flight",
         input,
-        std::io::stdout().lock(),
+        out,
         std::io::stderr().lock(),
         |line: serde_json::Map<String, serde_json::Value>| super::flight_lines::with_flight(line, &flight, every),
     )?;

@@ -18,6 +18,7 @@ mod fit;
 mod flight;
 mod flight_fit;
 mod flight_lines;
+mod launch_table;
 mod map;
 mod models;
 mod plot;

@@ -1,4 +1,5 @@
-//! `impactd predict`: JSONL deliveries in, JSONL launch conditions out.
+//! `impactd predict`: JSONL deliveries in, JSONL launch conditions out (or, with `--table`, a table in
+//! `--units`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -6,8 +7,10 @@ use std::process::ExitCode;
 use anyhow::{bail, Result};
 use clap::Args;
 use impactd::predict::Predictor;
+use impactd::session::Units;
 
 use super::args::{exit_code, load_club, model_name, open_input, resolved_in_time, ConditionArgs};
+use super::launch_table::TableLines;
 
 #[derive(Debug, Args)]
 pub struct PredictArgs {
@@ -39,6 +42,12 @@ pub struct PredictArgs {
     pub firmness: f64,
     #[command(flatten)]
     pub conditions: ConditionArgs,
+    /// Print a table to read instead of JSON lines (the JSON carries both unit systems).
+    #[arg(long)]
+    pub table: bool,
+    /// Units of the table.
+    #[arg(long, value_enum, default_value_t = Units::Imperial, requires = "table")]
+    pub units: Units,
 }
 
 pub fn run(args: &PredictArgs) -> Result<ExitCode> {
@@ -59,6 +68,8 @@ pub fn run(args: &PredictArgs) -> Result<ExitCode> {
         .collect();
     let input = open_input(args.input.as_deref())?;
     let (out, err) = (std::io::stdout().lock(), std::io::stderr().lock());
+    let out: Box<dyn std::io::Write> =
+        if args.table { Box::new(TableLines::new(out, args.units)) } else { Box::new(out) };
     let tally = if args.flight {
         let lines = super::flight_lines::FlightLines::new(out, args.conditions.flight(args.firmness)?);
         impactd::predict::run_models(&loaded.club, &predictors, input, lines, err)?

@@ -16,6 +16,8 @@
 //! estimator = "arc"             # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
 //! flight = true                 # add carry, apex, landing and offline to each prediction
+//! [rig.conditions]              # the air and turf it flies in (default: sea level, calm, 22.5 C, 50 %)
+//! temperature_c = 22.5          # also altitude_m, humidity_pct, pressure_hpa, wind_mps, wind_dir_deg, firmness
 //! [rig.world_from_lab]          # default identity
 //! rotation_xyzw = [0.0, 0.0, 0.0, 1.0]
 //! translation_m = [0.0, 0.0, 0.0]
@@ -52,6 +54,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::daemon::bridges::mocap::MocapInputConfig;
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
+pub use crate::daemon::config_flight::ConditionsConfig;
 pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};
 use crate::daemon::DaemonError;
 use crate::impact::registry::{self, BuildOptions};
@@ -117,6 +120,9 @@ pub struct RigConfig {
     /// Add the ball flight (carry, apex, landing, offline; calm air at sea level) to each prediction.
     #[serde(default = "default_true")]
     pub flight: bool,
+    /// The air and turf of that flight (and of the bay screen's flight lines).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conditions: Option<ConditionsConfig>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulator: Option<SimulatorConfig>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -202,6 +208,7 @@ impl Default for DaemonConfig {
                 world_from_lab: None,
                 club_from_body: None,
                 flight: true,
+                conditions: None,
                 simulator: None,
                 launch_monitor: None,
                 input: None,
@@ -312,9 +319,11 @@ impl DaemonConfig {
                     switch.calibration = Some(Calibration { club_from_body, ..calibration });
                     setup.bodies.insert(body.clone(), switch);
                 }
-                if !r.flight {
-                    setup.flight = None;
-                }
+                setup.flight = match (&r.conditions, r.flight) {
+                    (_, false) => None,
+                    (Some(c), true) => Some(c.flight().map_err(|e| invalid(f("conditions"), e))?),
+                    (None, true) => setup.flight,
+                };
                 setup.estimator = estimator;
                 setup.calibration = calibration;
                 setup.detector.ball_position_m = Vector3::from(r.ball_position_m);
@@ -419,5 +428,16 @@ mod tests {
         let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
         assert!(err(&rig("model = \"ground\"\nsoil = \"mud\"")).contains("rig[0].soil"));
         assert!(err(&rig("model = \"adjusted\"\nsoil = \"firm\"")).contains("rig[0].soil"));
+    }
+
+    #[test]
+    fn conditions_fly_the_rigs_ball_and_a_bad_one_names_its_field() {
+        let rig = |extra: &str| format!("[[rig]]\nname = \"bay1\"\n{extra}");
+        let (_, r) = DaemonConfig::parse(&rig("[rig.conditions]\naltitude_m = 1600.0")).unwrap();
+        assert_eq!(r[0].flight.map(|f| f.conditions.altitude_m), Some(1600.0));
+        let (_, r) = DaemonConfig::parse(&rig("flight = false\n[rig.conditions]\naltitude_m = 1600.0")).unwrap();
+        assert!(r[0].flight.is_none());
+        let err = DaemonConfig::parse(&rig("[rig.conditions]\nwind_mps = -1.0")).unwrap_err().to_string();
+        assert!(err.contains("rig[0].conditions") && err.contains("wind_mps"), "{err}");
     }
 }

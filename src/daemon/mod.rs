@@ -4,6 +4,7 @@
 pub mod bridges;
 pub mod bus;
 pub mod config;
+pub mod config_flight;
 pub mod config_pose;
 pub mod demo;
 pub mod live;

@@ -255,6 +255,10 @@ pub struct StatusMessage {
     /// The daemon's bay screen (`--web`), when it serves one: pages and file requests open, rejections by kind.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub web: Option<super::LiveViewStatus>,
+    /// The rig's club now (a put on `golf/<rig>/club` or another tracked body changes it): its name, what
+    /// loaded it and the SHA-256 of its club file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club: Option<super::ClubRef>,
 }
 
 /// A payload that was not a usable sample, kept in a recording beside the reason (nothing is lost).

@@ -97,8 +97,9 @@ pub async fn run(
         Some(address) => Some(FoxgloveServer::start(address, &config).await?),
         None => None,
     };
-    let rig_names = config.rigs.iter().map(|r| r.name.clone()).collect();
-    let web = WebServer::start_if(options.web.as_deref(), rig_names, session, options.record.as_deref()).await?;
+    // The screens draw each rig's flights with its flight model (the default where the rig adds no flight).
+    let screens = setups.iter().map(|s| (s.name.clone(), s.flight.unwrap_or_default())).collect();
+    let web = WebServer::start_if(options.web.as_deref(), screens, session, options.record.as_deref()).await?;
     let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
     let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();

@@ -290,6 +290,7 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         comparison: None,
         live_view: None,
         web: None,
+        club: None,
     }
 }
 

@@ -1,5 +1,6 @@
-//! A rig worker's status, once per `status_period_s`: its pipeline's counts and latency, and the health of each
-//! edge (simulator, launch monitor, mocap input, comparisons, live view, bay screen), published and recorded.
+//! A rig worker's status, once per `status_period_s`: its pipeline's counts and latency, its club now (name and
+//! club file SHA-256), and the health of each edge (simulator, launch monitor, mocap input, comparisons, live
+//! view, bay screen), published and recorded.
 
 use std::sync::atomic::Ordering;
 
@@ -29,6 +30,7 @@ impl Worker {
         status.comparison = Some(self.pairer.status());
         status.live_view = self.live_view.as_ref().map(|v| v.status());
         status.web = self.web.as_ref().map(WebStatusSource::status);
+        status.club = Some(self.p().club_ref());
         self.sinks.status(&status);
         status
     }

@@ -65,8 +65,10 @@ pub struct Bay {
 }
 
 impl Bay {
-    pub fn new(rigs: Vec<String>, recording_name: String) -> Arc<Self> {
-        let states = rigs.iter().map(|r| (r.clone(), RigState::new(r))).collect();
+    /// The screens of `rigs`, each with its flight model.
+    pub fn new(rigs: Vec<(String, crate::flight::Flight)>, recording_name: String) -> Arc<Self> {
+        let states = rigs.iter().map(|(r, flight)| (r.clone(), RigState::new(r, *flight))).collect();
+        let rigs = rigs.into_iter().map(|(r, _)| r).collect();
         let (out, _) = broadcast::channel(PAGE_LAG);
         Arc::new(Bay {
             rigs,

@@ -56,11 +56,11 @@ impl Drop for WebServer {
 }
 
 impl WebServer {
-    /// Binds `address` and serves the screens of `rigs`, reading and putting on `session`. `recording` names
-    /// the recording's file in the CSV download.
+    /// Binds `address` and serves the screens of `rigs` (each with its flight model), reading and putting on
+    /// `session`. `recording` names the recording's file in the CSV download.
     pub async fn start(
         address: &str,
-        rigs: Vec<String>,
+        rigs: Vec<(String, crate::flight::Flight)>,
         session: &zenoh::Session,
         recording: Option<&std::path::Path>,
     ) -> Result<Self, DaemonError> {
@@ -100,7 +100,7 @@ impl WebServer {
     /// [`WebServer::start`] when there is an address.
     pub async fn start_if(
         address: Option<&str>,
-        rigs: Vec<String>,
+        rigs: Vec<(String, crate::flight::Flight)>,
         session: &zenoh::Session,
         recording: Option<&std::path::Path>,
     ) -> Result<Option<Self>, DaemonError> {

@@ -25,6 +25,8 @@ const FLIGHT_STEP_S: f64 = 0.1;
 #[derive(Debug, Default)]
 pub struct RigState {
     pub rig: String,
+    /// The rig's flight model (its `[rig.conditions]`): the lines drawn land where its predictions say.
+    flight: crate::flight::Flight,
     shots: Vec<LaunchPrediction>,
     /// The page message of each kept shot (same order as `shots`).
     shot_texts: Vec<String>,
@@ -62,13 +64,14 @@ fn metrics(p: &LaunchPrediction) -> Map<String, Value> {
     m
 }
 
-/// The flight drawn on the screen: `[x, y, z]` in metres, world frame (x to the target, y up, z right).
-pub fn flight_line(p: &LaunchPrediction) -> Value {
+/// The flight drawn on the screen, flown by `flight`: `[x, y, z]` in metres, world frame (x to the target, y up,
+/// z right).
+pub fn flight_line(p: &LaunchPrediction, flight: &crate::flight::Flight) -> Value {
     let launch = crate::flight::LaunchState {
         velocity_mps: p.launch.ball_velocity_mps.into(),
         spin_radps: p.launch.ball_spin_radps.into(),
     };
-    let t = crate::flight::Flight::default().fly(&launch, FLIGHT_STEP_S);
+    let t = flight.fly(&launch, FLIGHT_STEP_S);
     let r = |v: f64| (v * 100.0).round() / 100.0;
     Value::Array(t.points.iter().map(|q| json!([r(q[1]), r(q[2]), r(q[3])])).collect())
 }
@@ -86,8 +89,8 @@ pub fn shot_json(p: &LaunchPrediction, published_ns: u64, flight: Option<&Value>
 }
 
 impl RigState {
-    pub fn new(rig: &str) -> Self {
-        RigState { rig: rig.to_string(), ..Default::default() }
+    pub fn new(rig: &str, flight: crate::flight::Flight) -> Self {
+        RigState { rig: rig.to_string(), flight, ..Default::default() }
     }
 
     /// Takes a prediction (a repeated shot number, as from a second model, is ignored); returns the page message.
@@ -95,7 +98,7 @@ impl RigState {
         if self.shots.iter().rev().take(16).any(|s| s.shot == p.shot) {
             return None;
         }
-        let line = flight_line(&p);
+        let line = flight_line(&p, &self.flight);
         let text = shot_json(&p, published_ns, Some(&line)).to_string();
         self.flights.push_back((p.shot, line));
         while self.flights.len() > FLIGHT_LINES {
@@ -155,18 +158,17 @@ impl RigState {
         json!({ "type": "units", "rig": self.rig, "units": self.units }).to_string()
     }
 
-    /// Per club: shots counted and each metric's mean and SD in both unit systems (excluded shots left out).
+    /// Per club, per player and per tag (as `impactd session --by` groups): shots counted and each metric's
+    /// mean and SD in both unit systems (excluded shots left out), under `by.club`, `by.player`, `by.tag`.
     pub fn summary_json(&mut self) -> String {
         if let Some(s) = &self.summary {
             return s.clone();
         }
         let excluded: BTreeSet<ShotId> =
             self.excluded.iter().map(|&shot| ShotId { rig: self.rig.clone(), shot }).collect();
-        let s = summarize(&self.shots, GroupBy::Club, &excluded, false);
-        let groups: Vec<Value> = s
-            .groups
-            .iter()
-            .map(|g| {
+        let grouped = |by: GroupBy| -> Value {
+            let s = summarize(&self.shots, by, &excluded, false);
+            let groups = s.groups.iter().map(|g| {
                 let mut stats = Map::new();
                 for units in [Units::Imperial, Units::Metric] {
                     for (i, metric) in METRICS.iter().enumerate() {
@@ -175,10 +177,13 @@ impl RigState {
                         stats.insert(key, json!({ "n": st.count, "mean": num(st.mean), "sd": num(st.sd) }));
                     }
                 }
-                json!({ "club": g.group, "shots": g.shots, "stats": stats })
-            })
-            .collect();
-        let text = json!({ "type": "summary", "rig": self.rig, "groups": groups }).to_string();
+                json!({ "group": g.group, "shots": g.shots, "stats": stats })
+            });
+            Value::Array(groups.collect())
+        };
+        let by =
+            json!({ "club": grouped(GroupBy::Club), "player": grouped(GroupBy::Player), "tag": grouped(GroupBy::Tag) });
+        let text = json!({ "type": "summary", "rig": self.rig, "by": by }).to_string();
         self.summary = Some(text.clone());
         text
     }
@@ -222,7 +227,7 @@ mod tests {
 
     #[test]
     fn a_rig_keeps_at_most_its_bounds_however_long_it_runs() {
-        let mut s = RigState::new("rig1");
+        let mut s = RigState::new("rig1", Default::default());
         for shot in 0..(MAX_SHOTS as u64 + 300) {
             assert!(s.on_launch(prediction(shot), 1).is_some());
             s.on_comparison(json!({ "shot": shot }));
@@ -233,14 +238,14 @@ mod tests {
         assert_eq!(s.comparisons.len(), MAX_COMPARISONS);
         let snap: Value = serde_json::from_str(&s.snapshot()).unwrap();
         assert_eq!(snap["shots"].as_array().unwrap().len(), PAGE_SHOTS);
-        assert_eq!(snap["summary"]["groups"][0]["shots"], json!(MAX_SHOTS));
+        assert_eq!(snap["summary"]["by"]["club"][0]["shots"], json!(MAX_SHOTS));
         // A second model's prediction of the same shot is not a new shot.
         assert!(s.on_launch(prediction(MAX_SHOTS as u64 + 299), 1).is_none());
     }
 
     #[test]
     fn an_excluded_shot_leaves_the_averages() {
-        let mut s = RigState::new("rig1");
+        let mut s = RigState::new("rig1", Default::default());
         let mut slow = prediction(2);
         slow.launch.launch.ball_speed_mps *= 0.5;
         for p in [prediction(1), slow, prediction(3)] {
@@ -249,8 +254,8 @@ mod tests {
         let mean = |s: &mut RigState| {
             let v: Value = serde_json::from_str(&s.summary_json()).unwrap();
             (
-                v["groups"][0]["shots"].as_u64().unwrap(),
-                v["groups"][0]["stats"]["ball_speed_mps"]["mean"].as_f64().unwrap(),
+                v["by"]["club"][0]["shots"].as_u64().unwrap(),
+                v["by"]["club"][0]["stats"]["ball_speed_mps"]["mean"].as_f64().unwrap(),
             )
         };
         let full = prediction(1).launch.launch.ball_speed_mps;
@@ -261,5 +266,37 @@ mod tests {
         let (n, m) = mean(&mut s);
         assert_eq!(n, 2);
         assert!((m - full).abs() < 1e-9, "{m}");
+    }
+
+    #[test]
+    fn the_flight_line_lands_where_the_rigs_flight_model_says() {
+        use crate::flight::{Conditions, Flight, LaunchState};
+        let p = prediction(1);
+        let launch = LaunchState {
+            velocity_mps: p.launch.ball_velocity_mps.into(),
+            spin_radps: p.launch.ball_spin_radps.into(),
+        };
+        // Denver's altitude: thinner air, a longer carry.
+        let thin = Flight { conditions: Conditions { altitude_m: 1600.0, ..Default::default() }, ..Default::default() };
+        let landing_x = |line: &Value| -> f64 {
+            let pts = line.as_array().unwrap();
+            let y = |q: &Value| q[1].as_f64().unwrap();
+            let apex = (0..pts.len()).max_by(|&a, &b| y(&pts[a]).total_cmp(&y(&pts[b]))).unwrap();
+            pts[apex..].iter().find(|q| y(q) <= 0.05).unwrap()[0].as_f64().unwrap()
+        };
+        let mut carries = Vec::new();
+        for flight in [Flight::default(), thin] {
+            let carry_m = flight.fly(&launch, FLIGHT_STEP_S).carry_m;
+            let mut s = RigState::new("rig1", flight);
+            let shot: Value = serde_json::from_str(&s.on_launch(p.clone(), 1).unwrap()).unwrap();
+            // The first sample within 5 cm of the ground is at most one step (0.1 s, under 4 m at landing speed)
+            // from the landing.
+            let x = landing_x(&shot["flight"]);
+            assert!((x - carry_m).abs() <= 4.0, "line lands at {x} m, the model's carry {carry_m} m");
+            carries.push((carry_m, x));
+        }
+        // The lines are told apart: 1600 m up carries several metres further (thinner air).
+        assert!(carries[1].0 > carries[0].0 * 1.03, "altitude should carry further: {carries:?}");
+        assert!(carries[1].1 > carries[0].1 + 4.0, "{carries:?}");
     }
 }

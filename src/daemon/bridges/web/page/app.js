@@ -4,7 +4,7 @@
 "use strict";
 const MAX_SHOTS = 1000, MAX_FLIGHTS = 12, MAX_COMPARISONS = 50, MAX_LATENCIES = 1000;
 const bay = {
-  rigs: [], rig: null, view: "shot", data: {}, connected: false, sort: { key: "shot", up: false }, filter: "",
+  rigs: [], rig: null, view: "shot", data: {}, connected: false, sort: { key: "shot", up: false }, filter: "", by: "club",
   // Launch published (the daemon's clock when the launch reached the screen's subscriber) to numbers drawn
   // (the first animation frame after the page text changed), per shot, ms.
   latencies: [],
@@ -49,8 +49,9 @@ function onMessage(m) {
     case "status": r.status = m.status; break;
   }
   if (m.rig !== bay.rig && m.type !== "shot" && m.type !== "snapshot") return;
-  // The status changes nothing drawn; labels only their line (the tables are not redrawn under a click).
-  if (m.type === "status") return;
+  // The status changes only the rig's club line; labels only their line (the tables are not redrawn under a
+  // click).
+  if (m.type === "status") return drawClub(r);
   if (m.type === "labels") return drawLabels(r);
   draw(m.rig);
   if (m.type === "shot" && m.rig === bay.rig) {
@@ -80,10 +81,18 @@ function draw(rigName) {
   const r = rigData(bay.rig);
   $("units").value = r.units;
   drawLabels(r);
+  drawClub(r);
   $("csv").href = `/rig/${encodeURIComponent(bay.rig)}/session.csv`;
   $("csv").setAttribute("download", `${bay.rig}-session.csv`);
   if (bay.view === "shot") Views.shot(r, r.units);
-  else Views.session(r, r.units, bay.sort, bay.filter);
+  else Views.session(r, r.units, bay.sort, bay.filter, bay.by);
+}
+
+// The rig's club now, from its status: name and the first 8 hex digits of its club file's SHA-256.
+function drawClub(r) {
+  const c = r.status && r.status.club;
+  $("rig-club").textContent = c ? `${c.name}${c.sha256 ? ` · ${c.sha256.slice(0, 8)}` : ""}` : "";
+  $("rig-club").title = c ? `${c.file} (SHA-256 ${c.sha256})` : "";
 }
 
 function drawLabels(r) {
@@ -132,6 +141,7 @@ $("labels-set").addEventListener("click", () => send({
 }));
 $("controls").addEventListener("submit", (e) => e.preventDefault());
 $("club-filter").addEventListener("change", (e) => { bay.filter = e.target.value; draw(bay.rig); });
+$("group-by").addEventListener("change", (e) => { bay.by = e.target.value; bay.filter = ""; draw(bay.rig); });
 $("shots").addEventListener("click", (e) => {
   const th = e.target.closest("th[data-sort]");
   if (th) {

@@ -1,5 +1,5 @@
 // The pictures of the bay screen, as SVG: the flight from the side and from above (older shots faded), the
-// face with the impact point, and the dispersion with one ellipse per club. World frame: x to the target,
+// face with the impact point, and the dispersion with one ellipse per group (club, player or tag). World frame: x to the target,
 // y up, z to the right of the target line (metres).
 "use strict";
 const Draw = (() => {
@@ -106,7 +106,7 @@ const Draw = (() => {
         const points = outlines[i].map(([s, c]) => `${px(s).toFixed(1)},${py(c).toFixed(1)}`).join(" ");
         svg.appendChild(el("polygon", { points, fill: "none", stroke: colour, "stroke-width": 2.5 }));
       }
-      svg.appendChild(el("text", { x: W - R - 4, y: T + 18 + 20 * i, "text-anchor": "end", style: `fill:${colour}` }, g.club));
+      svg.appendChild(el("text", { x: W - R - 4, y: T + 18 + 20 * i, "text-anchor": "end", style: `fill:${colour}` }, g.name));
     });
   }
 

@@ -87,20 +87,33 @@ const Views = (() => {
   const TABLE = ["ball_speed", "launch_angle", "spin_rate", "carry", "total", "side", "club_speed", "smash_factor"];
   const SUMMARY = ["ball_speed", "launch_angle", "spin_rate", "carry", "total", "side", "club_speed", "smash_factor"];
 
-  // The session: averages per club, the shot table (sortable, per club, exclude with a click), dispersion.
-  function session(rig, units, sort, filter, onExclude) {
-    const clubs = [...new Set(rig.shots.map((s) => s.club))];
+  // The groups a shot is in, as `impactd session --by` forms them: its club, its player, or each of its tags
+  // (`-` for none).
+  function groupsOf(s, by) {
+    const l = s.labels || {};
+    if (by === "player") return [l.player || "-"];
+    if (by === "tag") return l.tags && l.tags.length ? [...new Set(l.tags)] : ["-"];
+    return [s.club];
+  }
+
+  // The session: averages per club, player or tag, the shot table (sortable, per group, exclude with a click),
+  // dispersion per group.
+  function session(rig, units, sort, filter, by) {
+    const names = [...new Set(rig.shots.flatMap((s) => groupsOf(s, by)))];
     const select = $("club-filter");
-    const want = ["", ...clubs].join("\n");
-    if (select.dataset.clubs !== want) {
-      select.innerHTML = `<option value="">all clubs</option>` + clubs.map((c) => `<option>${escape(c)}</option>`).join("");
-      select.dataset.clubs = want;
-      select.value = clubs.includes(filter) ? filter : "";
+    const want = [by, ...names].join("\n");
+    if (select.dataset.groups !== want) {
+      select.innerHTML = `<option value="">all</option>` + names.map((c) => `<option>${escape(c)}</option>`).join("");
+      select.dataset.groups = want;
+      select.value = names.includes(filter) ? filter : "";
     }
+    const inGroup = (s) => !filter || groupsOf(s, by).includes(filter);
+    const heading = { club: "Club", player: "Player", tag: "Tag" }[by];
+    $("group-name").textContent = heading.toLowerCase();
     const summary = $("summary");
-    summary.tHead.innerHTML = `<tr><th>Club</th><th>Shots</th>${SUMMARY.map((b) => `<th>${NAMES[b]} (${unit(b, units) || "–"})</th>`).join("")}</tr>`;
-    summary.tBodies[0].innerHTML = (rig.summary ? rig.summary.groups : []).map((g) =>
-      `<tr><td>${escape(g.club)}</td><td>${g.shots}</td>${SUMMARY.map((b) => {
+    summary.tHead.innerHTML = `<tr><th>${heading}</th><th>Shots</th>${SUMMARY.map((b) => `<th>${NAMES[b]} (${unit(b, units) || "–"})</th>`).join("")}</tr>`;
+    summary.tBodies[0].innerHTML = (rig.summary && rig.summary.by ? rig.summary.by[by] : []).map((g) =>
+      `<tr><td>${escape(g.group)}</td><td>${g.shots}</td>${SUMMARY.map((b) => {
         const st = g.stats[key(b, units)];
         return `<td>${st ? `${fmt(st.mean, b, units)} ± ${fmt(st.sd, b, units)}` : "–"}</td>`;
       }).join("")}</tr>`).join("");
@@ -108,7 +121,7 @@ const Views = (() => {
     const table = $("shots");
     const cols = [["shot", "Shot"], ["club", "Club"], ...TABLE.map((b) => [b, `${NAMES[b]}${unit(b, units) ? ` (${unit(b, units)})` : ""}`])];
     table.tHead.innerHTML = `<tr>${cols.map(([k, name]) => `<th data-sort="${k}" class="${sort.key === k ? "sorted" + (sort.up ? " up" : "") : ""}">${name}</th>`).join("")}<th></th></tr>`;
-    let rows = rig.shots.filter((s) => !filter || s.club === filter);
+    let rows = rig.shots.filter(inGroup);
     const sortValue = (s) => sort.key === "shot" ? s.shot : sort.key === "club" ? s.club : value(s, sort.key, units);
     rows = rows.slice().sort((a, b) => {
       const x = sortValue(a), y = sortValue(b);
@@ -121,9 +134,9 @@ const Views = (() => {
         `<td>${fmt(value(s, b, units), b, units)}</td>`).join("")}<td><button type="button" data-exclude="${s.shot}">${out ? "Include" : "Exclude"}</button></td></tr>`;
     }).join("");
 
-    const groups = clubs.filter((c) => !filter || c === filter).map((club) => ({
-      club,
-      points: rig.shots.filter((s) => s.club === club && !rig.excluded.has(s.shot))
+    const groups = names.filter((g) => !filter || g === filter).map((name) => ({
+      name,
+      points: rig.shots.filter((s) => groupsOf(s, by).includes(name) && !rig.excluded.has(s.shot))
         .map((s) => [value(s, "side", units), value(s, "carry", units)]).filter(([a, b]) => Number.isFinite(a) && Number.isFinite(b)),
     }));
     Draw.dispersion($("dispersion"), groups, unit("carry", units));
@@ -133,5 +146,5 @@ const Views = (() => {
     return String(t).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
   }
 
-  return { init, shot, session, escape, fmt, key };
+  return { init, shot, session, escape, fmt, key, groupsOf };
 })();
