@@ -7,7 +7,7 @@ shaft (Table 4.1, beam elements, chapter 4); with --soil none it is the same str
 inertia that, added to the free head's about its heel-toe axis, makes the continuous model lose as much ball
 speed from the face centre to 10 mm above it as the head on the seed's shaft does (bisection on the drop).
 
-Usage: scripts/shaft-share.py [PRESET...]   (default: iron4-iron9 and the four wedges; prints TOML lines)
+Usage: scripts/shaft-share.py [PRESET...]   (default: iron4-iron9 but the seed's iron7, and the four wedges)
 """
 import json
 import re
@@ -59,7 +59,7 @@ def share_of(preset):
 
 
 if __name__ == "__main__":
-    names = sys.argv[1:] or ["iron4", "iron5", "iron6", "iron7", "iron8", "iron9", "pw", "gw", "sw", "lw"]
+    names = sys.argv[1:] or ["iron4", "iron5", "iron6", "iron8", "iron9", "pw", "gw", "sw", "lw"]
     for p in names:
         share, drop = share_of(p)
         print(f"{p}: shaft_heel_toe_inertia_g_cm2 = {share:.0f}   # drop 0 -> 10 mm on the seed's shaft: {drop:.2f} mph")
