@@ -344,7 +344,7 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
         let text_of = |name: &str| col(name).and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
         let labels = RowLabels {
             club: text_of("Club").map(str::to_string),
-            spin_measured: text_of("Spin Rate Type").is_none_or(|t| t.eq_ignore_ascii_case("measured")),
+            spin_measured: text_of("Spin Rate Type").map_or(true, |t| t.eq_ignore_ascii_case("measured")),
             impact_located: text_of("Impact Height").is_some(),
         };
         lines.push((DatasetLine { delivery, measured }, labels));
