@@ -101,7 +101,8 @@ def club_table(path):
                 if e["n"] == 0:
                     return "n/a"
                 return f"{e['mae']:.{d}f} / {e['bias']:+.{d}f}"
-            rows.append(f"| {c['label']} | {m['model']} | {c['shots']} ({c['spin_shots']} spin) | {pair(m['ball_speed_mph'], 2)} | "
+            model = m["model"] + (f" ({m['failed']} failed)" if m["failed"] else "")
+            rows.append(f"| {c['label']} | {model} | {c['shots']} ({c['spin_shots']} spin) | {pair(m['ball_speed_mph'], 2)} | "
                         f"{pair(m['launch_angle_deg'], 2)} | {pair(m['spin_rpm'], 0)} | {pair(m['spin_axis_deg'], 2)} |")
     return rows
 
