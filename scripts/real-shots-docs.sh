@@ -8,6 +8,7 @@
 #   region reference    the validation session with TrackMan's impact heights moved down by 0-8 mm (adjusted)
 #   region heldout      the held-out session (7-iron, pitching wedge, driver), every model
 #   region tour         TrackMan's tour 7-iron at its launch: the slip model's e_y and e against spin and speed
+#   region relation     per club, TrackMan's measured spin over 2.5 v sin(a) / R from its own loft, face and launch
 # Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -136,7 +137,28 @@ for t in json.load(open(f"{out}/tour.json")):
     tour.append(f"| {t['model']} | {e_y} | {t['cor']:.2f} | {t['loft']:.2f} | {t['speed']:.1f} ({(t['speed'] / 120 - 1) * 100:+.1f} %) | "
                 f"{t['spin']:.0f} ({(t['spin'] / 7097 - 1) * 100:+.1f} %) |")
 
+import csv, math
+relation = ["| session | club | shots | spin / (2.5 v sin a / R): min | mean | max |", "|---|---|---|---|---|---|"]
+for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
+    lines = open(f"tests/data/trackman/{name}", encoding="utf-8-sig").read().splitlines()
+    rows = list(csv.reader(lines[1:]))
+    head, by_club = rows[0], {}
+    for r in rows[2:]:
+        d = dict(zip(head, r))
+        if d["Spin Rate Type"] != "Measured" or not d["Dyn. Loft"] or not d["Club Speed"]:
+            continue
+        def unit(e, a):
+            e, a = math.radians(float(e)), math.radians(float(a))
+            return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
+        n, b = unit(d["Dyn. Loft"], d["Face Angle"]), unit(d["Launch Angle"], d["Launch Direction"])
+        angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
+        bound = 2.5 * float(d["Ball Speed"]) * 0.44704 * math.sin(angle) / 0.0213 * 60 / (2 * math.pi)
+        by_club.setdefault(d["Club"], []).append(float(d["Spin Rate"]) / bound)
+    for club, q in by_club.items():
+        relation.append(f"| {name} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
+
 docs_regions.replace("docs/real-shots.md", {
+    "relation": relation,
     "tour": tour,
     "validation": club_table("validation.json"),
     "validation-all": club_table("validation-all.json"),
