@@ -9,6 +9,7 @@
 #   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
 #   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
+#   scripts/real-shots-docs.sh          -> docs/real-shots.md (compare --by-club on tests/data/trackman/)
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 #   scripts/docs-hostile.sh            -> docs/hostile-peers.md (the honest rig's latency beside each hostile probe)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
@@ -129,6 +130,7 @@ echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
 scripts/club-data-docs.sh
+scripts/real-shots-docs.sh
 echo "hostile peers" >&2
 scripts/docs-hostile.sh
 

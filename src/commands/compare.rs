@@ -41,6 +41,16 @@ pub struct CompareArgs {
     /// Units of the table (the JSON keeps mph, as the field names say).
     #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
     pub units: impactd::session::Units,
+    /// TrackMan exports: each club (the `Club` column) on its preset; ball speed, launch, spin (shots with measured
+    /// spin) and spin axis as MAE and bias per model and club.
+    #[arg(long, conflicts_with_all = ["club", "residuals"])]
+    pub by_club: bool,
+    /// With --by-club: only shots with an impact location.
+    #[arg(long, requires = "by_club")]
+    pub located: bool,
+    /// With --by-club and the ground model: the turf (soft, medium, firm, a soil file) or none (on a tee).
+    #[arg(long, requires = "by_club")]
+    pub soil: Option<String>,
     /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and
     /// model after the table, or `residuals` in the JSON.
     #[arg(long)]
@@ -136,6 +146,16 @@ pub fn club_spec(arg: Option<&str>, loaded: &Loaded) -> String {
 }
 
 pub fn run(args: &CompareArgs) -> Result<ExitCode> {
+    if args.by_club {
+        let models = args.models.clone().unwrap_or_else(|| "standard,adjusted,slip,continuous".into());
+        let report = super::compare_clubs::by_club(&args.files, &models, args.located, args.soil.as_deref())?;
+        if args.json {
+            println!("{}", serde_json::to_string_pretty(&report)?);
+        } else {
+            print!("{}", super::compare_clubs::render(&report));
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     let loaded = load_files(&args.files)?;
     let club_name = club_spec(args.club.as_deref(), &loaded);
     let club = super::args::load_club(&club_name)?;

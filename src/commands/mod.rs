@@ -13,6 +13,7 @@ mod bench_baseline;
 mod calibrate;
 mod checked;
 mod compare;
+mod compare_clubs;
 mod eval;
 mod fit;
 mod flight;

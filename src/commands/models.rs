@@ -37,14 +37,15 @@ fn presets_markdown() -> Result<String> {
     use impactd::impact::registry::{build_one, BuildOptions, MODELS};
     use impactd::impact::{Delivery, Equipment};
     let mut out = String::from(
-        "| preset | aliases | loft ° | delivered loft ° | lie ° | head g | CG behind face mm | CG below centre mm | I_xx, I_yy, I_zz g cm² | shaft g | refused by | sha256 |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| preset | aliases | loft ° | delivered loft ° | lie ° | head g | CG behind face mm | CG below centre mm | I_xx, I_yy, I_zz g cm² | shaft's I_zz share g cm² | shaft g | refused by | sha256 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for p in PRESETS {
         let club = p.load()?;
         let c = &club.club;
         let (l, v) = (c.face.loft_rad, c.face.center_m);
-        let i = c.inertia_kg_m2 * 1e7;
+        // The head's own inertia; the shaft's share about the heel-toe axis in its own column.
+        let i = c.head_inertia_kg_m2() * 1e7;
         let eq = Equipment::new(c.clone());
         let delivery = Delivery {
             club_speed_mps: 40.0,
@@ -65,7 +66,7 @@ fn presets_markdown() -> Result<String> {
             })
             .collect();
         out.push_str(&format!(
-            "| `{}` | {} | {:.1} | {:.1} | {:.1} | {:.0} | {:.2} | {:.2} | {:.0}, {:.0}, {:.0} | {:.0} | {} | `{}` |\n",
+            "| `{}` | {} | {:.1} | {:.1} | {:.1} | {:.0} | {:.2} | {:.2} | {:.0}, {:.0}, {:.0} | {:.0} | {:.0} | {} | `{}` |\n",
             p.name,
             p.aliases.join(", "),
             c.loft_deg(),
@@ -77,6 +78,7 @@ fn presets_markdown() -> Result<String> {
             i[(0, 0)],
             i[(1, 1)],
             i[(2, 2)],
+            c.shaft_heel_toe_inertia_kg_m2 * 1e7,
             c.shaft_mass_kg * 1e3,
             if refused.is_empty() { "none".to_string() } else { refused.join("; ") },
             impactd::equipment::sha256_hex(p.bytes()).get(..16).unwrap_or_default(),

@@ -11,10 +11,17 @@ pub struct ClubSpec {
     /// Preset name or the `name` field of a club file.
     pub name: String,
     pub mass_kg: Real,
-    /// Inertia tensor about the CG, club frame (kg m^2).
+    /// Inertia tensor about the CG, club frame (kg m^2), as a model with a free head sees it: the head's own plus
+    /// [`ClubSpec::shaft_heel_toe_inertia_kg_m2`] about the heel-toe (z) axis.
     pub inertia_kg_m2: Matrix3,
     /// Its inverse, kept beside it for the solvers.
     pub inertia_inv_kg_m2: Matrix3,
+    /// What the shaft's tip adds about the heel-toe axis within a contact (kg m^2; 0 for the seed's heads). A head
+    /// turned about that axis (a strike above or below the CG) swings the hosel, 40-60 mm above the CG, fore and
+    /// aft, and the stiff tip of the shaft must go with it during the 0.4-0.5 ms of contact: the free head sees
+    /// it as inertia. The ground model, which carries the shaft itself, takes it off again
+    /// ([`ClubSpec::head_inertia_kg_m2`]).
+    pub shaft_heel_toe_inertia_kg_m2: Real,
     /// Face centre, static loft and curvature.
     pub face: Face,
     /// Half the usable face width (toe-heel) and height (m): the box the impact detector searches.
@@ -77,6 +84,7 @@ impl ClubSpec {
             mass_kg,
             inertia_inv_kg_m2: inertia_kg_m2.try_inverse().unwrap_or_else(Matrix3::zeros),
             inertia_kg_m2,
+            shaft_heel_toe_inertia_kg_m2: 0.0,
             face: Face { center_m: cg_to_face_center_m, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,
@@ -84,6 +92,14 @@ impl ClubSpec {
             shaft_mass_kg,
             lie_deg: Self::default_lie_deg(shape),
         }
+    }
+
+    /// The head's own inertia about its CG (club frame, kg m^2): [`ClubSpec::inertia_kg_m2`] without the shaft's
+    /// share.
+    pub fn head_inertia_kg_m2(&self) -> Matrix3 {
+        let mut i = self.inertia_kg_m2;
+        i[(2, 2)] -= self.shaft_heel_toe_inertia_kg_m2;
+        i
     }
 
     /// A driver's static lie (deg): makers' spec sheets give 56-59°.

@@ -8,7 +8,8 @@
 //! loft_deg = 10.5
 //! bulge_radius_m = 0.305      # inf (or omitted) for a flat face
 //! roll_radius_m = 0.305
-//! # optional: shaft_mass_kg, lie_deg, face_half_width_m, face_half_height_m, face_outline_mm
+//! # optional: shaft_mass_kg, shaft_heel_toe_inertia_g_cm2, lie_deg, face_half_width_m, face_half_height_m,
+//! # face_outline_mm
 //! # a polygon of impact locations [h toe +, v up +] in mm:
 //! # face_outline_mm = [[-33.0, -17.0], [30.0, -19.0], [38.0, 0.0], [20.0, 27.0], [-33.0, 14.0]]
 //! # and any model's section, read by that model: [adjusted], [slip], [continuous], ...
@@ -39,6 +40,9 @@ pub struct ClubFile {
     pub bulge_radius_m: Option<Real>,
     pub roll_radius_m: Option<Real>,
     pub shaft_mass_kg: Option<Real>,
+    /// The inertia the shaft's tip adds about the heel-toe axis through the CG within a contact (g cm^2; default
+    /// 0): models with a free head add it to the head's (`ClubSpec::shaft_heel_toe_inertia_kg_m2`).
+    pub shaft_heel_toe_inertia_g_cm2: Option<Real>,
     /// Static lie (deg), the shaft's angle above the ground at address (default `ClubSpec::default_lie_deg`: a driver's for a curved face, an iron's for a flat one).
     pub lie_deg: Option<Real>,
     pub face_half_width_m: Option<Real>,
@@ -177,17 +181,25 @@ impl ClubFile {
         if shaft_mass_kg < 0.0 {
             return Err(invalid("shaft_mass_kg", "must not be negative"));
         }
+        let share_g_cm2 = finite("shaft_heel_toe_inertia_g_cm2", self.shaft_heel_toe_inertia_g_cm2.unwrap_or(0.0))?;
+        if share_g_cm2 < 0.0 {
+            return Err(invalid("shaft_heel_toe_inertia_g_cm2", "must not be negative"));
+        }
         let lie_deg = finite("lie_deg", self.lie_deg.unwrap_or(ClubSpec::default_lie_deg(shape)))?;
         if !(lie_deg > 30.0 && lie_deg < 80.0) {
             // The same open range as the ground model's sole (`SoleSpec::validate`), which takes this lie.
             return Err(invalid("lie_deg", format!("must lie in (30, 80) deg, got {lie_deg}")));
         }
+        let share_kg_m2 = share_g_cm2 * 1e-7;
+        let mut inertia = inertia;
+        inertia[(2, 2)] += share_kg_m2;
         let inertia_inv = inertia.try_inverse().ok_or_else(|| invalid(field, "must be invertible"))?;
         Ok(ClubSpec {
             name: self.name.unwrap_or_else(|| "custom".to_string()),
             mass_kg,
             inertia_kg_m2: inertia,
             inertia_inv_kg_m2: inertia_inv,
+            shaft_heel_toe_inertia_kg_m2: share_kg_m2,
             face: Face { center_m: center, loft_rad: loft_deg.to_radians(), shape },
             face_half_width_m,
             face_half_height_m,

@@ -20,11 +20,17 @@ struct File {
     #[serde(skip_serializing_if = "Option::is_none")]
     roll_radius_m: Option<Real>,
     shaft_mass_kg: Real,
+    #[serde(skip_serializing_if = "is_zero")]
+    shaft_heel_toe_inertia_g_cm2: Real,
     face_half_width_m: Real,
     face_half_height_m: Real,
     /// The model sections (`[adjusted]`, `[continuous]`, ...), each as its model reads it.
     #[serde(flatten)]
     sections: std::collections::BTreeMap<String, toml::Table>,
+}
+
+fn is_zero(x: &Real) -> bool {
+    *x == 0.0
 }
 
 /// The club file of `club`, headed by `comment` (each line prefixed with `# `).
@@ -36,7 +42,7 @@ pub fn to_toml(loaded: &LoadedClub, comment: &str) -> Result<String, IdentifyErr
             (bulge_radius_m.is_finite().then_some(bulge_radius_m), roll_radius_m.is_finite().then_some(roll_radius_m))
         }
     };
-    let i = &club.inertia_kg_m2;
+    let i = &club.head_inertia_kg_m2();
     let file = File {
         name: club.name.clone(),
         mass_kg: club.mass_kg,
@@ -50,6 +56,7 @@ pub fn to_toml(loaded: &LoadedClub, comment: &str) -> Result<String, IdentifyErr
         bulge_radius_m: bulge,
         roll_radius_m: roll,
         shaft_mass_kg: club.shaft_mass_kg,
+        shaft_heel_toe_inertia_g_cm2: club.shaft_heel_toe_inertia_kg_m2 * 1e7,
         face_half_width_m: club.face_half_width_m,
         face_half_height_m: club.face_half_height_m,
         sections: loaded

@@ -25,6 +25,7 @@
 //!
 //! Everything is deterministic for a seed: parallel sums are collected per shot and added in shot order.
 
+pub mod by_club;
 pub mod club_toml;
 pub mod cost;
 pub mod dataset;

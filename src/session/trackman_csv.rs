@@ -224,9 +224,25 @@ fn factor(column: &str, unit: &str) -> Result<Real, TrackmanCsvError> {
     Ok(f)
 }
 
+/// What a row of an export says about its shot beyond the delivery and the launch: TrackMan's club name, whether
+/// its spin was measured (`Spin Rate Type` `Measured`, or no such column) rather than estimated by TrackMan's
+/// launch model, and whether it has an impact location (`Impact Height` filled).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowLabels {
+    pub club: Option<String>,
+    pub spin_measured: bool,
+    pub impact_located: bool,
+}
+
 /// The measured shots of a TrackMan export: rows with club data (club speed) and ball data (ball speed, launch
 /// angle and direction, spin rate and axis). Rows without club or ball data are skipped and counted.
 pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
+    let (rows, skipped) = read_labelled(text)?;
+    Ok((rows.into_iter().map(|(line, _)| line).collect(), skipped))
+}
+
+/// [`read`] with each row's [`RowLabels`].
+pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize), TrackmanCsvError> {
     let text = text.trim_start_matches('\u{feff}');
     let (body, first_row) = match text.lines().next() {
         Some(l) if l.trim().starts_with("sep=") => (&text[l.len()..], 2),
@@ -325,7 +341,13 @@ pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
                 carry_yd: value("Carry Flat - Length")?,
             },
         };
-        lines.push(DatasetLine { delivery, measured });
+        let text_of = |name: &str| col(name).and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
+        let labels = RowLabels {
+            club: text_of("Club").map(str::to_string),
+            spin_measured: text_of("Spin Rate Type").map_or(true, |t| t.eq_ignore_ascii_case("measured")),
+            impact_located: text_of("Impact Height").is_some(),
+        };
+        lines.push((DatasetLine { delivery, measured }, labels));
     }
     Ok((lines, skipped))
 }

@@ -61,7 +61,8 @@ pub struct HeadOnShaft {
 
 impl HeadOnShaft {
     pub fn of(club: &ClubSpec) -> Self {
-        HeadOnShaft { mass_kg: club.mass_kg, inertia_kg_m2: club.inertia_kg_m2 }
+        // The head alone: this model carries the shaft, so not the share a free head is given for it.
+        HeadOnShaft { mass_kg: club.mass_kg, inertia_kg_m2: club.head_inertia_kg_m2() }
     }
 }
 

@@ -1,0 +1,117 @@
+//! Real TrackMan shots: the validation session of tests/data/trackman/ (a TrackMan Performance Studio export
+//! published in github.com/MCI1980/fantastic-fortnight, `tests/sample_tps_export.csv`, commit 10bbca7f; one
+//! player's 8- and 5-iron, 2026-02-19) through `impactd compare --by-club --located --json`: TrackMan's club data
+//! and impact location are the delivery, each club on its preset, spin compared only where TrackMan measured it.
+//! The bounds are the accuracy docs/real-shots.md reports, with a margin of about a tenth; the held-out session is
+//! not read here (docs/real-shots.md has its numbers, computed once).
+
+#![allow(clippy::unwrap_used)]
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+const VALIDATION: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/trackman/validation-8i-5i.csv");
+
+fn by_club(models: &str) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["compare", "--by-club", "--located", "--json", "--soil", "none", "--models", models, VALIDATION])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// (mae, bias, n) of `field` for `model` on the club labelled `club`.
+fn stat(r: &Value, club: &str, model: &str, field: &str) -> (f64, f64, u64) {
+    let c = r["clubs"].as_array().unwrap().iter().find(|c| c["label"] == club).unwrap();
+    let m = c["models"].as_array().unwrap().iter().find(|m| m["model"] == model).unwrap();
+    let e = &m[field];
+    (e["mae"].as_f64().unwrap(), e["bias"].as_f64().unwrap(), e["n"].as_u64().unwrap())
+}
+
+/// The session's located shots: 12 8-iron (6 with measured spin) and 14 5-iron (2); 10 rows have club data
+/// but no impact location and are left out.
+#[test]
+fn the_validation_session_reads_as_trackman_wrote_it() {
+    let r = by_club("adjusted");
+    assert_eq!(r["unlocated_left_out"], 10);
+    let clubs: Vec<(String, u64, u64)> = r["clubs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| {
+            (c["club"].as_str().unwrap().to_string(), c["shots"].as_u64().unwrap(), c["spin_shots"].as_u64().unwrap())
+        })
+        .collect();
+    assert_eq!(clubs, vec![("iron8".to_string(), 12, 6), ("iron5".to_string(), 14, 2)]);
+}
+
+/// Ball speed with the shaft's share of the heel-toe inertia in the presets: the impulse-momentum models
+/// (seed 3.1) and the continuous model now miss the 8-iron by about 3 mph (it was 6.4-8.7 mph on these shots
+/// with the free head alone) and the 5-iron by 6.5-7 mph (13.3-15.7). The issue's target of 3 mph is met for
+/// neither club by a margin: the 5-iron's high strikes still lose too much (docs/real-shots.md).
+#[test]
+fn ball_speed_on_the_validation_session() {
+    let r = by_club("adjusted,slip,continuous,ground");
+    for (model, iron8, iron5) in
+        [("adjusted", 3.5, 7.1), ("slip", 4.1, 7.7), ("continuous", 3.6, 7.8), ("ground", 3.5, 7.6)]
+    {
+        let (m8, _, _) = stat(&r, "8 Iron", model, "ball_speed_mph");
+        let (m5, _, _) = stat(&r, "5 Iron", model, "ball_speed_mph");
+        assert!(m8 <= iron8, "{model}: 8-iron ball speed MAE {m8:.2} mph > {iron8}");
+        assert!(m5 <= iron5, "{model}: 5-iron ball speed MAE {m5:.2} mph > {iron5}");
+    }
+}
+
+/// Launch angle within the issue's 1 deg for every model but Maw; spin axis within its 2.5 deg on the 8-iron's
+/// measured spins (the 5-iron has two); spin within 600 rpm for the slip model only, every model's bias on the
+/// 8-iron negative (too little backspin, as against the tour's irons, docs/real-shots.md).
+#[test]
+fn launch_spin_and_axis_on_the_validation_session() {
+    let r = by_club("standard,adjusted,slip,continuous,ground");
+    for model in ["standard", "adjusted", "slip", "continuous", "ground"] {
+        for club in ["8 Iron", "5 Iron"] {
+            let (la, _, _) = stat(&r, club, model, "launch_angle_deg");
+            assert!(la <= 1.0, "{model} {club}: launch MAE {la:.2} deg");
+        }
+        let (axis, _, n) = stat(&r, "8 Iron", model, "spin_axis_deg");
+        assert_eq!(n, 6);
+        assert!(axis <= 2.5, "{model}: 8-iron spin axis MAE {axis:.2} deg");
+        let (_, spin_bias, _) = stat(&r, "8 Iron", model, "spin_rpm");
+        assert!(spin_bias < 0.0, "{model}: 8-iron spin bias {spin_bias:.0} rpm");
+    }
+    let (spin, _, _) = stat(&r, "8 Iron", "slip", "spin_rpm");
+    assert!(spin <= 600.0, "slip: 8-iron spin MAE {spin:.0} rpm");
+}
+
+/// The share is what the seed's shaft does: on the 5-iron preset, the continuous model's free head loses as
+/// much ball speed from the face centre to 10 mm above it as the same head on the Table 4.1 shaft (the ground
+/// model on a tee) within 0.3 mph (8.35 mph at 85 mph), where the head alone loses 16.5 (scripts/shaft-share.py).
+#[test]
+fn the_shaft_share_reproduces_the_flexible_shaft() {
+    let drop = |model: &str, extra: &[&str]| {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
+            .args(["predict", "--club", "iron5", "--model", model])
+            .args(extra)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let lines = "{\"club_speed_mph\":85,\"attack_angle_deg\":-4,\"dynamic_loft_deg\":19.5,\"impact_v_mm\":0}\n\
+                     {\"club_speed_mph\":85,\"attack_angle_deg\":-4,\"dynamic_loft_deg\":19.5,\"impact_v_mm\":10}\n";
+        child.stdin.take().unwrap().write_all(lines.as_bytes()).unwrap();
+        let out = child.wait_with_output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: Vec<f64> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str::<Value>(l).unwrap()["ball_speed_mph"].as_f64().unwrap())
+            .collect();
+        v[0] - v[1]
+    };
+    let (free, shaft) = (drop("continuous", &[]), drop("ground", &["--soil", "none"]));
+    assert!((free - shaft).abs() < 0.3, "free head with the share {free:.2} mph, on the shaft {shaft:.2} mph");
+}
