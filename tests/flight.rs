@@ -150,7 +150,9 @@ fn every_club_is_near_the_trackman_table() {
     }
     assert!(fit::worst(&Aero::FITTED, &rows) < 0.83);
     // Inside the envelope less its margin, but for less than the margin: strictly inside the envelope.
-    assert!(impactd::flight::envelope::violations(&Aero::FITTED).iter().all(|v| *v < impactd::flight::envelope::MARGIN));
+    assert!(impactd::flight::envelope::violations(&Aero::FITTED)
+        .iter()
+        .all(|v| *v < impactd::flight::envelope::MARGIN));
 }
 
 /// The fit is reproducible: from `fit::START` and the table, `impactd flight-fit` lands on `Aero::FITTED`.
@@ -257,7 +259,9 @@ fn land_angle_costs_carry_for_one_ball() {
     };
     let (tight_land, tight_carry) = at(2.5);
     let (loose_land, loose_carry) = at(4.0);
-    println!("land 2.5 deg scale: {tight_land:.2} deg, {tight_carry:.2} %; 4 deg: {loose_land:.2} deg, {loose_carry:.2} %");
+    println!(
+        "land 2.5 deg scale: {tight_land:.2} deg, {tight_carry:.2} %; 4 deg: {loose_land:.2} deg, {loose_carry:.2} %"
+    );
     assert!(tight_land <= 3.0 && tight_carry > 4.0);
     assert!(loose_carry <= 3.5 && loose_land > 3.0);
 }

@@ -205,3 +205,39 @@ fn converged_in_step_and_rings() {
         }
     }
 }
+
+/// The contact arm: Maw, Barber and Fawcett's small-strain theory puts the traction at the undeformed radius `R`,
+/// and on Figure 3.4's plate (44 m/s, 30 deg, Table 3.6's driver, elastic) that arm leaves the ball at 1.085
+/// times rolling where `R - x/2` gives 1.51 (docs/models.md, "Maw's backspin: the lever arm"). The golf models
+/// default to `R`; `contact_arm = "mid_overlap"` restores the shorter arm, which spins the 7-iron more.
+#[test]
+fn the_contact_arm_is_the_theorys_radius_by_default() {
+    use impactd::impact::continuous::law::hertz::ContactArm;
+    assert_eq!(MawParams::DRIVER.contact_arm, ContactArm::Radius);
+    assert_eq!(ArakawaParams::IRON7.contact_arm, ContactArm::Radius);
+    let ball = impactd::equipment::BallSpec::SEED;
+    let elastic = MawParams { d_s_per_m: 0.0, ..MawParams::DRIVER };
+    // Rolling at departure from 44 m/s at 30 deg: the angular impulse about the contact point keeps
+    // m R v_t = (I + m R^2) w (7,045 rpm for the seed's ball).
+    let v_t = 44.0 * 30f64.to_radians().sin();
+    let w_roll = ball.mass_kg * ball.radius_m * v_t / (ball.inertia_kg_m2 + ball.mass_kg * ball.radius_m.powi(2));
+    let rolling = |r: &impactd::impact::continuous::plate::PlateImpact| r.spin_radps.abs() / w_roll;
+    let theory = impact(true, &elastic, &ball, 44.0, 30.0, 0.1e-6, 10);
+    let mid = impact(false, &elastic, &ball, 44.0, 30.0, 0.1e-6, 10);
+    assert!((rolling(&theory) - 1.085).abs() < 0.02, "{}", rolling(&theory));
+    assert!((rolling(&mid) - 1.51).abs() < 0.03, "{}", rolling(&mid));
+    let (club, loft, attack) = clubs().into_iter().find(|(c, ..)| c.name == "iron7").unwrap();
+    let eq = Equipment::new(club.clone());
+    let state = delivery(45.0, attack, loft).to_state(&eq).unwrap();
+    let spin = |arm: ContactArm| {
+        let m = HertzModel {
+            law: HertzLaw::Maw(Some(MawParams { contact_arm: arm, ..MawParams::IRON7 })),
+            ..HertzModel::maw()
+        };
+        let l = m.simulate(&state, &eq, 0).unwrap().launch;
+        LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps).backspin_rpm
+    };
+    let (r, mid) = (spin(ContactArm::Radius), spin(ContactArm::MidOverlap));
+    println!("7-iron at 45 m/s: arm R {r:.0} rpm, R - x/2 {mid:.0} rpm");
+    assert!(mid > r * 1.08, "the shorter arm spins more: {mid} vs {r}");
+}

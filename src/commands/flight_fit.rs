@@ -165,7 +165,10 @@ fn tradeoff(rows: &[fit::TourAverage], iterations: usize, json: bool) -> Result<
         println!("{}", serde_json::to_string_pretty(&doc)?);
         return Ok(ExitCode::SUCCESS);
     }
-    println!("{:>12} {:>14} {:>16} {:>16} {:>14}", "apex scale yd", "land scale deg", "land max deg", "carry max %", "apex max yd");
+    println!(
+        "{:>12} {:>14} {:>16} {:>16} {:>14}",
+        "apex scale yd", "land scale deg", "land max deg", "carry max %", "apex max yd"
+    );
     for p in &points {
         println!(
             "{:>12} {:>14.1} {:>10.2} ({:<6}) {:>10.2} ({:<6}) {:>14.2}",

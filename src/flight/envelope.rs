@@ -32,9 +32,7 @@ pub fn bounds_at(v_mps: Real, rpm: Real, spin_ratio: Real) -> ((Real, Real), (Re
 
 /// The airspeeds (m/s) and spins (rpm) the envelope is checked at.
 pub fn grid() -> impl Iterator<Item = (Real, Real)> {
-    (20..=90)
-        .step_by(5)
-        .flat_map(|v| (1000..=11000).step_by(500).map(move |rpm| (Real::from(v), Real::from(rpm))))
+    (20..=90).step_by(5).flat_map(|v| (1000..=11000).step_by(500).map(move |rpm| (Real::from(v), Real::from(rpm))))
 }
 
 /// How far inside its bounds [`violations`] asks a coefficient to stay: a fit that holds the violations to a

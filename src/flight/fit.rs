@@ -87,8 +87,13 @@ pub fn scaled_errors(aero: &Aero, rows: &[TourAverage]) -> Vec<Real> {
 }
 
 /// The accuracy every club must reach: carry within 4 % of the measured carry, apex 3 yd, land angle 3 deg.
-pub const TOLERANCE: Tolerance =
-    Tolerance { carry_yd: 4.0, carry_pct: Some(4.0), apex_yd: Some(4.5), land_angle_deg: 4.0, envelope: Some(ENVELOPE) };
+pub const TOLERANCE: Tolerance = Tolerance {
+    carry_yd: 4.0,
+    carry_pct: Some(4.0),
+    apex_yd: Some(4.5),
+    land_angle_deg: 4.0,
+    envelope: Some(ENVELOPE),
+};
 
 /// How far outside the published drag and lift less its margin ([`super::envelope`]) counts as one tolerance:
 /// half the margin, so a fit whose largest scaled error is below 2 stays strictly inside the envelope.

@@ -56,7 +56,8 @@ pub fn maw_plate_chart(params: &MawParams, speed_mps: f64, incidence_deg: f64) -
     let mut title = format!("Plate, {speed_mps} m/s at {incidence_deg} deg:");
     let cases = [("elastic", MawParams { d_s_per_m: 0.0, ..*params }), ("damped", *params)];
     for (i, (label, p)) in cases.into_iter().enumerate() {
-        let r = plate::impact(false, &p, &ball, speed_mps, incidence_deg, 0.25e-6, 8);
+        let small_strain = p.contact_arm == crate::impact::continuous::law::hertz::ContactArm::Radius;
+        let r = plate::impact(small_strain, &p, &ball, speed_mps, incidence_deg, 0.25e-6, 8);
         title += &format!(" {label} {:.1} m/s, {:.0} rpm;", r.rebound_normal_mps, radps_to_rpm(r.spin_radps));
         let pick = |f: fn(&plate::PlateSample) -> f64| r.samples.iter().map(|s| (s.t_us, f(s))).collect::<Vec<_>>();
         let lines = [

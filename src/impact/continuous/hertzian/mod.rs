@@ -4,9 +4,10 @@
 //!
 //! - Contact geometry: the ball against the face plane (irons) or the face sphere of the geometric-mean radius
 //!   of bulge and roll (drivers), as the two-layer model; the approach `x` is the overlap along the normal,
-//!   the contact point sits `R − x/2` from the ball's centre.
+//!   the contact point sits `R` from the ball's centre, the small-strain arm of Maw, Barber and Fawcett's theory
+//!   (`contact_arm = "mid_overlap"` in the section: `R − x/2`; [`super::law::hertz::ContactArm`]).
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
-//! - Integration: classical RK4 at a fixed step (default 0.5 µs for Maw, 1 µs for Arakawa) from first contact
+//! - Integration: classical RK4 at a fixed step (default 0.4 µs for Maw, 1 µs for Arakawa) from first contact
 //!   until the bodies separate.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
 //!   (its own stick/slip test at every stage) and the step's end is committed; the committed contact and force
@@ -81,11 +82,11 @@ pub struct HertzModel {
 
 impl HertzModel {
     pub fn maw() -> Self {
-        HertzModel { law: HertzLaw::Maw(None), step_s: 0.5e-6, max_contact_s: 3e-3 }
+        HertzModel { law: HertzLaw::Maw(None), step_s: 0.4e-6, max_contact_s: 3e-3 }
     }
 
     /// Arakawa's law with a 1 µs step: halving it moves ball speed < 4e-6 and spin < 3e-4 (both clubs,
-    /// 35-55 m/s, tests/maw_arakawa.rs; Maw's rings need the 0.5 µs step for the same).
+    /// 35-55 m/s, tests/maw_arakawa.rs; Maw's rings need the 0.4 µs step for the same with the arm `R`).
     pub fn arakawa() -> Self {
         HertzModel { law: HertzLaw::Arakawa(None), step_s: 1e-6, ..Self::maw() }
     }
@@ -132,12 +133,12 @@ impl HertzModel {
             HertzLaw::Maw(p) => {
                 let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
                 p.validate().map_err(|e| bad_section("maw", e))?;
-                run::run(self, state, eq, p.hertz(), &mut MawRings::new(&p), trace_every)
+                run::run(self, state, eq, (p.hertz(), p.contact_arm), &mut MawRings::new(&p), trace_every)
             }
             HertzLaw::Arakawa(p) => {
                 let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
                 p.validate().map_err(|e| bad_section("arakawa", e))?;
-                run::run(self, state, eq, p.hertz(), &mut ArakawaLaw::new(&p), trace_every)
+                run::run(self, state, eq, (p.hertz(), p.contact_arm), &mut ArakawaLaw::new(&p), trace_every)
             }
         }
     }

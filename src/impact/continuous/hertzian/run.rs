@@ -3,7 +3,7 @@
 
 use super::{HertzModel, HertzResult, HertzTracePoint};
 use crate::impact::continuous::law::hertz::{
-    elastic_energy, equivalent_radius, normal_force, ContactKinematics, Hertz, TangentialLaw,
+    elastic_energy, equivalent_radius, normal_force, ContactArm, ContactKinematics, Hertz, TangentialLaw,
 };
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::{Equipment, ImpactError, ImpactState, Launch};
@@ -45,6 +45,7 @@ struct Setup {
     hertz: Hertz,
     surface: FaceSurface,
     r_ball_m: Real,
+    contact_arm: ContactArm,
     m_b_kg: Real,
     i_b_kgm2: Real,
     m_c_kg: Real,
@@ -79,7 +80,7 @@ impl Setup {
         }
         let x = x.max(0.0);
         let n = rot * normal;
-        let point = s.p_b_m - (self.r_ball_m - 0.5 * x) * n;
+        let point = s.p_b_m - self.contact_arm.arm_m(self.r_ball_m, x) * n;
         let (r_b, r_c) = (point - s.p_b_m, point - s.p_c_m);
         let w_c = rot * s.w_c_body_radps;
         let v_rel = (s.v_b_mps + s.w_b_radps.cross(&r_b)) - (s.v_c_mps + w_c.cross(&r_c));
@@ -190,7 +191,7 @@ pub(super) fn run(
     model: &HertzModel,
     state: &ImpactState,
     eq: &Equipment,
-    hertz: Hertz,
+    (hertz, contact_arm): (Hertz, ContactArm),
     law: &mut dyn TangentialLaw,
     trace_every: usize,
 ) -> Result<HertzResult, ImpactError> {
@@ -211,6 +212,7 @@ pub(super) fn run(
         hertz,
         surface,
         r_ball_m: eq.ball.radius_m,
+        contact_arm,
         m_b_kg: eq.ball.mass_kg,
         i_b_kgm2: eq.ball.inertia_kg_m2,
         m_c_kg: club.mass_kg,

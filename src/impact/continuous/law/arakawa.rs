@@ -59,6 +59,9 @@ pub struct ArakawaParams {
     /// How eq. 3.23 becomes a force (module docs).
     #[serde(default)]
     pub reading: ArakawaReading,
+    /// The contact force's lever arm on the ball (as Maw's: `"radius"` by default, or `"mid_overlap"`).
+    #[serde(default)]
+    pub contact_arm: super::hertz::ContactArm,
 }
 
 /// How eq. 3.23's value becomes the tangential force.
@@ -84,6 +87,7 @@ impl ArakawaParams {
         mu: 0.0486,
         eta_n_s_per_m2: 1.32e5,
         reading: ArakawaReading::Envelope,
+        contact_arm: super::hertz::ContactArm::Radius,
     };
     /// Table 3.7, 7-iron.
     pub const IRON7: ArakawaParams = ArakawaParams {
@@ -93,6 +97,7 @@ impl ArakawaParams {
         mu: 0.118,
         eta_n_s_per_m2: 2.06e5,
         reading: ArakawaReading::Envelope,
+        contact_arm: super::hertz::ContactArm::Radius,
     };
 
     pub fn hertz(&self) -> Hertz {

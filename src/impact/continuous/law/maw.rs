@@ -36,6 +36,9 @@ pub struct MawParams {
     /// Rings across the largest contact radius (the seed uses 20).
     #[serde(default = "default_rings")]
     pub rings: usize,
+    /// The contact force's lever arm on the ball (`contact_arm = "radius"` by default, or `"mid_overlap"`).
+    #[serde(default)]
+    pub contact_arm: super::hertz::ContactArm,
 }
 
 fn default_rings() -> usize {
@@ -44,9 +47,23 @@ fn default_rings() -> usize {
 
 impl MawParams {
     /// Table 3.6, driver (E as 15.7 x 10^7 Pa: see `docs/models.md`, "Hertz stiffness").
-    pub const DRIVER: MawParams = MawParams { e_pa: 157e6, nu: 0.407, d_s_per_m: 6.50e-3, mu: 0.860, rings: 20 };
+    pub const DRIVER: MawParams = MawParams {
+        e_pa: 157e6,
+        nu: 0.407,
+        d_s_per_m: 6.50e-3,
+        mu: 0.860,
+        rings: 20,
+        contact_arm: super::hertz::ContactArm::Radius,
+    };
     /// Table 3.6, 7-iron.
-    pub const IRON7: MawParams = MawParams { e_pa: 163e6, nu: 0.418, d_s_per_m: 11.5e-3, mu: 0.519, rings: 20 };
+    pub const IRON7: MawParams = MawParams {
+        e_pa: 163e6,
+        nu: 0.418,
+        d_s_per_m: 11.5e-3,
+        mu: 0.519,
+        rings: 20,
+        contact_arm: super::hertz::ContactArm::Radius,
+    };
 
     pub fn hertz(&self) -> Hertz {
         Hertz { e_pa: self.e_pa, nu: self.nu, d_s_per_m: self.d_s_per_m }
