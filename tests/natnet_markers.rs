@@ -296,3 +296,66 @@ async fn a_marker_set_is_fitted_live_to_motives_labelled_markers() {
     // rounding); a 2 cm ghost averaged into one frame in seven would move the pose by millimetres.
     assert!(d[0] < 1e-3 && d[1] < 1e-3 && d[2] < 1e-3 && d[3] < 0.1 && d[4] < 0.1, "{d:?}");
 }
+
+/// `impactd bridge natnet --body Club=rig1 --markers Club=SET.toml`: the bridge fits the set the same way and
+/// publishes the samples on zenoh (with the fit's residual), to a daemon that reads zenoh: the same launches.
+#[tokio::test(flavor = "multi_thread")]
+async fn the_bridge_fits_the_marker_set_too() {
+    let set = MarkerSet::from_toml(MARKERS).unwrap();
+    let rig = "status_period_s = 0.2\n[[rig]]\nname = \"rig1\"\n";
+    let samples = swing::samples(2, 720.0, 13);
+    let json = swing::launches(rig, &samples);
+    let server = server(Version::V3_1);
+    let daemon = start_daemon(rig, RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (published, _p) = collect::<impactd::wire::ClubheadSampleMsg>(&session, "mocap/rig1/clubhead");
+    let source = impactd::daemon::bridges::mocap::Source::NatNet {
+        host: "127.0.0.1".into(),
+        command_port: server.port,
+        data_port: 0,
+        multicast_group: None,
+    };
+    let fitter = impactd::kinematics::MarkerFitter::new(set.clone()).with_reject_m(3e-3);
+    let bridge_session = client(&daemon.endpoint).await;
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let bridge = tokio::spawn(async move {
+        let routes = vec![("Club".to_string(), "rig1".to_string())];
+        impactd::daemon::bridges::mocap::run_bridge_fitted(
+            &bridge_session,
+            source,
+            routes,
+            vec![Some(fitter)],
+            vec![],
+            async {
+                let _ = stopped.await;
+            },
+        )
+        .await
+        .unwrap()
+    });
+    let asked = || server.model_requests.load(std::sync::atomic::Ordering::Relaxed) > 0;
+    assert!(wait_until(Duration::from_secs(10), asked).await, "the bridge asks for the model");
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    for (k, s) in samples.iter().enumerate() {
+        let (frame, positions) = frame_of(k, s, &set);
+        server.send_marker_frame(&frame, "Club", &positions);
+        if k % 4 == 3 {
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    }
+    assert!(wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= 2).await, "two launches");
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let _ = stop.send(());
+    let status = bridge.await.unwrap();
+    daemon.stop().await;
+    assert!(status[0].body_found, "NatNet 3.1: the asset's id from the model of its name: {:?}", status[0]);
+    let published = published.lock().unwrap().clone();
+    let fitted = published.iter().filter(|s| !s.occluded).collect::<Vec<_>>();
+    assert!(!fitted.is_empty() && fitted.iter().all(|s| s.fit_residual_m.is_some_and(|r| r < 1e-6)));
+    assert!(published.iter().filter(|s| s.occluded).all(|s| s.fit_residual_m.is_none()));
+    let got = launches.lock().unwrap().clone();
+    let d = swing::max_differences(&got, &json);
+    assert_eq!(got.len(), json.len());
+    assert!(d[0] < 1e-3 && d[1] < 1e-3 && d[2] < 1e-3 && d[3] < 0.1 && d[4] < 0.1, "{d:?}");
+}

@@ -144,6 +144,13 @@ impl MocapInputConfig {
     }
 }
 
+/// A marker set file as a live fitter (3 mm rejection, as `impactd import`'s default), or why it cannot be read.
+pub fn marker_fitter(path: &str) -> Result<crate::kinematics::MarkerFitter, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("reading {path}: {e}"))?;
+    let set = crate::kinematics::MarkerSet::from_toml(&text).map_err(|e| format!("{path}: {e}"))?;
+    Ok(crate::kinematics::MarkerFitter::new(set).with_reject_m(3e-3))
+}
+
 /// The server's first IPv4 address.
 pub fn resolve(host: &str, port: u16) -> Result<SocketAddr, DaemonError> {
     let io = |source| DaemonError::Io { what: format!("resolving {host}"), source };
