@@ -1,17 +1,12 @@
 //! A 2 GB C3D capture is streamed, never loaded whole: `impactd import` reads all of its frames with a peak
 //! resident set of a few tens of MiB. The capture's header and parameters are the independent writer's (PyPI
 //! `c3d`: 255 markers, 530,000 frames announced, so `POINT:LONG_FRAMES`), its data section grown to hold every
-//! frame (a sparse file: the frames after the first read as markers at the origin, residual 0, valid).
+//! frame (a sparse file: the frames after the first read as markers at the origin, residual 0, valid; the set does
+//! not fit them, so every frame is occluded: what is measured is the streaming, not the fit).
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "common/c3d_writer.rs"]
-mod c3d_writer;
 mod common;
-
-use std::io::{Seek, SeekFrom, Write};
-
-use impactd::math::Vector3;
 
 /// Peak resident set allowed: the binary, one 4 KiB frame and buffers; a reader that loaded the file would
 /// hold 2 GiB.
