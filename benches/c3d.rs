@@ -133,6 +133,25 @@ fn import(c: &mut Criterion) {
             sum
         })
     });
+    // A frame with a ghost (one marker 2 cm off): the rejection fits each 3 of the 4 to find it.
+    let ghosts: Vec<Vec<Option<Vector3>>> = frames
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let mut f = f.clone();
+            f[i % 4] = f[i % 4].map(|p| p + Vector3::new(0.0, 0.02, 0.0));
+            f
+        })
+        .collect();
+    group.bench_function("4 markers, one a ghost (body-frames)", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            for f in &ghosts {
+                sum += fitter.fit(black_box(f)).map(|r| r.residual_m).unwrap_or(0.0);
+            }
+            sum
+        })
+    });
     group.finish();
 }
 

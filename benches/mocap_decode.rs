@@ -21,6 +21,7 @@ fn bodies_natnet() -> Frame {
                 tracking_valid: true,
             })
             .collect(),
+        labeled_markers: Vec::new(),
         timestamp_s: 342.9,
         mid_exposure_ticks: 3_429_000_000,
         data_received_ticks: 3_429_020_000,

@@ -43,6 +43,11 @@ fn a_truncated_file_keeps_its_whole_frames_and_says_so() {
     // Cut inside the header or the parameters: an error that says what could not be read.
     let e = read_all(&bytes[..300]).err().unwrap().to_string();
     assert!(e.contains("less than a 512-byte header"), "{e}");
+    // Regression: an empty file (BTK's test set has one) was said to have a second byte of 0x00.
+    for n in [0, 1] {
+        let e = read_all(&bytes[..n]).err().unwrap().to_string();
+        assert!(e.contains(&format!("it has {n} bytes, less than a 512-byte header")), "{e}");
+    }
     let e = read_all(&bytes[..514]).err().unwrap().to_string();
     assert!(e.contains("the parameter section"), "{e}");
 }

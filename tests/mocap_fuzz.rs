@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::mocap::natnet::{self, Frame, RigidBody, Version, RIGID_BODY_BYTES};
+use impactd::mocap::natnet_markers::LabeledMarker;
 use impactd::mocap::qtm::{self, Body6d, Frame6d};
 use impactd::mocap::{natnet_encode, qtm_encode};
 use proptest::prelude::*;
@@ -25,6 +26,16 @@ fn natnet_frame(n: usize, seed: u32) -> Frame {
     Frame {
         frame_number: seed as i32,
         rigid_bodies,
+        // Labelled markers of an asset (id 9), every params bit pattern of the low three bits.
+        labeled_markers: (0..=n)
+            .map(|i| LabeledMarker {
+                id: LabeledMarker::pack_id(9, i as i32 + 1),
+                position_m: [i as f32 * 0.01, seed as f32 * 1e-6, 0.25],
+                size_m: 0.014,
+                params: (i % 8) as i16,
+                residual_m: 1e-4,
+            })
+            .collect(),
         timestamp_s: f64::from(seed) / 360.0,
         mid_exposure_ticks: u64::from(seed) * 27_778,
         data_received_ticks: u64::from(seed) * 27_778 + 10_000,

@@ -73,6 +73,7 @@ fn frame_of(s: &ClubheadSample, other_id: i32) -> Frame {
     Frame {
         frame_number: s.frame as i32,
         rigid_bodies: vec![other, club],
+        labeled_markers: Vec::new(),
         timestamp_s: t_s,
         mid_exposure_ticks: (t_s * CLOCK_HZ as f64) as u64,
         data_received_ticks: (t_s * CLOCK_HZ as f64) as u64 + 20_000,

@@ -46,6 +46,7 @@ fn frame(s: &ClubheadSample, frame_number: i32, on_wand: bool) -> Frame {
     Frame {
         frame_number,
         rigid_bodies: vec![away, pose],
+        labeled_markers: Vec::new(),
         timestamp_s: t_s,
         mid_exposure_ticks: (t_s * CLOCK_HZ as f64) as u64,
         data_received_ticks: (t_s * CLOCK_HZ as f64) as u64 + 20_000,

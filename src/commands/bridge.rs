@@ -1,12 +1,15 @@
-//! `impactd bridge natnet|qtm`: Motive's or QTM's rigid bodies as clubhead samples on zenoh.
+//! `impactd bridge natnet|qtm`: Motive's or QTM's rigid bodies (or marker sets fitted to their labelled
+//! markers) as clubhead samples on zenoh.
 
 use std::net::Ipv4Addr;
 use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Subcommand};
+use impactd::daemon::bridges::mocap::input::marker_fitter;
 use impactd::daemon::bridges::mocap::input::{NATNET_COMMAND_PORT, NATNET_DATA_PORT, NATNET_MULTICAST_GROUP, QTM_PORT};
-use impactd::daemon::bridges::mocap::{run_bridge_with_balls, Source};
+use impactd::daemon::bridges::mocap::{run_bridge_fitted, Source};
+use impactd::kinematics::MarkerFitter;
 
 use super::args::ZenohArgs;
 use super::run::{runtime, shutdown_signal};
@@ -31,6 +34,11 @@ pub struct NatNetArgs {
     /// mocap/<RIG>/ball, it sets each shot's ball position.
     #[arg(long = "ball", value_name = "NAME=RIG")]
     pub ball: Vec<String>,
+    /// A body tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --body's): the set fitted to the
+    /// labelled markers each frame (Motive: the markers of its asset NAME; QTM: its 3D labels), so NAME needs no
+    /// rigid body in the capture software.
+    #[arg(long = "markers", value_name = "NAME=SET.toml")]
+    pub markers: Vec<String>,
     /// Motive's command port.
     #[arg(long, default_value_t = NATNET_COMMAND_PORT)]
     pub command_port: u16,
@@ -62,6 +70,11 @@ pub struct QtmArgs {
     /// mocap/<RIG>/ball, it sets each shot's ball position.
     #[arg(long = "ball", value_name = "NAME=RIG")]
     pub ball: Vec<String>,
+    /// A body tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --body's): the set fitted to the
+    /// labelled markers each frame (Motive: the markers of its asset NAME; QTM: its 3D labels), so NAME needs no
+    /// rigid body in the capture software.
+    #[arg(long = "markers", value_name = "NAME=SET.toml")]
+    pub markers: Vec<String>,
     #[command(flatten)]
     pub zenoh: ZenohArgs,
 }
@@ -76,8 +89,23 @@ fn routes(flag: &str, bodies: &[String]) -> Result<Vec<(String, String)>> {
         .collect()
 }
 
+/// Each club route's marker set from `--markers NAME=SET.toml` (None: the body's own pose).
+fn fitters(markers: &[String], routes: &[(String, String)]) -> Result<Vec<Option<MarkerFitter>>> {
+    let mut out = vec![None; routes.len()];
+    for m in markers {
+        let Some((name, path)) = m.split_once('=').filter(|(n, p)| !n.is_empty() && !p.is_empty()) else {
+            bail!("--markers {m}: expected NAME=SET.toml (a --body name, then its marker set file)")
+        };
+        let Some(i) = routes.iter().position(|r| r.0 == name) else {
+            bail!("--markers {m}: `{name}` is not one of the --body names")
+        };
+        out[i] = Some(marker_fitter(path).map_err(|e| anyhow::anyhow!("--markers {m}: {e}"))?);
+    }
+    Ok(out)
+}
+
 pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
-    let (source, routes, balls, zenoh) = match command {
+    let (source, routes, balls, markers, zenoh) = match command {
         BridgeCommand::Natnet(a) => {
             if !a.unicast && !a.multicast_group.is_multicast() {
                 bail!("--multicast-group {} is not a multicast address", a.multicast_group);
@@ -91,18 +119,19 @@ pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
                 data_port: a.data_port,
                 multicast_group: (!a.unicast).then_some(a.multicast_group),
             };
-            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.zenoh)
+            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.markers, &a.zenoh)
         }
         BridgeCommand::Qtm(a) => {
             let source = Source::Qtm { host: a.server.clone(), port: a.port };
-            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.zenoh)
+            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.markers, &a.zenoh)
         }
     };
+    let fitters = fitters(markers, &routes)?;
     let rt = runtime()?;
     rt.block_on(async {
         let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
         let statuses =
-            run_bridge_with_balls(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
+            run_bridge_fitted(&session, source, routes, fitters, balls, shutdown_signal()).await.context("bridge")?;
         let _ = session.close().await;
         for s in statuses {
             eprintln!(

@@ -102,8 +102,8 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
 /// One line on what an import saw.
 pub fn describe(c: &ImportCounts) -> String {
     format!(
-        "{} frames: {} occluded (fewer than 3 markers), {} with markers that disagree, {} markers rejected by their \
-         residual",
-        c.frames, c.occluded, c.inconsistent, c.rejected_markers
+        "{} frames: {} occluded (fewer than 3 valid markers; {} of them after rejecting markers by their residual), {} \
+         markers rejected by their residual",
+        c.frames, c.occluded, c.occluded_by_rejection, c.rejected_markers
     )
 }

@@ -7,10 +7,15 @@
 //! symmetric 4x4 matrix N(S) (Horn's eq. 41), and the translation `l̄ - R b̄`. It minimises `Σ |R b_i + t - l_i|²`
 //! over rotations (never a reflection), and needs at least 3 markers not on one line.
 //!
-//! Rejection: when the worst marker's residual is over `reject_m` and more than 3 markers are left, that marker is
-//! dropped and the fit repeated. A fit whose worst residual is still over `reject_m` (3 markers that disagree)
-//! gives no pose: the frame is occluded. Any input (a C3D file, a live marker stream) calls
-//! [`MarkerFitter::fit`] once per frame; it does not allocate.
+//! Validity and rejection: a marker is valid when it is seen (finite coordinates the input did not flag) and not
+//! rejected. While some valid marker sits more than `reject_m` from its fitted place, one marker is rejected and
+//! the fit repeated over the rest: with more than 3 valid, the one whose removal leaves the best fit (the
+//! smallest worst residual of the others: a ghost pulls the fit towards it, so the largest residual is not always
+//! its own); with 3 valid, any of them, as 3 that disagree cannot say which is wrong. A rejected marker is not
+//! valid, so a frame is `occluded` exactly when fewer than 3 markers are valid: fewer than 3 seen, or 3 seen and
+//! one rejected, or 4 seen and two rejected. A frame of 4 markers with one ghost gives the pose of the other 3.
+//! Any input (a C3D file, a live marker stream) calls [`MarkerFitter::fit`] once per frame; it does not
+//! allocate.
 
 use crate::math::{Isometry3, Matrix3, Real, Translation3, UnitQuaternion, Vector3};
 
@@ -32,13 +37,17 @@ pub struct BodyFit {
     pub rejected: u32,
 }
 
-/// Why a frame gave no pose.
+/// Why a frame gave no pose: fewer than 3 valid markers (the frame is occluded).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FitFailure {
-    #[error("{visible} of the set's markers visible, a pose needs 3")]
-    TooFew { visible: u32 },
-    #[error("the markers disagree: a residual of {worst_mm:.2} mm is over the {reject_mm:.2} mm limit")]
-    Inconsistent { worst_mm: Real, reject_mm: Real },
+    #[error("{seen} of the set's markers seen, a pose needs 3 valid")]
+    TooFew { seen: u32 },
+    #[error(
+        "{seen} of the set's markers seen, {rejected} rejected by their residual ({worst_mm:.2} mm over the \
+         {reject_mm:.2} mm limit): {} valid, a pose needs 3",
+        seen - rejected
+    )]
+    Rejected { seen: u32, rejected: u32, worst_mm: Real, reject_mm: Real },
 }
 
 /// Fits one marker set, frame after frame.
@@ -68,27 +77,40 @@ impl MarkerFitter {
                 mask |= 1 << i;
             }
         }
-        let visible = mask.count_ones();
-        if visible < 3 {
-            return Err(FitFailure::TooFew { visible });
+        let seen = mask.count_ones();
+        if seen < 3 {
+            return Err(FitFailure::TooFew { seen });
         }
+        let limit_sq = self.reject_m * self.reject_m;
         let mut rejected = 0;
         loop {
             let lab_from_body = horn(&self.set.body_m, lab_m, mask);
-            let (worst, worst_sq, sum_sq) = residuals(&self.set.body_m, lab_m, mask, &lab_from_body);
-            if worst_sq <= self.reject_m * self.reject_m {
+            let (_, worst_sq, sum_sq) = residuals(&self.set.body_m, lab_m, mask, &lab_from_body);
+            if worst_sq <= limit_sq {
                 let residual_m = (sum_sq / Real::from(mask.count_ones())).sqrt();
                 return Ok(BodyFit { lab_from_body, residual_m, used_mask: mask, rejected });
             }
-            if mask.count_ones() <= 3 {
-                return Err(FitFailure::Inconsistent {
-                    worst_mm: worst_sq.sqrt() * 1e3,
-                    reject_mm: self.reject_m * 1e3,
-                });
-            }
-            mask &= !(1 << worst);
             rejected += 1;
+            if mask.count_ones() <= 3 {
+                let (worst_mm, reject_mm) = (worst_sq.sqrt() * 1e3, self.reject_m * 1e3);
+                return Err(FitFailure::Rejected { seen, rejected, worst_mm, reject_mm });
+            }
+            mask &= !(1 << self.worst_member(lab_m, mask));
         }
+    }
+
+    /// The marker of `mask` whose removal leaves the best fit of the others (the smallest worst residual).
+    fn worst_member(&self, lab_m: &[Option<Vector3>], mask: u64) -> usize {
+        let mut best = (0, Real::INFINITY);
+        for i in (0..self.set.len().min(64)).filter(|i| mask & (1 << i) != 0) {
+            let others = mask & !(1 << i);
+            let pose = horn(&self.set.body_m, lab_m, others);
+            let (_, worst_sq, _) = residuals(&self.set.body_m, lab_m, others, &pose);
+            if worst_sq < best.1 {
+                best = (i, worst_sq);
+            }
+        }
+        best.0
     }
 }
 
@@ -269,21 +291,55 @@ mod tests {
         let fit = fitter.fit(&lab).unwrap();
         assert!(fit.lab_from_body.rotation.angle_to(&pose().rotation) < 1e-9);
         lab[2] = None;
-        assert_eq!(fitter.fit(&lab).unwrap_err(), FitFailure::TooFew { visible: 2 });
+        assert_eq!(fitter.fit(&lab).unwrap_err(), FitFailure::TooFew { seen: 2 });
     }
 
     #[test]
     fn a_swapped_marker_is_rejected_not_averaged() {
         let fitter = MarkerFitter::new(club_set());
         let mut lab = seen(&fitter.set, &pose());
-        lab.swap(0, 2);
-        // A swap moves both markers; rejecting one leaves three that still disagree.
-        assert!(matches!(fitter.fit(&lab).unwrap_err(), FitFailure::Inconsistent { .. }));
+        lab.swap(1, 2);
+        // A swap moves both markers: every 3 of the 4 still hold a swapped one (best: 10.9 mm off), so two are
+        // rejected and 2 valid are left. Other swaps of this set cannot be seen in one frame by any rule: A, C
+        // and D make a nearly isosceles triangle (|AD| = 53.9 mm, |CD| = 54.1 mm), so A and C swapped fit another
+        // pose within 0.15 mm; the best 3 of the other swaps are within 0.4-1.8 mm. A set's markers should sit at
+        // unequal distances from each other.
+        assert!(matches!(fitter.fit(&lab).unwrap_err(), FitFailure::Rejected { seen: 4, rejected: 2, .. }));
         let mut lab = seen(&fitter.set, &pose());
         lab[3] = lab[3].map(|p| p + Vector3::new(0.0, 0.05, 0.0)); // a ghost 5 cm off
         let fit = fitter.fit(&lab).unwrap();
         assert_eq!((fit.used_mask, fit.rejected), (0b0111, 1));
         assert!(fit.lab_from_body.rotation.angle_to(&pose().rotation) < 1e-9);
+    }
+
+    /// The issue's reading: occluded exactly when fewer than 3 markers are valid, a rejected marker not valid.
+    /// 4 markers with one a ghost: the pose of the other 3, whichever marker is the ghost and whichever way it
+    /// moved (2 cm, over 6 times the 3 mm limit; a ghost pulls the 4-marker fit towards itself, so the largest
+    /// residual of that fit can be another marker's). 3 markers with one a ghost that changes their triangle
+    /// (moved 2 cm along a side): 2 valid, occluded. (Three markers cannot see a ghost that keeps their side
+    /// lengths: one moved 2 cm off their plane changes each side by a few millimetres at most.)
+    #[test]
+    fn a_ghost_among_four_leaves_the_pose_of_three_and_among_three_leaves_two() {
+        let fitter = MarkerFitter::new(club_set());
+        let mut rng = Rng::new(3);
+        for ghost in 0..4 {
+            for _ in 0..200 {
+                let mut lab = seen(&fitter.set, &pose());
+                let dir = Vector3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
+                lab[ghost] = lab[ghost].map(|p| p + dir * 0.02);
+                let fit = fitter.fit(&lab).unwrap();
+                assert_eq!((fit.used_mask, fit.rejected), (0b1111 & !(1 << ghost), 1), "ghost {ghost} along {dir:?}");
+                assert!(fit.lab_from_body.rotation.angle_to(&pose().rotation) < 1e-9);
+                let (other, gone) = ((ghost + 2) % 4, (ghost + 1) % 4);
+                let mut lab = seen(&fitter.set, &pose());
+                let side = (lab[ghost].unwrap() - lab[other].unwrap()).normalize();
+                lab[ghost] = lab[ghost].map(|p| p + side * 0.02);
+                lab[gone] = None;
+                let err = fitter.fit(&lab).unwrap_err();
+                assert!(matches!(err, FitFailure::Rejected { seen: 3, rejected: 1, .. }), "{err}");
+                assert!(err.to_string().contains("2 valid"), "{err}");
+            }
+        }
     }
 
     #[test]

@@ -20,11 +20,13 @@
 //! Why not the `natnet` crate: it refuses servers newer than NatNet 4.1 (Motive 3.1 and later announce 4.2+,
 //! with the same 4.1 layout plus byte counts this decoder relies on), it brings its own UDP clients where the
 //! bridge needs one socket loop with counts by reason, and its decoder allocates a full frame (markers, force
-//! plates) per datagram where this one reads the rigid bodies into a reused buffer and skips the rest by size.
+//! plates) per datagram where this one reads the rigid bodies and labelled markers into reused buffers and skips
+//! the rest by size.
 //! Bounded allocation: nothing is reserved from a count; a body is pushed only after its bytes were read.
 
 use super::bytes::{Reader, Truncated};
 use super::natnet_descriptions::{self as descriptions, DescriptionError};
+use super::natnet_markers::{self as markers, LabeledMarker, LABELED_MARKER_BYTES};
 
 pub const NAT_CONNECT: u16 = 0;
 pub const NAT_SERVERINFO: u16 = 1;
@@ -170,13 +172,58 @@ pub struct RigidBodyDef {
     pub name: String,
 }
 
-/// `NAT_MODELDEF`: the rigid bodies it names. `complete` is false when a data set of a kind this decoder does
-/// not know (beyond the seven of NatNet 4.x) came before the end in a layout without byte sizes (NatNet 3.x,
-/// 4.0): the bodies before it are kept.
+/// A marker set's name and its markers' names, in the order its labelled markers are numbered (from 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MarkerSetDef {
+    pub name: String,
+    pub markers: Vec<String>,
+}
+
+/// `NAT_MODELDEF`: the rigid bodies it names, the marker sets, and the other assets with an id (skeletons,
+/// NatNet 4.1's assets such as Trained Markersets) by name. `complete` is false when a data set of a kind this
+/// decoder does not know (beyond the seven of NatNet 4.x) came before the end in a layout without byte sizes
+/// (NatNet 3.x, 4.0): the data sets before it are kept.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ModelDef {
     pub rigid_bodies: Vec<RigidBodyDef>,
+    pub marker_sets: Vec<MarkerSetDef>,
+    /// Skeletons and assets: the ids their labelled markers carry as model id.
+    pub assets: Vec<RigidBodyDef>,
     pub complete: bool,
+}
+
+impl ModelDef {
+    /// The id a model named `name` (a rigid body, a skeleton or an asset) gives its labelled markers.
+    pub fn model_id(&self, name: &str) -> Option<i32> {
+        self.rigid_bodies.iter().chain(&self.assets).find(|b| b.name == name).map(|b| b.id)
+    }
+}
+
+fn data_set(r: &mut Reader, version: Version, kind: i32, out: &mut ModelDef) -> Result<bool, NatNetError> {
+    match kind {
+        0 => {
+            let (name, markers) = descriptions::marker_set(r)?;
+            out.marker_sets.push(MarkerSetDef { name, markers });
+        }
+        1 => out.rigid_bodies.push(rigid_body_description(r, version)?),
+        2 => {
+            let name = r.cstr("skeleton name")?;
+            let id = r.i32("skeleton id")?;
+            for _ in 0..count(r, "skeleton bodies")? {
+                rigid_body_description(r, version)?;
+            }
+            out.assets.push(RigidBodyDef { id, name });
+        }
+        3 => descriptions::skip_force_plate(r)?,
+        4 => descriptions::skip_device(r)?,
+        5 => descriptions::skip_camera(r)?,
+        6 => {
+            let (id, name) = descriptions::asset(r, |r| rigid_body_description(r, version).map(drop))?;
+            out.assets.push(RigidBodyDef { id, name });
+        }
+        _ => return Ok(false),
+    }
+    Ok(true)
 }
 
 fn count(r: &mut Reader, what: &'static str) -> Result<usize, NatNetError> {
@@ -216,32 +263,12 @@ pub fn decode_model_def(payload: &[u8], version: Version) -> Result<ModelDef, Na
     for _ in 0..datasets {
         let kind = r.i32("data set type")?;
         if let Some(bytes) = size(&mut r, version, "data set size")? {
-            let body = r.take(bytes, "data set")?;
-            if kind == 1 {
-                out.rigid_bodies.push(rigid_body_description(&mut Reader::new(body), version)?);
-            }
+            // Sized (4.1+): a data set of an unknown kind is skipped by its size.
+            data_set(&mut Reader::new(r.take(bytes, "data set")?), version, kind, &mut out)?;
             continue;
         }
-        match kind {
-            0 => {
-                r.cstr("marker set name")?;
-                for _ in 0..count(&mut r, "marker set markers")? {
-                    r.cstr("marker name")?;
-                }
-            }
-            1 => out.rigid_bodies.push(rigid_body_description(&mut r, version)?),
-            2 => {
-                r.cstr("skeleton name")?;
-                r.skip(4, "skeleton id")?;
-                for _ in 0..count(&mut r, "skeleton bodies")? {
-                    rigid_body_description(&mut r, version)?;
-                }
-            }
-            3 => descriptions::skip_force_plate(&mut r)?,
-            4 => descriptions::skip_device(&mut r)?,
-            5 => descriptions::skip_camera(&mut r)?,
-            6 => descriptions::skip_asset(&mut r, |r| rigid_body_description(r, version).map(drop))?,
-            _ => return Ok(out),
+        if !data_set(&mut r, version, kind, &mut out)? {
+            return Ok(out);
         }
     }
     out.complete = true;
@@ -264,6 +291,8 @@ pub struct RigidBody {
 pub struct Frame {
     pub frame_number: i32,
     pub rigid_bodies: Vec<RigidBody>,
+    /// The labeled-marker list (every asset's markers, labelled by model id and index).
+    pub labeled_markers: Vec<LabeledMarker>,
     /// The frame's timestamp (s since Motive started).
     pub timestamp_s: f64,
     /// The cameras' mid-exposure instant, in the server's clock ticks ([`ServerInfo::clock_hz`]); 0 when unknown.
@@ -312,12 +341,34 @@ fn channels(r: &mut Reader) -> Result<(), NatNetError> {
     Ok(())
 }
 
-/// Decodes a frame's payload into `frame` (its body list is cleared and reused).
+/// The bytes of each of a section's `items` entries: its byte size over its count (4.1+, so a later minor's
+/// longer entries decode), else `min`.
+fn entry_bytes(
+    r: &mut Reader,
+    version: Version,
+    what: &'static str,
+    items: usize,
+    min: usize,
+) -> Result<usize, NatNetError> {
+    match size(r, version, what)? {
+        Some(bytes) if items > 0 => {
+            if bytes % items != 0 || bytes / items < min {
+                return Err(NatNetError::BadSize { what, size: bytes as i32, count: items as i32, min });
+            }
+            Ok(bytes / items)
+        }
+        Some(bytes) => Ok(r.skip(bytes, what).map(|()| min)?),
+        None => Ok(min),
+    }
+}
+
+/// Decodes a frame's payload into `frame` (its body and marker lists are cleared and reused).
 pub fn decode_frame(payload: &[u8], version: Version, frame: &mut Frame) -> Result<(), NatNetError> {
     if !version.supported() {
         return Err(NatNetError::UnsupportedVersion(version));
     }
     frame.rigid_bodies.clear();
+    frame.labeled_markers.clear();
     let mut r = Reader::new(payload);
     frame.frame_number = r.i32("frame number")?;
     skip_section(&mut r, version, "marker sets", |r| {
@@ -329,16 +380,7 @@ pub fn decode_frame(payload: &[u8], version: Version, frame: &mut Frame) -> Resu
     let legacy_bytes = size(&mut r, version, "legacy markers")?.unwrap_or(legacy.saturating_mul(12));
     r.skip(legacy_bytes, "legacy markers")?;
     let bodies = count(&mut r, "rigid bodies")?;
-    let stride = match size(&mut r, version, "rigid bodies")? {
-        Some(bytes) if bodies > 0 => {
-            if bytes % bodies != 0 || bytes / bodies < RIGID_BODY_BYTES {
-                let (size, count) = (bytes as i32, bodies as i32);
-                return Err(NatNetError::BadSize { what: "rigid bodies", size, count, min: RIGID_BODY_BYTES });
-            }
-            bytes / bodies
-        }
-        _ => RIGID_BODY_BYTES,
-    };
+    let stride = entry_bytes(&mut r, version, "rigid bodies", bodies, RIGID_BODY_BYTES)?;
     for _ in 0..bodies {
         let body = r.take(stride, "rigid body")?;
         frame.rigid_bodies.push(rigid_body(&mut Reader::new(body))?);
@@ -351,8 +393,12 @@ pub fn decode_frame(payload: &[u8], version: Version, frame: &mut Frame) -> Resu
     if version.sized_sections() {
         skip_section(&mut r, version, "assets", |_| Ok(()))?;
     }
-    let labeled_bytes = if version.major >= 3 { 26 } else { 22 };
-    skip_section(&mut r, version, "labeled markers", |r| Ok(r.skip(labeled_bytes, "labeled marker")?))?;
+    let labeled = count(&mut r, "labeled markers")?;
+    let stride = entry_bytes(&mut r, version, "labeled markers", labeled, LABELED_MARKER_BYTES)?;
+    for _ in 0..labeled {
+        let marker = r.take(stride, "labeled marker")?;
+        frame.labeled_markers.push(markers::labeled_marker(&mut Reader::new(marker))?);
+    }
     skip_section(&mut r, version, "force plates", channels)?;
     skip_section(&mut r, version, "devices", channels)?;
     r.skip(8, "timecode")?;

@@ -52,14 +52,16 @@ pub fn skip_camera(r: &mut Reader) -> Result<(), DescriptionError> {
     Ok(r.skip(12 + 16, "camera pose")?)
 }
 
-/// Type 6 (NatNet 4.1+, always sized there; walked for completeness): name, asset type, id, its rigid bodies
-/// (each as a type-1 description, through `rigid_body`) and its markers (name, id, position, size, params).
-pub fn skip_asset<E: From<DescriptionError> + From<Truncated>>(
+/// Type 6 (NatNet 4.1+, always sized there): name, asset type, id, its rigid bodies (each as a type-1
+/// description, through `rigid_body`) and its markers (name, id, position, size, params). Gives the asset's id
+/// and name: a Trained Markerset's labelled markers carry that id as their model id.
+pub fn asset<E: From<DescriptionError> + From<Truncated>>(
     r: &mut Reader,
     mut rigid_body: impl FnMut(&mut Reader) -> Result<(), E>,
-) -> Result<(), E> {
-    r.cstr("asset name")?;
-    r.skip(4 + 4, "asset type and id")?;
+) -> Result<(i32, String), E> {
+    let name = r.cstr("asset name")?;
+    r.skip(4, "asset type")?;
+    let id = r.i32("asset id")?;
     for _ in 0..count(r, "asset rigid bodies")? {
         rigid_body(r)?;
     }
@@ -67,5 +69,15 @@ pub fn skip_asset<E: From<DescriptionError> + From<Truncated>>(
         r.cstr("asset marker name")?;
         r.skip(4 + 12 + 4 + 2, "asset marker")?;
     }
-    Ok(())
+    Ok((id, name))
+}
+
+/// Type 0: a marker set's name and its markers' names, in the order its labelled markers are numbered.
+pub fn marker_set(r: &mut Reader) -> Result<(String, Vec<String>), DescriptionError> {
+    let name = r.cstr("marker set name")?;
+    let mut markers = Vec::new();
+    for _ in 0..count(r, "marker set markers")? {
+        markers.push(r.cstr("marker name")?);
+    }
+    Ok((name, markers))
 }

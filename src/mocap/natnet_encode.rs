@@ -65,9 +65,25 @@ pub fn server_info(info: &ServerInfo) -> Vec<u8> {
 /// bodies `(id, name)`, each with no markers of its own. A reader of NatNet 3.x or 4.0 (no byte sizes) must walk
 /// the plate, the device and the camera to reach the bodies after them.
 pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
+    model_def_with_sets(version, bodies, &[])
+}
+
+/// A marker set that is an asset of its own (a club with markers and no rigid body): its id, name and markers'
+/// names, in the order its labelled markers are numbered.
+#[derive(Debug, Clone, Copy)]
+pub struct MarkerAsset<'a> {
+    pub id: i32,
+    pub name: &'a str,
+    pub markers: &'a [&'a str],
+}
+
+/// [`model_def`] with `assets` after the bodies: each as Motive describes it, a marker set (type 0) and, in
+/// NatNet 4.1 and later, a Trained Markerset asset (type 6) with its id and markers; before 4.1 (no asset
+/// descriptions) a rigid body of that name and id carries the id.
+pub fn model_def_with_sets(version: Version, bodies: &[(i32, &str)], assets: &[MarkerAsset]) -> Option<Vec<u8>> {
     let mut p = Vec::new();
     let others = if bodies.is_empty() { 0 } else { 3 };
-    p.put_i32(bodies.len() as i32 + 1 + others);
+    p.put_i32(bodies.len() as i32 + 1 + others + 2 * assets.len() as i32);
     let set_name = bodies.first().map_or("all", |b| b.1);
     dataset(&mut p, version, 0, |d| {
         d.put_cstr(set_name);
@@ -92,7 +108,42 @@ pub fn model_def(version: Version, bodies: &[(i32, &str)]) -> Option<Vec<u8>> {
             dataset(&mut p, version, 5, camera);
         }
     }
+    for a in assets {
+        dataset(&mut p, version, 0, |d| {
+            d.put_cstr(a.name);
+            d.put_i32(a.markers.len() as i32);
+            a.markers.iter().for_each(|m| d.put_cstr(m));
+        });
+        if version.sized_sections() {
+            dataset(&mut p, version, 6, |d| asset(d, a));
+        } else {
+            dataset(&mut p, version, 1, |d| {
+                d.put_cstr(a.name);
+                d.put_i32(a.id);
+                d.put_i32(-1);
+                (0..3).for_each(|_| d.put_f32(0.0));
+                d.put_i32(0);
+            });
+        }
+    }
     packet(NAT_MODELDEF, &p)
+}
+
+/// An asset description (type 6): name, type (1), id, no rigid bodies, its markers (name, id, position, size,
+/// params).
+fn asset(d: &mut Vec<u8>, a: &MarkerAsset) {
+    d.put_cstr(a.name);
+    d.put_i32(1);
+    d.put_i32(a.id);
+    d.put_i32(0);
+    d.put_i32(a.markers.len() as i32);
+    for (i, m) in a.markers.iter().enumerate() {
+        d.put_cstr(m);
+        d.put_i32(i as i32 + 1);
+        (0..3).for_each(|_| d.put_f32(0.0));
+        d.put_f32(0.014);
+        d.put_i16(0);
+    }
 }
 
 /// A force plate description: id 1, serial `FP-0001`, 0.6 x 0.4 m, an identity calibration matrix, six channels.
@@ -165,8 +216,8 @@ fn section(p: &mut Vec<u8>, version: Version, count: usize, items: impl FnOnce(&
 }
 
 /// `NAT_FRAMEOFDATA` as Motive lays it out for `version`, with `markers` in one marker set (named `set_name`)
-/// and as labeled markers beside the rigid bodies, as a tracked rigid body's markers appear. `None` when the
-/// frame is over the 64 KiB a NatNet datagram can hold.
+/// and the frame's labeled markers (when it has none: `markers` as labeled markers of the first rigid body, as a
+/// tracked rigid body's markers appear). `None` when the frame is over the 64 KiB a NatNet datagram can hold.
 pub fn frame(version: Version, f: &Frame, set_name: &str, markers: &[[f32; 3]]) -> Option<Vec<u8>> {
     let mut p = Vec::with_capacity(64 + f.rigid_bodies.len() * RIGID_BODY_BYTES + markers.len() * 40);
     p.put_i32(f.frame_number);
@@ -191,8 +242,16 @@ pub fn frame(version: Version, f: &Frame, set_name: &str, markers: &[[f32; 3]]) 
     if version.sized_sections() {
         section(&mut p, version, 0, |_| {});
     }
-    section(&mut p, version, markers.len(), |d| {
-        for (i, m) in markers.iter().enumerate() {
+    let labeled = &f.labeled_markers;
+    section(&mut p, version, if labeled.is_empty() { markers.len() } else { labeled.len() }, |d| {
+        for m in labeled {
+            d.put_i32(m.id);
+            m.position_m.iter().for_each(|&v| d.put_f32(v));
+            d.put_f32(m.size_m);
+            d.put_i16(m.params);
+            d.put_f32(m.residual_m);
+        }
+        for (i, m) in markers.iter().enumerate().filter(|_| labeled.is_empty()) {
             d.put_i32(((f.rigid_bodies.first().map_or(0, |b| b.id)) << 16) | (i as i32 + 1));
             m.iter().for_each(|&v| d.put_f32(v));
             d.put_f32(0.014);

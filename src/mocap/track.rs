@@ -27,6 +27,8 @@ pub struct BodySample {
     pub orientation_xyzw: [f64; 4],
     pub occluded: bool,
     pub exposure_t_ns: Option<u64>,
+    /// A pose fitted from markers: the fit's RMS residual (m).
+    pub fit_residual_m: Option<f64>,
 }
 
 impl BodySample {
@@ -40,7 +42,7 @@ impl BodySample {
             orientation: QuaternionMsg { x, y, z, w },
             occluded: self.occluded,
             exposure_t_ns: self.exposure_t_ns,
-            fit_residual_m: None,
+            fit_residual_m: self.fit_residual_m,
             body: None,
         }
     }
@@ -106,6 +108,7 @@ pub fn natnet_sample(body: &RigidBody, frame: &Frame, clock_hz: Option<u64>) -> 
         orientation_xyzw: q,
         occluded: !body.tracking_valid,
         exposure_t_ns,
+        fit_residual_m: None,
     };
     let finite = p.iter().chain(q.iter()).all(|v| v.is_finite());
     let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -125,7 +128,7 @@ pub fn natnet_sample(body: &RigidBody, frame: &Frame, clock_hz: Option<u64>) -> 
 
 /// A QTM 6D body of `frame` as a sample: NaN position means not tracked.
 /// A marker set fitted to a QTM frame's labelled markers: `indices[k]` is marker `k` of the set among the 3D
-/// labels; a frame with fewer than 3 of them seen (or 3 that disagree) is occluded. The fit's residual is the
+/// labels; a frame with fewer than 3 of them valid (seen, and not rejected by their residual) is occluded. The fit's residual is the
 /// caller's to count.
 pub fn qtm_fitted_sample(
     fitter: &crate::kinematics::MarkerFitter,
@@ -146,6 +149,7 @@ pub fn qtm_fitted_sample(
         orientation_xyzw: [0.0, 0.0, 0.0, 1.0],
         occluded: false,
         exposure_t_ns: Some(t_ns),
+        fit_residual_m: None,
     };
     match fitter.fit(lab_m) {
         Ok(fit) => {
@@ -153,6 +157,7 @@ pub fn qtm_fitted_sample(
             let q = fit.lab_from_body.rotation;
             s.position_m = [p.x, p.y, p.z];
             s.orientation_xyzw = [q.i, q.j, q.k, q.w];
+            s.fit_residual_m = Some(fit.residual_m);
         }
         Err(_) => {
             placeholder(&mut s);
@@ -171,6 +176,7 @@ pub fn qtm_sample(body: &Body6d, frame: &Frame6d) -> (BodySample, Option<BadPose
         orientation_xyzw: [0.0, 0.0, 0.0, 1.0],
         occluded: false,
         exposure_t_ns: Some(t_ns),
+        fit_residual_m: None,
     };
     if body.position_mm.iter().any(|v| v.is_nan()) {
         placeholder(&mut s);
@@ -251,6 +257,7 @@ mod tests {
             orientation_xyzw: [0.0, 0.0, 0.0, 1.0],
             occluded: false,
             exposure_t_ns: None,
+            fit_residual_m: None,
         };
         assert_eq!(t.on_frame(&s(5000), None, &mut st), Sequence::Publish);
         assert_eq!(t.on_frame(&s(5003), None, &mut st), Sequence::Publish);

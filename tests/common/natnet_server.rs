@@ -25,6 +25,8 @@ pub struct NatNetServer {
 pub struct ServerState {
     pub version: Version,
     pub bodies: Vec<(i32, String)>,
+    /// Marker sets that are assets of their own (a club with markers, no rigid body): id, name, marker names.
+    pub marker_assets: Vec<(i32, String, Vec<String>)>,
     pub clients: Vec<SocketAddr>,
     /// Answer NAT_CONNECT (false: a server that is not there yet).
     pub answering: bool,
@@ -41,6 +43,7 @@ impl NatNetServer {
         let state = Arc::new(Mutex::new(ServerState {
             version,
             bodies: bodies.iter().map(|(i, n)| (*i, n.to_string())).collect(),
+            marker_assets: Vec::new(),
             clients: Vec::new(),
             answering: true,
         }));
@@ -72,7 +75,16 @@ impl NatNetServer {
                     natnet::NAT_REQUEST_MODELDEF if st.answering => {
                         mr.fetch_add(1, Ordering::Relaxed);
                         let bodies: Vec<(i32, &str)> = st.bodies.iter().map(|(i, n)| (*i, n.as_str())).collect();
-                        s.send_to(&natnet_encode::model_def(st.version, &bodies).unwrap(), from).unwrap();
+                        let names: Vec<Vec<&str>> =
+                            st.marker_assets.iter().map(|a| a.2.iter().map(String::as_str).collect()).collect();
+                        let assets: Vec<natnet_encode::MarkerAsset> = st
+                            .marker_assets
+                            .iter()
+                            .zip(&names)
+                            .map(|(a, markers)| natnet_encode::MarkerAsset { id: a.0, name: &a.1, markers })
+                            .collect();
+                        let def = natnet_encode::model_def_with_sets(st.version, &bodies, &assets).unwrap();
+                        s.send_to(&def, from).unwrap();
                     }
                     _ => {}
                 }
@@ -98,6 +110,13 @@ impl NatNetServer {
         let p = frame.rigid_bodies.first().map_or([0.0; 3], |b| b.position_m);
         let markers = [p, [p[0] + 0.04, p[1], p[2]], [p[0], p[1] + 0.03, p[2]]];
         self.send_raw(&natnet_encode::frame(version, frame, "club", &markers).unwrap());
+    }
+
+    /// Sends a frame with its labeled markers, and `markers` as the marker set `set_name`'s positions.
+    #[allow(dead_code)] // tests/natnet_markers.rs
+    pub fn send_marker_frame(&self, frame: &Frame, set_name: &str, markers: &[[f32; 3]]) {
+        let version = self.state.lock().unwrap().version;
+        self.send_raw(&natnet_encode::frame(version, frame, set_name, markers).unwrap());
     }
 }
 

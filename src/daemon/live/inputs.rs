@@ -9,17 +9,11 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
 use super::{Incoming, InputKind};
+use crate::daemon::bridges::mocap::input::marker_fitter;
 use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
-use crate::kinematics::{MarkerFitter, MarkerSet};
+use crate::kinematics::MarkerFitter;
 use crate::wire::MessageType;
-
-/// The marker set file of a rig's input, as a fitter (3 mm rejection, as `impactd import`'s default).
-fn marker_fitter(path: &str) -> Result<MarkerFitter, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("reading {path}: {e}"))?;
-    let set = MarkerSet::from_toml(&text).map_err(|e| format!("{path}: {e}"))?;
-    Ok(MarkerFitter::new(set).with_reject_m(3e-3))
-}
 
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);

@@ -29,7 +29,7 @@ pub const QTM_PORT: u16 = 22223;
 /// natnet = "192.168.1.20"    # or qtm = "192.168.1.20"
 /// body = "driver"            # the rigid body's name in Motive (6DOF body in QTM)
 /// ball_body = "ball"         # optional: a body whose origin is the ball's centre (mocap/<rig>/ball)
-/// markers = "club.toml"      # optional (QTM): fit this marker set to the labelled 3D markers instead of a body
+/// markers = "club.toml"      # optional: fit this marker set to the labelled markers instead of a body
 /// unicast = true             # NatNet: unicast (default: multicast on multicast_group)
 /// # command_port = 1510; data_port = 1511; multicast_group = "239.255.42.99"; port = 22223 (QTM)
 /// ```
@@ -46,8 +46,9 @@ pub struct MocapInputConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ball_body: Option<String>,
     /// A marker set file (`[markers]`, as `impactd import` takes): the club's pose is that set fitted to the
-    /// server's labelled markers each frame (QTM 3D), so the capture software needs no rigid body; `body` then
-    /// names the route in the status.
+    /// server's labelled markers each frame, so the capture software needs no rigid body. QTM: the labels are
+    /// its 3D labels and `body` names the route in the status; NatNet: `body` names Motive's asset (its marker
+    /// set) and the labels are the marker names within it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub markers: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -143,6 +144,13 @@ impl MocapInputConfig {
     }
 }
 
+/// A marker set file as a live fitter (3 mm rejection, as `impactd import`'s default), or why it cannot be read.
+pub fn marker_fitter(path: &str) -> Result<crate::kinematics::MarkerFitter, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("reading {path}: {e}"))?;
+    let set = crate::kinematics::MarkerSet::from_toml(&text).map_err(|e| format!("{path}: {e}"))?;
+    Ok(crate::kinematics::MarkerFitter::new(set).with_reject_m(3e-3))
+}
+
 /// The server's first IPv4 address.
 pub fn resolve(host: &str, port: u16) -> Result<SocketAddr, DaemonError> {
     let io = |source| DaemonError::Io { what: format!("resolving {host}"), source };
@@ -196,7 +204,8 @@ impl InputHandle {
     }
 
     /// [`InputHandle::start`] with a marker set per route (`Some`: the route's pose is that set fitted to the
-    /// server's labelled markers each frame, for QTM's 3D; NatNet's labelled markers are not read yet).
+    /// server's labelled markers each frame: QTM's 3D labels, or the labelled markers of Motive's asset named
+    /// like the route's body).
     pub fn start_fitted(
         source: Source,
         routes: Vec<(String, String)>,
@@ -207,13 +216,6 @@ impl InputHandle {
         let bodies: Vec<String> = routes.iter().map(|r| r.0.clone()).collect();
         let shared = Arc::new(Mutex::new(Shared::new(&source, &routes, deliver)));
         let threads = match &source {
-            Source::NatNet { .. } if fitters.iter().any(Option::is_some) => {
-                return Err(DaemonError::Config {
-                    field: "input.markers".into(),
-                    reason: "marker sets are fitted live from QTM's 3D markers; over NatNet, define a rigid body"
-                        .into(),
-                })
-            }
             Source::NatNet { host, command_port, data_port, multicast_group } => super::natnet::start(
                 super::natnet::Options {
                     server: resolve(host, *command_port)?,
@@ -221,6 +223,7 @@ impl InputHandle {
                     multicast_group: *multicast_group,
                 },
                 bodies,
+                fitters,
                 shared.clone(),
                 stop.clone(),
             )?,

@@ -9,5 +9,5 @@ pub mod qtm;
 pub mod shared;
 
 pub use input::{InputHandle, MocapInputConfig, Source, StatusSource};
-pub use publish::{run_bridge, run_bridge_with_balls};
+pub use publish::{run_bridge, run_bridge_fitted, run_bridge_with_balls};
 pub use shared::Deliver;

@@ -4,6 +4,8 @@
 //! socket (where Motive sends unicast frames: to the address the connect came from) and the data socket
 //! (multicast group, or the `data_port` bound for unicast). Two threads, one per socket, share the decoding
 //! state behind one lock; each datagram is decoded into a reused frame (no allocation per frame once warm).
+//! A route with a marker set is that set fitted to the labelled markers of Motive's asset named like the route's
+//! body (`mocap::natnet_fit`), mapped again with every model definition.
 
 use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -13,8 +15,10 @@ use std::time::{Duration, Instant};
 
 use super::shared::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::DaemonError;
+use crate::kinematics::MarkerFitter;
 use crate::mocap::natnet::{self, Frame, Version};
 use crate::mocap::natnet_encode;
+use crate::mocap::natnet_fit::{label_map, natnet_fitted_sample, LabelMap};
 use crate::mocap::track::{natnet_sample, BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 
@@ -36,6 +40,10 @@ struct State {
     clock_hz: Option<u64>,
     bodies: Vec<String>,
     ids: Vec<Option<i32>>,
+    /// Per route: a marker set fitted to the labelled markers (None: the rigid body's pose), and its labels.
+    fitters: Vec<Option<MarkerFitter>>,
+    maps: Vec<Option<LabelMap>>,
+    lab_m: Vec<Option<crate::math::Vector3>>,
     tracks: Vec<BodyTrack>,
     frame: Frame,
     last_rx: Option<Instant>,
@@ -58,6 +66,7 @@ fn io(what: String) -> impl FnOnce(std::io::Error) -> DaemonError {
 pub fn start(
     options: Options,
     bodies: Vec<String>,
+    fitters: Vec<Option<MarkerFitter>>,
     shared: Arc<Mutex<Shared>>,
     stop: Arc<AtomicBool>,
 ) -> Result<Vec<JoinHandle<()>>, DaemonError> {
@@ -75,6 +84,9 @@ pub fn start(
             clock_hz: None,
             bodies,
             ids: vec![None; n],
+            fitters,
+            maps: vec![None; n],
+            lab_m: Vec::new(),
             tracks: vec![BodyTrack::default(); n],
             frame: Frame::default(),
             last_rx: None,
@@ -242,6 +254,17 @@ impl Client {
                         st.want_model = false;
                         let st = &mut *st;
                         for (i, name) in st.bodies.iter().enumerate() {
+                            if let Some(fitter) = &st.fitters[i] {
+                                let map = label_map(&model, name, &fitter.set);
+                                if let Err(e) = &map {
+                                    if sh.bodies[i].body_found || !st.model_seen {
+                                        tracing::warn!("marker set of `{name}`: {e}");
+                                    }
+                                }
+                                st.maps[i] = map.ok();
+                                sh.bodies[i].body_found = st.maps[i].is_some();
+                                continue;
+                            }
                             let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
                             if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
                                 let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
@@ -276,6 +299,18 @@ impl Client {
                 let sh = &mut *sh;
                 for i in 0..st.bodies.len() {
                     let status = &mut sh.bodies[i];
+                    if let Some(fitter) = &st.fitters[i] {
+                        let Some(map) = &st.maps[i] else {
+                            *status.rejected.entry("markers_not_in_model".into()).or_default() += 1;
+                            st.want_model = true;
+                            continue;
+                        };
+                        let sample = natnet_fitted_sample(fitter, map, &st.frame, st.clock_hz, &mut st.lab_m);
+                        if st.tracks[i].on_frame(&sample, None, status) == Sequence::Publish {
+                            (sh.deliver)(i, &sample, received);
+                        }
+                        continue;
+                    }
                     let Some(id) = st.ids[i] else {
                         *status.rejected.entry("body_not_in_model".into()).or_default() += 1;
                         st.want_model = true;

@@ -9,6 +9,7 @@ use zenoh::Wait;
 
 use super::{InputHandle, Source};
 use crate::daemon::DaemonError;
+use crate::kinematics::MarkerFitter;
 use crate::wire::{keys, MessageType, MocapInputStatus};
 
 /// Runs a bridge from `source` for `routes` (`(body, rig)`) on `session` until `shutdown`; returns each
@@ -31,6 +32,22 @@ pub async fn run_bridge_with_balls(
     balls: Vec<(String, String)>,
     shutdown: impl Future<Output = ()>,
 ) -> Result<Vec<MocapInputStatus>, DaemonError> {
+    let fitters = vec![None; routes.len()];
+    run_bridge_fitted(session, source, routes, fitters, balls, shutdown).await
+}
+
+/// [`run_bridge_with_balls`], with a marker set per club route (`Some`: that set fitted to the server's
+/// labelled markers each frame, as `[rig.input] markers` does, so the body needs no rigid body defined).
+pub async fn run_bridge_fitted(
+    session: &zenoh::Session,
+    source: Source,
+    routes: Vec<(String, String)>,
+    fitters: Vec<Option<MarkerFitter>>,
+    balls: Vec<(String, String)>,
+    shutdown: impl Future<Output = ()>,
+) -> Result<Vec<MocapInputStatus>, DaemonError> {
+    let mut fitters = fitters;
+    fitters.resize(routes.len() + balls.len(), None);
     let mut samples = Vec::new();
     let mut statuses = Vec::new();
     let clubs = routes.len();
@@ -69,7 +86,7 @@ pub async fn run_bridge_with_balls(
         }
     });
     tracing::info!("bridging {} at {} for {:?}", source.protocol(), source.address(), routes);
-    let handle = InputHandle::start(source, routes, deliver)?;
+    let handle = InputHandle::start_fitted(source, routes, fitters, deliver)?;
     tokio::pin!(shutdown);
     let mut tick = tokio::time::interval(Duration::from_secs(1));
     loop {

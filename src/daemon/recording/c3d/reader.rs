@@ -29,7 +29,8 @@ impl<R: Read + Seek> C3dReader<R> {
         let have = usize::try_from(file_bytes.min(BLOCK)).unwrap_or(0);
         read_exact(&mut source, &mut header[..have], "the header block")?;
         if short || header[1] != 0x50 {
-            if header[1] == 0x50 {
+            // An empty file (BTK's `Empty.c3d`) or a cut header: say so rather than judge a byte that is not there.
+            if header[1] == 0x50 || file_bytes < 2 {
                 return Err(C3dError::NotC3d(format!("it has {file_bytes} bytes, less than a 512-byte header")));
             }
             return Err(C3dError::NotC3d(format!("its second byte is 0x{:02x}; a C3D header's is 0x50", header[1])));

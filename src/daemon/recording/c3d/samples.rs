@@ -1,6 +1,6 @@
 //! A capture's frames as clubhead samples: each frame's markers of the set fitted to a pose (`MarkerFitter`), in
 //! the file's lab axes and metres. `t_ns` is the 0-based frame index over the rate, `frame` the C3D frame number
-//! (first frame + index); a frame with no pose (fewer than 3 valid markers, or 3 that disagree) is `occluded`.
+//! (first frame + index); a frame with fewer than 3 valid markers (seen, and not rejected by its residual) is `occluded`.
 
 use std::io::{Read, Seek};
 
@@ -13,10 +13,10 @@ use crate::wire::{ClubheadSampleMsg, QuaternionMsg};
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct ImportCounts {
     pub frames: u64,
-    /// Frames with fewer than 3 valid markers of the set.
+    /// Frames with fewer than 3 valid markers of the set (seen, and not rejected by their residual).
     pub occluded: u64,
-    /// Frames whose markers disagreed beyond the rejection limit with no marker left to drop.
-    pub inconsistent: u64,
+    /// Of the occluded frames, those with 3 or more markers seen, left with fewer than 3 by rejection.
+    pub occluded_by_rejection: u64,
     /// Markers dropped by their residual (swaps, ghosts).
     pub rejected_markers: u64,
 }
@@ -105,8 +105,10 @@ impl<R: Read + Seek> CaptureSamples<R> {
                 self.counts.occluded += 1;
                 (self.last_pose, true, None)
             }
-            Err(FitFailure::Inconsistent { .. }) => {
-                self.counts.inconsistent += 1;
+            Err(FitFailure::Rejected { rejected, .. }) => {
+                self.counts.occluded += 1;
+                self.counts.occluded_by_rejection += 1;
+                self.counts.rejected_markers += u64::from(rejected);
                 (self.last_pose, true, None)
             }
         };
