@@ -31,6 +31,8 @@ pub type SVector<const N: usize> = nalgebra::SVector<Real, N>;
 /// Matrices and vectors sized at run time (a shaft's mesh, a least-squares fit).
 pub type DMatrix = nalgebra::DMatrix<Real>;
 pub type DVector = nalgebra::DVector<Real>;
+/// A complex number (a mode's exact propagator, `e^{λh}`).
+pub type Complex = nalgebra::Complex<Real>;
 /// A unit-length wrapper (a face normal) and the eigen-decomposition of a symmetric matrix.
 pub use nalgebra::{SymmetricEigen, Unit};
 

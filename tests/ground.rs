@@ -225,7 +225,7 @@ fn momentum_bookkeeping() {
     }
 }
 
-/// Converged: halving both steps moves ball speed < 0.01 % and spin < 0.1 %; doubling the shaft's elements
+/// Converged: halving the steps (and the ground's hold during the ball's contact) moves ball speed < 0.01 % and spin < 0.1 %; doubling the shaft's elements
 /// (16, modes to 20 kHz) moves them < 0.5 %.
 #[test]
 fn converges_under_step_halving_and_shaft_refinement() {
@@ -234,6 +234,7 @@ fn converges_under_step_halving_and_shaft_refinement() {
     let mut half = base.clone();
     half.ball_step_s *= 0.5;
     half.ground_step_s *= 0.5;
+    half.ground_hold_s *= 0.5;
     let mut fine = base.clone();
     fine.mesh = ShaftMesh { elements: 16, clamp_m: 0.0 };
     fine.max_mode_hz = 20_000.0;

@@ -6,6 +6,7 @@ use super::{GroundResult, GroundTracePoint, PreparedGround};
 use crate::impact::continuous::ball::TwoLayerBall;
 use crate::impact::continuous::club::Head as BodyMotion;
 use crate::impact::continuous::ground::{GroundForces, GroundPhase};
+use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::ModalState;
 use crate::impact::continuous::surface::FaceSurface;
@@ -55,9 +56,10 @@ pub(super) fn simulate(
     if !model.with_ground {
         ground.ground_y_m = Real::NEG_INFINITY;
     }
-    let ground_step_s = model.ground_step_s;
+    // The sole's first touch is an event: a fat strike starts there (nothing acts on the club before it), and a
+    // later touch ends a step at it (below).
     let t0 = match first_ground {
-        Some(t) if t < 0.0 => t - 2.0 * ground_step_s,
+        Some(t) if t < 0.0 => t,
         _ => 0.0,
     };
     let sys = System {
@@ -96,9 +98,11 @@ pub(super) fn simulate(
     let mut trace = Vec::new();
     let mut launch: Option<Launch> = None;
     let mut steps = 0usize;
+    let mut next_trace_s = Real::NEG_INFINITY;
     let max_steps = 2_000_000;
     // The ground's forces held during the ball's contact, and when they were evaluated.
     let mut held: Option<(GroundForces, Real)> = None;
+    let steppers = &p.steps;
     loop {
         let head = sys.head(&s);
         let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b_m - head.position_m));
@@ -106,19 +110,33 @@ pub(super) fn simulate(
         // The ball's contact is an event: approaching it, each step covers at most half the time the face
         // needs to reach the ball at its first approach speed, so the steps shrink geometrically from the
         // ground's to the ball's and the contact starts within one ball step (the head only slows in the turf).
-        let h = if launch.is_some() {
-            ground_step_s
+        let stepper = if launch.is_some() {
+            steppers.ground()
         } else if out.ball_touched {
-            model.ball_step_s
+            steppers.ball()
         } else {
-            (0.5 * gap / approach0).clamp(model.ball_step_s, ground_step_s.max(model.ball_step_s))
+            steppers.at_most(0.5 * gap / approach0)
         };
+        let one_off;
+        let stepper = match first_ground {
+            Some(tg)
+                if out.first_ground_s.is_none()
+                    && stepper.h_s > model.ball_step_s
+                    && tg > s.t_s + 1e-9
+                    && tg < s.t_s + stepper.h_s - 1e-9 =>
+            {
+                one_off = ModalStepper::new(&p.modal, tg - s.t_s);
+                &one_off
+            }
+            _ => stepper,
+        };
+        let h = stepper.h_s;
         let near_ball = launch.is_none() && h <= model.ball_step_s;
-        // During the ball's contact the ground's forces are held over a quarter of the ground's step (they change
-        // over milliseconds, the ball's over microseconds).
+        // During the ball's contact the ground's forces are held over `ground_hold_s` (they change over
+        // milliseconds, the ball's over microseconds).
         let hold = near_ball && model.with_ground;
-        let reuse = held.filter(|(_, t)| hold && s.t_s - t < 0.25 * ground_step_s - 0.5 * h).map(|(g, _)| g);
-        let (next, e) = sys.step_held(&s, h, hold, reuse.as_ref());
+        let reuse = held.filter(|(_, t)| hold && s.t_s - t < model.ground_hold_s - 0.5 * h).map(|(g, _)| g);
+        let (next, e) = sys.step_held(&s, stepper, hold, reuse.as_ref());
         if reuse.is_none() {
             held = hold.then_some((e.ground, s.t_s));
         }
@@ -164,7 +182,9 @@ pub(super) fn simulate(
             });
             out.t_separation_s = s.t_s;
         }
-        if trace_every > 0 && steps % trace_every == 0 {
+        // A trace point every `trace_every` ball steps of time (at every step where the steps are longer).
+        if trace_every > 0 && s.t_s >= next_trace_s {
+            next_trace_s = s.t_s + (trace_every as Real - 0.5) * model.ball_step_s;
             let (fa, dl) = face_angles_deg(&e.head, &club.face.n0());
             let horizontal = |v: Vector3| v.x.hypot(v.z);
             let sole = e.ground.sole.pressure_n + e.ground.sole.shear_n;
