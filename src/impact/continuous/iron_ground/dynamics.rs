@@ -20,7 +20,7 @@ use crate::impact::continuous::ground::{GroundForces, SoilGround};
 use crate::impact::continuous::law::volumetric::Volumetric;
 use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
 use crate::impact::continuous::shaft::exponential::ModalStepper;
-use crate::impact::continuous::shaft::grip::ConstantTwist;
+use crate::impact::continuous::shaft::grip::{ConstantTwist, PreparedTwist};
 use crate::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::continuous::{ContactForces, TwoLayerParams};
@@ -75,6 +75,8 @@ pub struct System<'a> {
     pub modal: &'a ModalClub,
     pub ground: &'a SoilGround,
     pub motion: ConstantTwist,
+    /// `motion` prepared for its evaluations ([`ConstantTwist::prepared`]).
+    pub twist: PreparedTwist,
     /// The club frame at the start (world from club), in which the elastic motion is computed.
     pub elastic_frame: Rotation3,
     pub head_mass_kg: Real,
@@ -90,8 +92,8 @@ impl System<'_> {
     }
 
     /// The head's pose and velocity, and the rigid club's.
-    fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
-        let (rotation, position_m, velocity_mps) = self.motion.at(s.t_s);
+    pub fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
+        let (rotation, position_m, velocity_mps) = self.twist.at(s.t_s);
         let rigid = BodyMotion {
             position_m,
             world_from_club: rotation,
@@ -102,7 +104,7 @@ impl System<'_> {
         let f = &self.elastic_frame;
         let head = BodyMotion {
             position_m: rigid.position_m + f * o.cg_m,
-            world_from_club: Rotation3::new(f * o.rotation_rad) * rigid.world_from_club,
+            world_from_club: crate::math::small_rotation(&(f * o.rotation_rad)) * rigid.world_from_club,
             velocity_mps: rigid.velocity_mps + f * o.cg_velocity_mps,
             angular_velocity_radps: rigid.angular_velocity_radps + f * o.angular_velocity_radps,
         };
@@ -134,7 +136,11 @@ impl System<'_> {
 
     /// The rates; `ground` given holds the ground's forces (sub-cycled during the ball's contact).
     pub fn eval(&self, s: &State, ground: Option<&GroundForces>) -> Eval {
-        let (head, rigid) = self.head_and_rigid(s);
+        self.eval_at(s, self.head_and_rigid(s), ground)
+    }
+
+    /// [`Self::eval`] with the head's and the rigid club's motion given ([`Self::head_and_rigid`] of `s`).
+    fn eval_at(&self, s: &State, (head, rigid): (BodyMotion, BodyMotion), ground: Option<&GroundForces>) -> Eval {
         let ball_motion = BodyMotion {
             position_m: s.p_b_m,
             world_from_club: Rotation3::identity(),
@@ -170,29 +176,29 @@ impl System<'_> {
     /// One step of `stepper.h_s` (Runge-Kutta's stages, the modes by exponential time differencing); with
     /// `hold_ground` the ground's forces are evaluated once, at the step's start, and held over it.
     pub fn step(&self, s: &State, stepper: &ModalStepper, hold_ground: bool) -> (State, Eval) {
-        self.step_held(s, stepper, hold_ground, None)
+        self.step_held(s, self.head_and_rigid(s), stepper, hold_ground, None)
     }
 
-    /// [`Self::step`] with the ground's forces `ground` given (held from an earlier step) or, when `None`,
-    /// evaluated at the step's start.
+    /// [`Self::step`] from the head's and rigid club's motion at `s` ([`Self::head_and_rigid`]) with the
+    /// ground's forces `ground` given (held from an earlier step) or, when `None`, evaluated at the step's start.
     pub fn step_held(
         &self,
         s: &State,
+        head_and_rigid: (BodyMotion, BodyMotion),
         stepper: &ModalStepper,
         hold_ground: bool,
         ground: Option<&GroundForces>,
     ) -> (State, Eval) {
         let h = stepper.h_s;
-        let e1 = self.eval(s, ground);
+        let e1 = self.eval_at(s, head_and_rigid, ground);
         let held = hold_ground.then_some(e1.ground);
-        let mut s2 = advance(s, s, &e1.rates, 0.5 * h);
-        s2.shaft = stepper.half(&s.shaft, &e1.rates.modal_load);
+        // Stages a and b share the modes' free motion over the half step.
+        let free_half = stepper.free_half(&s.shaft);
+        let s2 = advance(s, s, &e1.rates, 0.5 * h, stepper.add_half_load(&free_half, &e1.rates.modal_load));
         let e2 = self.eval(&s2, held.as_ref());
-        let mut s3 = advance(s, &s2, &e2.rates, 0.5 * h);
-        s3.shaft = stepper.half(&s.shaft, &e2.rates.modal_load);
+        let s3 = advance(s, &s2, &e2.rates, 0.5 * h, stepper.add_half_load(&free_half, &e2.rates.modal_load));
         let e3 = self.eval(&s3, held.as_ref());
-        let mut s4 = advance(s, &s3, &e3.rates, h);
-        s4.shaft = stepper.third(&s2.shaft, &e1.rates.modal_load, &e3.rates.modal_load);
+        let s4 = advance(s, &s3, &e3.rates, h, stepper.third(&s2.shaft, &e1.rates.modal_load, &e3.rates.modal_load));
         let e4 = self.eval(&s4, held.as_ref());
         let (r1, r2, r3, r4) = (&e1.rates, &e2.rates, &e3.rates, &e4.rates);
         let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
@@ -263,14 +269,18 @@ fn two_layer_contact(
     ))
 }
 
-/// `base` advanced by `h` along the rates `r` evaluated at `at` (all but the shaft's modes).
-fn advance(base: &State, at: &State, r: &Rates, h: Real) -> State {
-    let mut s = *base;
-    s.t_s = base.t_s + h;
-    s.p_b_m = base.p_b_m + at.v_b_mps * h;
-    s.v_b_mps = base.v_b_mps + r.a_b * h;
-    s.w_core_radps = base.w_core_radps + r.alpha_core * h;
-    s.w_cover_radps = base.w_cover_radps + r.alpha_cover * h;
-    s.theta_rad = base.theta_rad + (at.w_cover_radps - at.w_core_radps) * h;
-    s
+/// `base` advanced by `h` along the rates `r` evaluated at `at`, with the shaft's modes `shaft`.
+fn advance(base: &State, at: &State, r: &Rates, h: Real, shaft: ModalState) -> State {
+    State {
+        t_s: base.t_s + h,
+        shaft,
+        p_b_m: base.p_b_m + at.v_b_mps * h,
+        v_b_mps: base.v_b_mps + r.a_b * h,
+        w_core_radps: base.w_core_radps + r.alpha_core * h,
+        w_cover_radps: base.w_cover_radps + r.alpha_cover * h,
+        theta_rad: base.theta_rad + (at.w_cover_radps - at.w_core_radps) * h,
+        j_ball_ns: base.j_ball_ns,
+        j_ground_ns: base.j_ground_ns,
+        j_grip_ns: base.j_grip_ns,
+    }
 }

@@ -15,6 +15,7 @@
 //! it is the same flexible club on a teed-up ball, the seed's reference in Figures 4.11-4.17.
 
 pub mod dynamics;
+mod measures;
 pub mod placement;
 mod reference_swing;
 mod report;
@@ -67,10 +68,10 @@ pub struct GroundModel {
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
     /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
-    /// ball speed < 2e-5 and spin < 6e-4, tests/ground.rs), 60 us outside (against 7.5 us: launch within 3e-7
-    /// in speed and 7e-6 in spin, divot length and ground contact time within 0.3 %; classical Runge-Kutta
-    /// on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 7.5 us in the ball's
-    /// contact (against 3.75 us: spin within 1.2e-5).
+    /// ball speed < 2e-5 and spin < 6e-4, tests/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
+    /// in speed and 7e-6 in spin, divot length within 0.35 %, contact time and peak force within 0.15 %; classical
+    /// Runge-Kutta on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 15 us in
+    /// the ball's contact (against 3.75 us: spin within 2.5e-5).
     pub fn new(soil: SoilSpec) -> Self {
         GroundModel {
             soil,
@@ -80,8 +81,8 @@ impl GroundModel {
             max_mode_hz: Real::INFINITY,
             params: None,
             ball_step_s: 2e-6,
-            ground_step_s: 60e-6,
-            ground_hold_s: 7.5e-6,
+            ground_step_s: 120e-6,
+            ground_hold_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
             force_mask: Vector3::repeat(1.0),

@@ -18,7 +18,7 @@
 //! The mode's impulse bookkeeping: integrating its equation over a step, `∫η dt = (∫g dt − Δη̇ − 2ζω Δη) / ω²`,
 //! with `∫g dt` the same Runge-Kutta quadrature as the other impulses ([`ModalStepper::eta_integral`]).
 
-use super::modal::{ModalClub, ModalState, ModalVec};
+use super::modal::{ModalClub, ModalState, ModalVec, MAX_MODES};
 use crate::math::{Complex, Real};
 
 /// The coefficients of one step size for every kept mode, as real maps of `(η, η̇)` (zero beyond the kept
@@ -132,6 +132,21 @@ impl ModalStepper {
         self.e_half.apply(s, &[(&self.c_half, g)])
     }
 
+    /// `e^{λh/2} z`: the free motion over half a step, which stages `a` and `b` share.
+    pub fn free_half(&self, s: &ModalState) -> ModalState {
+        self.e_half.apply(s, &[])
+    }
+
+    /// [`Self::half`] from its free part ([`Self::free_half`]).
+    pub fn add_half_load(&self, free: &ModalState, g: &ModalVec) -> ModalState {
+        let mut out = *free;
+        for i in 0..MAX_MODES {
+            out.eta[i] += self.c_half.eta[i] * g[i];
+            out.eta_dot[i] += self.c_half.eta_dot[i] * g[i];
+        }
+        out
+    }
+
     /// The full-step stage `c` from stage `a`: `e^{λh/2} a + (h/2) φ₁(λh/2) (2 g_b − g_z)`.
     pub fn third(&self, a: &ModalState, g_z: &ModalVec, g_b: &ModalVec) -> ModalState {
         self.e_half.apply(a, &[(&self.c_half, &(2.0 * g_b - g_z))])
@@ -156,13 +171,22 @@ impl Propagator {
     /// The free motion of `s` plus the responses to the loads.
     #[inline]
     fn apply(&self, s: &ModalState, loads: &[(&LoadResponse, &ModalVec)]) -> ModalState {
-        let mut eta = self.ee.component_mul(&s.eta) + self.ev.component_mul(&s.eta_dot);
-        let mut eta_dot = self.ve.component_mul(&s.eta) + self.vv.component_mul(&s.eta_dot);
-        for (r, g) in loads {
-            eta += r.eta.component_mul(g);
-            eta_dot += r.eta_dot.component_mul(g);
+        let mut out = ModalState::default();
+        let (eta, eta_dot) = (s.eta.as_slice(), s.eta_dot.as_slice());
+        let (ee, ev, ve, vv) = (self.ee.as_slice(), self.ev.as_slice(), self.ve.as_slice(), self.vv.as_slice());
+        let (oe, ov) = (out.eta.as_mut_slice(), out.eta_dot.as_mut_slice());
+        for i in 0..MAX_MODES {
+            oe[i] = ee[i] * eta[i] + ev[i] * eta_dot[i];
+            ov[i] = ve[i] * eta[i] + vv[i] * eta_dot[i];
         }
-        ModalState { eta, eta_dot }
+        for (r, g) in loads {
+            let (re, rv, g) = (r.eta.as_slice(), r.eta_dot.as_slice(), g.as_slice());
+            for i in 0..MAX_MODES {
+                oe[i] += re[i] * g[i];
+                ov[i] += rv[i] * g[i];
+            }
+        }
+        out
     }
 }
 

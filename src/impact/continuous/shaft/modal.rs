@@ -144,13 +144,16 @@ impl ModalClub {
     /// The head's offset from the rigid club, club frame.
     #[inline]
     pub fn head_offset(&self, s: &ModalState) -> HeadOffset {
+        // Column by column (each mode's six tip DOFs as a fixed-size array, so the six sums vectorise).
         let (mut q, mut qd) = ([0.0; 6], [0.0; 6]);
-        for i in 0..self.n_modes {
-            let col = self.tip_modes.column(i);
-            let (e, ed) = (s.eta[i], s.eta_dot[i]);
-            for k in 0..6 {
-                q[k] += col[k] * e;
-                qd[k] += col[k] * ed;
+        let n = self.n_modes;
+        let cols = self.tip_modes.as_slice().chunks_exact(6);
+        for ((col, e), ed) in cols.zip(&s.eta.as_slice()[..n]).zip(&s.eta_dot.as_slice()[..n]) {
+            if let Ok(col) = <&[Real; 6]>::try_from(col) {
+                for k in 0..6 {
+                    q[k] += col[k] * e;
+                    qd[k] += col[k] * ed;
+                }
             }
         }
         let r = &self.cg_from_tip_shaft_m;
