@@ -75,3 +75,48 @@ impl Measures {
         self.divot_length_m += divot * h * 0.5 * (last.horizontal_speed_mps + now.horizontal_speed_mps);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(t_s: Real, sinkage_m: Real) -> GroundSample {
+        GroundSample { t_s, sinkage_m, edge_depth_m: sinkage_m - 0.002, horizontal_speed_mps: 40.0 }
+    }
+
+    /// A sinkage that rises linearly through zero at 0.25 ms, stays, and falls through zero at 1.6 ms, sampled
+    /// every 0.3 ms: the contact is 1.35 ms and starts at 0.25 ms exactly (linear ends are interpolated
+    /// exactly), where whole steps from their start would give 1.5 ms starting at 0.3 ms.
+    #[test]
+    fn contact_ends_are_interpolated_between_samples() {
+        let sinkage = |t: Real| (2.0 * (t - 0.25e-3)).min(1e-3).min(2.0 * (1.6e-3 - t));
+        let mut m = Measures::default();
+        for k in 0..8 {
+            let t = k as Real * 0.3e-3;
+            m.ground(sample(t, sinkage(t)), 10.0);
+        }
+        assert!((m.ground_time_s - 1.35e-3).abs() < 1e-12, "{}", m.ground_time_s);
+        assert!((m.first_ground_s.unwrap_or(0.0) - 0.25e-3).abs() < 1e-12);
+        // The leading edge, 2 mm above the deepest point, never reaches the surface: the sinkage peaks at 1 mm.
+        assert_eq!(m.divot_length_m, 0.0);
+        assert!((m.max_sinkage_m - 1e-3).abs() < 1e-12 && m.peak_ground_n == 10.0);
+    }
+
+    /// A leading edge below the surface for half of one interval at 40 m/s cuts 40 m/s x half the interval.
+    #[test]
+    fn divot_length_over_the_part_of_an_interval_in_the_soil() {
+        let mut m = Measures::default();
+        let at = |t_s: Real, edge_depth_m: Real| GroundSample {
+            t_s,
+            sinkage_m: 0.01,
+            edge_depth_m,
+            horizontal_speed_mps: 40.0,
+        };
+        m.ground(at(0.0, -1e-3), 0.0);
+        m.ground(at(1e-4, 1e-3), 0.0);
+        assert!((m.divot_length_m - 40.0 * 0.5e-4).abs() < 1e-15, "{}", m.divot_length_m);
+        assert_eq!(positive_fraction(-1.0, -2.0), 0.0);
+        assert_eq!(positive_fraction(1.0, 3.0), 1.0);
+        assert!((positive_fraction(3.0, -1.0) - 0.75).abs() < 1e-15);
+    }
+}
