@@ -31,6 +31,8 @@ pub type SVector<const N: usize> = nalgebra::SVector<Real, N>;
 /// Matrices and vectors sized at run time (a shaft's mesh, a least-squares fit).
 pub type DMatrix = nalgebra::DMatrix<Real>;
 pub type DVector = nalgebra::DVector<Real>;
+/// A complex number (a mode's exact propagator, `e^{λh}`).
+pub type Complex = nalgebra::Complex<Real>;
 /// A unit-length wrapper (a face normal) and the eigen-decomposition of a symmetric matrix.
 pub use nalgebra::{SymmetricEigen, Unit};
 
@@ -101,6 +103,21 @@ pub fn sin_cos_small(x: Real) -> (Real, Real) {
     (x * s, c)
 }
 
+/// `Rotation3::new(v)` (the rotation by |v| about v) for the small rotations of an elastic shaft: below 0.1 rad
+/// Rodrigues' coefficients `sin θ/θ` and `(1 − cos θ)/θ²` by their series (to rounding; no `sin_cos`).
+#[inline]
+pub fn small_rotation(v: &Vector3) -> Rotation3 {
+    let t2 = v.norm_squared();
+    if t2 >= 0.01 {
+        return Rotation3::new(*v);
+    }
+    // sin θ/θ = Σ (−θ²)ᵏ/(2k + 1)!, (1 − cos θ)/θ² = Σ (−θ²)ᵏ/(2k + 2)!; θ² < 0.01 leaves < 1e-17 after 5 terms.
+    let a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0)));
+    let b = 0.5 * (1.0 - t2 / 12.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0 * (1.0 - t2 / 90.0))));
+    let k = skew(v);
+    Rotation3::from_matrix_unchecked(Matrix3::identity() + k * a + k * k * b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,6 +137,15 @@ mod tests {
             let (s, c) = sin_cos_small(x);
             assert!((s - x.sin()).abs() <= 4e-16 * x.sin().abs().max(1e-300) + 1e-300, "{x}: sin {s} vs {}", x.sin());
             assert!((c - x.cos()).abs() <= 4e-16, "{x}: cos {c} vs {}", x.cos());
+        }
+    }
+
+    /// The series rotation is nalgebra's to 1e-15, small and at the switch to the direct form.
+    #[test]
+    fn small_rotation_is_the_exponential_map() {
+        for v in [Vector3::new(1e-9, -2e-9, 0.0), Vector3::new(0.01, -0.03, 0.02), Vector3::new(0.0, 0.0999, 0.0)] {
+            let d = (small_rotation(&v).matrix() - Rotation3::new(v).matrix()).norm();
+            assert!(d < 1e-15, "{v:?}: {d}");
         }
     }
 }

@@ -8,13 +8,19 @@
 //! attitude. With that, the club's linear momentum is the rigid club's plus the modes', and it changes exactly
 //! by the impulses of the ball, the ground and the grip (the clamp's reaction plus the force the rigid swing
 //! needs).
+//!
+//! Stepping: the shaft's modes by exponential time differencing ([`ModalStepper`]: each mode's free motion
+//! exact, so the step is not bounded by the stiffest mode), the ball and the impulses by classical Runge-Kutta
+//! on the same four stages. The grip's impulse is the rigid swing's force by Runge-Kutta's quadrature plus the
+//! clamp's reaction `K_cf ∫η + M_cf Δη̇` with each mode's `∫η` from its own equation.
 
 use crate::impact::continuous::ball::TwoLayerBall;
 use crate::impact::continuous::club::Head as BodyMotion;
 use crate::impact::continuous::ground::{GroundForces, SoilGround};
 use crate::impact::continuous::law::volumetric::Volumetric;
 use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
-use crate::impact::continuous::shaft::grip::ConstantTwist;
+use crate::impact::continuous::shaft::exponential::ModalStepper;
+use crate::impact::continuous::shaft::grip::{ConstantTwist, PreparedTwist};
 use crate::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::continuous::{ContactForces, TwoLayerParams};
@@ -40,14 +46,16 @@ pub struct State {
 /// Time derivatives.
 #[derive(Debug, Clone, Copy)]
 pub struct Rates {
-    pub eta_ddot: ModalVec,
+    /// The modal loads `Φ_tipᵀ f_tip` ([`ModalClub::load`]).
+    pub modal_load: ModalVec,
     pub a_b: Vector3,
     pub alpha_core: Vector3,
     pub alpha_cover: Vector3,
-    /// Forces on the club (world).
+    /// Forces on the club (world); at the grip, the force the rigid swing needs (the clamp's elastic reaction is
+    /// integrated per step).
     pub f_ball: Vector3,
     pub f_ground: Vector3,
-    pub f_grip: Vector3,
+    pub f_grip_rigid: Vector3,
 }
 
 /// One evaluation: the rates and what acted.
@@ -67,6 +75,8 @@ pub struct System<'a> {
     pub modal: &'a ModalClub,
     pub ground: &'a SoilGround,
     pub motion: ConstantTwist,
+    /// `motion` prepared for its evaluations ([`ConstantTwist::prepared`]).
+    pub twist: PreparedTwist,
     /// The club frame at the start (world from club), in which the elastic motion is computed.
     pub elastic_frame: Rotation3,
     pub head_mass_kg: Real,
@@ -82,8 +92,8 @@ impl System<'_> {
     }
 
     /// The head's pose and velocity, and the rigid club's.
-    fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
-        let (rotation, position_m, velocity_mps) = self.motion.at(s.t_s);
+    pub fn head_and_rigid(&self, s: &State) -> (BodyMotion, BodyMotion) {
+        let (rotation, position_m, velocity_mps) = self.twist.at(s.t_s);
         let rigid = BodyMotion {
             position_m,
             world_from_club: rotation,
@@ -94,7 +104,7 @@ impl System<'_> {
         let f = &self.elastic_frame;
         let head = BodyMotion {
             position_m: rigid.position_m + f * o.cg_m,
-            world_from_club: Rotation3::new(f * o.rotation_rad) * rigid.world_from_club,
+            world_from_club: crate::math::small_rotation(&(f * o.rotation_rad)) * rigid.world_from_club,
             velocity_mps: rigid.velocity_mps + f * o.cg_velocity_mps,
             angular_velocity_radps: rigid.angular_velocity_radps + f * o.angular_velocity_radps,
         };
@@ -126,7 +136,11 @@ impl System<'_> {
 
     /// The rates; `ground` given holds the ground's forces (sub-cycled during the ball's contact).
     pub fn eval(&self, s: &State, ground: Option<&GroundForces>) -> Eval {
-        let (head, rigid) = self.head_and_rigid(s);
+        self.eval_at(s, self.head_and_rigid(s), ground)
+    }
+
+    /// [`Self::eval`] with the head's and the rigid club's motion given ([`Self::head_and_rigid`] of `s`).
+    fn eval_at(&self, s: &State, (head, rigid): (BodyMotion, BodyMotion), ground: Option<&GroundForces>) -> Eval {
         let ball_motion = BodyMotion {
             position_m: s.p_b_m,
             world_from_club: Rotation3::identity(),
@@ -140,20 +154,18 @@ impl System<'_> {
         let force = ground.force_n() - f_on_ball;
         let torque = ground.torque_nm() + lever.cross(&(-f_on_ball));
         let fi = self.elastic_frame.inverse();
-        let eta_ddot = self.modal.acceleration(&s.shaft, &(fi * force), &(fi * torque));
-        let f_grip =
-            self.elastic_frame * self.modal.grip_force(&s.shaft, &eta_ddot) + self.rigid_momentum_and_force(&rigid).1;
+        let modal_load = self.modal.load(&(fi * force), &(fi * torque));
         let w_rel = s.w_cover_radps - s.w_core_radps;
         let spring = self.ball.k_ball_nm_per_rad * s.theta_rad + self.ball.c_ball_nms_per_rad * w_rel;
         Eval {
             rates: Rates {
-                eta_ddot,
+                modal_load,
                 a_b: f_on_ball / self.ball.mass_kg,
                 alpha_core: spring / self.ball.core_inertia_kg_m2,
                 alpha_cover: (r_b.cross(&f_on_ball) - spring) / self.ball.cover_inertia_kg_m2,
                 f_ball: -f_on_ball,
                 f_ground: ground.force_n(),
-                f_grip,
+                f_grip_rigid: self.rigid_momentum_and_force(&rigid).1,
             },
             ball: contact.map(|c| c.0),
             ground,
@@ -161,30 +173,44 @@ impl System<'_> {
         }
     }
 
-    /// One classical Runge-Kutta step of `h`; with `hold_ground` the ground's forces are evaluated once, at the
-    /// step's start, and held over it.
-    pub fn step(&self, s: &State, h: Real, hold_ground: bool) -> (State, Eval) {
-        self.step_held(s, h, hold_ground, None)
+    /// One step of `stepper.h_s` (Runge-Kutta's stages, the modes by exponential time differencing); with
+    /// `hold_ground` the ground's forces are evaluated once, at the step's start, and held over it.
+    pub fn step(&self, s: &State, stepper: &ModalStepper, hold_ground: bool) -> (State, Eval) {
+        self.step_held(s, self.head_and_rigid(s), stepper, hold_ground, None)
     }
 
-    /// [`Self::step`] with the ground's forces `ground` given (held from an earlier step) or, when `None`,
-    /// evaluated at the step's start.
-    pub fn step_held(&self, s: &State, h: Real, hold_ground: bool, ground: Option<&GroundForces>) -> (State, Eval) {
-        let e1 = self.eval(s, ground);
+    /// [`Self::step`] from the head's and rigid club's motion at `s` ([`Self::head_and_rigid`]) with the
+    /// ground's forces `ground` given (held from an earlier step) or, when `None`, evaluated at the step's start.
+    pub fn step_held(
+        &self,
+        s: &State,
+        head_and_rigid: (BodyMotion, BodyMotion),
+        stepper: &ModalStepper,
+        hold_ground: bool,
+        ground: Option<&GroundForces>,
+    ) -> (State, Eval) {
+        let h = stepper.h_s;
+        let e1 = self.eval_at(s, head_and_rigid, ground);
         let held = hold_ground.then_some(e1.ground);
-        let s2 = advance(s, s, &e1.rates, 0.5 * h);
+        // Stages a and b share the modes' free motion over the half step.
+        let free_half = stepper.free_half(&s.shaft);
+        let s2 = advance(s, s, &e1.rates, 0.5 * h, stepper.add_half_load(&free_half, &e1.rates.modal_load));
         let e2 = self.eval(&s2, held.as_ref());
-        let s3 = advance(s, &s2, &e2.rates, 0.5 * h);
+        let s3 = advance(s, &s2, &e2.rates, 0.5 * h, stepper.add_half_load(&free_half, &e2.rates.modal_load));
         let e3 = self.eval(&s3, held.as_ref());
-        let s4 = advance(s, &s3, &e3.rates, h);
+        let s4 = advance(s, &s3, &e3.rates, h, stepper.third(&s2.shaft, &e1.rates.modal_load, &e3.rates.modal_load));
         let e4 = self.eval(&s4, held.as_ref());
         let (r1, r2, r3, r4) = (&e1.rates, &e2.rates, &e3.rates, &e4.rates);
         let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
         let mut next = *s;
         next.t_s = s.t_s + h;
-        next.shaft.eta +=
-            (s.shaft.eta_dot + 2.0 * s2.shaft.eta_dot + 2.0 * s3.shaft.eta_dot + s4.shaft.eta_dot) * (h / 6.0);
-        next.shaft.eta_dot += (r1.eta_ddot + 2.0 * r2.eta_ddot + 2.0 * r3.eta_ddot + r4.eta_ddot) * (h / 6.0);
+        let loads = [&r1.modal_load, &r2.modal_load, &r3.modal_load, &r4.modal_load];
+        next.shaft = stepper.finish(&s.shaft, loads);
+        let eta_integral = stepper.eta_integral(&s.shaft, &next.shaft, loads);
+        let clamp = self.modal.grip_force(
+            &ModalState { eta: eta_integral, eta_dot: ModalVec::zeros() },
+            &(next.shaft.eta_dot - s.shaft.eta_dot),
+        );
         next.p_b_m += c(s.v_b_mps, s2.v_b_mps, s3.v_b_mps, s4.v_b_mps);
         next.v_b_mps += c(r1.a_b, r2.a_b, r3.a_b, r4.a_b);
         next.w_core_radps += c(r1.alpha_core, r2.alpha_core, r3.alpha_core, r4.alpha_core);
@@ -197,7 +223,8 @@ impl System<'_> {
         );
         next.j_ball_ns += c(r1.f_ball, r2.f_ball, r3.f_ball, r4.f_ball);
         next.j_ground_ns += c(r1.f_ground, r2.f_ground, r3.f_ground, r4.f_ground);
-        next.j_grip_ns += c(r1.f_grip, r2.f_grip, r3.f_grip, r4.f_grip);
+        next.j_grip_ns +=
+            c(r1.f_grip_rigid, r2.f_grip_rigid, r3.f_grip_rigid, r4.f_grip_rigid) + self.elastic_frame * clamp;
         (next, e1)
     }
 }
@@ -242,16 +269,18 @@ fn two_layer_contact(
     ))
 }
 
-/// `base` advanced by `h` along the rates `r` evaluated at `at`.
-fn advance(base: &State, at: &State, r: &Rates, h: Real) -> State {
-    let mut s = *base;
-    s.t_s = base.t_s + h;
-    s.shaft.eta = base.shaft.eta + at.shaft.eta_dot * h;
-    s.shaft.eta_dot = base.shaft.eta_dot + r.eta_ddot * h;
-    s.p_b_m = base.p_b_m + at.v_b_mps * h;
-    s.v_b_mps = base.v_b_mps + r.a_b * h;
-    s.w_core_radps = base.w_core_radps + r.alpha_core * h;
-    s.w_cover_radps = base.w_cover_radps + r.alpha_cover * h;
-    s.theta_rad = base.theta_rad + (at.w_cover_radps - at.w_core_radps) * h;
-    s
+/// `base` advanced by `h` along the rates `r` evaluated at `at`, with the shaft's modes `shaft`.
+fn advance(base: &State, at: &State, r: &Rates, h: Real, shaft: ModalState) -> State {
+    State {
+        t_s: base.t_s + h,
+        shaft,
+        p_b_m: base.p_b_m + at.v_b_mps * h,
+        v_b_mps: base.v_b_mps + r.a_b * h,
+        w_core_radps: base.w_core_radps + r.alpha_core * h,
+        w_cover_radps: base.w_cover_radps + r.alpha_cover * h,
+        theta_rad: base.theta_rad + (at.w_cover_radps - at.w_core_radps) * h,
+        j_ball_ns: base.j_ball_ns,
+        j_ground_ns: base.j_ground_ns,
+        j_grip_ns: base.j_grip_ns,
+    }
 }

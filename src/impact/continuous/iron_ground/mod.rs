@@ -3,21 +3,25 @@
 //! motion, with the ground's reaction on the sole (eq. 4.3-4.9) and face (eq. 4.10-4.13) for a ball resting on
 //! the turf (section 4.3).
 //!
-//! A run starts just before the sole first touches the ground on the undisturbed swing (or at the ball's first
-//! contact when the ball comes first), integrates with classical Runge-Kutta at `ground_step_s` while only the
-//! ground acts and at `ball_step_s` from the ball's contact until it leaves (the ground's forces are then
-//! evaluated once every quarter of `ground_step_s` and held: they change over milliseconds, the ball's over
-//! microseconds); the steps before the ball's contact shrink geometrically from the one to the other, each
-//! covering at most half the time the face needs to reach the ball, and
-//! follows the ground contact after the ball leaves to measure the divot. Without ground (`with_ground = false`)
+//! A run starts when the sole first touches the ground on the undisturbed swing (an event: nothing acts on the
+//! club before it; at the ball's first contact when the ball comes first, a later touch ending a step), steps
+//! at `ground_step_s` while only the ground acts and at `ball_step_s` from the ball's contact until it leaves
+//! (the ground's forces are then evaluated once every `ground_hold_s` and held: they change over milliseconds,
+//! the ball's over microseconds); the steps before the ball's contact shrink from the one to the other by
+//! halves, each covering at most half the time the face needs to reach the ball, and it follows the ground
+//! contact after the ball leaves to measure the divot. The steps are classical Runge-Kutta's with the shaft's
+//! modes by exponential time differencing (`dynamics`), so the ground's step follows the ground's forces, not the
+//! stiffest shaft mode. Without ground (`with_ground = false`)
 //! it is the same flexible club on a teed-up ball, the seed's reference in Figures 4.11-4.17.
 
 pub mod dynamics;
+mod measures;
 pub mod placement;
 mod reference_swing;
 mod report;
 mod run;
 pub mod sections;
+mod steps;
 
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
@@ -49,6 +53,8 @@ pub struct GroundModel {
     /// Steps during the ball's contact and while only the ground acts (s).
     pub ball_step_s: Real,
     pub ground_step_s: Real,
+    /// During the ball's contact the ground's forces are evaluated once every `ground_hold_s` and held (s).
+    pub ground_hold_s: Real,
     /// How long to follow the ground contact after the ball leaves (s).
     pub follow_s: Real,
     /// `false`: the same club on a teed ball, no ground (`[soil] preset = "none"`, `--soil none`).
@@ -62,8 +68,10 @@ pub struct GroundModel {
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
     /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
-    /// ball speed < 1e-5 and spin < 6e-4, tests/ground.rs) and 15 us outside (the highest shaft mode,
-    /// 1.5e5 rad/s, needs < 18 us).
+    /// ball speed < 2e-5 and spin < 6e-4, tests/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
+    /// in speed and 7e-6 in spin, divot length within 0.35 %, contact time and peak force within 0.15 %; classical
+    /// Runge-Kutta on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 15 us in
+    /// the ball's contact (against 3.75 us: spin within 2.5e-5).
     pub fn new(soil: SoilSpec) -> Self {
         GroundModel {
             soil,
@@ -73,7 +81,8 @@ impl GroundModel {
             max_mode_hz: Real::INFINITY,
             params: None,
             ball_step_s: 2e-6,
-            ground_step_s: 15e-6,
+            ground_step_s: 120e-6,
+            ground_hold_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
             force_mask: Vector3::repeat(1.0),
@@ -89,7 +98,8 @@ impl GroundModel {
             FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
         let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
         let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&model.shaft);
-        Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m })
+        let steps = steps::StepLadder::new(&modal, model.ball_step_s, model.ground_step_s);
+        Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m, steps })
     }
 }
 
@@ -116,6 +126,8 @@ pub struct PreparedGround {
     pub modal: ModalClub,
     /// The undeformed shaft's CG in the club frame (m).
     pub shaft_cg_m: Vector3,
+    /// The run's step sizes and their modal steppers.
+    steps: steps::StepLadder,
 }
 
 /// One sample of a trace: the ground's forces on the head and its face angle and loft.
@@ -186,7 +198,7 @@ impl ImpactModel for PreparedGround {
 
 impl PreparedGround {
     /// Runs one shot, following the ground contact after the ball leaves for up to `follow_s`, recording a
-    /// trace every `trace_every` steps (0: none). [`ImpactModel::predict`] stops when the ball leaves.
+    /// trace point every `trace_every` ball steps of time, at every step where the steps are longer (0: none). [`ImpactModel::predict`] stops when the ball leaves.
     pub fn simulate(&self, state: &ImpactState, trace_every: usize) -> Result<GroundResult, ImpactError> {
         run::simulate(self, state, trace_every, self.model.follow_s)
     }

@@ -48,11 +48,18 @@ pub fn first_ground_contact_s(ground: &SoilGround, motion: &ConstantTwist, t_fro
     if sinkage(t_from) > 0.0 {
         return Some(t_from);
     }
-    let dt = 100e-6; // the sole descends ~0.2 mm in this time: no contact is missed between samples
+    let dt: Real = 100e-6; // the sole descends ~0.2 mm in this time: no contact is missed between samples
+                           // No sole point (all within 0.5 m of the CG) moves faster than this, so a sole `d` above the ground cannot
+                           // touch it within d / speed: the scan skips that far when it is longer than its sample.
+    let speed_bound_mps = motion.cg_velocity_mps.norm() + 0.5 * motion.angular_velocity_radps.norm();
     let mut t = t_from;
+    let mut above_m = -sinkage(t_from);
     while t < t_to {
-        let next = (t + dt).min(t_to);
-        if sinkage(next) > 0.0 {
+        let skip = if speed_bound_mps > 0.0 { above_m / speed_bound_mps } else { Real::INFINITY };
+        let next = (t + dt.max(0.999 * skip)).min(t_to);
+        let depth = sinkage(next);
+        above_m = -depth;
+        if depth > 0.0 {
             let (mut lo, mut hi) = (t, next);
             while hi - lo > 1e-9 {
                 let mid = 0.5 * (lo + hi);

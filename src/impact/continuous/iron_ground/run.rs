@@ -1,11 +1,13 @@
 //! One shot of the iron-plus-ground model: placement, stepping and the measures of the strike.
 
 use super::dynamics::{State, System};
+use super::measures::{GroundSample, Measures};
 use super::placement::{classify, first_ground_contact_s, Strike};
 use super::{GroundResult, GroundTracePoint, PreparedGround};
 use crate::impact::continuous::ball::TwoLayerBall;
 use crate::impact::continuous::club::Head as BodyMotion;
 use crate::impact::continuous::ground::{GroundForces, GroundPhase};
+use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::shaft::modal::ModalState;
 use crate::impact::continuous::surface::FaceSurface;
@@ -55,9 +57,10 @@ pub(super) fn simulate(
     if !model.with_ground {
         ground.ground_y_m = Real::NEG_INFINITY;
     }
-    let ground_step_s = model.ground_step_s;
+    // The sole's first touch is an event: a fat strike starts there (nothing acts on the club before it), and a
+    // later touch ends a step at it (below).
     let t0 = match first_ground {
-        Some(t) if t < 0.0 => t - 2.0 * ground_step_s,
+        Some(t) if t < 0.0 => t,
         _ => 0.0,
     };
     let sys = System {
@@ -72,6 +75,7 @@ pub(super) fn simulate(
         modal: &p.modal,
         ground: &ground,
         motion,
+        twist: motion.prepared(),
         elastic_frame: motion.world_from_club(t0).rotation.to_rotation_matrix(),
         head_mass_kg: club.mass_kg,
         shaft_mass_kg: model.shaft.mass_kg,
@@ -96,43 +100,63 @@ pub(super) fn simulate(
     let mut trace = Vec::new();
     let mut launch: Option<Launch> = None;
     let mut steps = 0usize;
+    let mut next_trace_s = Real::NEG_INFINITY;
     let max_steps = 2_000_000;
     // The ground's forces held during the ball's contact, and when they were evaluated.
     let mut held: Option<(GroundForces, Real)> = None;
+    let steppers = &p.steps;
     loop {
-        let head = sys.head(&s);
+        let head_and_rigid = sys.head_and_rigid(&s);
+        let head = &head_and_rigid.0;
         let ball_club = head.world_from_club.inverse_transform_vector(&(s.p_b_m - head.position_m));
         let gap = face_normal.dot(&(ball_club - face_point)) - r_ball;
         // The ball's contact is an event: approaching it, each step covers at most half the time the face
         // needs to reach the ball at its first approach speed, so the steps shrink geometrically from the
         // ground's to the ball's and the contact starts within one ball step (the head only slows in the turf).
-        let h = if launch.is_some() {
-            ground_step_s
+        let stepper = if launch.is_some() {
+            steppers.ground()
         } else if out.ball_touched {
-            model.ball_step_s
+            steppers.ball()
         } else {
-            (0.5 * gap / approach0).clamp(model.ball_step_s, ground_step_s.max(model.ball_step_s))
+            steppers.at_most(0.5 * gap / approach0)
         };
+        // Events inside a long step end it there: the sole's first touch on the undisturbed swing, the end of
+        // the follow-through.
+        let touch = first_ground.filter(|_| out.first_ground_s.is_none() && stepper.h_s > model.ball_step_s);
+        let follow_end = launch.is_some().then_some(out.t_separation_s + follow_s);
+        let event = [touch, follow_end]
+            .into_iter()
+            .flatten()
+            .filter(|t| *t > s.t_s + 1e-9 && *t < s.t_s + stepper.h_s - 1e-9)
+            .reduce(Real::min);
+        let one_off;
+        let stepper = match event {
+            Some(t) => {
+                one_off = ModalStepper::new(&p.modal, t - s.t_s);
+                &one_off
+            }
+            None => stepper,
+        };
+        let h = stepper.h_s;
         let near_ball = launch.is_none() && h <= model.ball_step_s;
-        // During the ball's contact the ground's forces are held over a quarter of the ground's step (they change
-        // over milliseconds, the ball's over microseconds).
+        // During the ball's contact the ground's forces are held over `ground_hold_s` (they change over
+        // milliseconds, the ball's over microseconds).
         let hold = near_ball && model.with_ground;
-        let reuse = held.filter(|(_, t)| hold && s.t_s - t < 0.25 * ground_step_s - 0.5 * h).map(|(g, _)| g);
-        let (next, e) = sys.step_held(&s, h, hold, reuse.as_ref());
+        let reuse = held.filter(|(_, t)| hold && s.t_s - t < model.ground_hold_s - 0.5 * h).map(|(g, _)| g);
+        let (next, e) = sys.step_held(&s, head_and_rigid, stepper, hold, reuse.as_ref());
         if reuse.is_none() {
             held = hold.then_some((e.ground, s.t_s));
         }
-        // Measures at the step's start.
+        // Measures at the step's start (the ground's over the interval since the last step's start).
         let f_ground = e.ground.force_n();
-        if e.ground.phase != GroundPhase::Clear {
-            out.ground_time_s += h;
-            out.first_ground_s.get_or_insert(s.t_s);
-            out.peak_ground_n = out.peak_ground_n.max(f_ground.norm());
-            out.max_sinkage_m = out.max_sinkage_m.max(e.ground.sole.max_sinkage_m);
-            if e.ground.phase == GroundPhase::Divot {
-                out.divot_length_m += Vector3::new(e.head.velocity_mps.x, 0.0, e.head.velocity_mps.z).norm() * h;
-            }
-        }
+        let clear = e.ground.phase == GroundPhase::Clear;
+        let sample = GroundSample {
+            t_s: s.t_s,
+            sinkage_m: e.ground.sole.max_sinkage_m,
+            edge_depth_m: if clear { e.ground.sole.max_sinkage_m } else { e.ground.face.leading_edge_depth_m },
+            horizontal_speed_mps: e.head.velocity_mps.x.hypot(e.head.velocity_mps.z),
+        };
+        out.ground(sample, f_ground.norm());
         if let Some(c) = e.ball {
             if !out.ball_touched {
                 out.ball_touched = true;
@@ -164,7 +188,9 @@ pub(super) fn simulate(
             });
             out.t_separation_s = s.t_s;
         }
-        if trace_every > 0 && steps % trace_every == 0 {
+        // A trace point every `trace_every` ball steps of time (at every step where the steps are longer).
+        if trace_every > 0 && s.t_s >= next_trace_s {
+            next_trace_s = s.t_s + (trace_every as Real - 0.5) * model.ball_step_s;
             let (fa, dl) = face_angles_deg(&e.head, &club.face.n0());
             let horizontal = |v: Vector3| v.x.hypot(v.z);
             let sole = e.ground.sole.pressure_n + e.ground.sole.shear_n;
@@ -186,7 +212,7 @@ pub(super) fn simulate(
             let ground_done = out.first_ground_s.is_some()
                 && e.ground.phase == GroundPhase::Clear
                 && s.t_s > out.first_ground_s.unwrap_or(0.0);
-            if !model.with_ground || ground_done || s.t_s >= out.t_separation_s + follow_s {
+            if !model.with_ground || ground_done || s.t_s >= out.t_separation_s + follow_s - 1e-9 {
                 break;
             }
         } else if (!out.ball_touched && s.t_s > 0.05) || steps >= max_steps {
@@ -219,22 +245,4 @@ pub(super) fn simulate(
         steps,
         trace,
     })
-}
-
-#[derive(Debug, Default)]
-struct Measures {
-    ball_touched: bool,
-    t_ball_s: Real,
-    t_separation_s: Real,
-    first_ground_s: Option<Real>,
-    ground_time_s: Real,
-    ball_time_s: Real,
-    peak_ground_n: Real,
-    peak_ball_n: Real,
-    max_sinkage_m: Real,
-    divot_length_m: Real,
-    speed_loss_mps: Real,
-    face_change_deg: Real,
-    loft_change_deg: Real,
-    ground_impulse_before_ball: Vector3,
 }

@@ -43,6 +43,20 @@ impl ConstantTwist {
         (r, i)
     }
 
+    /// The twist with its time-independent parts computed once, for evaluations at many instants.
+    pub fn prepared(&self) -> PreparedTwist {
+        let w = self.angular_velocity_radps;
+        let k = skew(&w);
+        PreparedTwist {
+            k,
+            k2: k * k,
+            wn: w.norm(),
+            rotation0: *self.world_from_club.rotation.to_rotation_matrix().matrix(),
+            position0_m: self.world_from_club.translation.vector,
+            velocity0_mps: self.cg_velocity_mps,
+        }
+    }
+
     /// The rigid club's attitude (world from club), CG position and CG velocity at `t_s`, in one evaluation.
     pub fn at(&self, t_s: Real) -> (crate::math::Rotation3, Vector3, Vector3) {
         let (r, i) = self.rotation_and_integral(t_s);
@@ -77,6 +91,37 @@ impl ConstantTwist {
     }
 }
 
+/// [`ConstantTwist::at`] with `[ω]`, `[ω]²`, `|ω|` and the initial pose computed once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PreparedTwist {
+    k: Matrix3,
+    k2: Matrix3,
+    wn: Real,
+    rotation0: Matrix3,
+    position0_m: Vector3,
+    velocity0_mps: Vector3,
+}
+
+impl PreparedTwist {
+    /// The rigid club's attitude (world from club), CG position and CG velocity at `t_s`.
+    pub fn at(&self, t_s: Real) -> (crate::math::Rotation3, Vector3, Vector3) {
+        let (k, k2, wn) = (&self.k, &self.k2, self.wn);
+        let (r, i) = if wn * t_s.abs() < 1e-6 {
+            let r = Matrix3::identity() + k * t_s + k2 * (0.5 * t_s * t_s);
+            let i = Matrix3::identity() * t_s + k * (0.5 * t_s * t_s) + k2 * (t_s.powi(3) / 6.0);
+            (r, i)
+        } else {
+            let th = wn * t_s;
+            let (sin, cos) = crate::math::sin_cos_small(th);
+            let r = Matrix3::identity() + k * (sin / wn) + k2 * ((1.0 - cos) / (wn * wn));
+            let i = Matrix3::identity() * t_s + k * ((1.0 - cos) / (wn * wn)) + k2 * ((th - sin) / wn.powi(3));
+            (r, i)
+        };
+        let rot = crate::math::Rotation3::from_matrix_unchecked(r * self.rotation0);
+        (rot, self.position0_m + i * self.velocity0_mps, r * self.velocity0_mps)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,6 +153,9 @@ mod tests {
             let dv = (m.cg_velocity_mps(t + h) - m.cg_velocity_mps(t - h)) / (2.0 * h);
             assert!((dv - m.cg_acceleration_mps2(t)).norm() < 1e-4);
             let (rot, p, v) = m.at(t);
+            let (rot2, p2, v2) = m.prepared().at(t);
+            assert!((rot.matrix() - rot2.matrix()).norm() < 1e-15 && (p - p2).norm() < 1e-15);
+            assert!((v - v2).norm() < 1e-12);
             assert!((rot.matrix() - m.world_from_club(t).rotation.to_rotation_matrix().matrix()).norm() < 1e-12);
             assert!((p - m.world_from_club(t).translation.vector).norm() < 1e-15);
             assert!((v - m.cg_velocity_mps(t)).norm() < 1e-12);

@@ -15,6 +15,7 @@
 //! the delivered head pose and only the contact forces bend the shaft further; no structural damping.
 
 pub mod beam;
+pub mod exponential;
 pub mod grip;
 pub mod modal;
 

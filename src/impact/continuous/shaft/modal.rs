@@ -66,8 +66,12 @@ fn translation_sum(dofs: usize) -> DMatrix {
 }
 
 impl ModalClub {
-    /// Keeps the modes of `club` below `max_frequency_hz` (at most [`MAX_MODES`]).
+    /// Keeps the modes of `club` below `max_frequency_hz` (at most [`MAX_MODES`]); `damping_ratio` in [0, 1)
+    /// (underdamped modes).
     pub fn new(club: &FlexibleClub, max_frequency_hz: Real, damping_ratio: Real) -> Result<Self, ShaftError> {
+        if !(0.0..1.0).contains(&damping_ratio) {
+            return Err(ShaftError::Mesh(format!("modal damping ratio {damping_ratio} is not in [0, 1)")));
+        }
         let (omega_all, phi) = club.modes()?;
         let n_modes =
             omega_all.iter().take_while(|w| **w / std::f64::consts::TAU <= max_frequency_hz).count().min(MAX_MODES);
@@ -110,32 +114,46 @@ impl ModalClub {
     /// (both club frame).
     #[inline]
     pub fn acceleration(&self, s: &ModalState, force_club_n: &Vector3, torque_club_nm: &Vector3) -> ModalVec {
+        let mut a = self.load(force_club_n, torque_club_nm);
+        for i in 0..self.n_modes {
+            let w = self.omega[i];
+            a[i] = a[i] - w * w * s.eta[i] - 2.0 * self.damping_ratio * w * s.eta_dot[i];
+        }
+        a
+    }
+
+    /// The modal loads `g = Φ_tipᵀ f_tip` of a force `force_club_n` at the head's CG and a torque
+    /// `torque_club_nm` about it (both club frame): the accelerations of a club at rest.
+    #[inline]
+    pub fn load(&self, force_club_n: &Vector3, torque_club_nm: &Vector3) -> ModalVec {
         let f = self.club_from_shaft.inverse_transform_vector(force_club_n);
         let m = self.club_from_shaft.inverse_transform_vector(torque_club_nm) + self.cg_from_tip_shaft_m.cross(&f);
         let load = [f.x, f.y, f.z, m.x, m.y, m.z];
-        let mut a = ModalVec::zeros();
+        let mut g = ModalVec::zeros();
         for i in 0..self.n_modes {
             let col = self.tip_modes.column(i);
-            let mut g = 0.0;
+            let mut gi = 0.0;
             for k in 0..6 {
-                g += col[k] * load[k];
+                gi += col[k] * load[k];
             }
-            let w = self.omega[i];
-            a[i] = g - w * w * s.eta[i] - 2.0 * self.damping_ratio * w * s.eta_dot[i];
+            g[i] = gi;
         }
-        a
+        g
     }
 
     /// The head's offset from the rigid club, club frame.
     #[inline]
     pub fn head_offset(&self, s: &ModalState) -> HeadOffset {
+        // Column by column (each mode's six tip DOFs as a fixed-size array, so the six sums vectorise).
         let (mut q, mut qd) = ([0.0; 6], [0.0; 6]);
-        for i in 0..self.n_modes {
-            let col = self.tip_modes.column(i);
-            let (e, ed) = (s.eta[i], s.eta_dot[i]);
-            for k in 0..6 {
-                q[k] += col[k] * e;
-                qd[k] += col[k] * ed;
+        let n = self.n_modes;
+        let cols = self.tip_modes.as_slice().chunks_exact(6);
+        for ((col, e), ed) in cols.zip(&s.eta.as_slice()[..n]).zip(&s.eta_dot.as_slice()[..n]) {
+            if let Ok(col) = <&[Real; 6]>::try_from(col) {
+                for k in 0..6 {
+                    q[k] += col[k] * e;
+                    qd[k] += col[k] * ed;
+                }
             }
         }
         let r = &self.cg_from_tip_shaft_m;
