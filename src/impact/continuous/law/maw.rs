@@ -273,6 +273,7 @@ impl TangentialLaw for MawRings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::impact::continuous::law::hertz::ContactArm;
 
     fn kin(x_m: Real, normal_force_n: Real, slip: Real) -> ContactKinematics {
         ContactKinematics {
@@ -290,7 +291,8 @@ mod tests {
     /// every ring at `μ F_N`.
     #[test]
     fn mindlin_stiffness_and_gross_slip() {
-        let p = MawParams { e_pa: 157e6, nu: 0.4, d_s_per_m: 0.0, mu: 0.5, rings: 400 };
+        let p =
+            MawParams { e_pa: 157e6, nu: 0.4, d_s_per_m: 0.0, mu: 0.5, rings: 400, contact_arm: ContactArm::Radius };
         let h = p.hertz();
         let r = 0.0213;
         let k = h.stiffness(r);
@@ -312,7 +314,8 @@ mod tests {
     /// `δ_slip = μ P / (2 G* b) · 3/2`.
     #[test]
     fn mindlin_curve() {
-        let p = MawParams { e_pa: 157e6, nu: 0.4, d_s_per_m: 0.0, mu: 0.5, rings: 400 };
+        let p =
+            MawParams { e_pa: 157e6, nu: 0.4, d_s_per_m: 0.0, mu: 0.5, rings: 400, contact_arm: ContactArm::Radius };
         let h = p.hertz();
         let r = 0.0213;
         let k = h.stiffness(r);
