@@ -23,7 +23,7 @@ OUT="$(mktemp)"
 trap 'rm -f "$OUT"' EXIT
 for stage in "${STAGES[@]}"; do
     n=20
-    [[ "$stage" == impulse/* || "$stage" == pipeline/* || "$stage" == club_data/* ]] && n=2000
+    [[ "$stage" == standard/* || "$stage" == adjusted/* || "$stage" == slip/* || "$stage" == pipeline/* || "$stage" == club_data/* ]] && n=2000
     [[ "$stage" == extrapolate/* || "$stage" == flight/* ]] && n=200
     row="$stage $n"
     for bin in "$BASE" "$NEW"; do
