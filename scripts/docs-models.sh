@@ -11,17 +11,12 @@ clubs = {"driver": (13.0, -1.3), "iron7": (25.0, -4.3)}
 models = ["continuous", "maw", "arakawa", "adjusted"]
 timed = {"continuous", "maw", "arakawa"}
 ns = {}
-for f in ("continuous/", "impulse/adjusted/"):
+for f in ("continuous/", "maw/", "arakawa/", "adjusted/"):
     bench = json.loads(subprocess.run([bin_, "bench", "--json", "--filter", f], check=True, capture_output=True,
                                       text=True).stdout)
     ns.update({s["name"]: s["ns_per_op"] for s in bench["stages"]})
 def per_shot(model, club):
-    for name, v in ns.items():
-        parts = name.split("/")
-        if parts[-1] == club and (model in parts or (model == "continuous" and "two_layer" in parts)
-                                  or (model == "adjusted" and parts[:2] == ["impulse", "adjusted"])):
-            return v
-    return None
+    return ns.get(f"{model}/{club}")
 print("| club | mph | impact (h, v mm) | model | ball mph | launch deg | direction deg | backspin rpm | sidespin rpm | contact us | peak kN | reversal | time per shot |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for club, (loft, attack) in clubs.items():

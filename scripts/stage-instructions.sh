@@ -10,9 +10,9 @@ BASE="$1"
 LABEL="$2"
 cargo build --release --quiet --example stage_loop
 NEW=target/release/examples/stage_loop
-STAGES=(continuous/two_layer/driver continuous/two_layer/iron7 continuous/maw/driver continuous/maw/iron7
-    continuous/arakawa/driver continuous/arakawa/iron7 ground/iron7 ground/firm/iron7_fat
-    impulse/standard/iron7 impulse/adjusted/driver extrapolate/poly/driver extrapolate/arc/iron7 club_data/iron7
+STAGES=(continuous/driver continuous/iron7 maw/driver maw/iron7
+    arakawa/driver arakawa/iron7 ground/iron7 ground/firm/iron7_fat
+    standard/iron7 adjusted/driver extrapolate/poly/driver extrapolate/arc/iron7 club_data/iron7
     flight/trajectory pipeline/sample/iron7)
 
 count() { # BIN STAGE N -> instructions
@@ -23,7 +23,7 @@ OUT="$(mktemp)"
 trap 'rm -f "$OUT"' EXIT
 for stage in "${STAGES[@]}"; do
     n=20
-    [[ "$stage" == impulse/* || "$stage" == pipeline/* || "$stage" == club_data/* ]] && n=2000
+    [[ "$stage" == standard/* || "$stage" == adjusted/* || "$stage" == slip/* || "$stage" == pipeline/* || "$stage" == club_data/* ]] && n=2000
     [[ "$stage" == extrapolate/* || "$stage" == flight/* ]] && n=200
     row="$stage $n"
     for bin in "$BASE" "$NEW"; do

@@ -65,6 +65,7 @@ pub mod jsonl;
 pub mod kinematics;
 pub mod math;
 pub mod mocap;
+pub mod output_file;
 pub mod pipeline;
 pub mod plot;
 pub mod predict;

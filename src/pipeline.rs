@@ -363,7 +363,7 @@ mod tests {
         assert_eq!(out.iter().filter(|e| matches!(e, Event::Impact(_))).count(), 1);
         let launch = out.iter().find_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).unwrap();
         assert_eq!(launch.shot, 1);
-        assert_eq!(launch.model, "impulse/adjusted");
+        assert_eq!(launch.model, "adjusted");
         assert!(
             (launch.delivery.club_speed_mps - swing.delivery.club_speed_mps).abs()
                 < 1e-3 * swing.delivery.club_speed_mps

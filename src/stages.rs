@@ -51,8 +51,8 @@ fn model_stage(name: String, model: Arc<dyn ImpactModel>, club: ClubSpec) -> Opt
     })
 }
 
-/// Every registered model on both presets: `<model name>/<club>` (`impulse/adjusted/driver`,
-/// `continuous/two_layer/iron7`, ...), one prediction per operation.
+/// Every registered model on both presets: `<model name>/<club>` (`adjusted/driver`,
+/// `continuous/iron7`, ...), one prediction per operation.
 pub fn model_stages() -> Vec<Stage> {
     let mut stages = Vec::new();
     for entry in registry::MODELS {

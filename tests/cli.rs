@@ -149,7 +149,7 @@ fn replay_compares_models_and_replays_parts() {
     assert!(other.status.success(), "{}", text(&other.stderr));
     assert!(text(&other.stderr).contains("comparison, not a reproduction"), "{}", text(&other.stderr));
     let first: serde_json::Value = serde_json::from_str(text(&other.stdout).lines().next().unwrap()).unwrap();
-    assert_eq!(first["model"], "impulse/standard");
+    assert_eq!(first["model"], "standard");
 
     let part = impactd(&["replay", file.to_str().unwrap(), "--start-offset", "0", "--duration", "2.5"], "");
     assert!(part.status.success(), "{}", text(&part.stderr));
@@ -178,7 +178,7 @@ fn replay_of_jsonl_takes_club_and_model() {
     let iron = impactd(&["replay", jsonl.to_str().unwrap(), "--club", "iron7", "--model", "standard"], "");
     assert!(iron.status.success(), "{}", text(&iron.stderr));
     let first: serde_json::Value = serde_json::from_str(text(&iron.stdout).lines().next().unwrap()).unwrap();
-    assert_eq!(first["model"], "impulse/standard");
+    assert_eq!(first["model"], "standard");
     assert!(first["club"].as_str().unwrap().contains("iron"), "{first}");
 }
 
@@ -258,7 +258,7 @@ fn trajectory_picture_is_a_report_picture() {
 fn bench_names_the_stages_slower_than_the_baseline() {
     let dir = tempfile::tempdir().unwrap();
     let saved = dir.path().join("saved.json");
-    let name = "impulse/standard/iron7";
+    let name = "standard/iron7";
     // A saved run a thousand times faster than any machine: the stage is named; an absurdly slow one: not.
     for (ns, slower) in [(1e-3, true), (1e9, false)] {
         std::fs::write(&saved, format!(r#"{{"stages": [{{"name": "{name}", "ns_per_op": {ns}}}]}}"#)).unwrap();

@@ -45,7 +45,7 @@ assert bodies == {None, "eight"}, bodies
 assert [(c["source"], c["club"]["file"], c.get("body")) for c in changes] == [
     ("config", "driver", None), ("put", "sw", None), ("body", eight, "eight")], changes
 assert [c["club"]["sha256"] for c in changes] == [sha["driver"], sha["sw"], sha["eight"]], changes
-assert all(c["models"] == ["impulse/adjusted"] for c in changes), changes
+assert all(c["models"] == ["adjusted"] for c in changes), changes
 assert [l["shot"] for l in launches] == list(range(1, 7)), [l["shot"] for l in launches]
 for l in launches:
     want = ["driver", "sw", "eight"][(l["shot"] - 1) // 2]

@@ -69,6 +69,22 @@ fn the_shipped_recordings_are_golfers_shots() {
     }
 }
 
+/// A recording made while models were published under former names (`impulse/adjusted`: the shipped driver
+/// recording as it was, tests/data/driver-former-names.mcap) still reproduces: its names are read as today's
+/// registry names (docs/topics.md), the replay says so, and its output carries today's names.
+#[test]
+fn a_recording_with_former_model_names_reproduces() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/driver-former-names.mcap");
+    let out = impactd(&["replay", file.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("recorded model name impulse/adjusted is now adjusted"), "{err}");
+    assert!(err.contains("3 of 3 recorded predictions reproduced byte for byte"), "{err}");
+    assert_eq!(check_launches("driver-former-names.mcap", &out.stdout), 3);
+    let first: serde_json::Value = serde_json::from_slice(out.stdout.split(|b| *b == b'\n').next().unwrap()).unwrap();
+    assert_eq!(first["model"], "adjusted");
+}
+
 /// `impactd demo` as the README runs it (5 shots, seed 1) and a longer run with another seed, for both presets:
 /// every shot predicted, none flagged, each within the ranges.
 #[test]

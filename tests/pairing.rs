@@ -63,8 +63,8 @@ fn measured(t_ns: u64, ball_speed_mph: f64) -> MeasuredLaunch {
 #[test]
 fn a_measurement_pairs_with_the_latest_shot_in_its_window() {
     let mut p = Pairer::new("bay1", PairWindow::default());
-    assert!(p.on_prediction(&prediction(1, 100 * S, "impulse/adjusted")).is_empty());
-    assert!(p.on_prediction(&prediction(2, 103 * S, "impulse/adjusted")).is_empty());
+    assert!(p.on_prediction(&prediction(1, 100 * S, "adjusted")).is_empty());
+    assert!(p.on_prediction(&prediction(2, 103 * S, "adjusted")).is_empty());
     // 1.5 s after shot 2, 4.5 s after shot 1: shot 2.
     let c = p.on_measured(&measured(104 * S + S / 2, 150.0)).unwrap();
     assert_eq!(c.len(), 1);
@@ -79,7 +79,7 @@ fn a_measurement_pairs_with_the_latest_shot_in_its_window() {
     p.expire(200 * S);
     let s = p.status();
     assert_eq!((s.paired, s.unpaired_predictions, s.unpaired_measured, s.measured), (1, 1, 1, 2));
-    let mae = &s.mae["impulse/adjusted"];
+    let mae = &s.mae["adjusted"];
     assert!((mae.ball_speed_mph - c[0].residual.ball_speed_mph.abs()).abs() < 1e-9);
 }
 
@@ -88,10 +88,10 @@ fn either_side_may_come_first_and_both_models_are_compared() {
     let mut p = Pairer::new("bay1", PairWindow { min_s: 0.05, max_s: 5.0 });
     // The measurement arrives before the prediction (a slow model): it waits.
     assert!(p.on_measured(&measured(10 * S + S / 10, 160.0)).unwrap().is_empty());
-    let first = p.on_prediction(&prediction(7, 10 * S, "impulse/adjusted"));
+    let first = p.on_prediction(&prediction(7, 10 * S, "adjusted"));
     assert_eq!(first.len(), 1);
     // The second model of the same shot is compared with the same measurement.
-    let second = p.on_prediction(&prediction(7, 10 * S, "continuous/two_layer"));
+    let second = p.on_prediction(&prediction(7, 10 * S, "continuous"));
     assert_eq!(second.len(), 1);
     assert_eq!(second[0].measured, first[0].measured);
     let s = p.status();

@@ -159,29 +159,6 @@ pub fn exit_code(tally: impactd::jsonl::Tally) -> ExitCode {
     }
 }
 
-/// Writes `text` to `path`, replacing an existing file only with `overwrite` (`run --record`'s rule).
-pub fn write_new_output(path: &Path, text: &str, overwrite: bool) -> Result<()> {
-    use std::io::Write;
-    let mut open = std::fs::OpenOptions::new();
-    open.write(true);
-    if overwrite {
-        open.create(true).truncate(true);
-    } else {
-        open.create_new(true);
-    }
-    let mut file = open.open(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::AlreadyExists => {
-            anyhow::anyhow!("{} exists; choose a new name or pass --overwrite", path.display())
-        }
-        _ => anyhow::Error::new(e).context(format!("creating {}", path.display())),
-    })?;
-    file.write_all(text.as_bytes())
-        .and_then(|()| file.sync_all())
-        .with_context(|| format!("writing {}", path.display()))?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
-}
-
 /// Writes `text` to `path` (making its directory when it is not there) and says so on stderr.
 pub fn write_output(path: &Path, text: &str) -> Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.exists()) {

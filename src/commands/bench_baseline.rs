@@ -21,10 +21,21 @@ pub fn load(path: &Path) -> Result<Vec<(String, f64)>> {
         .iter()
         .enumerate()
         .map(|(i, s)| match (s["name"].as_str(), s["ns_per_op"].as_f64()) {
-            (Some(name), Some(ns)) if ns.is_finite() && ns > 0.0 => Ok((name.to_string(), ns)),
+            (Some(name), Some(ns)) if ns.is_finite() && ns > 0.0 => Ok((current_stage_name(name), ns)),
             _ => bail!("--baseline {}: stage {i} needs a `name` and a positive `ns_per_op`", path.display()),
         })
         .collect()
+}
+
+/// A saved stage's name as it is named today: a model stage saved under a former model name
+/// (`<former>/<club>`, `impact::registry::FORMER_NAMES`) compares with the same stage under the model's name.
+fn current_stage_name(name: &str) -> String {
+    impactd::impact::registry::FORMER_NAMES
+        .iter()
+        .find_map(|(former, current)| {
+            name.strip_prefix(former)?.strip_prefix('/').map(|club| format!("{current}/{club}"))
+        })
+        .unwrap_or_else(|| name.to_string())
 }
 
 /// One stage against its baseline: `ratio` = now / then (above 1: slower).

@@ -7,12 +7,12 @@
 //! noise estimated from the residuals; identify::objective), which reaches the Cramér-Rao bound where eq. 3.13
 //! scatters more (docs/identify.md).
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::equipment::BallSpec;
 use impactd::identify::club_toml::to_toml;
@@ -165,7 +165,12 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
             "{} parameters fitted by `impactd fit` (objective {}; eq. 3.13 over {} shots: {:.5} -> {:.5}, seed {})",
             report.model, report.objective, report.shots, report.cost_before, report.cost, report.seed
         );
-        super::args::write_new_output(path, &to_toml(&fitted, &comment)?, args.overwrite)?;
+        let text = to_toml(&fitted, &comment)?;
+        let mut file = impactd::output_file::create_output(path, args.overwrite)?;
+        file.write_all(text.as_bytes())
+            .and_then(|()| file.sync_all())
+            .with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

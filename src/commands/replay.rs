@@ -92,6 +92,9 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     for d in &input.damage {
         eprintln!("{}: damaged: {d}", args.file.display());
     }
+    for (former, current) in &input.renamed_models {
+        eprintln!("{}: recorded model name {former} is now {current}; compared as {current}", args.file.display());
+    }
     if !input.skipped_lines.is_empty() {
         for l in input.skipped_lines.iter().take(5) {
             eprintln!("skipped {l}");

@@ -417,14 +417,14 @@ mod tests {
         let rig = |extra: &str| format!("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\n{extra}");
         let (_, r) = DaemonConfig::parse(&rig("model = \"both\"\nsoil = \"soft\"")).unwrap();
         let names: Vec<&str> = r[0].models.iter().map(|m| m.name()).collect();
-        assert_eq!(names, ["impulse/adjusted", "ground"]);
+        assert_eq!(names, ["adjusted", "ground"]);
         let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"firm\"")).unwrap();
         assert_eq!(r[0].models.len(), 1);
         // `none`: the ground model with no ground, the ball on a tee.
         let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"none\"")).unwrap();
         assert_eq!(r[0].models[0].name(), "ground");
         let (_, r) = DaemonConfig::parse(&rig("model = \"both\"")).unwrap();
-        assert_eq!(r[0].models[1].name(), "continuous/two_layer");
+        assert_eq!(r[0].models[1].name(), "continuous");
         let err = |t: &str| DaemonConfig::parse(t).unwrap_err().to_string();
         assert!(err(&rig("model = \"ground\"\nsoil = \"mud\"")).contains("rig[0].soil"));
         assert!(err(&rig("model = \"adjusted\"\nsoil = \"firm\"")).contains("rig[0].soil"));

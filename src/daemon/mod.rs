@@ -33,6 +33,8 @@ pub enum DaemonError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    Output(#[from] crate::output_file::OutputError),
     #[error("--mode must be peer, client or router, got {0}")]
     BadMode(String),
     #[error("zenoh: {0}")]

@@ -132,7 +132,7 @@ pub struct Launch {
 /// method that runs it ([`run`](ImpactModel::run)); what it gives beyond the launch is read by name
 /// ([`report`]), so nothing outside a model knows its type.
 pub trait ImpactModel: Send + Sync + std::fmt::Debug {
-    /// The name it publishes under (`impulse/adjusted`).
+    /// The name it publishes under: its name in the registry (`adjusted`), the one users type.
     fn name(&self) -> &'static str;
     /// Runs the collision from the state at first contact: the launch, the model's report and, when asked, the
     /// contact's course.

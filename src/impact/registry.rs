@@ -181,6 +181,24 @@ pub struct Group {
     pub on_turf: &'static [&'static str],
 }
 
+/// The names models were published under before each was published under its registry name, as
+/// `(former, current)`: recordings and messages made before carry them, and every reader takes them through
+/// [`current_name`] (docs/topics.md).
+pub const FORMER_NAMES: &[(&str, &str)] = &[
+    ("impulse/standard", "standard"),
+    ("impulse/adjusted", "adjusted"),
+    ("impulse/slip", "slip"),
+    ("continuous/two_layer", "continuous"),
+    ("continuous/maw", "maw"),
+    ("continuous/arakawa", "arakawa"),
+];
+
+/// A published model name as it is published today: a former name mapped to its model's registry name, any
+/// other name unchanged.
+pub fn current_name(name: &str) -> &str {
+    FORMER_NAMES.iter().find(|(former, _)| *former == name).map_or(name, |(_, current)| current)
+}
+
 /// Every group.
 pub const GROUPS: &[Group] =
     &[Group { name: "both", members: &["adjusted", "continuous"], on_turf: &["adjusted", "ground"] }];
@@ -307,10 +325,19 @@ mod tests {
             assert_eq!(build(m.name, &club, &BuildOptions::default()).unwrap().len(), 1, "{}", m.name);
         }
         let both = build("both", &club, &BuildOptions::default()).unwrap();
-        assert_eq!(both.iter().map(|m| m.name()).collect::<Vec<_>>(), ["impulse/adjusted", "continuous/two_layer"]);
+        assert_eq!(both.iter().map(|m| m.name()).collect::<Vec<_>>(), ["adjusted", "continuous"]);
         let list = build("slip, standard", &club, &BuildOptions::default()).unwrap();
-        assert_eq!(list.iter().map(|m| m.name()).collect::<Vec<_>>(), ["impulse/slip", "impulse/standard"]);
+        assert_eq!(list.iter().map(|m| m.name()).collect::<Vec<_>>(), ["slip", "standard"]);
         let e = build("nosuch", &club, &BuildOptions::default()).unwrap_err().to_string();
+        // One name per model: each publishes under its registry name, and each former name maps to one.
+        for m in MODELS {
+            assert_eq!(build_one(m.name, &club, &BuildOptions::default()).unwrap().name(), m.name);
+        }
+        for (former, current) in FORMER_NAMES {
+            assert!(entry(current).is_some() && entry(former).is_none(), "{former} -> {current}");
+            assert_eq!(current_name(former), *current);
+        }
+        assert_eq!(current_name("ground"), "ground");
         // Every section a model reads is documented, and every documented section is read.
         for m in MODELS {
             for s in m.sections {

@@ -39,6 +39,7 @@ pub struct ClubChange {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// The rig's models for this club, in publication order.
+    #[serde(deserialize_with = "super::model_name::list")]
     pub models: Vec<String>,
 }
 

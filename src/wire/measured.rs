@@ -132,6 +132,7 @@ pub struct ComparisonMessage {
     pub rig: String,
     /// The prediction's shot number and model.
     pub shot: u64,
+    #[serde(deserialize_with = "super::model_name::one")]
     pub model: String,
     pub t_impact_ns: u64,
     /// The measurement's time and device.
@@ -163,5 +164,6 @@ pub struct ComparisonStatus {
     /// Measurements no prediction matched within the window.
     pub unpaired_measured: u64,
     /// Running mean absolute error per field, per model (over every paired shot since start).
+    #[serde(deserialize_with = "super::model_name::keys")]
     pub mae: std::collections::BTreeMap<String, LaunchFields>,
 }

@@ -173,6 +173,7 @@ pub struct LaunchPrediction {
     /// The club file the model used: preset or path, and its SHA-256 (absent in recordings made before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub club_file: Option<super::ClubRef>,
+    #[serde(deserialize_with = "super::model_name::one")]
     pub model: String,
     pub estimator: String,
     pub delivery: crate::impact::DeliveryMetrics,

@@ -16,6 +16,7 @@ mod labels;
 mod measured;
 mod messages;
 mod mocap;
+mod model_name;
 mod sample;
 mod schema;
 

@@ -12,7 +12,7 @@ fn speed(mph: f64, units: Units) -> (f64, &'static str) {
     }
 }
 
-/// `rig bay1 shot 3 (impulse/adjusted): 158.8 mph, launch 12.5 deg, ... (254 us)`.
+/// `rig bay1 shot 3 (adjusted): 158.8 mph, launch 12.5 deg, ... (254 us)`.
 pub fn launch(rig: &str, l: &LaunchPrediction, units: Units) -> String {
     let m = &l.launch.launch;
     let (v, unit) = speed(m.ball_speed_mph, units);
@@ -27,7 +27,7 @@ pub fn launch(rig: &str, l: &LaunchPrediction, units: Units) -> String {
     )
 }
 
-/// `rig bay1 shot 3 (impulse/adjusted) vs DEVICE: ball speed +1.2 mph, ...` (residuals, predicted - measured).
+/// `rig bay1 shot 3 (adjusted) vs DEVICE: ball speed +1.2 mph, ...` (residuals, predicted - measured).
 pub fn comparison(rig: &str, c: &ComparisonMessage, units: Units) -> String {
     let r = &c.residual;
     let (v, unit) = speed(r.ball_speed_mph, units);

@@ -122,7 +122,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         }
         opened = super::source::Opened::open(input)?;
     }
-    let file = super::writer::create_output(output, overwrite)?;
+    let file = crate::output_file::create_output(output, overwrite)?;
     let mut w = mcap::WriteOptions::new()
         .compression(Some(mcap::Compression::Zstd))
         .profile("")

@@ -52,31 +52,11 @@ pub struct Recorder {
     pub path: PathBuf,
 }
 
-/// Creates an output file: an existing file is replaced only with `overwrite` (every command that writes a
-/// recording follows `run --record`'s rule).
-pub fn create_output(path: &Path, overwrite: bool) -> Result<std::fs::File, DaemonError> {
-    let mut open = std::fs::OpenOptions::new();
-    open.write(true);
-    if overwrite {
-        open.create(true).truncate(true);
-    } else {
-        open.create_new(true);
-    }
-    open.open(path).map_err(|e| DaemonError::Io {
-        what: if e.kind() == std::io::ErrorKind::AlreadyExists {
-            format!("{} exists; choose a new name or pass --overwrite", path.display())
-        } else {
-            format!("creating {}", path.display())
-        },
-        source: e,
-    })
-}
-
 impl Recorder {
     /// Creates the file and starts the writer; `session` becomes the `session` metadata record. An existing
     /// file is replaced only with `overwrite`.
     pub fn create(path: &Path, session: BTreeMap<String, String>, overwrite: bool) -> Result<Recorder, DaemonError> {
-        let file = create_output(path, overwrite)?;
+        let file = crate::output_file::create_output(path, overwrite)?;
         let (tx, rx) = sync_channel::<Record>(QUEUE_CAPACITY);
         let dropped = Arc::new(AtomicU64::new(0));
         let error: Arc<OnceLock<String>> = Arc::new(OnceLock::new());

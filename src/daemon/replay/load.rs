@@ -17,6 +17,9 @@ pub struct ReplayInput {
     pub log_time_ns: Vec<u64>,
     /// The recorded predictions' bytes, in order.
     pub recorded_launches: Vec<Vec<u8>>,
+    /// Former model names the recorded predictions carried, each with the name it is compared under
+    /// (`impact::registry::FORMER_NAMES`): `(former, current)`, each pair once.
+    pub renamed_models: Vec<(String, String)>,
     /// Recorded latency per (rig, shot).
     pub recorded_latency_us: HashMap<(String, u64, String), f64>,
     /// Session labels as recorded (`golf/<rig>/session`): `(i, rig, labels)` label that rig's shots from sample
@@ -155,10 +158,17 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                     .push(format!("a recorded club change at log time {} does not parse: {e}", message.log_time)),
             }
         } else if keys::rig_of_launch(topic).is_some() {
-            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&message.data) {
+            let mut data = message.data;
+            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&data) {
+                if let Some(renamed) = under_current_name(&data, &l.model) {
+                    data = renamed.0;
+                    if !input.renamed_models.contains(&renamed.1) {
+                        input.renamed_models.push(renamed.1);
+                    }
+                }
                 input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
             }
-            input.recorded_launches.push(message.data);
+            input.recorded_launches.push(data);
         }
     })?;
     input.damage = scan.problems();
@@ -166,4 +176,28 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
     input.config_toml =
         scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
     Ok(input)
+}
+
+/// A recorded prediction published under a former name of its model (`model`, as read, is the current name), as
+/// it is published today: the same bytes with the name replaced, and `(former, current)`. `None` when it carries
+/// the current name. The bytes are compared as they were written, so the name is replaced in them, not
+/// re-serialized.
+fn under_current_name(data: &[u8], model: &str) -> Option<(Vec<u8>, (String, String))> {
+    let current = format!("\"model\":\"{model}\"");
+    if contains(data, current.as_bytes()) {
+        return None;
+    }
+    crate::impact::registry::FORMER_NAMES.iter().filter(|(_, c)| *c == model).find_map(|(former, _)| {
+        let field = format!("\"model\":\"{former}\"");
+        let at = data.windows(field.len()).position(|w| w == field.as_bytes())?;
+        let mut out = Vec::with_capacity(data.len());
+        out.extend_from_slice(&data[..at]);
+        out.extend_from_slice(current.as_bytes());
+        out.extend_from_slice(&data[at + field.len()..]);
+        Some((out, (former.to_string(), model.to_string())))
+    })
+}
+
+fn contains(data: &[u8], needle: &[u8]) -> bool {
+    data.windows(needle.len()).any(|w| w == needle)
 }

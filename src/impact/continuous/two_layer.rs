@@ -231,7 +231,7 @@ impl ContinuousModel {
 
 impl ImpactModel for ContinuousModel {
     fn name(&self) -> &'static str {
-        "continuous/two_layer"
+        "continuous"
     }
 
     fn run(&self, state: &ImpactState, equipment: &Equipment, o: &RunOptions) -> Result<ModelRun, ImpactError> {

@@ -242,9 +242,9 @@ impl ImpulseModel {
 impl ImpactModel for ImpulseModel {
     fn name(&self) -> &'static str {
         match self.variant {
-            ImpulseVariant::Standard => "impulse/standard",
-            ImpulseVariant::Adjusted => "impulse/adjusted",
-            ImpulseVariant::Slip => "impulse/slip",
+            ImpulseVariant::Standard => "standard",
+            ImpulseVariant::Adjusted => "adjusted",
+            ImpulseVariant::Slip => "slip",
         }
     }
 

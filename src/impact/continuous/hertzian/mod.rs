@@ -147,8 +147,8 @@ impl HertzModel {
 impl ImpactModel for HertzModel {
     fn name(&self) -> &'static str {
         match self.law {
-            HertzLaw::Maw(_) => "continuous/maw",
-            HertzLaw::Arakawa(_) => "continuous/arakawa",
+            HertzLaw::Maw(_) => "maw",
+            HertzLaw::Arakawa(_) => "arakawa",
         }
     }
 
