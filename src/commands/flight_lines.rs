@@ -50,12 +50,12 @@ fn physical(t: &impactd::flight::Trajectory) -> Result<(), String> {
 pub struct FlightLines<W: Write> {
     out: W,
     flight: Flight,
-    pending: Vec<u8>,
 }
 
 impl<W: Write> FlightLines<W> {
-    pub fn new(out: W, flight: Flight) -> Self {
-        FlightLines { out, flight, pending: Vec::new() }
+    /// A writer whose every JSON line is answered with its flight on `out`.
+    pub fn new(out: W, flight: Flight) -> super::line_writer::LineWriter<Self> {
+        super::line_writer::LineWriter::new(FlightLines { out, flight })
     }
 
     fn line(&mut self, bytes: &[u8]) -> std::io::Result<()> {
@@ -78,21 +78,12 @@ impl<W: Write> FlightLines<W> {
     }
 }
 
-impl<W: Write> Write for FlightLines<W> {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.pending.extend_from_slice(buf);
-        while let Some(end) = self.pending.iter().position(|&b| b == b'\n') {
-            let line: Vec<u8> = self.pending.drain(..=end).collect();
-            self.line(&line[..end])?;
-        }
-        Ok(buf.len())
+impl<W: Write> super::line_writer::LineSink for FlightLines<W> {
+    fn line(&mut self, line: &[u8]) -> std::io::Result<()> {
+        FlightLines::line(self, line)
     }
 
-    fn flush(&mut self) -> std::io::Result<()> {
-        if !self.pending.is_empty() {
-            let line = std::mem::take(&mut self.pending);
-            self.line(&line)?;
-        }
+    fn flush_out(&mut self) -> std::io::Result<()> {
         self.out.flush()
     }
 }

@@ -63,12 +63,12 @@ pub struct TableLines<W: Write> {
     /// The input line answered (a line answered by several models gives a row per model).
     line: u64,
     first_model: Option<String>,
-    pending: Vec<u8>,
 }
 
 impl<W: Write> TableLines<W> {
-    pub fn new(out: W, units: Units) -> Self {
-        TableLines { out, units, flight: None, line: 0, first_model: None, pending: Vec::new() }
+    /// A writer whose every JSON line becomes a row of a table on `out`.
+    pub fn new(out: W, units: Units) -> super::line_writer::LineWriter<Self> {
+        super::line_writer::LineWriter::new(TableLines { out, units, flight: None, line: 0, first_model: None })
     }
 
     fn columns(&self) -> impl Iterator<Item = &'static Column> {
@@ -130,21 +130,12 @@ impl<W: Write> TableLines<W> {
     }
 }
 
-impl<W: Write> Write for TableLines<W> {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.pending.extend_from_slice(buf);
-        while let Some(end) = self.pending.iter().position(|&b| b == b'\n') {
-            let line: Vec<u8> = self.pending.drain(..=end).collect();
-            self.line(&line[..end])?;
-        }
-        Ok(buf.len())
+impl<W: Write> super::line_writer::LineSink for TableLines<W> {
+    fn line(&mut self, line: &[u8]) -> std::io::Result<()> {
+        TableLines::line(self, line)
     }
 
-    fn flush(&mut self) -> std::io::Result<()> {
-        if !self.pending.is_empty() {
-            let line = std::mem::take(&mut self.pending);
-            self.line(&line)?;
-        }
+    fn flush_out(&mut self) -> std::io::Result<()> {
         self.out.flush()
     }
 }
@@ -155,10 +146,12 @@ mod tests {
     use super::*;
 
     fn table(lines: &str, units: Units) -> String {
-        let mut t = TableLines::new(Vec::new(), units);
+        let mut out = Vec::new();
+        let mut t = TableLines::new(&mut out, units);
         t.write_all(lines.as_bytes()).unwrap();
         t.flush().unwrap();
-        String::from_utf8(t.out).unwrap()
+        drop(t);
+        String::from_utf8(out).unwrap()
     }
 
     #[test]

@@ -20,6 +20,7 @@ mod flight;
 mod flight_fit;
 mod flight_lines;
 mod launch_table;
+mod line_writer;
 mod map;
 mod models;
 mod plot;
