@@ -13,7 +13,7 @@ mod swing;
 
 use std::time::Duration;
 
-use common::{client, collect, latest_input, python, rss_kib, start_daemon, wait_until};
+use common::{client, client_result, collect, latest_input, rss_kib, spawn_client, start_daemon, wait_for, wait_until};
 use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
@@ -96,16 +96,8 @@ fn optitracks_python_client_reads_the_test_server() {
         let names: Vec<(&str, i32)> = ours.rigid_bodies.iter().map(|b| (b.name.as_str(), b.id)).collect();
         assert_eq!(names, [("wand", 7), ("club", 3)], "{version}");
         let server = NatNetServer::start(version, &[(7, "wand"), (3, "club")]);
-        let child = python()
-            .args(["-c", CHECK, &server.port.to_string(), "20"])
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        let t0 = std::time::Instant::now();
-        while server.clients() == 0 && t0.elapsed() < Duration::from_secs(20) {
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        let child = spawn_client(CHECK, server.port, 20);
+        wait_for(|| server.clients() > 0);
         std::thread::sleep(Duration::from_millis(500));
         let samples = swing::samples(1, 720.0, 5);
         let sent: Vec<Frame> = samples[100..120].iter().map(|s| frame_of(s, 7)).collect();
@@ -113,15 +105,7 @@ fn optitracks_python_client_reads_the_test_server() {
             server.send_frame(f);
             std::thread::sleep(Duration::from_millis(2));
         }
-        let out = child.wait_with_output().unwrap();
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        let line = stdout
-            .lines()
-            .find_map(|l| l.strip_prefix("RESULT "))
-            .unwrap_or_else(|| panic!("no result from natnetsdk: {stdout}\n{}", String::from_utf8_lossy(&out.stderr)));
-        let r: serde_json::Value = serde_json::from_str(line).unwrap();
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(!stderr.contains("Traceback"), "natnetsdk failed: {stderr}");
+        let r = client_result(child, "natnetsdk");
         assert_eq!(r["app"], "Motive");
         assert_eq!(r["natnet"], serde_json::json!([version.major, version.minor, 0, 0]));
         assert_eq!(r["server"], serde_json::json!([3, 1, 0, 0]));

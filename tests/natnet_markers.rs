@@ -16,7 +16,7 @@ mod swing;
 
 use std::time::Duration;
 
-use common::{client, collect, latest_input, python, start_daemon, wait_until};
+use common::{client, client_result, collect, latest_input, spawn_client, start_daemon, wait_for, wait_until};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::{ClubheadSample, MarkerSet};
 use impactd::math::{Isometry3, Quaternion, UnitQuaternion};
@@ -171,16 +171,8 @@ fn optitracks_python_client_reads_labelled_markers_and_marker_sets() {
     let samples = swing::samples(1, 720.0, 5);
     for version in [Version::V3_1, Version::V4_0, Version::V4_1] {
         let server = server(version);
-        let child = python()
-            .args(["-c", CHECK, &server.port.to_string(), "20"])
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        let t0 = std::time::Instant::now();
-        while server.clients() == 0 && t0.elapsed() < Duration::from_secs(20) {
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        let child = spawn_client(CHECK, server.port, 20);
+        wait_for(|| server.clients() > 0);
         std::thread::sleep(Duration::from_millis(500));
         let sent: Vec<(Frame, Vec<[f32; 3]>)> =
             samples[100..120].iter().enumerate().map(|(k, s)| frame_of(k, s, &set)).collect();
@@ -188,15 +180,7 @@ fn optitracks_python_client_reads_labelled_markers_and_marker_sets() {
             server.send_marker_frame(f, "Club", positions);
             std::thread::sleep(Duration::from_millis(2));
         }
-        let out = child.wait_with_output().unwrap();
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        let line = stdout
-            .lines()
-            .find_map(|l| l.strip_prefix("RESULT "))
-            .unwrap_or_else(|| panic!("no result from natnetsdk: {stdout}\n{stderr}"));
-        assert!(!stderr.contains("Traceback"), "natnetsdk failed: {stderr}");
-        let r: serde_json::Value = serde_json::from_str(line).unwrap();
+        let r = client_result(child, "natnetsdk");
         let sets = &r["sets"][0];
         assert_eq!(sets[0], serde_json::json!(["wand", ["m1", "m2", "m3"]]), "{version}");
         assert_eq!(sets[1], serde_json::json!(["Club", MOTIVE_MARKERS]), "{version}: the club's marker set");

@@ -14,7 +14,7 @@ mod swing;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-use common::{client, collect, latest_input, python, start_daemon, wait_until};
+use common::{client, client_result, collect, latest_input, spawn_client, start_daemon, wait_for, wait_until};
 use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
@@ -81,29 +81,15 @@ fn frame_of(s: &ClubheadSample) -> Frame6d {
 #[test]
 fn qualisys_python_sdk_reads_the_test_server() {
     let server = QtmServer::start(&["wand", "club & co"]);
-    let child = python()
-        .args(["-c", CHECK, &server.port.to_string(), "20"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let t0 = std::time::Instant::now();
-    while server.streaming() == 0 && t0.elapsed() < Duration::from_secs(20) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let child = spawn_client(CHECK, server.port, 20);
+    wait_for(|| server.streaming() > 0);
     let samples = swing::samples(1, 720.0, 5);
     let sent: Vec<Frame6d> = samples[100..120].iter().map(frame_of).collect();
     for f in &sent {
         server.send_frame(f);
         std::thread::sleep(Duration::from_millis(2));
     }
-    let out = child.wait_with_output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let line = stdout
-        .lines()
-        .find_map(|l| l.strip_prefix("RESULT "))
-        .unwrap_or_else(|| panic!("no result from qtm-rt: {stdout}\n{}", String::from_utf8_lossy(&out.stderr)));
-    let r: serde_json::Value = serde_json::from_str(line).unwrap();
+    let r = client_result(child, "qtm-rt");
     assert_eq!(r["names"], serde_json::json!(["wand", "club & co"]));
     let frames = r["frames"].as_array().unwrap();
     assert_eq!(frames.len(), sent.len());
@@ -360,29 +346,15 @@ fn qualisys_python_sdk_reads_the_3d_markers() {
     let set = impactd::kinematics::MarkerSet::from_toml(MARKERS).unwrap();
     let server = QtmServer::start(&[]);
     *server.labels.lock().unwrap() = LABELS.iter().map(|l| l.to_string()).collect();
-    let child = python()
-        .args(["-c", CHECK_3D, &server.port.to_string(), "20"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let t0 = std::time::Instant::now();
-    while server.streaming() == 0 && t0.elapsed() < Duration::from_secs(20) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let child = spawn_client(CHECK_3D, server.port, 20);
+    wait_for(|| server.streaming() > 0);
     let samples = swing::samples(1, 720.0, 5);
     let sent: Vec<Frame6d> = samples[100..120].iter().map(|s| markers_frame(s, &set)).collect();
     for f in &sent {
         server.send_frame(f);
         std::thread::sleep(Duration::from_millis(2));
     }
-    let out = child.wait_with_output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let line = stdout
-        .lines()
-        .find_map(|l| l.strip_prefix("RESULT "))
-        .unwrap_or_else(|| panic!("no result from qtm-rt: {stdout}\n{}", String::from_utf8_lossy(&out.stderr)));
-    let r: serde_json::Value = serde_json::from_str(line).unwrap();
+    let r = client_result(child, "qtm-rt");
     assert_eq!(r["labels"], serde_json::json!(LABELS));
     let frames = r["frames"].as_array().unwrap();
     assert_eq!(frames.len(), sent.len());

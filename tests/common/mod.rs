@@ -129,3 +129,39 @@ pub fn rss_kib() -> u64 {
     let line = status.lines().find_map(|l| l.strip_prefix("VmRSS:"));
     line.and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok()).unwrap_or(0)
 }
+
+/// An independent Python client, `python -c SCRIPT PORT FRAMES`, with its output captured: it connects to a test
+/// server on loopback, reads `frames` frames and prints `RESULT <json>`.
+pub fn spawn_client(script: &str, port: u16, frames: usize) -> std::process::Child {
+    python()
+        .args(["-c", script, &port.to_string(), &frames.to_string()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Polls `ready` every 20 ms for up to 20 s (a client connecting to a test server); whether it became true.
+pub fn wait_for(ready: impl Fn() -> bool) -> bool {
+    let t0 = std::time::Instant::now();
+    while !ready() {
+        if t0.elapsed() > Duration::from_secs(20) {
+            return false;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    true
+}
+
+/// What a [`spawn_client`] client printed after `RESULT `, once it exits; fails with both of its streams when it
+/// printed none or raised.
+pub fn client_result(child: std::process::Child, client: &str) -> serde_json::Value {
+    let out = child.wait_with_output().unwrap();
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("RESULT "))
+        .unwrap_or_else(|| panic!("no result from {client}: {stdout}\n{stderr}"));
+    assert!(!stderr.contains("Traceback"), "{client} failed: {stderr}");
+    serde_json::from_str(line).unwrap()
+}
