@@ -64,7 +64,12 @@ async fn a_stalled_page_is_let_go_and_a_long_session_stays_within_the_screens_bo
     for shot in 1..=SHOTS {
         let mut p = template.clone();
         p.shot = shot;
-        bus.put("golf/rig1/launch", serde_json::to_vec(&p).unwrap()).await.unwrap();
+        // Blocking, not dropping, when the bus's queue is full: the test is about the screen's bounds, and a
+        // burst of puts on a loaded machine would otherwise lose a few launches on the way.
+        bus.put("golf/rig1/launch", serde_json::to_vec(&p).unwrap())
+            .congestion_control(zenoh::qos::CongestionControl::Block)
+            .await
+            .unwrap();
         if shot % 100 == 0 {
             tokio::time::sleep(Duration::from_millis(20)).await;
         }
