@@ -48,14 +48,7 @@ pub fn run(args: &ExportArgs) -> Result<ExitCode> {
         for p in &r.launches {
             let t = std::time::UNIX_EPOCH + std::time::Duration::from_nanos(p.t_impact_ns);
             let date = humantime::format_rfc3339_seconds(t).to_string();
-            // The shot's measurement as compared live with this prediction's model, else with any model.
-            let of_shot = |c: &&impactd::wire::ComparisonMessage| c.rig == p.rig && c.shot == p.shot;
-            let measured = comparisons
-                .iter()
-                .filter(of_shot)
-                .find(|c| c.model == p.model)
-                .or_else(|| comparisons.iter().find(of_shot))
-                .map(|c| (&c.measured, c.device.as_str()));
+            let measured = trackman_csv::measured_for(p, &comparisons);
             rows.push(trackman_csv::row(p, &name, &date, measured));
         }
     }

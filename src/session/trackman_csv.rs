@@ -123,6 +123,21 @@ fn num(v: Real, decimals: usize) -> String {
     }
 }
 
+/// The measurement a TrackMan row pairs with a prediction: the shot's comparison made live with this prediction's
+/// model, else the shot's comparison with any model (what `impactd export` and the bay screen's CSV both write).
+pub fn measured_for<'a>(
+    p: &LaunchPrediction,
+    comparisons: &'a [crate::wire::ComparisonMessage],
+) -> Option<(&'a LaunchFields, &'a str)> {
+    let of_shot = |c: &&crate::wire::ComparisonMessage| c.rig == p.rig && c.shot == p.shot;
+    comparisons
+        .iter()
+        .filter(of_shot)
+        .find(|c| c.model == p.model)
+        .or_else(|| comparisons.iter().find(of_shot))
+        .map(|c| (&c.measured, c.device.as_str()))
+}
+
 /// The row of one prediction (imperial, as [`COLUMNS`]'s units row), then [`IMPACTD_COLUMNS`]: `measured` is the
 /// shot's measurement and the device that made it, when a launch monitor measured it. `file` names the recording.
 pub fn row(p: &LaunchPrediction, file: &str, date: &str, measured: Option<(&LaunchFields, &str)>) -> Vec<String> {

@@ -16,15 +16,7 @@ pub fn session_csv(bay: &Bay, rig: &str) -> Option<Vec<u8>> {
         .map(|p| {
             let t = std::time::UNIX_EPOCH + std::time::Duration::from_nanos(p.t_impact_ns);
             let date = humantime::format_rfc3339_seconds(t).to_string();
-            // The shot's measurement as compared live with this prediction's model, else with any model (as
-            // `impactd export` pairs them).
-            let of_shot = |c: &&crate::wire::ComparisonMessage| c.rig == p.rig && c.shot == p.shot;
-            let measured = comparisons
-                .iter()
-                .filter(of_shot)
-                .find(|c| c.model == p.model)
-                .or_else(|| comparisons.iter().find(of_shot))
-                .map(|c| (&c.measured, c.device.as_str()));
+            let measured = trackman_csv::measured_for(p, &comparisons);
             trackman_csv::row(p, &bay.recording_name, &date, measured)
         })
         .collect();
