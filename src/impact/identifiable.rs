@@ -112,7 +112,8 @@ pub const COARSE_STEP_FACTOR: Real = 4.0;
 fn continuous_coarse(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let exact = ContinuousModel::default();
     let params = TwoLayerParams::from_sections(&club.sections, &club.club, ball)?;
-    Ok(Arc::new(ContinuousModel { params, step_s: COARSE_STEP_FACTOR * exact.step_s, ..exact }))
+    // A fixed step, as it was measured (above): the stiffness-bounded step grows from the default step only.
+    Ok(Arc::new(ContinuousModel { params, step_s: COARSE_STEP_FACTOR * exact.step_s, max_step_growth: 1.0, ..exact }))
 }
 
 /// Maw's and Arakawa's global search: the exact model on the subsample of a model resolved in time (their steps

@@ -37,6 +37,27 @@ pub struct Integration {
     pub model: &'static str,
 }
 
+/// How the step is chosen within [`Integration`]'s bounds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub enum Stepping {
+    /// Every step `step_s`.
+    #[default]
+    Fixed,
+    /// From `step_s` up to `growth` times it, as far as the friction's stiffness allows: classical Runge-Kutta is
+    /// stable for a decaying mode of rate `λ` while `h λ <= 2.78`, and the regularised friction (eq. 3.15) makes
+    /// the slip at the contact such a mode, `λ = (∂F_t/∂v_t) · slip_compliance_per_kg`. Each step is
+    /// `clamp(h_lambda / λ, step_s, growth · step_s)`, `λ` bounded over the step from its start ([`ContactLaw::slip_stiffness`]).
+    Stiffness {
+        /// The largest step as a multiple of `step_s`.
+        growth: Real,
+        /// The largest `h λ` a step may take.
+        h_lambda: Real,
+        /// How fast a tangential force changes the slip at the contact (1/kg): an upper bound of
+        /// `1/m_ball + R²/I_surface + 1/m_club + |r_club|² / I_club,min`.
+        slip_compliance_per_kg: Real,
+    },
+}
+
 /// The club's and the ball's state together.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct State<CS, BS> {
@@ -130,11 +151,27 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
 
     #[inline]
     fn rate_with(&self, s: &State<C::State, B::State>, law_state: &L::State) -> Rate<C::Rate, B::Rate> {
+        self.rate_and_stiffness(s, law_state, None).0
+    }
+
+    /// The rate, and with `slip_change` (the most the slip can change over the coming step, m/s) the friction's
+    /// stiffness `∂F_t/∂v_t` (N s/m) bounded over that change.
+    #[inline]
+    fn rate_and_stiffness(
+        &self,
+        s: &State<C::State, B::State>,
+        law_state: &L::State,
+        slip_change_mps: Option<Real>,
+    ) -> (Rate<C::Rate, B::Rate>, Real) {
         let head = self.club.head(&s.club);
+        let mut stiffness = 0.0;
         let (mut force_club, mut torque_club, mut force_ball, mut r_ball, mut forces) =
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), ContactForces::default());
         if let Some(c) = self.contact(&head, &s.ball) {
             let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
+            if let Some(du) = slip_change_mps {
+                stiffness = self.law.slip_stiffness(&c, normal_n, du);
+            }
             force_ball = normal_n * c.normal + friction_n;
             r_ball = c.r_ball_m;
             force_club = -force_ball;
@@ -146,11 +183,12 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
             force_club += g.force_n;
             torque_club += g.torque_nm;
         }
-        Rate {
+        let rate = Rate {
             club: self.club.rate(&s.club, &head, force_club, torque_club),
             ball: self.ball.rate(&s.ball, force_ball, r_ball),
             forces,
-        }
+        };
+        (rate, stiffness)
     }
 
     fn momentum(&self, s: &State<C::State, B::State>) -> (Vector3, Vector3) {
@@ -180,25 +218,55 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
         slip0: Vector3,
         integration: &Integration,
     ) -> Result<ContinuousResult, ImpactError> {
+        self.simulate_stepping(state, ball_centre_m, slip0, integration, &Stepping::Fixed)
+    }
+
+    /// [`Self::simulate`] with the step chosen by `stepping`.
+    pub fn simulate_stepping(
+        &self,
+        state: &ImpactState,
+        ball_centre_m: Vector3,
+        slip0: Vector3,
+        integration: &Integration,
+        stepping: &Stepping,
+    ) -> Result<ContinuousResult, ImpactError> {
         let mut s = State { club: self.club.initial(state), ball: self.ball.at_rest(ball_centre_m) };
         let mut law_state = L::State::default();
         let energy_before = self.energy_j(&s);
         let momentum_before = self.momentum(&s);
-        let h = integration.step_s;
+        let step_s = integration.step_s;
         let trace_every = integration.trace_every;
-        let max_steps = (integration.max_contact_s / h).ceil() as usize;
+        let max_steps = (integration.max_contact_s / step_s).ceil() as usize;
+        // The longest step, and the slip a newton of friction held over it can change (m/s per N).
+        let (h_max, slip_per_n) = match *stepping {
+            Stepping::Fixed => (step_s, None),
+            Stepping::Stiffness { growth, slip_compliance_per_kg, .. } => {
+                (growth.max(1.0) * step_s, Some(growth.max(1.0) * step_s * slip_compliance_per_kg))
+            }
+        };
         let mut trace = Vec::new();
         let (mut peak, mut touched, mut steps, mut max_increase) = (0.0f64, false, 0, 0.0f64);
         let mut energy = energy_before;
-        let mut contact_time = 0.0;
+        let (mut t_s, mut contact_time) = (0.0, 0.0);
         loop {
             let stage = Stage { asm: self, law_state: &law_state };
-            let k1 = stage.rate(&s);
+            let (k1, stiffness) = self.rate_and_stiffness(&s, &law_state, slip_per_n);
+            let h = match *stepping {
+                Stepping::Fixed => step_s,
+                Stepping::Stiffness { h_lambda, slip_compliance_per_kg, .. } => {
+                    let lambda = stiffness * slip_compliance_per_kg;
+                    if lambda * h_max <= h_lambda {
+                        h_max
+                    } else {
+                        (h_lambda / lambda).max(step_s)
+                    }
+                }
+            };
             let cf = k1.forces;
             if trace_every > 0 && steps % trace_every == 0 {
                 let spin = self.ball.spin(&s.ball);
                 trace.push(TracePoint {
-                    t_us: steps as Real * h * 1e6,
+                    t_us: t_s * 1e6,
                     normal_force_n: cf.normal_n,
                     tangential_force_n: cf.friction_n.dot(&slip0),
                     ball_spin_rpm: crate::units::radps_to_rpm(spin.norm()),
@@ -213,11 +281,11 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
             } else if touched || steps > 10 {
                 // Separated (or, after a few steps, never in contact: the face moves off).
                 if touched {
-                    contact_time = steps as Real * h;
+                    contact_time = t_s;
                 }
                 break;
             }
-            if steps >= max_steps {
+            if steps >= max_steps || t_s >= integration.max_contact_s {
                 return Err(ImpactError::NotConverged {
                     model: integration.model,
                     reason: format!("still in contact after {:.2} ms", integration.max_contact_s * 1e3),
@@ -230,6 +298,10 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
                 self.law.commit(c.as_ref(), &mut law_state, h);
             }
             steps += 1;
+            t_s = match *stepping {
+                Stepping::Fixed => steps as Real * step_s,
+                Stepping::Stiffness { .. } => t_s + h,
+            };
             if trace_every > 0 || cfg!(debug_assertions) {
                 let e = self.energy_j(&s);
                 max_increase = max_increase.max(e - energy);

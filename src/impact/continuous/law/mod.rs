@@ -46,6 +46,12 @@ pub trait ContactLaw {
     fn force(&self, contact: &Contact, state: &Self::State) -> ContactForce;
     /// Updates the state after an accepted step of `h` seconds ending at `contact` (`None`: out of contact).
     fn commit(&self, _contact: Option<&Contact>, _state: &mut Self::State, _h: Real) {}
+    /// An upper bound of the friction's stiffness `∂F_t/∂v_t` (N s/m) at this contact under `normal_n`, over
+    /// the slips the coming step can reach: `slip_per_n_mps` is how much a newton of tangential force held over
+    /// that step changes the slip (m/s per N). A step-size bound for explicit integration; 0 if the law has none.
+    fn slip_stiffness(&self, _contact: &Contact, _normal_n: Real, _slip_per_n_mps: Real) -> Real {
+        0.0
+    }
     /// Elastic energy stored in the contact at this overlap (J), for the energy balance.
     fn stored_energy_j(&self, surface: &FaceSurface, ball_radius_m: Real, overlap: &Overlap) -> Real;
 }

@@ -42,6 +42,22 @@ impl ContactLaw for Volumetric {
         ContactForce { normal_n, friction_n }
     }
 
+    /// `μ F_N ∂tanh(4 v_t / v_tr)/∂v_t` along the slip is largest at zero slip, `4 μ F_N / v_tr`; across it
+    /// `μ F_N tanh(4 v_t / v_tr) / v_t`, never more. Along the slip it is taken at the smallest slip the step
+    /// can reach, `v_t − μ F_N · slip_per_n_mps`.
+    fn slip_stiffness(&self, c: &Contact, normal_n: Real, slip_per_n_mps: Real) -> Real {
+        let speed_t = c.slip_mps.norm();
+        let scale = self.mu * normal_n * 4.0 / self.v_tr_mps;
+        let closest = (speed_t - self.mu * normal_n * slip_per_n_mps).max(0.0);
+        let tanh_closest = (4.0 * closest / self.v_tr_mps).tanh();
+        scale
+            * (1.0 - tanh_closest * tanh_closest).max(if speed_t > 1e-12 {
+                (4.0 * speed_t / self.v_tr_mps).tanh() / (4.0 * speed_t / self.v_tr_mps)
+            } else {
+                1.0
+            })
+    }
+
     fn stored_energy_j(&self, surface: &FaceSurface, ball_radius_m: Real, overlap: &Overlap) -> Real {
         self.k_v_n_per_m3 * overlap_energy(surface, ball_radius_m, overlap.depth_m)
     }
