@@ -3,8 +3,9 @@
 //!
 //! The contact's geometry comes from the face [`surface`](super::surface); the law turns it into forces on the
 //! ball, applied equal and opposite to the head at the same point, so linear momentum is conserved to rounding
-//! at every Runge-Kutta stage (the shared [`rk4_step`](crate::integrate::rk4_step), fixed step). The law's own
-//! state (if any) is held through a step and committed after it.
+//! at every Runge-Kutta stage (the shared [`rk4_step`](crate::integrate::rk4_step)), by a fixed step or one
+//! bounded by the friction's stiffness ([`Stepping`]). The law's own state (if any) is held through a step and
+//! committed after it.
 
 use super::ball::BallPart;
 use super::club::{ClubPart, Head};
@@ -127,7 +128,7 @@ struct Stage<'a, L: ContactLaw, B, C, G> {
 
 impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
     /// The contact between ball and face in a state, if they overlap.
-    #[inline]
+    #[inline(always)]
     fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
         let (p_b, v_b) = B::centre(ball);
         let rot = &head.world_from_club;
@@ -151,26 +152,31 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
 
     #[inline]
     fn rate_with(&self, s: &State<C::State, B::State>, law_state: &L::State) -> Rate<C::Rate, B::Rate> {
-        self.rate_and_stiffness(s, law_state, None).0
+        self.rate_and_step::<false>(s, law_state, &Stepping::Fixed, 0.0).0
     }
 
-    /// The rate, and with `slip_change` (the most the slip can change over the coming step, m/s) the friction's
-    /// stiffness `∂F_t/∂v_t` (N s/m) bounded over that change.
-    #[inline]
-    fn rate_and_stiffness(
+    /// The rate, and with `STEP` the next step by `stepping` from a base step `step_s` (else `step_s`).
+    #[inline(always)]
+    fn rate_and_step<const STEP: bool>(
         &self,
         s: &State<C::State, B::State>,
         law_state: &L::State,
-        slip_change_mps: Option<Real>,
+        stepping: &Stepping,
+        step_s: Real,
     ) -> (Rate<C::Rate, B::Rate>, Real) {
         let head = self.club.head(&s.club);
-        let mut stiffness = 0.0;
+        let mut h = match *stepping {
+            Stepping::Fixed => step_s,
+            Stepping::Stiffness { growth, .. } => growth.max(1.0) * step_s,
+        };
         let (mut force_club, mut torque_club, mut force_ball, mut r_ball, mut forces) =
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), ContactForces::default());
         if let Some(c) = self.contact(&head, &s.ball) {
             let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
-            if let Some(du) = slip_change_mps {
-                stiffness = self.law.slip_stiffness(&c, normal_n, du);
+            if STEP {
+                if let Stepping::Stiffness { h_lambda, slip_compliance_per_kg, .. } = *stepping {
+                    h = self.stiff_step(&c, normal_n, h, step_s, h_lambda, slip_compliance_per_kg);
+                }
             }
             force_ball = normal_n * c.normal + friction_n;
             r_ball = c.r_ball_m;
@@ -188,7 +194,19 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
             ball: self.ball.rate(&s.ball, force_ball, r_ball),
             forces,
         };
-        (rate, stiffness)
+        (rate, h)
+    }
+
+    /// The longest step up to `h_max` (and at least `step_s`) whose `h λ` stays within `h_lambda`, `λ` the slip
+    /// mode's rate bounded over the slips a step of `h_max` can reach (a shorter step reaches fewer).
+    #[inline]
+    fn stiff_step(&self, c: &Contact, normal_n: Real, h_max: Real, step_s: Real, h_lambda: Real, k: Real) -> Real {
+        let lambda = k * self.law.slip_stiffness(c, normal_n, h_max * k);
+        if h_max * lambda <= h_lambda {
+            h_max
+        } else {
+            (h_lambda / lambda).max(step_s)
+        }
     }
 
     fn momentum(&self, s: &State<C::State, B::State>) -> (Vector3, Vector3) {
@@ -237,30 +255,15 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
         let step_s = integration.step_s;
         let trace_every = integration.trace_every;
         let max_steps = (integration.max_contact_s / step_s).ceil() as usize;
-        // The longest step, and the slip a newton of friction held over it can change (m/s per N).
-        let (h_max, slip_per_n) = match *stepping {
-            Stepping::Fixed => (step_s, None),
-            Stepping::Stiffness { growth, slip_compliance_per_kg, .. } => {
-                (growth.max(1.0) * step_s, Some(growth.max(1.0) * step_s * slip_compliance_per_kg))
-            }
-        };
         let mut trace = Vec::new();
         let (mut peak, mut touched, mut steps, mut max_increase) = (0.0f64, false, 0, 0.0f64);
         let mut energy = energy_before;
         let (mut t_s, mut contact_time) = (0.0, 0.0);
         loop {
             let stage = Stage { asm: self, law_state: &law_state };
-            let (k1, stiffness) = self.rate_and_stiffness(&s, &law_state, slip_per_n);
-            let h = match *stepping {
-                Stepping::Fixed => step_s,
-                Stepping::Stiffness { h_lambda, slip_compliance_per_kg, .. } => {
-                    let lambda = stiffness * slip_compliance_per_kg;
-                    if lambda * h_max <= h_lambda {
-                        h_max
-                    } else {
-                        (h_lambda / lambda).max(step_s)
-                    }
-                }
+            let (k1, h) = match stepping {
+                Stepping::Fixed => (stage.rate(&s), step_s),
+                Stepping::Stiffness { .. } => self.rate_and_step::<true>(&s, &law_state, stepping, step_s),
             };
             let cf = k1.forces;
             if trace_every > 0 && steps % trace_every == 0 {

@@ -47,6 +47,15 @@ fn cap(r: Real, h: Real) -> (Real, Real) {
     (v, z)
 }
 
+/// Volume and first moment `V z` about the sphere's centre of a cap of height `h` of a sphere of radius `r`:
+/// [`cap`]'s `V · z = π h² (2r − h)² / 4`, with no division.
+#[inline]
+fn cap_moment(r: Real, h: Real) -> (Real, Real) {
+    let v = std::f64::consts::PI * h * h * (3.0 * r - h) / 3.0;
+    let w = h * (2.0 * r - h);
+    (v, std::f64::consts::FRAC_PI_4 * w * w)
+}
+
 impl FaceSurface {
     /// The surface of a club's face for the contact: the plane for a flat face, the face sphere for a curved one
     /// (a face whose bulge and roll differ is taken as a sphere of their geometric-mean radius).
@@ -90,13 +99,14 @@ impl FaceSurface {
                 let a = (d * d + r2 * r2 - r * r) / (2.0 * d);
                 let h_face = r2 - a; // cap of the face sphere, toward the ball
                 let h_ball = r - (d - a); // cap of the ball, toward the face
-                let (v_face, z_face) = cap(r2, h_face);
-                let (v_ball, z_ball) = cap(r, h_ball);
+                let (v_face, m_face) = cap_moment(r2, h_face);
+                let (v_ball, m_ball) = cap_moment(r, h_ball);
                 let volume = v_face + v_ball;
-                let p_face = centre + z_face * normal;
-                let p_ball = ball_m - z_ball * normal;
-                let centroid_m = (v_face * p_face + v_ball * p_ball) / volume;
-                Some(Overlap { volume_m3: volume, centroid_m, normal, depth_m: depth })
+                // The caps' centroids lie on the line of centres: the face cap's `z_face` from the face sphere's
+                // centre toward the ball (`d − z_face` behind the ball's centre), the ball's `z_ball` from the
+                // ball's centre toward the face; their volume-weighted mean from the ball's centre along `normal`.
+                let along = (m_face - v_face * d - m_ball) / volume;
+                Some(Overlap { volume_m3: volume, centroid_m: ball_m + along * normal, normal, depth_m: depth })
             }
         }
     }
@@ -147,6 +157,17 @@ mod tests {
         let b = sphere.overlap(&ball, r).unwrap();
         assert!((a.volume_m3 - b.volume_m3).abs() < 1e-6 * a.volume_m3, "{} {}", a.volume_m3, b.volume_m3);
         assert!((a.centroid_m - b.centroid_m).norm() < 1e-6);
+    }
+
+    /// The cap's moment is its volume times its centroid's distance.
+    #[test]
+    fn cap_moment_is_volume_times_centroid() {
+        for (r, h) in [(0.0213, 1e-5), (0.0213, 0.004), (0.3, 0.002), (0.02, 0.039)] {
+            let (v, z) = cap(r, h);
+            let (v2, m) = cap_moment(r, h);
+            assert_eq!(v, v2);
+            assert!((m - v * z).abs() <= 1e-14 * m, "{r} {h}: {m} vs {}", v * z);
+        }
     }
 
     /// Closed form: the lens volume of two equal spheres of radius R at distance d is

@@ -174,15 +174,16 @@ impl TwoLayerParams {
 
 /// The largest `h λ` a step takes at the default step on the friction's slip mode (eq. 3.15, [`Stepping`]):
 /// classical Runge-Kutta is stable on a decaying mode up to 2.785, and `λ` grows within a step as the force does.
-const H_LAMBDA: Real = 2.0;
+const H_LAMBDA: Real = 2.4;
 
 /// The continuous two-layer model.
 ///
 /// The step: the regularised friction (eq. 3.15) makes the slip at the contact a fast decaying mode while the
 /// cover nearly sticks under a large normal force (`λ = 4 μ F_N / v_tr · (1/m + R²/I_cover + ...)`, up to about
 /// 4.5e6 1/s), which bounds classical Runge-Kutta's step there; elsewhere (the first touch, a sliding cover, the
-/// release) the step grows up to `max_step_growth` times `step_s` while `h λ` stays within 2
-/// ([`Stepping::Stiffness`]). Halving `step_s` halves every step.
+/// release) the step grows up to `max_step_growth` times `step_s` while `h λ` stays within 2.4
+/// ([`Stepping::Stiffness`]). Halving `step_s` halves every step. The contact time is resolved to the last step
+/// (at most `max_step_growth · step_s`, 3.6 us).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContinuousModel {
     /// Parameters; `None` uses the one-cycle reading of Table 3.5 for the club ([`TwoLayerParams::preset`]).
@@ -197,7 +198,7 @@ pub struct ContinuousModel {
 
 impl Default for ContinuousModel {
     fn default() -> Self {
-        ContinuousModel { params: None, step_s: Self::STEP_S, max_step_growth: 4.0, max_contact_s: 3e-3 }
+        ContinuousModel { params: None, step_s: Self::STEP_S, max_step_growth: 6.0, max_contact_s: 3e-3 }
     }
 }
 

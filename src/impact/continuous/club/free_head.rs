@@ -57,7 +57,7 @@ impl ClubPart for FreeHead {
         Head { position_m: s.p, angular_velocity_radps: world_from_club * s.w_body, world_from_club, velocity_mps: s.v }
     }
 
-    #[inline]
+    #[inline(always)]
     fn rate(&self, s: &FreeHeadState, head: &Head, force_n: Vector3, torque_nm: Vector3) -> FreeHeadRate {
         let torque_body = head.world_from_club.inverse_transform_vector(&torque_nm);
         let w = s.w_body;

@@ -10,7 +10,7 @@
 
 use super::{Contact, ContactForce, ContactLaw};
 use crate::impact::continuous::surface::{overlap_energy, FaceSurface, Overlap};
-use crate::math::Real;
+use crate::math::{tanh_over_x, Real};
 
 /// Eq. 3.14-3.15 with their Table 3.5 parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,13 +32,10 @@ impl ContactLaw for Volumetric {
     fn force(&self, c: &Contact, _: &()) -> ContactForce {
         // eq. 3.14
         let normal_n = (self.k_v_n_per_m3 * c.overlap.volume_m3 * (1.0 + self.d_s_per_m * c.approach_mps)).max(0.0);
-        // eq. 3.15
-        let speed_t = c.slip_mps.norm();
-        let friction_n = if speed_t > 1e-12 {
-            -(self.mu * normal_n * (4.0 * speed_t / self.v_tr_mps).tanh() / speed_t) * c.slip_mps
-        } else {
-            crate::math::Vector3::zeros()
-        };
+        // eq. 3.15: μ F_N tanh(x) v̂_t = μ F_N (4 / v_tr) (tanh(x) / x) v_t with x = 4 |v_t| / v_tr
+        let scale = 4.0 / self.v_tr_mps;
+        let x = scale * c.slip_mps.norm();
+        let friction_n = -(self.mu * normal_n * scale * tanh_over_x(x)) * c.slip_mps;
         ContactForce { normal_n, friction_n }
     }
 
@@ -46,16 +43,16 @@ impl ContactLaw for Volumetric {
     /// `μ F_N tanh(4 v_t / v_tr) / v_t`, never more. Along the slip it is taken at the smallest slip the step
     /// can reach, `v_t − μ F_N · slip_per_n_mps`.
     fn slip_stiffness(&self, c: &Contact, normal_n: Real, slip_per_n_mps: Real) -> Real {
+        let scale = 4.0 / self.v_tr_mps;
         let speed_t = c.slip_mps.norm();
-        let scale = self.mu * normal_n * 4.0 / self.v_tr_mps;
-        let closest = (speed_t - self.mu * normal_n * slip_per_n_mps).max(0.0);
-        let tanh_closest = (4.0 * closest / self.v_tr_mps).tanh();
-        scale
-            * (1.0 - tanh_closest * tanh_closest).max(if speed_t > 1e-12 {
-                (4.0 * speed_t / self.v_tr_mps).tanh() / (4.0 * speed_t / self.v_tr_mps)
-            } else {
-                1.0
-            })
+        let closest = scale * (speed_t - self.mu * normal_n * slip_per_n_mps);
+        let most = if closest <= 0.0 {
+            1.0
+        } else {
+            let tanh_closest = closest * tanh_over_x(closest);
+            (1.0 - tanh_closest * tanh_closest).max(tanh_over_x(scale * speed_t))
+        };
+        self.mu * normal_n * scale * most
     }
 
     fn stored_energy_j(&self, surface: &FaceSurface, ball_radius_m: Real, overlap: &Overlap) -> Real {
