@@ -24,6 +24,7 @@ pub mod law;
 pub mod plate;
 pub mod shaft;
 mod start;
+pub mod stepping;
 pub mod surface;
 pub mod two_layer;
 

@@ -1,0 +1,99 @@
+//! One step of the multi-rate stepping: classical Runge-Kutta's four stages, the ball by Runge-Kutta, the club by
+//! its own scheme on the same stages, the ground's forces evaluated at every stage or held from the step's start.
+//!
+//! The ball's force acts at the contact point; the head gets the opposite there, its moment about the head's CG
+//! taken with the lever from the CG to the point (ball centre + the ball's lever), so linear momentum is
+//! conserved to rounding at every stage.
+
+use crate::impact::continuous::assembly::{Assembly, ContactForces, State};
+use crate::impact::continuous::ball::BallPart;
+use crate::impact::continuous::club::{ClubLoad, SteppedClub};
+use crate::impact::continuous::ground::SampledGround;
+use crate::impact::continuous::law::{ContactForce, ContactLaw};
+use crate::math::{Real, Vector3};
+
+/// What acted at a step's start: the club's motion, the ball's contact (if any) and the ground's forces.
+#[derive(Debug, Clone, Copy)]
+pub struct StepStart<M, F> {
+    pub motion: M,
+    pub ball: Option<ContactForces>,
+    pub ground: F,
+}
+
+/// The rates of one stage.
+struct StageRate<CR, BR> {
+    club: CR,
+    ball: BR,
+}
+
+impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
+    /// The rates in `s` with the club's motion `motion`, and what acted; `ground` given holds the ground's forces.
+    #[inline]
+    fn stage_rate(
+        &self,
+        s: &State<C::State, B::State>,
+        motion: &C::Motion,
+        law_state: &L::State,
+        ground: Option<&G::Forces>,
+    ) -> (StageRate<C::Rate, B::Rate>, StepStart<C::Motion, G::Forces>) {
+        let head = C::head(motion);
+        let contact = self.contact(&head, &s.ball).map(|c| {
+            let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
+            let forces = ContactForces { normal_n, friction_n, in_contact: true, depth_m: c.overlap.depth_m };
+            (forces, normal_n * c.normal + friction_n, c.r_ball_m)
+        });
+        let (f_on_ball, r_ball) = contact.map_or((Vector3::zeros(), Vector3::zeros()), |(_, f, r)| (f, r));
+        let ground = ground.copied().unwrap_or_else(|| self.ground.forces_on(&head));
+        let wrench = G::wrench_of(&ground);
+        let (p_ball, _) = B::centre(&s.ball);
+        let load = ClubLoad {
+            ball_force_n: -f_on_ball,
+            ball_lever_m: p_ball + r_ball - head.position_m,
+            ground_force_n: wrench.force_n,
+            ground_torque_nm: wrench.torque_nm,
+        };
+        let rate = StageRate {
+            club: self.club.rate(&s.club, motion, &load),
+            ball: self.ball.rate(&s.ball, f_on_ball, r_ball),
+        };
+        (rate, StepStart { motion: *motion, ball: contact.map(|c| c.0), ground })
+    }
+
+    /// One step from `s` at `t_s` (the club's motion there `motion`) with `step`'s coefficients. With
+    /// `hold_ground` the ground's forces of the step's start (`ground` when given, else evaluated) act over the
+    /// whole step. Returns the step's end and what acted at its start.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn step_stepped(
+        &self,
+        s: &State<C::State, B::State>,
+        t_s: Real,
+        motion: C::Motion,
+        step: &C::Step,
+        law_state: &L::State,
+        hold_ground: bool,
+        ground: Option<&G::Forces>,
+    ) -> (State<C::State, B::State>, StepStart<C::Motion, G::Forces>) {
+        let h = C::step_s(step);
+        let (k1, start) = self.stage_rate(s, &motion, law_state, ground);
+        let held = hold_ground.then_some(start.ground);
+        let club = &self.club;
+        // Stages two and three share the club's free motion over the half step.
+        let free = club.free_half(step, &s.club);
+        let s2 =
+            State { club: club.half(step, &s.club, &free, &k1.club), ball: B::advance(&s.ball, &k1.ball, 0.5 * h) };
+        let k2 = self.stage_rate(&s2, &club.motion(&s2.club, t_s + 0.5 * h), law_state, held.as_ref()).0;
+        let s3 =
+            State { club: club.half(step, &s.club, &free, &k2.club), ball: B::advance(&s.ball, &k2.ball, 0.5 * h) };
+        let k3 = self.stage_rate(&s3, &club.motion(&s3.club, t_s + 0.5 * h), law_state, held.as_ref()).0;
+        let s4 = State {
+            club: club.fourth(step, &s.club, &s2.club, &k1.club, &k3.club),
+            ball: B::advance(&s.ball, &k3.ball, h),
+        };
+        let k4 = self.stage_rate(&s4, &club.motion(&s4.club, t_s + h), law_state, held.as_ref()).0;
+        let next = State {
+            club: club.finish(step, &s.club, [&k1.club, &k2.club, &k3.club, &k4.club]),
+            ball: B::advance_rk4_scaled(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
+        };
+        (next, start)
+    }
+}
