@@ -27,15 +27,15 @@ struct StageRate<CR, BR> {
 }
 
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
-    /// The rates in `s` with the club's motion `motion`, and what acted; `ground` given holds the ground's forces.
+    /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, and the ball's contact.
     #[inline]
     fn stage_rate(
         &self,
         s: &State<C::State, B::State>,
         motion: &C::Motion,
         law_state: &L::State,
-        ground: Option<&G::Forces>,
-    ) -> (StageRate<C::Rate, B::Rate>, StepStart<C::Motion, G::Forces>) {
+        ground: &G::Forces,
+    ) -> (StageRate<C::Rate, B::Rate>, Option<ContactForces>) {
         let head = C::head(motion);
         let contact = self.contact(&head, &s.ball).map(|c| {
             let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
@@ -43,8 +43,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             (forces, normal_n * c.normal + friction_n, c.r_ball_m)
         });
         let (f_on_ball, r_ball) = contact.map_or((Vector3::zeros(), Vector3::zeros()), |(_, f, r)| (f, r));
-        let ground = ground.copied().unwrap_or_else(|| self.ground.forces_on(&head));
-        let wrench = G::wrench_of(&ground);
+        let wrench = G::wrench_of(ground);
         let (p_ball, _) = B::centre(&s.ball);
         let load = ClubLoad {
             ball_force_n: -f_on_ball,
@@ -56,7 +55,23 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             club: self.club.rate(&s.club, motion, &load),
             ball: self.ball.rate(&s.ball, f_on_ball, r_ball),
         };
-        (rate, StepStart { motion: *motion, ball: contact.map(|c| c.0), ground })
+        (rate, contact.map(|c| c.0))
+    }
+
+    /// The rates of a later stage in `s` at `t_s`: the ground's forces `held`, or evaluated there.
+    #[inline]
+    fn later_stage_rate(
+        &self,
+        s: &State<C::State, B::State>,
+        t_s: Real,
+        law_state: &L::State,
+        held: Option<&G::Forces>,
+    ) -> StageRate<C::Rate, B::Rate> {
+        let motion = self.club.motion(&s.club, t_s);
+        match held {
+            Some(g) => self.stage_rate(s, &motion, law_state, g).0,
+            None => self.stage_rate(s, &motion, law_state, &self.ground.forces_on(&C::head(&motion))).0,
+        }
     }
 
     /// One step from `s` at `t_s` (the club's motion there `motion`) with `step`'s coefficients. With
@@ -74,26 +89,30 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         ground: Option<&G::Forces>,
     ) -> (State<C::State, B::State>, StepStart<C::Motion, G::Forces>) {
         let h = C::step_s(step);
-        let (k1, start) = self.stage_rate(s, &motion, law_state, ground);
-        let held = hold_ground.then_some(start.ground);
+        let g1 = match ground {
+            Some(g) => *g,
+            None => self.ground.forces_on(&C::head(&motion)),
+        };
+        let (k1, contact) = self.stage_rate(s, &motion, law_state, &g1);
+        let held = hold_ground.then_some(&g1);
         let club = &self.club;
         // Stages two and three share the club's free motion over the half step.
         let free = club.free_half(step, &s.club);
         let s2 =
             State { club: club.half(step, &s.club, &free, &k1.club), ball: B::advance(&s.ball, &k1.ball, 0.5 * h) };
-        let k2 = self.stage_rate(&s2, &club.motion(&s2.club, t_s + 0.5 * h), law_state, held.as_ref()).0;
+        let k2 = self.later_stage_rate(&s2, t_s + 0.5 * h, law_state, held);
         let s3 =
             State { club: club.half(step, &s.club, &free, &k2.club), ball: B::advance(&s.ball, &k2.ball, 0.5 * h) };
-        let k3 = self.stage_rate(&s3, &club.motion(&s3.club, t_s + 0.5 * h), law_state, held.as_ref()).0;
+        let k3 = self.later_stage_rate(&s3, t_s + 0.5 * h, law_state, held);
         let s4 = State {
             club: club.fourth(step, &s.club, &s2.club, &k1.club, &k3.club),
             ball: B::advance(&s.ball, &k3.ball, h),
         };
-        let k4 = self.stage_rate(&s4, &club.motion(&s4.club, t_s + h), law_state, held.as_ref()).0;
+        let k4 = self.later_stage_rate(&s4, t_s + h, law_state, held);
         let next = State {
             club: club.finish(step, &s.club, [&k1.club, &k2.club, &k3.club, &k4.club]),
             ball: B::advance_rk4_scaled(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
         };
-        (next, start)
+        (next, StepStart { motion, ball: contact, ground: g1 })
     }
 }
