@@ -30,6 +30,9 @@ use super::law::ContactLaw;
 use crate::impact::ImpactError;
 use crate::math::Real;
 
+/// The state of an assembly of ball `B` and club `C` on this stepping.
+pub type SteppedState<B, C> = State<<C as SteppedClub>::State, <B as BallPart>::State>;
+
 /// Whether to go on after a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Flow {
@@ -66,10 +69,10 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     /// Runs from state `s` at `t_s` until the policy stops; returns the state and time it stopped at.
     pub fn run_stepped<P: StepPolicy<L, B, C, G>>(
         &self,
-        mut s: State<C::State, B::State>,
+        mut s: SteppedState<B, C>,
         mut t_s: Real,
         policy: &mut P,
-    ) -> Result<(State<C::State, B::State>, Real), ImpactError> {
+    ) -> Result<(SteppedState<B, C>, Real), ImpactError> {
         let mut law_state = L::State::default();
         // The ground's forces held, and when they were evaluated.
         let mut held: Option<(G::Forces, Real)> = None;

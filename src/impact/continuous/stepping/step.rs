@@ -5,6 +5,7 @@
 //! taken with the lever from the CG to the point (ball centre + the ball's lever), so linear momentum is
 //! conserved to rounding at every stage.
 
+use super::SteppedState;
 use crate::impact::continuous::assembly::{Assembly, ContactForces, State};
 use crate::impact::continuous::ball::BallPart;
 use crate::impact::continuous::club::{ClubLoad, SteppedClub};
@@ -31,7 +32,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     #[inline]
     fn stage_rate(
         &self,
-        s: &State<C::State, B::State>,
+        s: &SteppedState<B, C>,
         motion: &C::Motion,
         law_state: &L::State,
         ground: &G::Forces,
@@ -62,7 +63,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     #[inline]
     fn later_stage_rate(
         &self,
-        s: &State<C::State, B::State>,
+        s: &SteppedState<B, C>,
         t_s: Real,
         law_state: &L::State,
         held: Option<&G::Forces>,
@@ -80,14 +81,14 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     #[allow(clippy::too_many_arguments)]
     pub(super) fn step_stepped(
         &self,
-        s: &State<C::State, B::State>,
+        s: &SteppedState<B, C>,
         t_s: Real,
         motion: C::Motion,
         step: &C::Step,
         law_state: &L::State,
         hold_ground: bool,
         ground: Option<&G::Forces>,
-    ) -> (State<C::State, B::State>, StepStart<C::Motion, G::Forces>) {
+    ) -> (SteppedState<B, C>, StepStart<C::Motion, G::Forces>) {
         let h = C::step_s(step);
         let g1 = match ground {
             Some(g) => *g,
