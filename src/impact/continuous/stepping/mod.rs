@@ -18,6 +18,8 @@
 
 mod ladder;
 mod step;
+#[cfg(test)]
+mod tests;
 
 pub use ladder::StepLadder;
 pub use step::StepStart;
