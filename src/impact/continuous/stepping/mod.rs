@@ -2,7 +2,7 @@
 //! law, a ground), with a club that advances each step its own way ([`SteppedClub`]: a shaft's modes by
 //! exponential time differencing) and a policy that chooses each step ([`StepPolicy`]).
 //!
-//! Each step is classical Runge-Kutta's four stages ([`step`]): the ball by Runge-Kutta, the club by its own
+//! Each step is classical Runge-Kutta's four stages (`step.rs`): the ball by Runge-Kutta, the club by its own
 //! scheme on the same stages. What the policy decides:
 //!
 //! - the step's size, from a ladder of sizes whose coefficients are built once ([`StepLadder`]): long while
@@ -68,7 +68,8 @@ pub trait StepPolicy<L, B: BallPart, C: SteppedClub, G: SampledGround> {
 }
 
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
-    /// Runs from state `s` at `t_s` until the policy stops; returns the state and time it stopped at.
+    /// Runs from state `s` at `t_s` until the policy stops (it sees every step, so it bounds the run: a step
+    /// count, a time); returns the state and time it stopped at.
     pub fn run_stepped<P: StepPolicy<L, B, C, G>>(
         &self,
         mut s: SteppedState<B, C>,
