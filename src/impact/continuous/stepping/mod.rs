@@ -14,13 +14,16 @@
 //! - when to stop: after each step it sees the step's start, its state and what acted then ([`StepStart`]).
 //!
 //! The plain fixed-step Runge-Kutta stays [`Assembly::simulate`]; this is the way for models whose club or ground
-//! need more.
+//! need more. [`FixedStep`] is the plain policy (one step, stop when the ball leaves): with it a model of the
+//! shared parts runs here unchanged.
 
+mod fixed;
 mod ladder;
 mod step;
 #[cfg(test)]
 mod tests;
 
+pub use fixed::FixedStep;
 pub use ladder::StepLadder;
 pub use step::StepStart;
 
