@@ -4,7 +4,7 @@
 //! The contact's geometry comes from the face [`surface`](super::surface); the law turns it into forces on the
 //! ball, applied equal and opposite to the head at the same point, so linear momentum is conserved to rounding
 //! at every Runge-Kutta stage (the shared [`rk4_step`](crate::integrate::rk4_step)), by a fixed step or one
-//! bounded by the friction's stiffness ([`Stepping`]). The law's own state (if any) is held through a step and
+//! bounded by the friction's stiffness ([`StepSize`]). The law's own state (if any) is held through a step and
 //! committed after it.
 
 use super::ball::BallPart;
@@ -40,7 +40,7 @@ pub struct Integration {
 
 /// How the step is chosen within [`Integration`]'s bounds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub enum Stepping {
+pub enum StepSize {
     /// Every step `step_s`.
     #[default]
     Fixed,
@@ -126,10 +126,10 @@ struct Stage<'a, L: ContactLaw, B, C, G> {
     law_state: &'a L::State,
 }
 
-impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
+impl<L: ContactLaw, B: BallPart, C, G> Assembly<L, B, C, G> {
     /// The contact between ball and face in a state, if they overlap.
     #[inline(always)]
-    fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
+    pub(super) fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
         let (p_b, v_b) = B::centre(ball);
         let rot = &head.world_from_club;
         let overlap =
@@ -149,32 +149,34 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
             slip_mps: v_rel - v_rel.dot(&normal) * normal,
         })
     }
+}
 
+impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
     #[inline]
     fn rate_with(&self, s: &State<C::State, B::State>, law_state: &L::State) -> Rate<C::Rate, B::Rate> {
-        self.rate_and_step::<false>(s, law_state, &Stepping::Fixed, 0.0).0
+        self.rate_and_step::<false>(s, law_state, &StepSize::Fixed, 0.0).0
     }
 
-    /// The rate, and with `STEP` the next step by `stepping` from a base step `step_s` (else `step_s`).
+    /// The rate, and with `STEP` the next step by `step_size` from a base step `step_s` (else `step_s`).
     #[inline(always)]
     fn rate_and_step<const STEP: bool>(
         &self,
         s: &State<C::State, B::State>,
         law_state: &L::State,
-        stepping: &Stepping,
+        step_size: &StepSize,
         step_s: Real,
     ) -> (Rate<C::Rate, B::Rate>, Real) {
         let head = self.club.head(&s.club);
-        let mut h = match *stepping {
-            Stepping::Fixed => step_s,
-            Stepping::Stiffness { growth, .. } => growth.max(1.0) * step_s,
+        let mut h = match *step_size {
+            StepSize::Fixed => step_s,
+            StepSize::Stiffness { growth, .. } => growth.max(1.0) * step_s,
         };
         let (mut force_club, mut torque_club, mut force_ball, mut r_ball, mut forces) =
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), ContactForces::default());
         if let Some(c) = self.contact(&head, &s.ball) {
             let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
             if STEP {
-                if let Stepping::Stiffness { h_lambda, slip_compliance_per_kg, .. } = *stepping {
+                if let StepSize::Stiffness { h_lambda, slip_compliance_per_kg, .. } = *step_size {
                     h = self.stiff_step(&c, normal_n, h, step_s, h_lambda, slip_compliance_per_kg);
                 }
             }
@@ -236,17 +238,17 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
         slip0: Vector3,
         integration: &Integration,
     ) -> Result<ContinuousResult, ImpactError> {
-        self.simulate_stepping(state, ball_centre_m, slip0, integration, &Stepping::Fixed)
+        self.simulate_with_step(state, ball_centre_m, slip0, integration, &StepSize::Fixed)
     }
 
-    /// [`Self::simulate`] with the step chosen by `stepping`.
-    pub fn simulate_stepping(
+    /// [`Self::simulate`] with the step chosen by `step_size`.
+    pub fn simulate_with_step(
         &self,
         state: &ImpactState,
         ball_centre_m: Vector3,
         slip0: Vector3,
         integration: &Integration,
-        stepping: &Stepping,
+        step_size: &StepSize,
     ) -> Result<ContinuousResult, ImpactError> {
         let mut s = State { club: self.club.initial(state), ball: self.ball.at_rest(ball_centre_m) };
         let mut law_state = L::State::default();
@@ -261,9 +263,9 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
         let (mut t_s, mut contact_time) = (0.0, 0.0);
         loop {
             let stage = Stage { asm: self, law_state: &law_state };
-            let (k1, h) = match stepping {
-                Stepping::Fixed => (stage.rate(&s), step_s),
-                Stepping::Stiffness { .. } => self.rate_and_step::<true>(&s, &law_state, stepping, step_s),
+            let (k1, h) = match step_size {
+                StepSize::Fixed => (stage.rate(&s), step_s),
+                StepSize::Stiffness { .. } => self.rate_and_step::<true>(&s, &law_state, step_size, step_s),
             };
             let cf = k1.forces;
             if trace_every > 0 && steps % trace_every == 0 {
@@ -301,9 +303,9 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
                 self.law.commit(c.as_ref(), &mut law_state, h);
             }
             steps += 1;
-            t_s = match *stepping {
-                Stepping::Fixed => steps as Real * step_s,
-                Stepping::Stiffness { .. } => t_s + h,
+            t_s = match *step_size {
+                StepSize::Fixed => steps as Real * step_s,
+                StepSize::Stiffness { .. } => t_s + h,
             };
             if trace_every > 0 || cfg!(debug_assertions) {
                 let e = self.energy_j(&s);

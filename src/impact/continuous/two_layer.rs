@@ -22,7 +22,7 @@
 //! Assumptions (seed 3.2.1): the contact never reaches the face's edges; a face whose bulge and roll differ is
 //! taken as a sphere of their geometric-mean radius.
 
-use super::assembly::{Assembly, ContinuousResult, Integration, Stepping};
+use super::assembly::{Assembly, ContinuousResult, Integration, StepSize};
 use super::ball::TwoLayerBall;
 use super::club::FreeHead;
 use super::ground::NoGround;
@@ -172,7 +172,7 @@ impl TwoLayerParams {
     }
 }
 
-/// The largest `h λ` a step takes at the default step on the friction's slip mode (eq. 3.15, [`Stepping`]):
+/// The largest `h λ` a step takes at the default step on the friction's slip mode (eq. 3.15, [`StepSize`]):
 /// classical Runge-Kutta is stable on a decaying mode up to 2.785, and `λ` grows within a step as the force does.
 const H_LAMBDA: Real = 2.4;
 
@@ -182,7 +182,7 @@ const H_LAMBDA: Real = 2.4;
 /// cover nearly sticks under a large normal force (`λ = 4 μ F_N / v_tr · (1/m + R²/I_cover + ...)`, up to about
 /// 4.5e6 1/s), which bounds classical Runge-Kutta's step there; elsewhere (the first touch, a sliding cover, the
 /// release) the step grows up to `max_step_growth` times `step_s` while `h λ` stays within 2.4
-/// ([`Stepping::Stiffness`]). Halving `step_s` halves every step. The contact time is resolved to the last step
+/// ([`StepSize::Stiffness`]). Halving `step_s` halves every step. The contact time is resolved to the last step
 /// (at most `max_step_growth · step_s`, 3.6 us).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContinuousModel {
@@ -242,15 +242,15 @@ impl ContinuousModel {
         let integration =
             Integration { step_s: self.step_s, max_contact_s: self.max_contact_s, trace_every, model: "continuous" };
         let stepping = if self.max_step_growth > 1.0 {
-            Stepping::Stiffness {
+            StepSize::Stiffness {
                 growth: self.max_step_growth,
                 h_lambda: H_LAMBDA * self.step_s / Self::STEP_S,
                 slip_compliance_per_kg: slip_compliance_per_kg(&assembly.ball, club),
             }
         } else {
-            Stepping::Fixed
+            StepSize::Fixed
         };
-        assembly.simulate_stepping(state, start.ball_centre_m, start.slip0, &integration, &stepping)
+        assembly.simulate_with_step(state, start.ball_centre_m, start.slip0, &integration, &stepping)
     }
 }
 
