@@ -19,6 +19,20 @@ count() { # BIN STAGE N -> instructions
     valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 | sed -n 's/.*Collected : //p'
 }
 
+name_in() { # BIN STAGE -> the name BIN knows the stage by: its own, or the one builds before the registry's
+    # model names gave it (6def057: impulse/standard/iron7, continuous/two_layer/driver, continuous/maw/driver)
+    if "$1" "$2" 0 >/dev/null 2>&1; then
+        echo "$2"
+        return
+    fi
+    case "$2" in
+        standard/* | adjusted/* | slip/*) echo "impulse/$2" ;;
+        continuous/*) echo "continuous/two_layer/${2#continuous/}" ;;
+        maw/* | arakawa/*) echo "continuous/$2" ;;
+        *) echo "$2" ;;
+    esac
+}
+
 OUT="$(mktemp)"
 trap 'rm -f "$OUT"' EXIT
 for stage in "${STAGES[@]}"; do
@@ -27,7 +41,8 @@ for stage in "${STAGES[@]}"; do
     [[ "$stage" == extrapolate/* || "$stage" == flight/* ]] && n=200
     row="$stage $n"
     for bin in "$BASE" "$NEW"; do
-        row="$row $(count "$bin" "$stage" 0) $(count "$bin" "$stage" "$n")"
+        name="$(name_in "$bin" "$stage")"
+        row="$row $(count "$bin" "$name" 0) $(count "$bin" "$name" "$n")"
     done
     echo "$row" >>"$OUT"
     echo "$row" >&2
