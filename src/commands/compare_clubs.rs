@@ -55,6 +55,12 @@ fn read_rows(files: &[PathBuf]) -> Result<Vec<(DatasetLine, RowLabels)>> {
 
 /// The report: clubs in the order they first appear; `soil` for the ground model (`none`: on a tee).
 pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str>) -> Result<ByClub> {
+    // `both` and the other groups expand here as everywhere (impact::registry::resolve); `--soil` is the turf of
+    // the ground model, so a group takes its turf members with it, and models without the ground ignore it.
+    let names_ground = |m: &str| m == "ground" || registry::GROUPS.iter().any(|g| g.name == m);
+    let on_turf = soil.is_some() && models.split(',').map(str::trim).any(names_ground);
+    let models = registry::resolve(models, on_turf).context("--models")?;
+    let models = models.as_str();
     let mut rows = read_rows(files)?;
     let before = rows.len();
     if located {
@@ -82,7 +88,7 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
         let shots = resolve(&lines, &equipment).with_context(|| format!("club `{label}`"))?;
         let measured: Vec<[f64; 5]> = shots.iter().map(|s| s.measured).collect();
         let mut stats = Vec::new();
-        for name in models.split(',').map(str::trim) {
+        for name in models.split(',') {
             let mut loaded = club.clone();
             if name == "ground" {
                 super::args::set_soil(&mut loaded, soil, name)?;
