@@ -1,6 +1,8 @@
 //! `impactd compare --by-club`: each club of TrackMan exports on its own preset (TrackMan's `Club` column), every
 //! model's ball speed, launch angle, spin and spin axis as MAE and bias (`identify::by_club`), spin only on shots
-//! whose spin TrackMan measured; `--located` keeps only shots with an impact location.
+//! whose spin TrackMan measured; `--located` keeps only shots with an impact location. TrackMan's dynamic loft
+//! and face angle are the face's at the contact point (its definitions); on a wood's curved face they are turned
+//! into the face centre's (`identify::trackman_reading`).
 
 use std::path::PathBuf;
 
@@ -9,6 +11,7 @@ use impactd::equipment::BallSpec;
 use impactd::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
 use impactd::identify::cost::predict_all;
 use impactd::identify::dataset::resolve;
+use impactd::identify::trackman_reading::at_face_centre;
 use impactd::identify::DatasetLine;
 use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::Equipment;
@@ -75,10 +78,18 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
         };
         let group: Vec<&(DatasetLine, RowLabels)> =
             rows.iter().filter(|(_, l)| l.club.as_deref().unwrap_or_default() == label).collect();
-        let lines: Vec<DatasetLine> = group.iter().map(|(d, _)| d.clone()).collect();
         let spin_measured: Vec<bool> = group.iter().map(|(_, l)| l.spin_measured).collect();
         let club = super::args::load_club(preset)?;
         let equipment = Equipment { club: club.club.clone(), ball };
+        let lines = group
+            .iter()
+            .enumerate()
+            .map(|(i, (d, _))| {
+                let delivery = at_face_centre(&d.delivery, &equipment)
+                    .with_context(|| format!("club `{label}`, shot {}: TrackMan's loft and face", i + 1))?;
+                Ok(DatasetLine { delivery, measured: d.measured.clone() })
+            })
+            .collect::<Result<Vec<_>>>()?;
         let shots = resolve(&lines, &equipment).with_context(|| format!("club `{label}`"))?;
         let measured: Vec<[f64; 5]> = shots.iter().map(|s| s.measured).collect();
         let mut stats = Vec::new();

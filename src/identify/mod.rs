@@ -22,6 +22,7 @@
 //! - [`synth`]: synthetic datasets with known parameters and launch-monitor noise.
 //! - [`pairing`]: live pairing of measured launches with the rig's predictions.
 //! - [`club_toml`]: the fitted parameters written as a club file.
+//! - [`trackman_reading`]: TrackMan's loft and face angle (the contact point's) turned into the face centre's.
 //!
 //! Everything is deterministic for a seed: parallel sums are collected per shot and added in shot order.
 
@@ -36,6 +37,7 @@ pub mod optimize;
 pub mod pairing;
 pub mod params;
 pub mod synth;
+pub mod trackman_reading;
 
 pub use cost::{CostScales, FieldStats, ModelTable, FIELDS};
 pub use dataset::{DatasetLine, Shot};
