@@ -2,19 +2,19 @@
 //! model's ball speed, launch angle, spin and spin axis as MAE and bias (`identify::by_club`), spin only on shots
 //! whose spin TrackMan measured; `--located` keeps only shots with an impact location. TrackMan's dynamic loft
 //! and face angle are the face's at the contact point (its definitions); on a wood's curved face they are turned
-//! into the face centre's (`identify::trackman_reading`).
+//! into the face centre's (`offline::identify::trackman_reading`).
 
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use impactd::equipment::BallSpec;
-use impactd::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
-use impactd::identify::cost::predict_all;
-use impactd::identify::dataset::resolve;
-use impactd::identify::trackman_reading::at_face_centre;
-use impactd::identify::DatasetLine;
 use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::Equipment;
+use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
+use impactd::offline::identify::cost::predict_all;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::trackman_reading::at_face_centre;
+use impactd::offline::identify::DatasetLine;
 use impactd::session::trackman_csv::{read_labelled, RowLabels};
 
 /// One club's shots and each model's accuracy on them.
@@ -133,8 +133,9 @@ pub fn render(r: &ByClub) -> String {
             "model", "ball speed (mph)", "launch (deg)", "spin (rpm)", "spin axis (deg)"
         );
         for m in &c.models {
-            let pair =
-                |e: &impactd::identify::by_club::ErrorStats, d: usize| format!("{:.d$} / {:+.d$}", e.mae, e.bias);
+            let pair = |e: &impactd::offline::identify::by_club::ErrorStats, d: usize| {
+                format!("{:.d$} / {:+.d$}", e.mae, e.bias)
+            };
             let _ = writeln!(
                 s,
                 "{:<12} {:>17} {:>15} {:>17} {:>15}{}",
