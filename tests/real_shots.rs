@@ -200,3 +200,73 @@ fn the_seeds_ball_reaches_trackmans_spin_only_below_trackmans_launch() {
     assert!(shots.iter().all(|s| (0.65..0.79).contains(&(s.1 - s.0))));
     assert!((mean(|s| s.2) - 757.0).abs() < 2.0, "{}", mean(|s| s.2));
 }
+
+/// `compare --by-club` reads a wood's dynamic loft and face angle as TrackMan defines them, at the contact point:
+/// a one-row export (a driver, 100 mph, attack +2 deg, square path and face, loft 13 deg, struck 20 mm toward the
+/// heel, spin axis 0) gives the standard model's spin axis of the face-centre delivery
+/// `offline::identify::trackman_reading::at_face_centre` finds, to 1e-6 deg, whose face centre is open by the
+/// bulge's turn (3.86 deg: the torus of ARCHITECTURE.md section 2 on the seed's 305 mm bulge at 13 deg of loft), and
+/// that axis fades by about the D-plane tilt of that turn more than the row read as the face centre's.
+#[test]
+fn a_driver_rows_loft_and_face_are_the_contact_points() {
+    use impactd::equipment::{load_club, BallSpec};
+    use impactd::impact::registry::{build_one, BuildOptions};
+    use impactd::impact::{Equipment, LaunchMetrics};
+    use impactd::offline::identify::trackman_reading::at_face_centre;
+    use impactd::wire::DeliveryInput;
+
+    let header = ["Club", "Club Speed", "Attack Angle", "Club Path", "Dyn. Loft", "Face Angle", "Ball Speed"];
+    let header = [&header[..], &["Launch Angle", "Launch Direction", "Spin Rate", "Spin Rate Type", "Spin Axis"]]
+        .concat()
+        .into_iter()
+        .chain(["Impact Offset", "Impact Height"])
+        .map(|h| format!("\"{h}\""))
+        .collect::<Vec<_>>()
+        .join(",");
+    let units = "\"\",\"[mph]\",\"[deg]\",\"[deg]\",\"[deg]\",\"[deg]\",\"[mph]\",\"[deg]\",\"[deg]\",\"[rpm]\",\"\",\"[deg]\",\"[mm]\",\"[mm]\"";
+    let row =
+        "\"Driver\",\"100\",\"2\",\"0\",\"13\",\"0\",\"145\",\"13\",\"0\",\"2500\",\"Measured\",\"0\",\"-20\",\"0\"";
+    let dir = std::env::temp_dir().join(format!("impactd-real-shots-driver-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("driver.csv");
+    std::fs::write(&path, format!("sep=,\n{header}\n{units}\n{row}\n")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["compare", "--by-club", "--json", "--models", "standard"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (axis, _, n) = stat(&r, "Driver", "standard", "spin_axis_deg");
+    assert_eq!(n, 1);
+
+    let club = load_club("driver").unwrap();
+    let eq = Equipment::new(club.club.clone());
+    let model = build_one("standard", &club, &BuildOptions { ball: BallSpec::SEED, ..Default::default() }).unwrap();
+    let axis_of = |d: &DeliveryInput| {
+        let l = model.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
+        LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps).spin_axis_deg
+    };
+    let row = DeliveryInput {
+        club_speed_mph: 100.0,
+        attack_angle_deg: 2.0,
+        dynamic_loft_deg: Some(13.0),
+        impact_h_mm: -20.0,
+        ..Default::default()
+    };
+    let read = at_face_centre(&row, &eq).unwrap();
+    assert!((read.face_angle_deg - 3.86).abs() < 0.02, "face centre {:.3} deg", read.face_angle_deg);
+    assert!((axis - axis_of(&read)).abs() < 1e-6, "compare {axis:.6}, the reading {:.6}", axis_of(&read));
+    // Read at the face centre, the contact normal is the bulge's 3.86 deg closed: the plane of the club's velocity
+    // (attack 2 deg, path 0) and that normal (loft 13 deg) is tilted `atan(v x n)` 18.9 deg toward a draw (the
+    // D-plane's closed form); the reading takes that tilt away, and the model's axis moves by it within 4 deg (the
+    // gear effect's share changes with the contact normal: 22.3 deg here).
+    let (a, dl, f) = (2.0_f64.to_radians(), 13.0_f64.to_radians(), -(read.face_angle_deg).to_radians());
+    let n = [dl.cos() * f.cos(), dl.sin(), dl.cos() * f.sin()];
+    let axis_vector = [a.sin() * n[2], -a.cos() * n[2], a.cos() * n[1] - a.sin() * n[0]];
+    let tilt = axis_vector[1].atan2(axis_vector[0].hypot(axis_vector[2])).to_degrees();
+    assert!((tilt - 18.9).abs() < 0.1, "D-plane tilt {tilt:.2} deg");
+    let more_fade = axis - axis_of(&row);
+    assert!((more_fade - tilt).abs() < 4.0, "axis {axis:.2} deg, read at the face centre {:.2}", axis_of(&row));
+}
