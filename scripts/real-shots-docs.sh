@@ -11,6 +11,8 @@
 #   region relation     per club, TrackMan's measured spin over 2.5 v sin(a) / R from its own loft, face and launch
 #   region strike-height  the validation session's located shots by TrackMan's impact height: measured and
 #                       predicted smash (adjusted), ball speed bias
+#   region spin-relation  the validation session with TrackMan's loft and face read through its spin relation
+#   region heldout-relation  the held-out session, the same reading
 #   region spin-launch  per club of the validation session (measured spins), the launch the seed's ball needs below
 #                       TrackMan's to reach TrackMan's spin off TrackMan's face (closed form)
 # Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
@@ -30,6 +32,10 @@ MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
     2>/dev/null >"$OUT/validation-all.json"
 "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/heldout-7i-pw-driver.csv" \
     2>/dev/null >"$OUT/heldout.json"
+"$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
+    "$DATA/validation-8i-5i.csv" 2>/dev/null >"$OUT/spin-relation.json"
+"$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
+    "$DATA/heldout-7i-pw-driver.csv" 2>/dev/null >"$OUT/heldout-relation.json"
 
 # The 5-iron preset without the shaft's share: the head alone, as Table 3.1's 7-iron is.
 sed '/^shaft_heel_toe_inertia_g_cm2/d' clubs/presets/iron5.toml >"$OUT/iron5-head.toml"
@@ -227,5 +233,7 @@ docs_regions.replace("docs/real-shots.md", {
     "heldout": club_table("heldout.json"),
     "strike-height": strike,
     "spin-launch": spin_launch,
+    "spin-relation": club_table("spin-relation.json"),
+    "heldout-relation": club_table("heldout-relation.json"),
 })
 PY

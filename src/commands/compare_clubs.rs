@@ -13,7 +13,7 @@ use impactd::impact::Equipment;
 use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
 use impactd::offline::identify::cost::predict_all;
 use impactd::offline::identify::dataset::resolve;
-use impactd::offline::identify::trackman_reading::at_face_centre;
+use impactd::offline::identify::trackman_reading::{at_face_centre, through_spin_relation};
 use impactd::offline::identify::DatasetLine;
 use impactd::session::trackman_csv::{read_labelled, RowLabels};
 
@@ -34,6 +34,8 @@ pub struct ClubReport {
 #[derive(Debug, serde::Serialize)]
 pub struct ByClub {
     pub files: Vec<PathBuf>,
+    /// TrackMan's loft and face read through its spin relation (`--spin-relation`).
+    pub spin_relation: bool,
     /// Rows with club and ball data left out: without an impact location (with `--located`).
     pub unlocated_left_out: usize,
     pub clubs: Vec<ClubReport>,
@@ -57,7 +59,14 @@ fn read_rows(files: &[PathBuf]) -> Result<Vec<(DatasetLine, RowLabels)>> {
 }
 
 /// The report: clubs in the order they first appear; `soil` for the ground model (`none`: on a tee).
-pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str>) -> Result<ByClub> {
+/// `spin_relation`: TrackMan's loft and face read through its spin relation (`trackman_reading`).
+pub fn by_club(
+    files: &[PathBuf],
+    models: &str,
+    located: bool,
+    soil: Option<&str>,
+    spin_relation: bool,
+) -> Result<ByClub> {
     let mut rows = read_rows(files)?;
     let before = rows.len();
     if located {
@@ -85,7 +94,9 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
             .iter()
             .enumerate()
             .map(|(i, (d, _))| {
-                let delivery = at_face_centre(&d.delivery, &equipment)
+                let trackman =
+                    if spin_relation { through_spin_relation(&d.delivery, &d.measured) } else { d.delivery.clone() };
+                let delivery = at_face_centre(&trackman, &equipment)
                     .with_context(|| format!("club `{label}`, shot {}: TrackMan's loft and face", i + 1))?;
                 Ok(DatasetLine { delivery, measured: d.measured.clone() })
             })
@@ -111,7 +122,7 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
             models: stats,
         });
     }
-    Ok(ByClub { files: files.to_vec(), unlocated_left_out: before - rows.len(), clubs })
+    Ok(ByClub { files: files.to_vec(), spin_relation, unlocated_left_out: before - rows.len(), clubs })
 }
 
 /// The table: per club, a line per model (ball speed in mph, launch and axis in deg, spin in rpm).

@@ -12,10 +12,24 @@
 //! [`at_face_centre`] finds the face-centre loft and face angle whose contact-point normal has TrackMan's
 //! elevation and azimuth: a fixed-point iteration on the delivery's own orientation (the dynamic lie applied
 //! when given), which converges in a few steps because the correction is nearly a constant turn.
+//!
+//! TrackMan's loft and face are themselves computed from its ball data: on every measured shot of
+//! tests/data/trackman its spin is [`TRACKMAN_SPIN_RATIO`] times `2.5 v sin(a) / R`, `a` the angle between its
+//! face normal and the ball's direction, where a homogeneous ball (`I = 0.4 m R^2`, the seed's) leaves any face
+//! with exactly `2.5 v sin(a) / R` (`I w = m R v_t`). [`through_spin_relation`] reads TrackMan's normal through
+//! that relation: the normal the seed's ball needs to leave in TrackMan's direction with TrackMan's spin, turned
+//! from TrackMan's, in the plane of its normal and the ball's direction, to `asin(1.136 sin a)` from the
+//! ball's direction. The measured launch then enters the delivery, so launch and spin are no longer an
+//! independent test.
 
 use crate::impact::{Equipment, ImpactError};
 use crate::math::Real;
-use crate::wire::{DeliveryInput, Handedness};
+use crate::wire::{DeliveryInput, Handedness, LaunchFields};
+
+/// TrackMan's measured spin over `2.5 v sin(a) / R` on all 32 measured shots of tests/data/trackman (two players,
+/// 5-iron to driver): 1.136 within 0.002 (tests/tour_iron_spin.rs). A property of TrackMan's software, not of a
+/// model.
+pub const TRACKMAN_SPIN_RATIO: Real = 1.136;
 
 /// Iterations at most, and the residual (deg) at which the angles are taken as found.
 const MAX_ITERATIONS: usize = 50;
@@ -54,6 +68,34 @@ pub fn at_face_centre(d: &DeliveryInput, equipment: &Equipment) -> Result<Delive
         model: "TrackMan's contact-point loft and face",
         reason: format!("no face-centre orientation within {TOLERANCE_DEG} deg after {MAX_ITERATIONS} steps"),
     })
+}
+
+/// Unit vector at `elevation_deg` above the horizon and `azimuth_deg` right of the target line.
+fn direction(elevation_deg: Real, azimuth_deg: Real) -> crate::math::Vector3 {
+    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    crate::math::Vector3::new(e.cos() * a.cos(), e.sin(), e.cos() * a.sin())
+}
+
+/// TrackMan's dynamic loft and face angle read through its spin relation (module doc): the normal turned away
+/// from the measured ball direction `b` to `a' = asin(1.136 sin a)` in the plane of `b` and TrackMan's normal
+/// `n`, so that the seed's ball leaving along `b` spins TrackMan's spin. A row without a loft, or whose normal is
+/// along the ball's direction, is returned as it is.
+pub fn through_spin_relation(d: &DeliveryInput, measured: &LaunchFields) -> DeliveryInput {
+    let Some(loft_deg) = d.dynamic_loft_deg else { return d.clone() };
+    let n = direction(loft_deg, d.face_angle_deg);
+    let b = direction(measured.launch_angle_deg, measured.launch_direction_deg);
+    let along = n.dot(&b).clamp(-1.0, 1.0);
+    let across = n - along * b;
+    if across.norm() < 1e-9 {
+        return d.clone();
+    }
+    let a = (TRACKMAN_SPIN_RATIO * along.acos().sin()).min(1.0).asin();
+    let turned = a.cos() * b + a.sin() * across.normalize();
+    DeliveryInput {
+        dynamic_loft_deg: Some(turned.y.clamp(-1.0, 1.0).asin().to_degrees()),
+        face_angle_deg: turned.z.atan2(turned.x).to_degrees(),
+        ..d.clone()
+    }
 }
 
 #[cfg(test)]
@@ -104,6 +146,39 @@ mod tests {
         let lie = at_face_centre(&driver_row(-20.0, 8.0), &equipment).unwrap();
         let (loft, face) = contact_normal_angles_deg(&lie, &equipment).unwrap();
         assert!((face - 1.5).abs() < 1e-6 && (loft - 13.0).abs() < 1e-6, "{loft} {face}");
+    }
+
+    /// Through the relation, the seed's ball leaving along the measured direction spins TrackMan's spin: on the
+    /// validation session's first 8-iron row (tests/data/trackman: 118.95 mph, launch 16.60 deg, direction 0.62
+    /// deg, loft 22.11 deg, face 1.58 deg, 6,589 rpm measured), `2.5 v sin(a') / R` is 6,589 rpm within 0.1 %
+    /// (the row's own ratio is 1.1359), the normal stays in the plane of TrackMan's normal and the ball's
+    /// direction, and loft and face each move away from the ball's direction by about 0.136 times their gap to it
+    /// (small angles: `sin a' = 1.136 sin a`), 0.75 and 0.13 deg.
+    #[test]
+    fn the_relation_gives_the_seeds_ball_trackmans_spin() {
+        let row = DeliveryInput {
+            club_speed_mph: 90.84,
+            face_angle_deg: 1.583,
+            dynamic_loft_deg: Some(22.114),
+            ..driver_row(0.0, 0.0)
+        };
+        let measured = LaunchFields {
+            ball_speed_mph: 118.95,
+            launch_angle_deg: 16.602,
+            launch_direction_deg: 0.6239,
+            backspin_rpm: 6588.9,
+            sidespin_rpm: 0.0,
+            carry_yd: None,
+        };
+        let read = through_spin_relation(&row, &measured);
+        let (n0, b) = (direction(22.114, 1.583), direction(16.602, 0.6239));
+        let n1 = direction(read.dynamic_loft_deg.unwrap(), read.face_angle_deg);
+        assert!(n1.dot(&n0.cross(&b)).abs() < 1e-12, "out of the plane");
+        let spin_rpm = 2.5 * 118.95 * 0.44704 * n1.dot(&b).acos().sin() / 0.0213 * 60.0 / std::f64::consts::TAU;
+        assert!((spin_rpm / 6588.9 - 1.0).abs() < 1e-3, "{spin_rpm:.0} rpm");
+        let (rise, turn) = (read.dynamic_loft_deg.unwrap() - 22.114, read.face_angle_deg - 1.583);
+        assert!((rise - 0.136 * (22.114 - 16.602)).abs() < 0.02, "{read:?}");
+        assert!((turn - 0.136 * (1.583 - 0.6239)).abs() < 0.02, "{read:?}");
     }
 
     /// An iron's face is a plane: the reading changes nothing. A left-hander's row is the right-hander's mirror
