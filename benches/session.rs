@@ -9,9 +9,9 @@ use std::collections::BTreeSet;
 use criterion::{criterion_group, criterion_main, Criterion};
 use impactd::equipment::ClubSpec;
 use impactd::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use impactd::offline::swing::SwingSpec;
 use impactd::rng::Rng;
 use impactd::session::{summarize, GroupBy};
-use impactd::swing::SwingSpec;
 use impactd::wire::{Handedness, LaunchPrediction, PredictOutput, ShotLabels};
 
 /// 10,000 predictions of ten clubs (labels) and three players, with their flights, as JSON bytes.

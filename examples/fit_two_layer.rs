@@ -5,11 +5,11 @@
 //!     cargo run --release --no-default-features --example fit_two_layer [SHOTS] [POPULATION] [GENERATIONS]
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
-use impactd::identify::dataset::resolve;
-use impactd::identify::fit::{run, FitOptions};
-use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::{FitModel, ParamSpace};
 use impactd::impact::Equipment;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::fit::{run, FitOptions};
+use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::offline::identify::{FitModel, ParamSpace};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arg = |i: usize, default: usize| std::env::args().nth(i).and_then(|a| a.parse().ok()).unwrap_or(default);

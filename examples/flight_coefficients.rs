@@ -5,7 +5,7 @@
 
 use impactd::flight::reference::{bearman_harvey, lyu, nathan, BH_CD, BH_CL};
 use impactd::flight::{aero, Aero, Flight};
-use impactd::plot::{LineChart, Series, PALETTE};
+use impactd::offline::plot::{LineChart, Series, PALETTE};
 use impactd::units::radps_to_rpm;
 
 fn main() -> std::io::Result<()> {

@@ -346,8 +346,8 @@ impl Pipeline {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::offline::swing::{sample, Sampling, Swing, SwingSpec};
     use crate::rng::Rng;
-    use crate::swing::{sample, Sampling, Swing, SwingSpec};
 
     #[test]
     fn a_swing_gives_one_impact_and_one_launch() {

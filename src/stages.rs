@@ -12,8 +12,8 @@ use crate::kinematics::arc::ArcFit;
 use crate::kinematics::estimate::estimate;
 use crate::kinematics::{Calibration, ClubPose, EstimatorSpec, Scene, Track, TrackLimits};
 use crate::math::Vector3;
+use crate::offline::swing::{sample, Sampling, Swing, SwingSpec};
 use crate::rng::Rng;
-use crate::swing::{sample, Sampling, Swing, SwingSpec};
 
 /// One named workload: `run(i)` does one operation on the `i`-th input (cycled) and returns a value to keep the
 /// optimiser honest.
@@ -23,7 +23,7 @@ pub struct Stage {
 }
 
 /// A fixed spread of 64 golfers' deliveries for `club` (seeded, the same on every machine; the club's
-/// [`GolferProfile`](crate::swing::GolferProfile) with the swing's closure rate).
+/// [`GolferProfile`](crate::offline::swing::GolferProfile) with the swing's closure rate).
 pub fn delivery_spread(club: &ClubSpec) -> Vec<Delivery> {
     let eq = Equipment::new(club.clone());
     let mut rng = Rng::new(0x1F2E_3D4C);

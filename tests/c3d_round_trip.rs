@@ -1,4 +1,4 @@
-//! Round trip: synthetic swings (`impactd::swing`) written as markers to a C3D file by an independent writer
+//! Round trip: synthetic swings (`impactd::offline::swing`) written as markers to a C3D file by an independent writer
 //! (PyPI `c3d`, pinned in scripts/test-requirements.txt), with 0.1 mm of marker noise, occluded markers whose
 //! coordinates are left stale, a ghost marker and frames with too few markers; then `impactd import` and
 //! `impactd replay` give the launches of the same swings replayed as exact JSON samples, within the spread that
@@ -17,9 +17,9 @@ use impactd::equipment::ClubSpec;
 use impactd::impact::Equipment;
 use impactd::kinematics::{Calibration, ClubPose, MarkerFitter, MarkerSet};
 use impactd::math::{Isometry3, Vector3};
+use impactd::offline::swing::{Swing, SwingSpec};
 use impactd::pipeline::{Event, Pipeline};
 use impactd::rng::Rng;
-use impactd::swing::{Swing, SwingSpec};
 use impactd::wire::{ClubheadSampleMsg, LaunchPrediction};
 
 const RATE_HZ: f64 = 1000.0;

@@ -8,9 +8,9 @@ use impactd::equipment::ClubSpec;
 use impactd::impact::{Delivery, DeliveryMetrics, Equipment, SwingArc};
 use impactd::kinematics::Calibration;
 use impactd::math::Vector3;
+use impactd::offline::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 use impactd::pipeline::{Event, Pipeline, RigSetup};
 use impactd::rng::Rng;
-use impactd::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 
 /// One shot: the truth and what the pipeline measured.
 struct Shot {

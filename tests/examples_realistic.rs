@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 use impactd::equipment::ClubSpec;
-use impactd::swing::GolferProfile;
+use impactd::offline::swing::GolferProfile;
 
 fn recording(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("recordings").join(name)

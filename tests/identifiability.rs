@@ -5,13 +5,13 @@
 //! shift on driver shots and for the two-layer model's Table 3.5 parameters on 7-iron shots.
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
-use impactd::identify::dataset::resolve;
-use impactd::identify::fisher::{bounds, information_of, jacobian, l1_scatter, Bound};
-use impactd::identify::fit::{run, FitOptions};
-use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::CostScales;
-use impactd::identify::{FitModel, ParamSpace, Shot};
 use impactd::impact::Equipment;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::fisher::{bounds, information_of, jacobian, l1_scatter, Bound};
+use impactd::offline::identify::fit::{run, FitOptions};
+use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::offline::identify::CostScales;
+use impactd::offline::identify::{FitModel, ParamSpace, Shot};
 
 fn shots(model: &str, club: ClubSpec, truth: &[f64], n: usize, seed: u64) -> (ParamSpace, LoadedClub, Vec<Shot>) {
     let space = ParamSpace::new(FitModel::parse(model).unwrap(), &[]).unwrap();

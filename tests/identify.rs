@@ -4,12 +4,12 @@
 //! launch, 0.3 deg direction, 150 rpm per spin component).
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
-use impactd::identify::cost::normal_mae;
-use impactd::identify::dataset::resolve;
-use impactd::identify::fit::{run, FitOptions, FitReport};
-use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::{FitModel, ParamSpace};
 use impactd::impact::Equipment;
+use impactd::offline::identify::cost::normal_mae;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::fit::{run, FitOptions, FitReport};
+use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::offline::identify::{FitModel, ParamSpace};
 
 fn fit(model: &str, truth: &[f64], seed: u64) -> FitReport {
     let space = ParamSpace::new(FitModel::parse(model).unwrap(), &[]).unwrap();

@@ -12,11 +12,11 @@
 //! not by their noise, so it cannot reach the bound.
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
-use impactd::identify::dataset::resolve;
-use impactd::identify::fit::{run, FitOptions};
-use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::{FitModel, Objective, ParamSpace};
 use impactd::impact::Equipment;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::fit::{run, FitOptions};
+use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::offline::identify::{FitModel, Objective, ParamSpace};
 
 const TRUTH: [f64; 4] = [7.3e-3, 0.31e-3, -0.42e-3, 0.17e-3];
 const SEEDS: std::ops::Range<u64> = 11..51;

@@ -4,14 +4,14 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::equipment::ClubSpec;
-use impactd::eval::{run, EstimatorReport, EvalConfig, EvalReport};
 use impactd::impact::{Equipment, ImpulseModel, ImpulseVariant};
 use impactd::kinematics::estimate::estimate;
 use impactd::kinematics::track::Accepted;
 use impactd::kinematics::*;
 use impactd::math::{Isometry3, Translation3Ext, UnitQuaternion, Vector3};
+use impactd::offline::eval::{run, EstimatorReport, EvalConfig, EvalReport};
+use impactd::offline::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 use impactd::rng::Rng;
-use impactd::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 
 fn eval(club: ClubSpec, shots: usize, noise_mm: f64, noise_deg: f64) -> EvalReport {
     eval_on(SwingPath::Arc, club, shots, noise_mm, noise_deg)
@@ -123,7 +123,7 @@ fn the_estimators_meet_the_targets_on_double_pendulum_paths() {
         assert_meets_the_accuracy_targets(&name, &r.estimators[1]);
         assert_meets_the_accuracy_targets(&name, &r.estimators[2]);
         let (lin, poly, arc) = (&r.estimators[0].errors, &r.estimators[1].errors, &r.estimators[2].errors);
-        let ratio = |e: &impactd::eval::ErrorStats, l: &impactd::eval::ErrorStats| l.rms / e.rms;
+        let ratio = |e: &impactd::offline::eval::ErrorStats, l: &impactd::offline::eval::ErrorStats| l.rms / e.rms;
         assert!(ratio(&poly.impact_h_mm, &lin.impact_h_mm) > 3.0, "{name} poly h ratio");
         assert!(ratio(&poly.impact_v_mm, &lin.impact_v_mm) > 4.0, "{name} poly v ratio");
         let (h, v) = (ratio(&arc.impact_h_mm, &lin.impact_h_mm), ratio(&arc.impact_v_mm, &lin.impact_v_mm));
@@ -349,7 +349,7 @@ fn address_and_waggle_do_not_fire() {
 /// alone (the extrapolation `θ₂ + u (θ₂ − θ₁)`, `u` uniform in [0, 1]).
 #[test]
 fn the_face_angle_bound_allows_about_three_times_linear2() {
-    use impactd::swing::{ANGULAR_ACCEL_SIGMA_RADPS2, ANGULAR_JERK_SIGMA_RADPS3};
+    use impactd::offline::swing::{ANGULAR_ACCEL_SIGMA_RADPS2, ANGULAR_JERK_SIGMA_RADPS3};
     let (rate_hz, before_s, noise_rad) = (720.0, Sampling::default().before_s, 0.1_f64.to_radians());
     let phases = 200;
     let mut variance = 0.0;

@@ -3,9 +3,9 @@
 //! of arrival, two models per shot, unpaired counts and the running MAE.
 
 use impactd::equipment::ClubSpec;
-use impactd::identify::pairing::{PairWindow, Pairer};
 use impactd::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use impactd::math::Vector3;
+use impactd::pairing::{PairWindow, Pairer};
 use impactd::wire::{Handedness, LaunchPrediction, MeasuredLaunch, PredictOutput};
 
 const S: u64 = 1_000_000_000;

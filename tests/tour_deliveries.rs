@@ -8,7 +8,7 @@ use impactd::equipment::{load_club, ClubSpec};
 use impactd::impact::registry::{build_one, BuildOptions};
 use impactd::impact::tour::{centred_delivery, dynamic_loft_for_launch, TourAverage, TOUR_DRIVER, TOUR_IRON7};
 use impactd::impact::{Equipment, LaunchMetrics};
-use impactd::swing::GolferProfile;
+use impactd::offline::swing::GolferProfile;
 
 fn derived(preset: &str, row: &TourAverage) -> (f64, LaunchMetrics, ClubSpec) {
     let club = load_club(preset).unwrap();

@@ -87,7 +87,7 @@ fn a_model_in_one_file_is_predicted_reported_traced_and_drawn() {
     let eq = Equipment::new(ClubSpec::driver());
     let state = impactd::predict::state_of(&serde_json::from_str(input.trim()).unwrap(), &eq.club, &eq).unwrap();
     let r = toy.run(&state, &eq, &RunOptions::traced(1)).unwrap();
-    let chart = impactd::plot::forces_chart("driver", 100.0, &r).unwrap();
+    let chart = impactd::offline::plot::forces_chart("driver", 100.0, &r).unwrap();
     assert_eq!(chart.series[0].points.len(), 21);
     assert!(chart.title.contains("contact 450 µs"), "{}", chart.title);
     // Without a trace asked, no course.

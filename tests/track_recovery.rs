@@ -7,9 +7,9 @@
 use impactd::equipment::ClubSpec;
 use impactd::impact::Equipment;
 use impactd::kinematics::{Calibration, ClubheadSample};
+use impactd::offline::swing::{sample, Sampling, Swing, SwingSpec};
 use impactd::pipeline::{Event, Pipeline, RigSetup};
 use impactd::rng::Rng;
-use impactd::swing::{sample, Sampling, Swing, SwingSpec};
 
 const YEAR_NS: u64 = 365 * 24 * 3600 * 1_000_000_000;
 

@@ -13,15 +13,15 @@ use std::process::ExitCode;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::equipment::BallSpec;
-use impactd::identify::cost::model_table;
-#[cfg(feature = "daemon")]
-use impactd::identify::cost::recorded_table;
-#[cfg(feature = "daemon")]
-use impactd::identify::dataset::fields_of_launch;
-use impactd::identify::dataset::{read_jsonl, resolve};
-use impactd::identify::{DatasetLine, ModelTable, FIELDS};
 use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::Equipment;
+use impactd::offline::identify::cost::model_table;
+#[cfg(feature = "daemon")]
+use impactd::offline::identify::cost::recorded_table;
+#[cfg(feature = "daemon")]
+use impactd::offline::identify::dataset::fields_of_launch;
+use impactd::offline::identify::dataset::{read_jsonl, resolve};
+use impactd::offline::identify::{DatasetLine, ModelTable, FIELDS};
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
@@ -189,11 +189,11 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
             let model = registry::build_one(name, &club, &BuildOptions { ball, ..Default::default() })?;
             tables.push(model_table(name, model.as_ref(), &equipment, &shots));
             if args.residuals {
-                let predicted = impactd::identify::cost::predict_all(model.as_ref(), &equipment, &shots);
+                let predicted = impactd::offline::identify::cost::predict_all(model.as_ref(), &equipment, &shots);
                 for (i, (p, s)) in predicted.iter().zip(&shots).enumerate() {
                     let residual = p.map(|p| {
                         let r: [f64; 5] = std::array::from_fn(|k| p[k] - s.measured[k]);
-                        impactd::identify::dataset::launch_fields(&r)
+                        impactd::offline::identify::dataset::launch_fields(&r)
                     });
                     per_shot.push(ShotResiduals { model: name.to_string(), shot: i + 1, residual });
                 }

@@ -6,12 +6,12 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use impactd::equipment::BallSpec;
-use impactd::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
-use impactd::identify::cost::predict_all;
-use impactd::identify::dataset::resolve;
-use impactd::identify::DatasetLine;
 use impactd::impact::registry::{self, BuildOptions};
 use impactd::impact::Equipment;
+use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
+use impactd::offline::identify::cost::predict_all;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::DatasetLine;
 use impactd::session::trackman_csv::{read_labelled, RowLabels};
 
 /// One club's shots and each model's accuracy on them.
@@ -122,8 +122,9 @@ pub fn render(r: &ByClub) -> String {
             "model", "ball speed (mph)", "launch (deg)", "spin (rpm)", "spin axis (deg)"
         );
         for m in &c.models {
-            let pair =
-                |e: &impactd::identify::by_club::ErrorStats, d: usize| format!("{:.d$} / {:+.d$}", e.mae, e.bias);
+            let pair = |e: &impactd::offline::identify::by_club::ErrorStats, d: usize| {
+                format!("{:.d$} / {:+.d$}", e.mae, e.bias)
+            };
             let _ = writeln!(
                 s,
                 "{:<12} {:>17} {:>15} {:>17} {:>15}{}",

@@ -85,7 +85,7 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         })
         .collect::<Result<Vec<_>>>()?;
     let loaded = load_club(&args.club)?;
-    let config = impactd::eval::EvalConfig {
+    let config = impactd::offline::eval::EvalConfig {
         launch_model: super::args::one_model("adjusted", &loaded, impactd::impact::impulse::DEFAULT_COR)?,
         club: loaded.club.clone(),
         rate_hz: args.rate,
@@ -97,12 +97,12 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         seed: args.seed,
         estimators,
         path: match args.path {
-            PathArg::Arc => impactd::swing::SwingPath::Arc,
-            PathArg::DoublePendulum => impactd::swing::SwingPath::DoublePendulum,
+            PathArg::Arc => impactd::offline::swing::SwingPath::Arc,
+            PathArg::DoublePendulum => impactd::offline::swing::SwingPath::DoublePendulum,
         },
     };
     let mut progress = super::progress::Progress::new(args.shots as u64, "swings");
-    let report = impactd::eval::run(&config, |done| progress.set(done as u64, None));
+    let report = impactd::offline::eval::run(&config, |done| progress.set(done as u64, None));
     progress.finish();
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -125,7 +125,7 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         write!(out, " {:>21}", format!("{} rms / max", e.name))?;
     }
     writeln!(out)?;
-    let rows = |e: &impactd::eval::EstimatorReport| {
+    let rows = |e: &impactd::offline::eval::EstimatorReport| {
         let mut rows = e.errors.entries().to_vec();
         rows.extend(e.club_data.entries());
         rows

@@ -15,11 +15,11 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use impactd::equipment::BallSpec;
-use impactd::identify::club_toml::to_toml;
-use impactd::identify::dataset::resolve;
-use impactd::identify::fit::{run as fit_run, FitOptions, FitReport};
-use impactd::identify::{FitModel, Objective, ParamSpace, FIELDS};
 use impactd::impact::Equipment;
+use impactd::offline::identify::club_toml::to_toml;
+use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::fit::{run as fit_run, FitOptions, FitReport};
+use impactd::offline::identify::{FitModel, Objective, ParamSpace, FIELDS};
 
 #[derive(Debug, Args)]
 pub struct FitArgs {

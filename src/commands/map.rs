@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::plot::MapMetric;
+use impactd::offline::plot::MapMetric;
 
 use super::args::{load_club, model_name, one_model, write_output, DeliveryArgs};
 
@@ -45,8 +45,9 @@ pub fn run(args: &MapArgs) -> Result<ExitCode> {
     let equipment = impactd::impact::Equipment::new(club.clone());
     impactd::predict::state_of(&args.delivery.input(), &club, &equipment).context("the delivery")?;
     let model = one_model(&args.model, &loaded, impactd::impact::impulse::DEFAULT_COR)?;
-    let mut heat = impactd::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells)
-        .context("no impact location on the face has a prediction")?;
+    let mut heat =
+        impactd::offline::plot::face_map(&club, model.as_ref(), &args.delivery.input(), args.metric, args.cells)
+            .context("no impact location on the face has a prediction")?;
     if let Some(note) = &heat.note {
         eprintln!("warning: {note}");
     }

@@ -92,7 +92,7 @@ fn maw_plate(args: &MawPlateArgs) -> Result<ExitCode> {
     use impactd::impact::continuous::law::maw::MawParams;
     let params = MawParams { rings: args.rings, ..MawParams::DRIVER };
     params.validate()?;
-    let chart = impactd::plot::maw_plate_chart(&params, args.speed_mps, args.incidence_deg);
+    let chart = impactd::offline::plot::maw_plate_chart(&params, args.speed_mps, args.incidence_deg);
     write_output(&args.output, &chart.svg(1000.0, 560.0))?;
     Ok(ExitCode::SUCCESS)
 }
@@ -105,11 +105,15 @@ fn forces(args: &ForcesArgs) -> Result<ExitCode> {
     let input = args.delivery.input();
     let state = impactd::predict::state_of(&input, &club, &equipment)?;
     let r = model.run(&state, &equipment, &impactd::impact::RunOptions::traced(2))?;
-    let Some(mut chart) = impactd::plot::forces_chart(&club.name, input.club_speed_mph, &r) else {
+    let Some(mut chart) = impactd::offline::plot::forces_chart(&club.name, input.club_speed_mph, &r) else {
         anyhow::bail!("--model {} is not resolved in time: it has no forces to plot", args.model);
     };
-    chart.title =
-        format!("{} ({})\n{}", chart.title, args.model, impactd::plot::delivery_title(&input, club.loft_deg()));
+    chart.title = format!(
+        "{} ({})\n{}",
+        chart.title,
+        args.model,
+        impactd::offline::plot::delivery_title(&input, club.loft_deg())
+    );
     write_output(&args.output, &chart.svg(900.0, 520.0))?;
     Ok(ExitCode::SUCCESS)
 }
@@ -146,6 +150,9 @@ fn trajectory(args: &TrajectoryArgs) -> Result<ExitCode> {
         c.pressure_hpa.map_or(String::new(), |p| format!("{p:.0} hPa, ")),
         args.firmness
     );
-    write_output(&args.output, &impactd::plot::trajectories_figure(&flights, &clubs, args.units, Some(&conditions)))?;
+    write_output(
+        &args.output,
+        &impactd::offline::plot::trajectories_figure(&flights, &clubs, args.units, Some(&conditions)),
+    )?;
     Ok(ExitCode::SUCCESS)
 }

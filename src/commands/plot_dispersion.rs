@@ -8,7 +8,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::plot::{dispersion_svg, DispersionGroup};
+use impactd::offline::plot::{dispersion_svg, DispersionGroup};
 use impactd::session::{club_of, Quantity, ShotId, Units};
 
 use super::args::write_output;

@@ -82,7 +82,7 @@ pub fn run(args: &GroundPlotArgs) -> Result<ExitCode> {
         bail!("--good-v-mm {}: that strike is fat too (strike lower on the face)", args.good_v_mm);
     }
     let title = format!("{} at {:.0} mph on {} soil", club.name, args.club_speed_mph, args.soil);
-    let svg = impactd::plot::ground_svg(&title, &[("fat", &fat), ("good", &good)])?;
+    let svg = impactd::offline::plot::ground_svg(&title, &[("fat", &fat), ("good", &good)])?;
     write_output(&args.output, &svg)?;
     Ok(ExitCode::SUCCESS)
 }

@@ -8,9 +8,9 @@ use std::process::ExitCode;
 
 use anyhow::{anyhow, Result};
 use clap::Args;
-use impactd::identify::dataset::to_jsonl;
-use impactd::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
-use impactd::identify::{FitModel, ParamSpace};
+use impactd::offline::identify::dataset::to_jsonl;
+use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
+use impactd::offline::identify::{FitModel, ParamSpace};
 
 #[derive(Debug, Args)]
 pub struct SynthArgs {

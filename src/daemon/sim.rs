@@ -17,8 +17,8 @@ use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};
 use crate::math::Vector3;
+use crate::offline::swing::{Swing, SwingSpec};
 use crate::rng::Rng;
-use crate::swing::{Swing, SwingSpec};
 use crate::wire::{self, keys, ClubheadSampleMsg, PredictOutput, TruthMessage};
 
 /// How the synthetic rig behaves.

@@ -1,6 +1,6 @@
 //! Each model's identifiable parameters, with bounds (seed section 3.1.3: "unique parameters that will affect
 //! the predicted launch conditions"), read from and written to the model's club-file section. Each is part of
-//! its model's entry in the registry (`impact::registry::MODELS`); the identification (`crate::identify`)
+//! its model's entry in the registry (`impact::registry::MODELS`); the identification (`impactd fit`)
 //! reads them there.
 //!
 //! - adjusted (Danaei, Table 3.3), `[adjusted]`: the mass added to the head `Δm` and the ball-CG shift `Δ` in the

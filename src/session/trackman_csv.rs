@@ -11,8 +11,8 @@
 //! delivery, and the measured columns, when filled, are the measurement (TrackMan's ball columns then hold the
 //! recorded prediction), so `compare` on an export reproduces the residuals the daemon recorded live.
 
-use crate::identify::DatasetLine;
 use crate::math::Real;
+use crate::offline::identify::DatasetLine;
 use crate::units::{MPS_PER_MPH, M_PER_YD};
 use crate::wire::{DeliveryInput, LaunchFields, LaunchPrediction};
 

@@ -11,7 +11,7 @@
 //! and the bay screen ([`crate::daemon::bridges::web`]).
 //!
 //! Measured launches (`lm/<rig>/launch`, from the Open Connect listener or any publisher) go through the same
-//! queue to the same worker, which records them, pairs them with its predictions ([`crate::identify::pairing`])
+//! queue to the same worker, which records them, pairs them with its predictions ([`crate::pairing`])
 //! and publishes each pair on `golf/<rig>/comparison` as soon as the later of the two arrives; `latency_us` of a
 //! comparison is the time from the callback receiving that message to the comparison being handed to zenoh.
 
@@ -35,7 +35,7 @@ use crate::daemon::live::stats::{
 };
 use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
-use crate::identify::pairing::Pairer;
+use crate::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 

@@ -209,10 +209,10 @@ impl LaunchMonitorConfig {
     }
 
     /// The pairing window of measured launches with predictions.
-    pub fn pair_window(&self) -> crate::identify::pairing::PairWindow {
+    pub fn pair_window(&self) -> crate::pairing::PairWindow {
         match self.pair_window_s {
-            Some([min_s, max_s]) => crate::identify::pairing::PairWindow { min_s, max_s },
-            None => crate::identify::pairing::PairWindow::default(),
+            Some([min_s, max_s]) => crate::pairing::PairWindow { min_s, max_s },
+            None => crate::pairing::PairWindow::default(),
         }
     }
 }

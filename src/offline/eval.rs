@@ -7,8 +7,8 @@ use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpactState, LaunchMetrics};
 use crate::kinematics::{Calibration, DetectorConfig, EstimatorSpec, ImpactDetector, Track, TrackLimits};
 use crate::math::Real;
+use crate::offline::swing::{sample, Sampling, Swing, SwingSpec};
 use crate::rng::Rng;
-use crate::swing::{sample, Sampling, Swing, SwingSpec};
 
 /// What to evaluate.
 #[derive(Debug, Clone)]
@@ -25,7 +25,7 @@ pub struct EvalConfig {
     pub seed: u64,
     pub estimators: Vec<EstimatorSpec>,
     /// The shape of the synthetic swings' path.
-    pub path: crate::swing::SwingPath,
+    pub path: crate::offline::swing::SwingPath,
 }
 
 /// RMS and largest absolute error.
@@ -125,7 +125,7 @@ pub struct EvalReport {
     pub noise_mm: Real,
     pub noise_deg: Real,
     pub seed: u64,
-    pub path: crate::swing::SwingPath,
+    pub path: crate::offline::swing::SwingPath,
     pub estimators: Vec<EstimatorReport>,
 }
 

@@ -152,7 +152,7 @@ pub fn generate(spec: &SynthSpec) -> Result<Vec<DatasetLine>, IdentifyError> {
 mod tests {
     use super::*;
     use crate::equipment::ModelSections;
-    use crate::identify::dataset::{fields_of_launch, resolve};
+    use crate::offline::identify::dataset::{fields_of_launch, resolve};
 
     #[test]
     fn noise_has_the_documented_spread_and_the_generator_repeats() {

@@ -210,7 +210,7 @@ fn clipped(rng: &mut Rng) -> Real {
 mod tests {
     use super::*;
     use crate::impact::{Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
-    use crate::swing::{Swing, SwingSpec};
+    use crate::offline::swing::{Swing, SwingSpec};
 
     /// 1000 golfer swings per preset through the adjusted impulse-momentum model (the daemon's default): every
     /// spin axis within +-30 deg, every backspin inside the club's tour-to-amateur range, every smash factor

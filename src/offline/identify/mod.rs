@@ -20,7 +20,6 @@
 //! - [`fit`]: the seed's procedure (global, then local) and k-fold cross-validation.
 //! - [`fisher`]: the Fisher information of the shots and each parameter's Cramér-Rao bound.
 //! - [`synth`]: synthetic datasets with known parameters and launch-monitor noise.
-//! - [`pairing`]: live pairing of measured launches with the rig's predictions.
 //! - [`club_toml`]: the fitted parameters written as a club file.
 //!
 //! Everything is deterministic for a seed: parallel sums are collected per shot and added in shot order.
@@ -33,7 +32,6 @@ pub mod fisher;
 pub mod fit;
 pub mod objective;
 pub mod optimize;
-pub mod pairing;
 pub mod params;
 pub mod synth;
 

@@ -13,14 +13,7 @@ use crate::equipment::{BallSpec, LoadedClub};
 use crate::impact::{Equipment, ImpactModel, LaunchMetrics};
 use crate::math::Real;
 
-/// The five launch fields of eq. 3.13 (wire name, the seed's table label).
-pub const FIELDS: [(&str, &str); 5] = [
-    ("ball_speed_mph", "Speed (mph)"),
-    ("launch_angle_deg", "Launch (deg)"),
-    ("launch_direction_deg", "Azimuth (deg)"),
-    ("backspin_rpm", "Backspin (rpm)"),
-    ("sidespin_rpm", "Sidespin (rpm)"),
-];
+pub use crate::pairing::fields::FIELDS;
 
 /// What a shot the model cannot predict adds to eq. 3.13: one measured mean per field, as if it had missed each
 /// field by 100 %.

@@ -16,7 +16,9 @@ use std::collections::{BTreeMap, VecDeque};
 use crate::math::Real;
 use crate::wire::{ComparisonMessage, ComparisonStatus, LaunchFields, LaunchPrediction, MeasuredLaunch};
 
-use super::dataset::{fields_of_launch, fields_of_measured, launch_fields};
+pub mod fields;
+
+use fields::{fields_of_launch, fields_of_measured, launch_fields};
 
 /// The delays (s) from impact to measurement that pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -171,7 +173,7 @@ impl Pairer {
         }
         let fields = fields_of_measured(m).ok_or(MeasuredError::NoSpin)?;
         if let Some(i) = fields.iter().position(|v| !v.is_finite()) {
-            return Err(MeasuredError::NotFinite(super::FIELDS[i].0));
+            return Err(MeasuredError::NotFinite(fields::FIELDS[i].0));
         }
         Ok(())
     }

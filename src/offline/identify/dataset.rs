@@ -6,9 +6,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::IdentifyError;
-use crate::impact::{Equipment, ImpactState, LaunchMetrics};
+use crate::impact::{Equipment, ImpactState};
 use crate::math::Real;
-use crate::wire::{DeliveryInput, Handedness, LaunchFields, MeasuredLaunch};
+use crate::wire::{DeliveryInput, Handedness, LaunchFields};
 
 /// One line of a dataset. Other fields (labels, notes) are not read.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -25,33 +25,7 @@ pub struct Shot {
     pub measured: [Real; 5],
 }
 
-/// The five compared fields of a launch, in the order of [`super::FIELDS`].
-pub fn fields_of(m: &LaunchMetrics) -> [Real; 5] {
-    [m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, m.backspin_rpm, m.sidespin_rpm]
-}
-
-/// The five compared fields of [`LaunchFields`].
-pub fn fields_of_launch(f: &LaunchFields) -> [Real; 5] {
-    [f.ball_speed_mph, f.launch_angle_deg, f.launch_direction_deg, f.backspin_rpm, f.sidespin_rpm]
-}
-
-/// [`LaunchFields`] from the five fields (no carry).
-pub fn launch_fields(x: &[Real; 5]) -> LaunchFields {
-    LaunchFields {
-        ball_speed_mph: x[0],
-        launch_angle_deg: x[1],
-        launch_direction_deg: x[2],
-        backspin_rpm: x[3],
-        sidespin_rpm: x[4],
-        carry_yd: None,
-    }
-}
-
-/// The five fields of a measured launch (spin from backspin and sidespin, or total spin and axis).
-pub fn fields_of_measured(m: &MeasuredLaunch) -> Option<[Real; 5]> {
-    let (back, side) = m.spin_components_rpm()?;
-    Some([m.ball_speed_mph, m.launch_angle_deg, m.launch_direction_deg, back, side])
-}
+pub use crate::pairing::fields::{fields_of, fields_of_launch, fields_of_measured, launch_fields};
 
 impl DatasetLine {
     /// The shot on `equipment`: the delivery's state, the measurement mirrored for a left-hander.
