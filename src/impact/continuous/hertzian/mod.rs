@@ -8,7 +8,8 @@
 //!   (`contact_arm = "mid_overlap"` in the section: `R − x/2`; [`super::law::hertz::ContactArm`]).
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
 //! - Integration: classical RK4 at a fixed step (default 2 µs for Maw, 1 µs for Arakawa) from first contact
-//!   until the bodies separate.
+//!   until the bodies separate, on the continuous models' shared parts (a free head and a rigid ball, `club` and
+//!   `ball`) plus the contact's integrated slip.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
 //!   (its own stick/slip test at every stage) and the step's end is committed; the committed contact and force
 //!   are the next step's first stage. Steps the law flags near one of its switches (Arakawa's envelope near
