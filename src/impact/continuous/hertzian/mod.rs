@@ -21,6 +21,8 @@
 
 mod run;
 
+use super::ball::RigidBall;
+use super::club::FreeHead;
 use super::law::{
     arakawa::{ArakawaLaw, ArakawaParams},
     maw::{MawParams, MawRings},
@@ -137,12 +139,14 @@ impl HertzModel {
             HertzLaw::Maw(p) => {
                 let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
                 p.validate().map_err(|e| bad_section("maw", e))?;
-                run::run(self, state, eq, (p.hertz(), p.contact_arm), &mut MawRings::new(&p), trace_every)
+                let law = &mut MawRings::new(&p);
+                run::run(self, state, eq, parts(eq), (p.hertz(), p.contact_arm), law, trace_every)
             }
             HertzLaw::Arakawa(p) => {
                 let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
                 p.validate().map_err(|e| bad_section("arakawa", e))?;
-                run::run(self, state, eq, (p.hertz(), p.contact_arm), &mut ArakawaLaw::new(&p), trace_every)
+                let law = &mut ArakawaLaw::new(&p);
+                run::run(self, state, eq, parts(eq), (p.hertz(), p.contact_arm), law, trace_every)
             }
         }
     }
@@ -189,6 +193,11 @@ impl HertzResult {
             momentum_after: self.momentum_after,
         }
     }
+}
+
+/// The seed's parts for both models: a free head and a rigid ball.
+fn parts(eq: &Equipment) -> (FreeHead, RigidBall) {
+    (FreeHead::new(&eq.club), RigidBall::new(&eq.ball))
 }
 
 fn bad_section(section: &str, e: super::law::hertz::LawError) -> ImpactError {

@@ -1,10 +1,10 @@
-//! The integration of [`super::HertzModel`]: RK4 on the shared parts (a [`FreeHead`] and a [`RigidBall`]) and the
-//! contact's tangential slip, the tangential law's history committed after each step, the separation located by
-//! secant.
+//! The integration of [`super::HertzModel`]: RK4 on the shared parts (any [`ClubPart`] and [`BallPart`]: the
+//! seed's models use a free head and a rigid ball) and the contact's tangential slip, the tangential law's history
+//! committed after each step, the separation located by secant.
 
 use super::{HertzModel, HertzResult, HertzTracePoint};
-use crate::impact::continuous::ball::{rk4_mean, BallPart, RigidBall, RigidBallState};
-use crate::impact::continuous::club::{ClubPart, FreeHead, FreeHeadState, Head};
+use crate::impact::continuous::ball::{rk4_mean, BallPart};
+use crate::impact::continuous::club::{ClubPart, Head};
 use crate::impact::continuous::law::hertz::{
     elastic_energy, equivalent_radius, normal_force, ContactArm, ContactKinematics, Hertz, TangentialLaw,
 };
@@ -16,30 +16,33 @@ use crate::math::{Real, Vector3};
 const REFINE: usize = 8;
 
 #[derive(Debug, Clone, Copy)]
-struct State {
-    club: FreeHeadState,
-    ball: RigidBallState,
+struct State<CS, BS> {
+    club: CS,
+    ball: BS,
     /// Tangential slip of the ball's contact point relative to the face's, integrated (m).
     slip_m: Vector3,
 }
 
 /// Time derivatives, in the same layout.
 #[derive(Debug, Clone, Copy)]
-struct Rates {
-    club: <FreeHead as ClubPart>::Rate,
-    ball: <RigidBall as BallPart>::Rate,
+struct Rates<CR, BR> {
+    club: CR,
+    ball: BR,
     slip_rate_mps: Vector3,
 }
 
-struct Setup {
+struct Setup<C, B> {
     k: Real,
     hertz: Hertz,
     surface: FaceSurface,
     r_ball_m: Real,
     contact_arm: ContactArm,
-    ball: RigidBall,
-    club: FreeHead,
+    ball: B,
+    club: C,
 }
+
+type PartState<C, B> = State<<C as ClubPart>::State, <B as BallPart>::State>;
+type PartRates<C, B> = Rates<<C as ClubPart>::Rate, <B as BallPart>::Rate>;
 
 /// The contact at a state: kinematics for the law, the contact point's lever arms, the normal force.
 struct Contact {
@@ -48,13 +51,14 @@ struct Contact {
     r_c: Vector3,
 }
 
-impl Setup {
-    fn contact(&self, s: &State, s_step: &Vector3) -> Option<Contact> {
+impl<C: ClubPart, B: BallPart> Setup<C, B> {
+    fn contact(&self, s: &PartState<C, B>, s_step: &Vector3) -> Option<Contact> {
         self.contact_at(s, &self.club.head(&s.club), s_step)
     }
 
-    fn contact_at(&self, s: &State, head: &Head, s_step: &Vector3) -> Option<Contact> {
-        let (rot, p_b_m) = (&head.world_from_club, s.ball.p);
+    fn contact_at(&self, s: &PartState<C, B>, head: &Head, s_step: &Vector3) -> Option<Contact> {
+        let rot = &head.world_from_club;
+        let (p_b_m, v_b_mps) = B::centre(&s.ball);
         let ball = rot.inverse_transform_vector(&(p_b_m - head.position_m));
         let (x, normal) = match self.surface {
             FaceSurface::Plane { point, normal } => (self.r_ball_m - normal.dot(&(ball - point)), normal),
@@ -72,7 +76,7 @@ impl Setup {
         let point = p_b_m - self.contact_arm.arm_m(self.r_ball_m, x) * n;
         let (r_b, r_c) = (point - p_b_m, point - head.position_m);
         let w_c = head.angular_velocity_radps;
-        let v_rel = (s.ball.v + s.ball.w.cross(&r_b)) - (head.velocity_mps + w_c.cross(&r_c));
+        let v_rel = (v_b_mps + B::surface_spin(&s.ball).cross(&r_b)) - (head.velocity_mps + w_c.cross(&r_c));
         let xdot = -v_rel.dot(&n);
         if x == 0.0 && xdot <= 0.0 {
             return None; // touching, not pressing
@@ -90,7 +94,7 @@ impl Setup {
     }
 
     /// The rates at an intermediate stage.
-    fn rates(&self, s: &State, s_step: &Vector3, law: &dyn TangentialLaw) -> Rates {
+    fn rates(&self, s: &PartState<C, B>, s_step: &Vector3, law: &dyn TangentialLaw) -> PartRates<C, B> {
         let head = self.club.head(&s.club);
         match self.contact_at(s, &head, s_step) {
             Some(c) => {
@@ -103,7 +107,7 @@ impl Setup {
 
     /// The rates at `s` with the contact and tangential force found there (`None`: apart): the parts' rates
     /// under the contact force on the ball and its opposite on the head at the same point.
-    fn rates_with(&self, s: &State, head: &Head, cf: Option<(&Contact, &Vector3)>) -> Rates {
+    fn rates_with(&self, s: &PartState<C, B>, head: &Head, cf: Option<(&Contact, &Vector3)>) -> PartRates<C, B> {
         let (mut f, mut r_b, mut torque_club, mut slip_rate_mps) =
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
         if let Some((c, f_t)) = cf {
@@ -119,41 +123,43 @@ impl Setup {
         }
     }
 
-    fn momentum(&self, s: &State) -> (Vector3, Vector3) {
+    fn momentum(&self, s: &PartState<C, B>) -> (Vector3, Vector3) {
         let (lc, ac) = self.club.momentum(&s.club);
         let (lb, ab) = self.ball.momentum(&s.ball);
         (lc + lb, ac + ab)
     }
 
-    fn energy(&self, s: &State, law: &dyn TangentialLaw) -> Real {
+    fn energy(&self, s: &PartState<C, B>, law: &dyn TangentialLaw) -> Real {
         let ke = self.club.energy_j(&s.club) + self.ball.energy_j(&s.ball);
         let x = self.contact(s, &s.slip_m).map(|c| c.kin.x_m).unwrap_or(0.0);
         ke + elastic_energy(self.k, x) + law.stored_energy_j()
     }
 }
 
-fn advance(s: &State, r: &Rates, h: Real) -> State {
+fn advance<C: ClubPart, B: BallPart>(s: &PartState<C, B>, r: &PartRates<C, B>, h: Real) -> PartState<C, B> {
     State {
-        club: FreeHead::advance(&s.club, &r.club, h),
-        ball: RigidBall::advance(&s.ball, &r.ball, h),
+        club: C::advance(&s.club, &r.club, h),
+        ball: B::advance(&s.ball, &r.ball, h),
         slip_m: s.slip_m + r.slip_rate_mps * h,
     }
 }
 
 /// `s + h (k1 + 2 k2 + 2 k3 + k4) / 6`, the head's attitude normalised.
-fn advance_rk4(s: &State, k: [&Rates; 4], h: Real) -> State {
+fn advance_rk4<C: ClubPart, B: BallPart>(s: &PartState<C, B>, k: [&PartRates<C, B>; 4], h: Real) -> PartState<C, B> {
     let [k1, k2, k3, k4] = k;
     State {
-        club: FreeHead::advance_rk4(&s.club, [&k1.club, &k2.club, &k3.club, &k4.club], h),
-        ball: RigidBall::advance_rk4(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
+        club: C::advance_rk4(&s.club, [&k1.club, &k2.club, &k3.club, &k4.club], h),
+        ball: B::advance_rk4(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
         slip_m: s.slip_m + rk4_mean(k1.slip_rate_mps, k2.slip_rate_mps, k3.slip_rate_mps, k4.slip_rate_mps) * h,
     }
 }
 
-pub(super) fn run(
+/// Runs the collision of `ball` (at rest against the face) and `club` (moving as `state` says).
+pub(super) fn run<C: ClubPart, B: BallPart>(
     model: &HertzModel,
     state: &ImpactState,
     eq: &Equipment,
+    (club_part, ball_part): (C, B),
     (hertz, contact_arm): (Hertz, ContactArm),
     law: &mut dyn TangentialLaw,
     trace_every: usize,
@@ -176,8 +182,8 @@ pub(super) fn run(
         surface,
         r_ball_m: eq.ball.radius_m,
         contact_arm,
-        ball: RigidBall::new(&eq.ball),
-        club: FreeHead::new(club),
+        ball: ball_part,
+        club: club_part,
     };
     let contact = club.face.contact(state.impact_h_m, state.impact_v_m)?;
     let ball_club = match surface {
@@ -193,7 +199,7 @@ pub(super) fn run(
         ball: setup.ball.at_rest(iso.translation.vector + rot * ball_club),
         slip_m: Vector3::zeros(),
     };
-    let n0 = (s.ball.p - s.club.p - rot * contact.point_m).normalize();
+    let n0 = (B::centre(&s.ball).0 - iso.translation.vector - rot * contact.point_m).normalize();
     let v_face0 = state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
     let xdot0 = v_face0.dot(&n0);
     if xdot0 <= 0.0 {
@@ -202,7 +208,8 @@ pub(super) fn run(
     // The ball slips against the face's tangential motion; Figure 3.5's tangential axis.
     let face_t = v_face0 - xdot0 * n0;
     let face_dir = if face_t.norm() > 1e-9 { face_t.normalize() } else { rot * club.face.u0() };
-    let reduced_mass = setup.ball.mass_kg * setup.club.mass_kg / (setup.ball.mass_kg + setup.club.mass_kg);
+    let m_b_kg = setup.ball.mass_kg();
+    let reduced_mass = m_b_kg * club.mass_kg / (m_b_kg + club.mass_kg);
     law.begin(-face_dir, xdot0, setup.k, r_eq, reduced_mass);
     let spin_axis = face_dir.cross(&n0);
 
@@ -240,7 +247,7 @@ pub(super) fn run(
                 t_us: t_s * 1e6,
                 normal_force_n: fn_,
                 tangential_force_n: ft,
-                ball_spin_rpm: crate::units::radps_to_rpm(s.ball.w.dot(&spin_axis)),
+                ball_spin_rpm: crate::units::radps_to_rpm(setup.ball.spin(&s.ball).dot(&spin_axis)),
                 compression_mm: x * 1e3,
                 stuck_rings: law.stuck_rings(),
             });
@@ -262,17 +269,17 @@ pub(super) fn run(
             _ => model.step_s,
         };
         let step = |h: Real| {
-            let k2 = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
-            let k3 = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
-            let k4 = setup.rates(&advance(&s, &k3, h), &s0, law);
-            advance_rk4(&s, [&k1, &k2, &k3, &k4], h)
+            let k2 = setup.rates(&advance::<C, B>(&s, &k1, 0.5 * h), &s0, law);
+            let k3 = setup.rates(&advance::<C, B>(&s, &k2, 0.5 * h), &s0, law);
+            let k4 = setup.rates(&advance::<C, B>(&s, &k3, h), &s0, law);
+            advance_rk4::<C, B>(&s, [&k1, &k2, &k3, &k4], h)
         };
         let mut next = step(h);
         // Separation inside the step: shorten it to end where the overlap closes (secant on the overlap), so
         // the forces that jump there (Arakawa's ẋ term) stop at the right instant.
         let c_next = setup.contact(&next, &s0);
         if let (Some((c0, _)), None) = (&c1, &c_next) {
-            let gap = |st: &State| signed_overlap(&setup, st);
+            let gap = |st: &PartState<C, B>| signed_overlap(&setup, st);
             let (mut lo, mut x_lo, mut hi, mut x_hi) = (0.0, c0.kin.x_m, h, gap(&next));
             let mut t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
             for _ in 0..4 {
@@ -320,11 +327,11 @@ pub(super) fn run(
     let size = ft_max.max(-ft_min);
     Ok(HertzResult {
         launch: Launch {
-            ball_velocity_mps: s.ball.v,
-            ball_spin_radps: s.ball.w,
+            ball_velocity_mps: B::centre(&s.ball).1,
+            ball_spin_radps: setup.ball.spin(&s.ball),
             club_velocity_mps: head.velocity_mps,
             club_angular_velocity_radps: head.angular_velocity_radps,
-            impulse_ns: setup.ball.mass_kg * s.ball.v,
+            impulse_ns: m_b_kg * B::centre(&s.ball).1,
         },
         contact_time_s: contact_time,
         peak_normal_force_n: peak,
@@ -340,9 +347,9 @@ pub(super) fn run(
 }
 
 /// The overlap along the normal, negative when apart (m).
-fn signed_overlap(setup: &Setup, st: &State) -> Real {
-    let rot = st.club.q.to_rotation_matrix();
-    let ball = rot.inverse_transform_vector(&(st.ball.p - st.club.p));
+fn signed_overlap<C: ClubPart, B: BallPart>(setup: &Setup<C, B>, st: &PartState<C, B>) -> Real {
+    let head = setup.club.head(&st.club);
+    let ball = head.world_from_club.inverse_transform_vector(&(B::centre(&st.ball).0 - head.position_m));
     match setup.surface {
         FaceSurface::Plane { point, normal } => setup.r_ball_m - normal.dot(&(ball - point)),
         FaceSurface::Sphere { centre, radius_m } => setup.r_ball_m + radius_m - (ball - centre).norm(),
