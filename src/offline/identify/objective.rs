@@ -83,6 +83,44 @@ impl Objective {
     }
 }
 
+impl Objective {
+    /// The weight of each residual in a reweighted least-squares step at `predictions`
+    /// (the Levenberg-Marquardt refinement's): eq. 3.13's `1 / (s_i |r|)` (the majoriser of `|r| / s_i` at the current
+    /// residual, `|r|` floored at a hundredth of the field's mean absolute residual), the given noise's
+    /// `1 / σ_i²`, or the estimated noise's `1 / mean_j r_i,j²` (the profile likelihood's gradient is that of
+    /// weighted squares with the noise estimated at the current point). A failed shot weighs nothing.
+    pub fn irls_weights(
+        &self,
+        predictions: &[Option<[Real; 5]>],
+        shots: &[Shot],
+        scales: &CostScales,
+    ) -> Vec<[Real; 5]> {
+        let residuals: Vec<Option<[Real; 5]>> = predictions
+            .iter()
+            .zip(shots)
+            .map(|(p, s)| p.map(|x| std::array::from_fn(|i| x[i] - s.measured[i])))
+            .collect();
+        let predicted = residuals.iter().flatten().count().max(1) as Real;
+        let mean_of = |f: &dyn Fn(Real) -> Real| -> [Real; 5] {
+            std::array::from_fn(|i| residuals.iter().flatten().map(|r| f(r[i])).sum::<Real>() / predicted)
+        };
+        let field_weight: Option<[Real; 5]> = match self {
+            Objective::LeastAbsolute => None,
+            Objective::Likelihood { noise: Some(sigma) } => Some(sigma.map(|s| 1.0 / (s * s))),
+            Objective::Likelihood { noise: None } => Some(mean_of(&|r| r * r).map(|m| 1.0 / m.max(1e-300))),
+        };
+        let floor = mean_of(&|r| r.abs()).map(|m| (1e-2 * m).max(1e-300));
+        residuals
+            .iter()
+            .map(|r| match (r, field_weight) {
+                (None, _) => [0.0; 5],
+                (Some(_), Some(w)) => w,
+                (Some(r), None) => std::array::from_fn(|i| 1.0 / (scales.0[i] * r[i].abs().max(floor[i]))),
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,5 +157,31 @@ mod tests {
         assert!(wls.value(&failed, &s, &scales) > 1e3);
         assert!(Objective::likelihood(Some([0.5, 0.0, 0.3, 150.0, 150.0])).unwrap_err().to_string().contains("launch"));
         assert_eq!(Objective::default().name(), "eq_3_13");
+    }
+
+    #[test]
+    fn reweighting_weights() {
+        let s = shots(&[[100.0, 10.0, 1.0, 3000.0, 100.0], [110.0, 12.0, -1.0, 3200.0, -100.0]]);
+        let scales = CostScales::of(&s);
+        let p = vec![Some([102.0, 10.0, 1.5, 3100.0, 100.0]), None];
+        // Eq. 3.13: 1 / (s_i |r|), |r| floored at a hundredth of the field's mean absolute residual (zero
+        // residuals: the floor 1e-300).
+        let w = Objective::LeastAbsolute.irls_weights(&p, &s, &scales);
+        assert_eq!(w[1], [0.0; 5], "a failed shot weighs nothing");
+        assert!((w[0][0] - 1.0 / (105.0 * 2.0)).abs() < 1e-15);
+        assert!((w[0][3] - 1.0 / (3100.0 * 100.0)).abs() < 1e-15);
+        assert!(w[0][1] > 1e290);
+        // At the current residuals the weighted squares are eq. 3.13's terms: w r² = |r| / s.
+        let r = [2.0, 0.0, 0.5, 100.0, 0.0];
+        for i in [0, 2, 3] {
+            assert!((w[0][i] * r[i] * r[i] - r[i].abs() / scales.0[i]).abs() < 1e-15);
+        }
+        let given = Objective::likelihood(Some([0.5, 0.2, 0.3, 150.0, 150.0])).unwrap().irls_weights(&p, &s, &scales);
+        for (w, want) in given[0].iter().zip([4.0, 25.0, 1.0 / 0.09, 1.0 / 22500.0, 1.0 / 22500.0]) {
+            assert!((w / want - 1.0).abs() < 1e-12, "{w} against {want}");
+        }
+        // Estimated noise: 1 / mean r² over the predicted shots.
+        let estimated = Objective::likelihood(None).unwrap().irls_weights(&p, &s, &scales);
+        assert!((estimated[0][0] - 0.25).abs() < 1e-15 && (estimated[0][3] - 1e-4).abs() < 1e-18);
     }
 }
