@@ -72,21 +72,15 @@ pub fn refine(
             LocalMinimum { x, cost, evaluations, simulations: evaluations as u64 * n }
         }
         LocalMethod::LevenbergMarquardt => {
-            let measured: Vec<[Real; 5]> = shots.iter().map(|s| s.measured).collect();
             // Parameters the model refuses: every shot failed (the objective's penalty), no weight in a step.
             let all_failed = || vec![None; shots.len()];
             let mut exact = |u: &[Real]| -> Predictions { predict(u, None).unwrap_or_else(all_failed) };
             let mut linearised =
                 |u: &[Real]| -> Predictions { predict(u, space.model.coarse).unwrap_or_else(all_failed) };
             let value = |p: &[Option<[Real; 5]>]| objective.value(p, shots, &scales);
-            let weights = |p: &[Option<[Real; 5]>]| objective.irls_weights(p, shots, &scales);
-            let mut problem = Problem {
-                exact: &mut exact,
-                linearised: &mut linearised,
-                measured: &measured,
-                value: &value,
-                weights: &weights,
-            };
+            let weights = |p: &[Option<[Real; 5]>]| objective.step_weights(p, shots, &scales);
+            let mut problem =
+                Problem { exact: &mut exact, linearised: &mut linearised, value: &value, weights: &weights };
             let lm = LmOptions { max_evaluations: max_evaluations.max(1), ..Default::default() };
             let m = levenberg_marquardt(&mut problem, x0, &lm, progress);
             let evaluations = m.exact_passes + m.linearised_passes;

@@ -84,17 +84,21 @@ impl Objective {
 }
 
 impl Objective {
-    /// The weight of each residual in a reweighted least-squares step at `predictions`
-    /// (the Levenberg-Marquardt refinement's): eq. 3.13's `1 / (s_i |r|)` (the majoriser of `|r| / s_i` at the current
-    /// residual, `|r|` floored at a hundredth of the field's mean absolute residual), the given noise's
-    /// `1 / σ_i²`, or the estimated noise's `1 / mean_j r_i,j²` (the profile likelihood's gradient is that of
-    /// weighted squares with the noise estimated at the current point). A failed shot weighs nothing.
-    pub fn irls_weights(
+    /// Each residual's part in a Gauss-Newton step at `predictions` (the Levenberg-Marquardt refinement's): the
+    /// weight of its square in the cost's local curvature and its slope, `(w, ψ)`, so that the step solves
+    /// `Σ w g g' δ = -Σ ψ g` (`g` the residual's derivatives by the parameters). For the likelihoods `ψ = w r`
+    /// with `w = 1 / σ_i²`, the given noise's or the current residuals' (`mean_j r_i,j²`: the profile
+    /// likelihood's gradient is that of weighted squares with the noise estimated at the current point). Eq.
+    /// 3.13's `|r| / s_i` has slope `sign(r) / s_i` and no curvature but at `r = 0`: over residuals scattered by
+    /// noise of density `f_i` its expected curvature is `2 f_i(0) / s_i`, and for normal noise `f_i(0) =
+    /// 1 / (π MAE_i)` with the field's current mean absolute residual (the sandwich's `A` in
+    /// [`super::fisher::l1_scatter`]). A failed shot weighs nothing.
+    pub fn step_weights(
         &self,
         predictions: &[Option<[Real; 5]>],
         shots: &[Shot],
         scales: &CostScales,
-    ) -> Vec<[Real; 5]> {
+    ) -> Vec<[(Real, Real); 5]> {
         let residuals: Vec<Option<[Real; 5]>> = predictions
             .iter()
             .zip(shots)
@@ -104,18 +108,22 @@ impl Objective {
         let mean_of = |f: &dyn Fn(Real) -> Real| -> [Real; 5] {
             std::array::from_fn(|i| residuals.iter().flatten().map(|r| f(r[i])).sum::<Real>() / predicted)
         };
-        let field_weight: Option<[Real; 5]> = match self {
-            Objective::LeastAbsolute => None,
-            Objective::Likelihood { noise: Some(sigma) } => Some(sigma.map(|s| 1.0 / (s * s))),
-            Objective::Likelihood { noise: None } => Some(mean_of(&|r| r * r).map(|m| 1.0 / m.max(1e-300))),
+        let curvature: [Real; 5] = match self {
+            Objective::LeastAbsolute => {
+                let mae = mean_of(&|r| r.abs());
+                std::array::from_fn(|i| 2.0 / (std::f64::consts::PI * scales.0[i] * mae[i].max(1e-300)))
+            }
+            Objective::Likelihood { noise: Some(sigma) } => sigma.map(|s| 1.0 / (s * s)),
+            Objective::Likelihood { noise: None } => mean_of(&|r| r * r).map(|m| 1.0 / m.max(1e-300)),
         };
-        let floor = mean_of(&|r| r.abs()).map(|m| (1e-2 * m).max(1e-300));
         residuals
             .iter()
-            .map(|r| match (r, field_weight) {
-                (None, _) => [0.0; 5],
-                (Some(_), Some(w)) => w,
-                (Some(r), None) => std::array::from_fn(|i| 1.0 / (scales.0[i] * r[i].abs().max(floor[i]))),
+            .map(|r| match r {
+                None => [(0.0, 0.0); 5],
+                Some(r) => std::array::from_fn(|i| match self {
+                    Objective::LeastAbsolute => (curvature[i], r[i].signum() / scales.0[i]),
+                    Objective::Likelihood { .. } => (curvature[i], curvature[i] * r[i]),
+                }),
             })
             .collect()
     }
@@ -160,28 +168,28 @@ mod tests {
     }
 
     #[test]
-    fn reweighting_weights() {
+    fn gauss_newton_weights() {
         let s = shots(&[[100.0, 10.0, 1.0, 3000.0, 100.0], [110.0, 12.0, -1.0, 3200.0, -100.0]]);
         let scales = CostScales::of(&s);
-        let p = vec![Some([102.0, 10.0, 1.5, 3100.0, 100.0]), None];
-        // Eq. 3.13: 1 / (s_i |r|), |r| floored at a hundredth of the field's mean absolute residual (zero
-        // residuals: the floor 1e-300).
-        let w = Objective::LeastAbsolute.irls_weights(&p, &s, &scales);
-        assert_eq!(w[1], [0.0; 5], "a failed shot weighs nothing");
-        assert!((w[0][0] - 1.0 / (105.0 * 2.0)).abs() < 1e-15);
-        assert!((w[0][3] - 1.0 / (3100.0 * 100.0)).abs() < 1e-15);
-        assert!(w[0][1] > 1e290);
-        // At the current residuals the weighted squares are eq. 3.13's terms: w r² = |r| / s.
-        let r = [2.0, 0.0, 0.5, 100.0, 0.0];
-        for i in [0, 2, 3] {
-            assert!((w[0][i] * r[i] * r[i] - r[i].abs() / scales.0[i]).abs() < 1e-15);
-        }
-        let given = Objective::likelihood(Some([0.5, 0.2, 0.3, 150.0, 150.0])).unwrap().irls_weights(&p, &s, &scales);
-        for (w, want) in given[0].iter().zip([4.0, 25.0, 1.0 / 0.09, 1.0 / 22500.0, 1.0 / 22500.0]) {
+        let p = vec![Some([102.0, 10.0, 0.5, 3100.0, 100.0]), None];
+        let w = Objective::LeastAbsolute.step_weights(&p, &s, &scales);
+        assert_eq!(w[1], [(0.0, 0.0); 5], "a failed shot weighs nothing");
+        // Eq. 3.13: slope sign(r) / s_i; curvature 2 / (π s_i MAE_i), here MAE = |r| on the one predicted shot.
+        assert_eq!(w[0][0].1, 1.0 / 105.0);
+        assert_eq!(w[0][2].1, -1.0 / 1.0);
+        assert!((w[0][3].0 - 2.0 / (std::f64::consts::PI * 3100.0 * 100.0)).abs() < 1e-18);
+        // The normal density's 2 f(0) with σ = MAE sqrt(π/2): 2 / (σ sqrt(2π)) = 2 / (π MAE).
+        let sigma = 2.0 * (std::f64::consts::PI / 2.0).sqrt();
+        assert!((w[0][0].0 * 105.0 - 2.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-15);
+        let given = Objective::likelihood(Some([0.5, 0.2, 0.3, 150.0, 150.0])).unwrap().step_weights(&p, &s, &scales);
+        for ((w, slope), want) in given[0].iter().zip([4.0, 25.0, 1.0 / 0.09, 1.0 / 22500.0, 1.0 / 22500.0]) {
             assert!((w / want - 1.0).abs() < 1e-12, "{w} against {want}");
+            assert!(slope.is_finite());
         }
+        assert!((given[0][0].1 - 4.0 * 2.0).abs() < 1e-12 && (given[0][3].1 - 100.0 / 22500.0).abs() < 1e-15);
         // Estimated noise: 1 / mean r² over the predicted shots.
-        let estimated = Objective::likelihood(None).unwrap().irls_weights(&p, &s, &scales);
-        assert!((estimated[0][0] - 0.25).abs() < 1e-15 && (estimated[0][3] - 1e-4).abs() < 1e-18);
+        let estimated = Objective::likelihood(None).unwrap().step_weights(&p, &s, &scales);
+        assert!((estimated[0][0].0 - 0.25).abs() < 1e-15 && (estimated[0][3].0 - 1e-4).abs() < 1e-18);
+        assert!((estimated[0][2].1 - 4.0 * -0.5).abs() < 1e-12 && (estimated[0][2].0 - 4.0).abs() < 1e-12);
     }
 }
