@@ -5,6 +5,8 @@
 //! rig runs on every sample stays small enough to audit for latency. A file's own `#[cfg(test)]` module may use
 //! them (tests draw synthetic swings).
 
+#![allow(clippy::unwrap_used)]
+
 use std::path::{Path, PathBuf};
 
 const LIVE_PATH: [&str; 8] = [

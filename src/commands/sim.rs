@@ -68,6 +68,7 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
         noise_deg: args.noise_deg,
         wait_for_subscriber_s: 10.0,
         body: args.body.clone(),
+        ..SimOptions::default()
     };
     let rt = runtime()?;
     rt.block_on(async {

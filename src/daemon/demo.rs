@@ -113,7 +113,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let foxglove = options.foxglove.clone();
     let web = options.web.clone();
     let keep_serving = web.is_some();
-    let daemon = tokio::spawn(async move {
+    let mut daemon = tokio::spawn(async move {
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
@@ -140,22 +140,33 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     };
     tokio::pin!(shutdown);
     let mut stopped = false;
+    // The daemon ends on its own only when it cannot start (a recording that exists, a port in use): say so at once.
+    let mut ended = None;
     tokio::select! {
         _ = all_predicted => {}
         _ = &mut shutdown => { eprintln!("stopping"); stopped = true; }
+        r = &mut daemon => { ended = Some(r); }
         _ = async {
             // The rig finished but a shot went unpredicted: give the daemon a moment, then stop.
             let _ = tokio::time::sleep(std::time::Duration::from_secs_f64(options.sim.interval_s * (options.sim.shots as f64 + 2.0) + 5.0)).await;
         } => { eprintln!("not every shot was predicted; stopping"); }
     }
     // With a bay screen the page stays up after the shots until the demo is stopped.
-    if keep_serving && !stopped {
+    if keep_serving && !stopped && ended.is_none() {
         shutdown.await;
     }
     let _ = stop_sim_tx.send(());
+    if ended.is_some() {
+        // The rig may still be waiting for the daemon's subscriber.
+        sim.abort();
+    }
     let _ = sim.await;
     let _ = stop_daemon.send(());
-    let summary = daemon.await.map_err(DaemonError::Task)??;
+    let summary = match ended {
+        Some(r) => r,
+        None => daemon.await,
+    }
+    .map_err(DaemonError::Task)??;
     let _ = rig_session.close().await;
     Ok(summary)
 }

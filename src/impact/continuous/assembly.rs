@@ -104,10 +104,10 @@ struct Stage<'a, L: ContactLaw, B, C, G> {
     law_state: &'a L::State,
 }
 
-impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
+impl<L: ContactLaw, B: BallPart, C, G> Assembly<L, B, C, G> {
     /// The contact between ball and face in a state, if they overlap.
     #[inline]
-    fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
+    pub(super) fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
         let (p_b, v_b) = B::centre(ball);
         let rot = &head.world_from_club;
         let overlap =
@@ -127,7 +127,9 @@ impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, 
             slip_mps: v_rel - v_rel.dot(&normal) * normal,
         })
     }
+}
 
+impl<L: ContactLaw, B: BallPart, C: ClubPart, G: GroundReaction> Assembly<L, B, C, G> {
     #[inline]
     fn rate_with(&self, s: &State<C::State, B::State>, law_state: &L::State) -> Rate<C::Rate, B::Rate> {
         let head = self.club.head(&s.club);

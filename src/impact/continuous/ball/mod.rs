@@ -29,6 +29,12 @@ pub trait BallPart {
     fn rate(&self, s: &Self::State, force_n: Vector3, r_m: Vector3) -> Self::Rate;
     fn advance(s: &Self::State, r: &Self::Rate, h: Real) -> Self::State;
     fn advance_rk4(s: &Self::State, k: [&Self::Rate; 4], h: Real) -> Self::State;
+    /// The same step as [`Self::advance_rk4`] rounded as the assembly's multi-rate stepping rounds it,
+    /// `s + (k1 + 2 k2 + 2 k3 + k4) (h/6)`: each system keeps its own floating-point order
+    /// ([`crate::integrate`]). [`Self::advance_rk4`] unless a part says otherwise.
+    fn advance_rk4_scaled(s: &Self::State, k: [&Self::Rate; 4], h: Real) -> Self::State {
+        Self::advance_rk4(s, k, h)
+    }
     /// Linear momentum and angular momentum about the world origin.
     fn momentum(&self, s: &Self::State) -> (Vector3, Vector3);
     /// Kinetic and internal elastic energy (J).

@@ -129,6 +129,19 @@ impl BallPart for TwoLayerBall {
         Self::advance(s, &mean, h)
     }
 
+    #[inline]
+    fn advance_rk4_scaled(s: &TwoLayerBallState, k: [&TwoLayerBallRate; 4], h: Real) -> TwoLayerBallState {
+        let [k1, k2, k3, k4] = k;
+        let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
+        TwoLayerBallState {
+            p: s.p + c(k1.v, k2.v, k3.v, k4.v),
+            v: s.v + c(k1.a, k2.a, k3.a, k4.a),
+            w_core: s.w_core + c(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
+            w_cover: s.w_cover + c(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
+            theta: s.theta + c(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
+        }
+    }
+
     fn momentum(&self, s: &TwoLayerBallState) -> (Vector3, Vector3) {
         (
             self.mass_kg * s.v,

@@ -1,6 +1,6 @@
 //! A free rigid clubhead: Newton-Euler in its body frame with a unit-quaternion attitude.
 
-use super::{ClubPart, Head};
+use super::{ClubLoad, ClubPart, Head, SteppedClub};
 use crate::equipment::ClubSpec;
 use crate::impact::ImpactState;
 use crate::math::{Matrix3, Real, UnitQuaternion, Vector3};
@@ -101,5 +101,63 @@ impl ClubPart for FreeHead {
 
     fn energy_j(&self, s: &FreeHeadState) -> Real {
         0.5 * self.mass_kg * s.v.norm_squared() + 0.5 * s.w_body.dot(&(self.inertia_kg_m2 * s.w_body))
+    }
+}
+
+/// The free head on the multi-rate stepping: classical Runge-Kutta's own stages (a step needs only its size).
+impl SteppedClub for FreeHead {
+    type State = FreeHeadState;
+    type Rate = FreeHeadRate;
+    type Motion = Head;
+    type Step = Real;
+    type Half = ();
+
+    fn step(&self, h_s: Real) -> Real {
+        h_s
+    }
+
+    #[inline]
+    fn step_s(step: &Real) -> Real {
+        *step
+    }
+
+    #[inline]
+    fn motion(&self, s: &FreeHeadState, _t_s: Real) -> Head {
+        ClubPart::head(self, s)
+    }
+
+    #[inline]
+    fn head(m: &Head) -> Head {
+        *m
+    }
+
+    #[inline]
+    fn rate(&self, s: &FreeHeadState, m: &Head, load: &ClubLoad) -> FreeHeadRate {
+        let force_n = load.ground_force_n + load.ball_force_n;
+        let torque_nm = load.ground_torque_nm + load.ball_lever_m.cross(&load.ball_force_n);
+        ClubPart::rate(self, s, m, force_n, torque_nm)
+    }
+
+    fn free_half(&self, _: &Real, _: &FreeHeadState) {}
+
+    #[inline]
+    fn half(&self, step: &Real, s: &FreeHeadState, _: &(), k: &FreeHeadRate) -> FreeHeadState {
+        <Self as ClubPart>::advance(s, k, 0.5 * step)
+    }
+
+    #[inline]
+    fn fourth(
+        &self,
+        step: &Real,
+        s: &FreeHeadState,
+        _: &FreeHeadState,
+        _: &FreeHeadRate,
+        k3: &FreeHeadRate,
+    ) -> FreeHeadState {
+        <Self as ClubPart>::advance(s, k3, *step)
+    }
+
+    fn finish(&self, step: &Real, s: &FreeHeadState, k: [&FreeHeadRate; 4]) -> FreeHeadState {
+        <Self as ClubPart>::advance_rk4(s, k, *step)
     }
 }

@@ -30,6 +30,18 @@ pub trait GroundReaction {
     const PRESENT: bool = true;
 }
 
+/// A ground whose reaction at an instant is a value: the assembly's multi-rate stepping can evaluate it once and
+/// hold it over several steps (it changes over milliseconds, a ball's contact over microseconds), and a model can
+/// measure what it holds (sinkage, phase).
+pub trait SampledGround {
+    /// Everything the ground puts on the head at one instant.
+    type Forces: Copy;
+    /// The forces on the head as it moves at this instant.
+    fn forces_on(&self, head: &Head) -> Self::Forces;
+    /// Their resultant on the head, with its moment about the head's CG.
+    fn wrench_of(forces: &Self::Forces) -> GroundWrench;
+}
+
 /// No ground: a ball on a tee, or a model without ground reaction.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NoGround;
@@ -39,6 +51,28 @@ impl GroundReaction for NoGround {
     #[inline]
     fn wrench(&self, _: &Head) -> GroundWrench {
         GroundWrench::default()
+    }
+}
+
+impl SampledGround for NoGround {
+    type Forces = ();
+    #[inline]
+    fn forces_on(&self, _: &Head) {}
+    #[inline]
+    fn wrench_of(_: &()) -> GroundWrench {
+        GroundWrench::default()
+    }
+}
+
+impl SampledGround for SoilGround {
+    type Forces = GroundForces;
+    #[inline]
+    fn forces_on(&self, head: &Head) -> GroundForces {
+        self.forces_at(&head.world_from_club, &head.position_m, &head.velocity_mps, &head.angular_velocity_radps)
+    }
+    #[inline]
+    fn wrench_of(forces: &GroundForces) -> GroundWrench {
+        GroundWrench { force_n: forces.force_n(), torque_nm: forces.torque_nm() }
     }
 }
 

@@ -3,32 +3,38 @@
 //! motion, with the ground's reaction on the sole (eq. 4.3-4.9) and face (eq. 4.10-4.13) for a ball resting on
 //! the turf (section 4.3).
 //!
+//! It is an assembly of shared parts: the two-layer ball, the volumetric law, the head on its shaft
+//! (`club::ShaftClub`, its modes by exponential time differencing) and the soil (`ground::SoilGround`), run on
+//! the assembly's multi-rate stepping (`continuous::stepping`). What is its own here: where the ball and the
+//! ground are ([`placement`]), how a strike steps and what it measures (`policy`, `measures`), the run and
+//! its result (`run`), its report (`report`) and its club-file sections ([`sections`]).
+//!
 //! A run starts when the sole first touches the ground on the undisturbed swing (an event: nothing acts on the
 //! club before it; at the ball's first contact when the ball comes first, a later touch ending a step), steps
 //! at `ground_step_s` while only the ground acts and at `ball_step_s` from the ball's contact until it leaves
 //! (the ground's forces are then evaluated once every `ground_hold_s` and held: they change over milliseconds,
 //! the ball's over microseconds); the steps before the ball's contact shrink from the one to the other by
 //! halves, each covering at most half the time the face needs to reach the ball, and it follows the ground
-//! contact after the ball leaves to measure the divot. The steps are classical Runge-Kutta's with the shaft's
-//! modes by exponential time differencing (`dynamics`), so the ground's step follows the ground's forces, not the
-//! stiffest shaft mode. Without ground (`with_ground = false`)
-//! it is the same flexible club on a teed-up ball, the seed's reference in Figures 4.11-4.17.
+//! contact after the ball leaves to measure the divot. The ground's step follows the ground's forces, not the
+//! stiffest shaft mode. Without ground (`with_ground = false`) it is the same flexible club on a teed-up ball,
+//! the seed's reference in Figures 4.11-4.17.
 
-pub mod dynamics;
 mod measures;
 pub mod placement;
+mod policy;
 mod reference_swing;
 mod report;
 mod run;
 pub mod sections;
-mod steps;
 
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::SoleSpec;
 use crate::impact::continuous::ground::{GroundPhase, SoilGround};
+use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::modal::ModalClub;
 use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
+use crate::impact::continuous::stepping::StepLadder;
 use crate::impact::continuous::TwoLayerParams;
 use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
 use crate::math::{Real, Vector3};
@@ -98,7 +104,7 @@ impl GroundModel {
             FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
         let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
         let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&model.shaft);
-        let steps = steps::StepLadder::new(&modal, model.ball_step_s, model.ground_step_s);
+        let steps = StepLadder::new(|h_s| ModalStepper::new(&modal, h_s), model.ball_step_s, model.ground_step_s);
         Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m, steps })
     }
 }
@@ -127,7 +133,7 @@ pub struct PreparedGround {
     /// The undeformed shaft's CG in the club frame (m).
     pub shaft_cg_m: Vector3,
     /// The run's step sizes and their modal steppers.
-    steps: steps::StepLadder,
+    steps: StepLadder<ModalStepper>,
 }
 
 /// One sample of a trace: the ground's forces on the head and its face angle and loft.
