@@ -28,6 +28,12 @@ use crate::math::{DMatrix, DVector, Real};
 /// Each shot's five launch fields, `None` where the model failed (as [`super::cost::predict_all`] gives them).
 pub type Predictions = Vec<Option<[Real; 5]>>;
 
+/// The objective's value of predictions.
+pub type ValueFn<'a> = &'a dyn Fn(&[Option<[Real; 5]>]) -> Real;
+
+/// Per residual of predictions: the weight of its square in the curvature and its slope.
+pub type WeightsFn<'a> = &'a dyn Fn(&[Option<[Real; 5]>]) -> Vec<[(Real, Real); 5]>;
+
 /// Settings of the refinement.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LmOptions {
@@ -52,10 +58,10 @@ impl Default for LmOptions {
 pub struct Problem<'a> {
     pub exact: &'a mut dyn FnMut(&[Real]) -> Predictions,
     pub linearised: &'a mut dyn FnMut(&[Real]) -> Predictions,
-    pub value: &'a dyn Fn(&[Option<[Real; 5]>]) -> Real,
+    pub value: ValueFn<'a>,
     /// Per residual: the weight of its square in the curvature and its slope (a residual `r` of weighted
     /// squares: `(w, w r)`).
-    pub weights: &'a dyn Fn(&[Option<[Real; 5]>]) -> Vec<[(Real, Real); 5]>,
+    pub weights: WeightsFn<'a>,
 }
 
 /// Where the refinement ended.
@@ -225,7 +231,10 @@ mod tests {
     }
 
     /// Measured at `(a, b) = (0.3, 0.6)`, every fifth shot's first field 0.5 too high (an outlier).
-    fn run(objective: &dyn Fn(&[Option<[Real; 5]>], &[[Real; 5]]) -> (Real, Vec<[(Real, Real); 5]>)) -> LmMinimum {
+    /// An objective of predictions against measured fields: its value and its step weights.
+    type TestObjective<'a> = &'a dyn Fn(&[Option<[Real; 5]>], &[[Real; 5]]) -> (Real, Vec<[(Real, Real); 5]>);
+
+    fn run(objective: TestObjective<'_>) -> LmMinimum {
         let n = 40;
         let measured: Vec<[Real; 5]> = model(&[0.3, 0.6], n)
             .into_iter()
