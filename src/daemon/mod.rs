@@ -11,6 +11,7 @@ pub mod live;
 pub mod recording;
 pub mod replay;
 pub mod sim;
+pub mod stats;
 
 pub use config::DaemonConfig;
 pub use live::{run, RunOptions, RunSummary};

@@ -8,9 +8,9 @@ use std::time::{Duration, Instant};
 use super::{recorded_latency, ReplayInput, ReplayStats};
 use crate::daemon::config::RigConfig;
 use crate::daemon::live::sinks::{self, RigPublishers, RigSinks, StatusInputs};
-use crate::daemon::live::stats::LatencyWindow;
 use crate::daemon::recording::writer::session_metadata;
 use crate::daemon::recording::writer::{Recorder, RecorderHandle};
+use crate::daemon::stats::LatencyWindow;
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
