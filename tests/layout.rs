@@ -103,7 +103,7 @@ fn ident(text: &str) -> (&str, &str) {
 fn named_paths(module: &[String], line: &str) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     let mut rest = line;
-    while let Some(at) = rest.find(|c: char| c == 'c' || c == 's') {
+    while let Some(at) = rest.find(['c', 's']) {
         let before = rest[..at].chars().last();
         let tail = &rest[at..];
         rest = &rest[at + 1..];
