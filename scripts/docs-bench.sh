@@ -2,6 +2,7 @@
 # Rewrites docs/performance.md's region `bench` from `impactd bench --json --baseline FILE`: each stage's median
 # per operation, the saved run's and their ratio, the stages slower by more than 20 %, the date, the machine and
 # the load average before and after (all from the JSON). Without a baseline file the table has the medians alone.
+# README.md's region `readme-bench` gets the short table users read, from the same run.
 # Usage: scripts/docs-bench.sh [BASELINE.json]   (default docs/bench-baseline.json when it exists)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,4 +49,24 @@ load = [x for x in run.get("load", []) if x is not None]
 at_load = f", load {load[0]:.1f} before and {load[-1]:.1f} after" if load else ""
 lines += ["", f"`impactd bench --json`, {run['date']}, {run['machine']}{at_load}."]
 replace("docs/performance.md", {"bench": lines})
+
+ns = {s["name"]: s["ns_per_op"] for s in run["stages"]}
+
+
+def pair(a, b):
+    return f"{t(ns[a])} / {t(ns[b])}" if a in ns and b in ns else "not run"
+
+
+readme = [f"`impactd bench` medians of {run['date']}, {run['machine']}{at_load} (all stages:",
+          "[docs/performance.md](docs/performance.md)):", "",
+          "| stage | time |", "|---|---|",
+          f"| impulse models, driver / iron7 | {pair('adjusted/driver', 'adjusted/iron7')} |",
+          f"| continuous two-layer, driver / iron7 | {pair('continuous/driver', 'continuous/iron7')} |",
+          f"| maw, driver / iron7 | {pair('maw/driver', 'maw/iron7')} |",
+          f"| arakawa, driver / iron7 | {pair('arakawa/driver', 'arakawa/iron7')} |",
+          f"| ground: thin / fat 7-iron | {pair('ground/iron7', 'ground/firm/iron7_fat')} |",
+          f"| arc extrapolation, driver / iron7 | {pair('extrapolate/arc/driver', 'extrapolate/arc/iron7')} |",
+          f"| flight | {t(ns['flight/trajectory']) if 'flight/trajectory' in ns else 'not run'} |",
+          f"| pipeline per sample, driver / iron7 | {pair('pipeline/sample/driver', 'pipeline/sample/iron7')} |"]
+replace("README.md", {"readme-bench": readme})
 PY

@@ -9,6 +9,12 @@
 #   region heldout      the held-out session (7-iron, pitching wedge, driver), every model
 #   region tour         TrackMan's tour 7-iron at its launch: the slip model's e_y and e against spin and speed
 #   region relation     per club, TrackMan's measured spin over 2.5 v sin(a) / R from its own loft, face and launch
+#   region strike-height  the validation session's located shots by TrackMan's impact height: measured and
+#                       predicted smash (adjusted), ball speed bias
+#   region spin-relation  the validation session with TrackMan's loft and face read through its spin relation
+#   region heldout-relation  the held-out session, the same reading
+#   region spin-launch  per club of the validation session (measured spins), the launch the seed's ball needs below
+#                       TrackMan's to reach TrackMan's spin off TrackMan's face (closed form)
 # Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,6 +32,10 @@ MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
     2>/dev/null >"$OUT/validation-all.json"
 "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/heldout-7i-pw-driver.csv" \
     2>/dev/null >"$OUT/heldout.json"
+"$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
+    "$DATA/validation-8i-5i.csv" 2>/dev/null >"$OUT/spin-relation.json"
+"$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
+    "$DATA/heldout-7i-pw-driver.csv" 2>/dev/null >"$OUT/heldout-relation.json"
 
 # The 5-iron preset without the shaft's share: the head alone, as Table 3.1's 7-iron is.
 sed '/^shaft_heel_toe_inertia_g_cm2/d' clubs/presets/iron5.toml >"$OUT/iron5-head.toml"
@@ -54,6 +64,28 @@ PY
     "$BIN" compare --by-club --located --json --models adjusted,continuous "$OUT/shift-$s.csv" 2>/dev/null \
         >"$OUT/shift-$s.json"
 done
+
+# The validation session's located shots, as `compare --by-club` gives them (irons: TrackMan's loft and face
+# are the face centre's), through the adjusted model: smash and ball speed against TrackMan's impact height.
+python3 - "$BIN" "$DATA/validation-8i-5i.csv" "$OUT" <<'PY'
+import csv, json, subprocess, sys
+bin, path, out = sys.argv[1], sys.argv[2], sys.argv[3]
+lines = open(path, encoding="utf-8-sig").read().splitlines()
+rows = list(csv.reader(lines[1:]))
+head, result = rows[0], []
+for club, preset in [("8 Iron", "iron8"), ("5 Iron", "iron5")]:
+    sel = [d for d in (dict(zip(head, r)) for r in rows[2:]) if d["Club"] == club and d["Club Speed"] and d["Impact Height"]]
+    fields = [("club_speed_mph", "Club Speed"), ("attack_angle_deg", "Attack Angle"), ("club_path_deg", "Club Path"),
+              ("face_angle_deg", "Face Angle"), ("dynamic_loft_deg", "Dyn. Loft"), ("impact_h_mm", "Impact Offset"),
+              ("impact_v_mm", "Impact Height"), ("dynamic_lie_deg", "Dynamic Lie")]
+    text = "".join(json.dumps({k: float(d[c]) for k, c in fields}) + "\n" for d in sel)
+    p = subprocess.run([bin, "predict", "--club", preset, "--model", "adjusted"], input=text, capture_output=True,
+                       text=True, check=True)
+    for d, q in zip(sel, (json.loads(l) for l in p.stdout.splitlines())):
+        result.append({"club": club, "v": float(d["Impact Height"]), "club_speed": float(d["Club Speed"]),
+                       "ball_speed": float(d["Ball Speed"]), "predicted": q["ball_speed_mph"]})
+json.dump(result, open(f"{out}/strike-height.json", "w"))
+PY
 
 # The tour 7-iron (90 mph, attack -4.3 deg) at the dynamic loft that launches it at TrackMan's 16.3 deg
 # (bisection on `predict`), the seed's head with the shaft's share, the slip model's e_y and e varied.
@@ -157,6 +189,40 @@ for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
     for club, q in by_club.items():
         relation.append(f"| {name} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
 
+strike = ["| club | TrackMan impact height (mm) | shots | measured smash | predicted smash (adjusted) | ball speed bias (mph) |",
+          "|---|---|---|---|---|---|"]
+for club in ["8 Iron", "5 Iron"]:
+    for lo, hi in [(-99, 3), (3, 9), (9, 13), (13, 99)]:
+        g = [x for x in json.load(open(f"{out}/strike-height.json")) if x["club"] == club and lo <= x["v"] < hi]
+        if not g:
+            continue
+        label = f"below {hi}" if lo == -99 else (f"{lo} and above" if hi == 99 else f"{lo} to {hi}")
+        mean = lambda f: sum(f(x) for x in g) / len(g)
+        strike.append(f"| {club} | {label} | {len(g)} | {mean(lambda x: x['ball_speed'] / x['club_speed']):.3f} | "
+                      f"{mean(lambda x: x['predicted'] / x['club_speed']):.3f} | {mean(lambda x: x['predicted'] - x['ball_speed']):+.1f} |")
+
+spin_launch = ["| club | measured spins | TrackMan's ball-to-face angle (deg) | the seed's ball needs (deg) | launch below TrackMan's (deg) | spin at TrackMan's launch (rpm, MAE) |",
+               "|---|---|---|---|---|---|"]
+lines = open("tests/data/trackman/validation-8i-5i.csv", encoding="utf-8-sig").read().splitlines()
+rows = list(csv.reader(lines[1:]))
+head, per_club = rows[0], {}
+for r in rows[2:]:
+    d = dict(zip(head, r))
+    if d["Spin Rate Type"] != "Measured" or not d["Dyn. Loft"] or not d["Club Speed"] or not d["Impact Height"]:
+        continue
+    def unit(e, a):
+        e, a = math.radians(float(e)), math.radians(float(a))
+        return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
+    n, b = unit(d["Dyn. Loft"], d["Face Angle"]), unit(d["Launch Angle"], d["Launch Direction"])
+    a = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
+    w = float(d["Spin Rate"]) * 2 * math.pi / 60
+    need = math.asin(min(1.0, w * 0.0213 / (2.5 * float(d["Ball Speed"]) * 0.44704)))
+    bound = 2.5 * float(d["Ball Speed"]) * 0.44704 * math.sin(a) / 0.0213 * 60 / (2 * math.pi)
+    per_club.setdefault(d["Club"], []).append((math.degrees(a), math.degrees(need), abs(bound - float(d["Spin Rate"]))))
+for club, q in per_club.items():
+    m = lambda i: sum(x[i] for x in q) / len(q)
+    spin_launch.append(f"| {club} | {len(q)} | {m(0):.2f} | {m(1):.2f} | {m(1) - m(0):.2f} | {m(2):.0f} |")
+
 docs_regions.replace("docs/real-shots.md", {
     "relation": relation,
     "tour": tour,
@@ -165,5 +231,9 @@ docs_regions.replace("docs/real-shots.md", {
     "height": height,
     "reference": reference,
     "heldout": club_table("heldout.json"),
+    "strike-height": strike,
+    "spin-launch": spin_launch,
+    "spin-relation": club_table("spin-relation.json"),
+    "heldout-relation": club_table("heldout-relation.json"),
 })
 PY

@@ -11,26 +11,27 @@ root=$(pwd)
 venv="$root/target/pyenv"
 req="$root/scripts/test-requirements.txt"
 
-if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/.requirements" 2>/dev/null; then
-  echo "test.sh: setting up the Python test clients in target/pyenv" >&2
-  mkdir -p "$root/target"
-  python3 -m venv "$venv"
-  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$req"
-  cp "$req" "$venv/.requirements"
-fi
-
-# Debian's Chromium and ChromeDriver, for the browser tests.
+# Debian's Chromium and ChromeDriver, for the browser tests; Debian's venv module where python3 lacks it.
 if [ -f "$root/scripts/test-debian-packages.txt" ]; then
   missing=()
   while read -r pkg; do
     case "$pkg" in ''|'#'*) continue ;; esac
     dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
   done < "$root/scripts/test-debian-packages.txt"
+  python3 -c "import venv, ensurepip" >/dev/null 2>&1 || missing+=(python3-venv)
   if [ ${#missing[@]} -gt 0 ]; then
     echo "test.sh: installing ${missing[*]} with apt" >&2
     sudo_=""; [ "$(id -u)" -eq 0 ] || sudo_="sudo"
     $sudo_ apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
+fi
+
+if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/.requirements" 2>/dev/null; then
+  echo "test.sh: setting up the Python test clients in target/pyenv" >&2
+  mkdir -p "$root/target"
+  python3 -m venv "$venv"
+  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$req"
+  cp "$req" "$venv/.requirements"
 fi
 
 export IMPACTD_PYTHON="$venv/bin/python"

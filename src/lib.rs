@@ -17,8 +17,9 @@
 //! target line; the club frame sits at the head's CG and equals the world at a square address (z toward the toe).
 //! Units are SI inside (m, s, kg, rad); `_mph`, `_rpm`, `_deg` and `_mm` appear only in names that say so.
 //! The physics follows A. W. Caldwell, "Development and Comparison of 3D Dynamic Models of Golf Clubhead-Ball
-//! Impacts", MASc thesis, University of Waterloo, 2023 ("the seed"), chapters 3 and 4; each model cites its
-//! equations, and ARCHITECTURE.md lists where each one lives.
+//! Impacts", MASc thesis, University of Waterloo, 2023 (UWSpace,
+//! <https://uwspace.uwaterloo.ca/items/90da9fb0-a7f3-4a5f-9002-e292ff1810c9>; "the seed"), chapters 3 and 4; each
+//! model cites its equations, and ARCHITECTURE.md lists where each one lives.
 //!
 //! The seed's driver with the adjusted impulse-momentum model (its Table 3.1 and 3.3), 113 mph, 13 deg of dynamic
 //! loft and 1.3 deg down, launches the ball at 163.96 mph with 2447 rpm of backspin:

@@ -112,7 +112,7 @@ fn capture(set: &MarkerSet, noise: Option<&mut Rng>) -> Capture {
         let lab_from_body = calibration.lab_from_body(&world_from_club);
         let mut row = Vec::new();
         for (k, b) in set.body_m.iter().enumerate() {
-            let mut p = lab_from_body * nalgebra::Point3::from(*b);
+            let mut p = lab_from_body * impactd::math::Point3::from(*b);
             let mut valid = true;
             if let Some(rng) = noise.as_deref_mut() {
                 p.coords += Vector3::new(rng.normal(), rng.normal(), rng.normal()) * NOISE_M;
@@ -263,7 +263,8 @@ fn a_ball_marker_sets_the_ball_of_each_shot() {
     let world_from_lab = calibration().world_from_lab;
     let ball_world = Vector3::new(0.0, 0.0, 0.004);
     let above_m = 0.021335 + 0.007;
-    let marker_lab = world_from_lab.inverse() * nalgebra::Point3::from(ball_world + Vector3::new(0.0, above_m, 0.0));
+    let marker_lab =
+        world_from_lab.inverse() * impactd::math::Point3::from(ball_world + Vector3::new(0.0, above_m, 0.0));
     let offset_lab_mm = world_from_lab.rotation.inverse() * Vector3::new(0.0, -above_m * 1e3, 0.0);
     let mut frames = capture(&set, None).frames;
     for row in &mut frames {

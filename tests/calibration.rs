@@ -24,9 +24,9 @@ const MARKER_RADIUS_M: f64 = 0.007;
 /// The lab: z up, origin 1.5 m behind and 0.8 m right of the ball, 3 cm below the floor, turned 20 degrees
 /// about the vertical.
 fn world_from_lab() -> Isometry3 {
-    let z_up = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(0.5, -0.5, -0.5, -0.5));
-    let turn = nalgebra::UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 20f64.to_radians());
-    Isometry3::from_parts(nalgebra::Translation3::new(-1.5, -0.03 - BALL_RADIUS_M, 0.8), turn * z_up)
+    let z_up = impactd::math::UnitQuaternion::from_quaternion(impactd::math::Quaternion::new(0.5, -0.5, -0.5, -0.5));
+    let turn = impactd::math::UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 20f64.to_radians());
+    Isometry3::from_parts(impactd::math::Translation3::new(-1.5, -0.03 - BALL_RADIUS_M, 0.8), turn * z_up)
 }
 
 fn club_from_body() -> Isometry3 {
@@ -72,8 +72,8 @@ fn pose(path: &Path, name: &str) -> Isometry3 {
     let f = |k: &str| s[k].as_array().unwrap().iter().map(|x| x.as_float().unwrap()).collect::<Vec<_>>();
     let (q, t) = (f("rotation_xyzw"), f("translation_m"));
     Isometry3::from_parts(
-        nalgebra::Translation3::new(t[0], t[1], t[2]),
-        nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[3], q[0], q[1], q[2])),
+        impactd::math::Translation3::new(t[0], t[1], t[2]),
+        impactd::math::UnitQuaternion::from_quaternion(impactd::math::Quaternion::new(q[3], q[0], q[1], q[2])),
     )
 }
 
@@ -120,7 +120,7 @@ fn lab_from_the_target_line_and_the_floor() {
 /// The club at a square address (world axes), its body's markers and face stickers.
 fn address(club: &ClubSpec, cg_world: Vector3) -> (Isometry3, Vec<(String, Vector3)>) {
     let world_from_club =
-        Isometry3::from_parts(nalgebra::Translation3::from(cg_world), nalgebra::UnitQuaternion::identity());
+        Isometry3::from_parts(impactd::math::Translation3::from(cg_world), impactd::math::UnitQuaternion::identity());
     let world_from_body = world_from_club * club_from_body();
     let mut markers: Vec<(String, Vector3)> =
         BODY.iter().map(|(l, b)| (l.to_string(), (world_from_body * Point3::from(Vector3::from(*b))).coords)).collect();

@@ -314,3 +314,22 @@ fn predict_flight_plot_is_a_pipe() {
     let plotted = impactd(&["plot", "trajectory", "-o", svg.to_str().unwrap()], &text(&again.stdout));
     assert!(plotted.status.success(), "{}", text(&plotted.stderr));
 }
+
+/// `both` means the same models in `compare --by-club` as in `predict` and the daemon (impact::registry::resolve):
+/// adjusted and continuous, or adjusted and ground with a soil.
+#[test]
+fn compare_by_club_resolves_both_as_everywhere() {
+    let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/trackman/validation-8i-5i.csv");
+    for (soil, second) in [(None, "continuous"), (Some("none"), "ground")] {
+        let mut args = vec!["compare", "--by-club", "--json", "--models", "both", csv];
+        if let Some(soil) = soil {
+            args.extend(["--soil", soil]);
+        }
+        let out = impactd(&args, "");
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let models: Vec<&str> =
+            report["clubs"][0]["models"].as_array().unwrap().iter().map(|m| m["model"].as_str().unwrap()).collect();
+        assert_eq!(models, ["adjusted", second], "with soil {soil:?}");
+    }
+}

@@ -142,7 +142,7 @@ fn double_pendulum_swings_pass_through_the_truth() {
     for _ in 0..20 {
         let spec = SwingSpec::random_on(SwingPath::DoublePendulum, &club, &mut rng);
         let Ok(swing) = Swing::new(&spec, &eq) else { continue };
-        let face = |tau: f64| swing.pose(tau) * nalgebra::Point3::from(club.face.center_m);
+        let face = |tau: f64| swing.pose(tau) * impactd::math::Point3::from(club.face.center_m);
         assert!((face(0.0).coords - swing.face_centre_at_impact()).norm() < 1e-12);
         let t = &swing.truth;
         let v_truth =
@@ -355,14 +355,14 @@ fn the_face_angle_bound_allows_about_three_times_linear2() {
     let mut variance = 0.0;
     for k in 0..phases {
         let phase = k as f64 / phases as f64;
-        let mut info = nalgebra::Matrix4::<f64>::zeros();
+        let mut info = impactd::math::Matrix4::zeros();
         info[(2, 2)] = ANGULAR_ACCEL_SIGMA_RADPS2.powi(-2);
         info[(3, 3)] = ANGULAR_JERK_SIGMA_RADPS3.powi(-2);
         let first = -(before_s * rate_hz).ceil() as i64;
         for i in first..=0 {
             let tau = (i as f64 + phase) / rate_hz;
             if tau < 0.0 {
-                let x = nalgebra::Vector4::new(1.0, tau, tau * tau / 2.0, tau * tau * tau / 6.0);
+                let x = impactd::math::Vector4::new(1.0, tau, tau * tau / 2.0, tau * tau * tau / 6.0);
                 info += x * x.transpose() / (noise_rad * noise_rad);
             }
         }

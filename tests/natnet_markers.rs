@@ -57,8 +57,8 @@ fn frame_of(k: usize, s: &ClubheadSample, set: &MarkerSet) -> (Frame, Vec<[f32; 
     let [x, y, z, w] = s.orientation_xyzw;
     let pose = Isometry3::from_parts(s.position_m.into(), UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)));
     let at = |label: &str| match set.labels.iter().position(|l| l == label) {
-        Some(i) => pose * nalgebra::Point3::from(set.body_m[i]),
-        None => pose * nalgebra::Point3::new(-0.01, 0.12, 0.0), // SHAFT, 12 cm up the shaft
+        Some(i) => pose * impactd::math::Point3::from(set.body_m[i]),
+        None => pose * impactd::math::Point3::new(-0.01, 0.12, 0.0), // SHAFT, 12 cm up the shaft
     };
     let mut labeled = Vec::new();
     let mut positions = Vec::new();

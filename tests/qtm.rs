@@ -18,11 +18,11 @@ use common::{client, client_result, collect, latest_input, spawn_client, start_d
 use impactd::daemon::bridges::mocap::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
+use impactd::math::Quaternion;
 use impactd::math::UnitQuaternion;
 use impactd::mocap::qtm::{Body6d, Frame6d};
 use impactd::mocap::{qtm_encode, track};
 use impactd::wire::{LaunchPrediction, StatusMessage};
-use nalgebra::Quaternion;
 use qtm_server::QtmServer;
 
 const CHECK: &str = r#"
@@ -301,7 +301,7 @@ fn markers_frame(s: &ClubheadSample, set: &impactd::kinematics::MarkerSet) -> Fr
         .iter()
         .map(|label| match set.labels.iter().position(|l| l == label) {
             Some(k) if !s.occluded => {
-                let p = (pose * nalgebra::Point3::from(set.body_m[k])).coords * 1e3;
+                let p = (pose * impactd::math::Point3::from(set.body_m[k])).coords * 1e3;
                 [p.x as f32, p.y as f32, p.z as f32]
             }
             Some(_) => [f32::NAN; 3],

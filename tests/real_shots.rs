@@ -115,3 +115,185 @@ fn the_shaft_share_reproduces_the_flexible_shaft() {
     let (free, shaft) = (drop("continuous", &[]), drop("ground", &["--soil", "none"]));
     assert!((free - shaft).abs() < 0.3, "free head with the share {free:.2} mph, on the shaft {shaft:.2} mph");
 }
+
+/// The validation export's rows as column name -> cell (TrackMan's layout: `sep=,`, header, units row).
+fn validation_rows() -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(VALIDATION).unwrap();
+    let text = text.trim_start_matches('\u{feff}');
+    let body = text.split_once('\n').unwrap().1;
+    let mut reader = csv::ReaderBuilder::new().flexible(true).from_reader(body.as_bytes());
+    let head: Vec<String> = reader.headers().unwrap().iter().map(str::to_string).collect();
+    reader
+        .records()
+        .skip(1)
+        .map(|r| head.iter().cloned().zip(r.unwrap().iter().map(str::to_string)).collect())
+        .collect()
+}
+
+fn cell(row: &std::collections::HashMap<String, String>, column: &str) -> Option<f64> {
+    row.get(column).and_then(|c| c.trim().parse().ok())
+}
+
+/// TrackMan's `Low Point Height` is no height above the ground: on every row with club data it is minus the drop
+/// of a circular arc from the impact point to its low point, `tan(AA)^2 R / (2 sin(plane))` (attack angle AA,
+/// `Swing Radius` R, `Swing Plane`), to 1.2 mm (its 1 mm rounding). So the export cannot place the leading edge
+/// against the ball, and a crosshair height cannot be derived from it (docs/real-shots.md).
+#[test]
+fn low_point_height_is_the_arcs_drop_below_the_impact_point() {
+    let mut n = 0;
+    for row in validation_rows() {
+        let (Some(aa), Some(radius_in), Some(plane), Some(height_mm)) = (
+            cell(&row, "Attack Angle"),
+            cell(&row, "Swing Radius"),
+            cell(&row, "Swing Plane"),
+            cell(&row, "Low Point Height"),
+        ) else {
+            continue;
+        };
+        let drop_mm = aa.to_radians().tan().powi(2) * radius_in * 25.4 / (2.0 * plane.to_radians().sin());
+        assert!((height_mm + drop_mm).abs() <= 1.2, "low point height {height_mm} mm, the arc's drop {drop_mm:.2} mm");
+        n += 1;
+    }
+    assert_eq!(n, 36);
+}
+
+/// Spin against launch on TrackMan's own face: a homogeneous ball (Table 3.1's `I = 0.4 m R^2`) leaving a face
+/// at angle `a` below its normal spins `2.5 v sin(a) / R`. On the validation 8-iron's located shots with measured
+/// spin (6), TrackMan's numbers put the ball 5.26 deg below its face on average; its spin needs 5.97 deg: a model
+/// with that ball reaches TrackMan's spin only by launching 0.72 deg (0.66-0.78) below TrackMan's launch, and at
+/// TrackMan's launch misses its spin by 757 rpm MAE, over the 600 rpm target (docs/real-shots.md, "spin and
+/// launch"). The closed form of the angular momentum bound, on TrackMan's numbers alone.
+#[test]
+fn the_seeds_ball_reaches_trackmans_spin_only_below_trackmans_launch() {
+    let (r, mps) = (0.0213, 0.44704);
+    let mut shots = Vec::new();
+    for row in validation_rows() {
+        let measured = row.get("Spin Rate Type").is_some_and(|t| t == "Measured");
+        if !measured || row.get("Club").map(String::as_str) != Some("8 Iron") || cell(&row, "Impact Height").is_none() {
+            continue;
+        }
+        let (Some(loft), Some(face), Some(la), Some(ld), Some(v), Some(spin)) = (
+            cell(&row, "Dyn. Loft"),
+            cell(&row, "Face Angle"),
+            cell(&row, "Launch Angle"),
+            cell(&row, "Launch Direction"),
+            cell(&row, "Ball Speed"),
+            cell(&row, "Spin Rate"),
+        ) else {
+            continue;
+        };
+        let dir = |e: f64, a: f64| {
+            let (e, a) = (e.to_radians(), a.to_radians());
+            [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
+        };
+        let (n, b) = (dir(loft, face), dir(la, ld));
+        let a = (n[0] * b[0] + n[1] * b[1] + n[2] * b[2]).clamp(-1.0, 1.0).acos();
+        let w = spin * std::f64::consts::TAU / 60.0;
+        let need = (w * r / (2.5 * v * mps)).asin();
+        let at_launch_rpm = 2.5 * v * mps * a.sin() / r * 60.0 / std::f64::consts::TAU;
+        shots.push((a.to_degrees(), need.to_degrees(), (at_launch_rpm - spin).abs()));
+    }
+    assert_eq!(shots.len(), 6);
+    let mean = |f: fn(&(f64, f64, f64)) -> f64| shots.iter().map(f).sum::<f64>() / shots.len() as f64;
+    assert!((mean(|s| s.0) - 5.26).abs() < 0.01, "{}", mean(|s| s.0));
+    assert!((mean(|s| s.1 - s.0) - 0.72).abs() < 0.01, "{}", mean(|s| s.1 - s.0));
+    assert!(shots.iter().all(|s| (0.65..0.79).contains(&(s.1 - s.0))));
+    assert!((mean(|s| s.2) - 757.0).abs() < 2.0, "{}", mean(|s| s.2));
+}
+
+/// `compare --by-club` reads a wood's dynamic loft and face angle as TrackMan defines them, at the contact point:
+/// a one-row export (a driver, 100 mph, attack +2 deg, square path and face, loft 13 deg, struck 20 mm toward the
+/// heel, spin axis 0) gives the standard model's spin axis of the face-centre delivery
+/// `offline::identify::trackman_reading::at_face_centre` finds, to 1e-6 deg, whose face centre is open by the
+/// bulge's turn (3.86 deg: the torus of ARCHITECTURE.md section 2 on the seed's 305 mm bulge at 13 deg of loft), and
+/// that axis fades by about the D-plane tilt of that turn more than the row read as the face centre's.
+#[test]
+fn a_driver_rows_loft_and_face_are_the_contact_points() {
+    use impactd::equipment::{load_club, BallSpec};
+    use impactd::impact::registry::{build_one, BuildOptions};
+    use impactd::impact::{Equipment, LaunchMetrics};
+    use impactd::offline::identify::trackman_reading::at_face_centre;
+    use impactd::wire::DeliveryInput;
+
+    let header = ["Club", "Club Speed", "Attack Angle", "Club Path", "Dyn. Loft", "Face Angle", "Ball Speed"];
+    let header = [&header[..], &["Launch Angle", "Launch Direction", "Spin Rate", "Spin Rate Type", "Spin Axis"]]
+        .concat()
+        .into_iter()
+        .chain(["Impact Offset", "Impact Height"])
+        .map(|h| format!("\"{h}\""))
+        .collect::<Vec<_>>()
+        .join(",");
+    let units = "\"\",\"[mph]\",\"[deg]\",\"[deg]\",\"[deg]\",\"[deg]\",\"[mph]\",\"[deg]\",\"[deg]\",\"[rpm]\",\"\",\"[deg]\",\"[mm]\",\"[mm]\"";
+    let row =
+        "\"Driver\",\"100\",\"2\",\"0\",\"13\",\"0\",\"145\",\"13\",\"0\",\"2500\",\"Measured\",\"0\",\"-20\",\"0\"";
+    let dir = std::env::temp_dir().join(format!("impactd-real-shots-driver-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("driver.csv");
+    std::fs::write(&path, format!("sep=,\n{header}\n{units}\n{row}\n")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["compare", "--by-club", "--json", "--models", "standard"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (axis, _, n) = stat(&r, "Driver", "standard", "spin_axis_deg");
+    assert_eq!(n, 1);
+
+    let club = load_club("driver").unwrap();
+    let eq = Equipment::new(club.club.clone());
+    let model = build_one("standard", &club, &BuildOptions { ball: BallSpec::SEED, ..Default::default() }).unwrap();
+    let axis_of = |d: &DeliveryInput| {
+        let l = model.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
+        LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps).spin_axis_deg
+    };
+    let row = DeliveryInput {
+        club_speed_mph: 100.0,
+        attack_angle_deg: 2.0,
+        dynamic_loft_deg: Some(13.0),
+        impact_h_mm: -20.0,
+        ..Default::default()
+    };
+    let read = at_face_centre(&row, &eq).unwrap();
+    assert!((read.face_angle_deg - 3.86).abs() < 0.02, "face centre {:.3} deg", read.face_angle_deg);
+    assert!((axis - axis_of(&read)).abs() < 1e-6, "compare {axis:.6}, the reading {:.6}", axis_of(&read));
+    // Read at the face centre, the contact normal is the bulge's 3.86 deg closed: the plane of the club's velocity
+    // (attack 2 deg, path 0) and that normal (loft 13 deg) is tilted `atan(v x n)` 18.9 deg toward a draw (the
+    // D-plane's closed form); the reading takes that tilt away, and the model's axis moves by it within 4 deg (the
+    // gear effect's share changes with the contact normal: 22.3 deg here).
+    let (a, dl, f) = (2.0_f64.to_radians(), 13.0_f64.to_radians(), -(read.face_angle_deg).to_radians());
+    let n = [dl.cos() * f.cos(), dl.sin(), dl.cos() * f.sin()];
+    let axis_vector = [a.sin() * n[2], -a.cos() * n[2], a.cos() * n[1] - a.sin() * n[0]];
+    let tilt = axis_vector[1].atan2(axis_vector[0].hypot(axis_vector[2])).to_degrees();
+    assert!((tilt - 18.9).abs() < 0.1, "D-plane tilt {tilt:.2} deg");
+    let more_fade = axis - axis_of(&row);
+    assert!((more_fade - tilt).abs() < 4.0, "axis {axis:.2} deg, read at the face centre {:.2}", axis_of(&row));
+}
+
+/// `compare --by-club --spin-relation`: TrackMan's loft and face read through its spin relation (1.136, the ratio
+/// `tests/tour_iron_spin.rs` measures on every measured shot) give the seed's ball TrackMan's spin at TrackMan's
+/// launch. On the validation 8-iron the default model's spin then meets the issue's 600 rpm (497 rpm MAE; 633
+/// without) and its launch bias vanishes (-0.04 deg; -0.60 without), for 0.6 mph more ball speed error (3.75;
+/// 3.14 without): the bounds are docs/real-shots.md's numbers with a margin of about a tenth.
+#[test]
+fn trackmans_loft_through_its_relation_trades_speed_for_spin() {
+    let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["compare", "--by-club", "--located", "--json", "--spin-relation", "--models", "adjusted", VALIDATION])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["spin_relation"], true);
+    let plain = by_club("adjusted");
+    let (spin, _, n) = stat(&r, "8 Iron", "adjusted", "spin_rpm");
+    let (launch, launch_bias, _) = stat(&r, "8 Iron", "adjusted", "launch_angle_deg");
+    let (speed, _, _) = stat(&r, "8 Iron", "adjusted", "ball_speed_mph");
+    assert_eq!(n, 6);
+    assert!(spin <= 550.0, "spin MAE {spin:.0} rpm");
+    assert!(launch <= 0.3 && launch_bias.abs() <= 0.1, "launch MAE {launch:.2} deg, bias {launch_bias:+.2}");
+    assert!((3.4..=4.1).contains(&speed), "ball speed MAE {speed:.2} mph");
+    let (plain_spin, _, _) = stat(&plain, "8 Iron", "adjusted", "spin_rpm");
+    let (plain_speed, _, _) = stat(&plain, "8 Iron", "adjusted", "ball_speed_mph");
+    assert!(plain_spin > 600.0 && plain_speed < speed, "without: {plain_spin:.0} rpm, {plain_speed:.2} mph");
+}

@@ -198,11 +198,11 @@ fn static_twist_and_tip_deflection_match_closed_forms() {
         twist += h / shaft.gj_n_m2(x);
         bend += h * (l - x).powi(2) / shaft.ei_n_m2(x);
     }
-    let mut f = nalgebra::DVector::zeros(n);
+    let mut f = impactd::math::DVector::zeros(n);
     f[tip + 3] = 1.0; // torque about the shaft axis, N m
     let u = c.static_displacement(&f).unwrap();
     assert!((u[tip + 3] / twist - 1.0).abs() < 1e-3, "{} vs {twist}", u[tip + 3]);
-    let mut f = nalgebra::DVector::zeros(n);
+    let mut f = impactd::math::DVector::zeros(n);
     f[tip + 1] = 1.0; // lateral force, N
     let u = c.static_displacement(&f).unwrap();
     assert!((u[tip + 1] / bend - 1.0).abs() < 1e-3, "{} vs {bend}", u[tip + 1]);

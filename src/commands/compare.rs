@@ -51,6 +51,11 @@ pub struct CompareArgs {
     /// With --by-club and the ground model: the turf (soft, medium, firm, a soil file) or none (on a tee).
     #[arg(long, requires = "by_club")]
     pub soil: Option<String>,
+    /// With --by-club: TrackMan's loft and face read through its spin relation, as the face the seed's ball needs
+    /// to leave in TrackMan's direction with TrackMan's spin (the measured launch enters the delivery: launch and
+    /// spin are then no independent test; docs/real-shots.md).
+    #[arg(long, requires = "by_club")]
+    pub spin_relation: bool,
     /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and
     /// model after the table, or `residuals` in the JSON.
     #[arg(long)]
@@ -148,7 +153,13 @@ pub fn club_spec(arg: Option<&str>, loaded: &Loaded) -> String {
 pub fn run(args: &CompareArgs) -> Result<ExitCode> {
     if args.by_club {
         let models = args.models.clone().unwrap_or_else(|| "standard,adjusted,slip,continuous".into());
-        let report = super::compare_clubs::by_club(&args.files, &models, args.located, args.soil.as_deref())?;
+        let report = super::compare_clubs::by_club(
+            &args.files,
+            &models,
+            args.located,
+            args.soil.as_deref(),
+            args.spin_relation,
+        )?;
         if args.json {
             println!("{}", serde_json::to_string_pretty(&report)?);
         } else {

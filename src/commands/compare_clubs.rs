@@ -1,6 +1,8 @@
 //! `impactd compare --by-club`: each club of TrackMan exports on its own preset (TrackMan's `Club` column), every
 //! model's ball speed, launch angle, spin and spin axis as MAE and bias (`identify::by_club`), spin only on shots
-//! whose spin TrackMan measured; `--located` keeps only shots with an impact location.
+//! whose spin TrackMan measured; `--located` keeps only shots with an impact location. TrackMan's dynamic loft
+//! and face angle are the face's at the contact point (its definitions); on a wood's curved face they are turned
+//! into the face centre's (`offline::identify::trackman_reading`).
 
 use std::path::PathBuf;
 
@@ -11,6 +13,7 @@ use impactd::impact::Equipment;
 use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
 use impactd::offline::identify::cost::predict_all;
 use impactd::offline::identify::dataset::resolve;
+use impactd::offline::identify::trackman_reading::{at_face_centre, through_spin_relation};
 use impactd::offline::identify::DatasetLine;
 use impactd::session::trackman_csv::{read_labelled, RowLabels};
 
@@ -31,6 +34,8 @@ pub struct ClubReport {
 #[derive(Debug, serde::Serialize)]
 pub struct ByClub {
     pub files: Vec<PathBuf>,
+    /// TrackMan's loft and face read through its spin relation (`--spin-relation`).
+    pub spin_relation: bool,
     /// Rows with club and ball data left out: without an impact location (with `--located`).
     pub unlocated_left_out: usize,
     pub clubs: Vec<ClubReport>,
@@ -54,7 +59,20 @@ fn read_rows(files: &[PathBuf]) -> Result<Vec<(DatasetLine, RowLabels)>> {
 }
 
 /// The report: clubs in the order they first appear; `soil` for the ground model (`none`: on a tee).
-pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str>) -> Result<ByClub> {
+/// `spin_relation`: TrackMan's loft and face read through its spin relation (`trackman_reading`).
+pub fn by_club(
+    files: &[PathBuf],
+    models: &str,
+    located: bool,
+    soil: Option<&str>,
+    spin_relation: bool,
+) -> Result<ByClub> {
+    // `both` and the other groups expand here as everywhere (impact::registry::resolve); `--soil` is the turf of
+    // the ground model, so a group takes its turf members with it, and models without the ground ignore it.
+    let names_ground = |m: &str| m == "ground" || registry::GROUPS.iter().any(|g| g.name == m);
+    let on_turf = soil.is_some() && models.split(',').map(str::trim).any(names_ground);
+    let models = registry::resolve(models, on_turf).context("--models")?;
+    let models = models.as_str();
     let mut rows = read_rows(files)?;
     let before = rows.len();
     if located {
@@ -75,14 +93,24 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
         };
         let group: Vec<&(DatasetLine, RowLabels)> =
             rows.iter().filter(|(_, l)| l.club.as_deref().unwrap_or_default() == label).collect();
-        let lines: Vec<DatasetLine> = group.iter().map(|(d, _)| d.clone()).collect();
         let spin_measured: Vec<bool> = group.iter().map(|(_, l)| l.spin_measured).collect();
         let club = super::args::load_club(preset)?;
         let equipment = Equipment { club: club.club.clone(), ball };
+        let lines = group
+            .iter()
+            .enumerate()
+            .map(|(i, (d, _))| {
+                let trackman =
+                    if spin_relation { through_spin_relation(&d.delivery, &d.measured) } else { d.delivery.clone() };
+                let delivery = at_face_centre(&trackman, &equipment)
+                    .with_context(|| format!("club `{label}`, shot {}: TrackMan's loft and face", i + 1))?;
+                Ok(DatasetLine { delivery, measured: d.measured.clone() })
+            })
+            .collect::<Result<Vec<_>>>()?;
         let shots = resolve(&lines, &equipment).with_context(|| format!("club `{label}`"))?;
         let measured: Vec<[f64; 5]> = shots.iter().map(|s| s.measured).collect();
         let mut stats = Vec::new();
-        for name in models.split(',').map(str::trim) {
+        for name in models.split(',') {
             let mut loaded = club.clone();
             if name == "ground" {
                 super::args::set_soil(&mut loaded, soil, name)?;
@@ -100,7 +128,7 @@ pub fn by_club(files: &[PathBuf], models: &str, located: bool, soil: Option<&str
             models: stats,
         });
     }
-    Ok(ByClub { files: files.to_vec(), unlocated_left_out: before - rows.len(), clubs })
+    Ok(ByClub { files: files.to_vec(), spin_relation, unlocated_left_out: before - rows.len(), clubs })
 }
 
 /// The table: per club, a line per model (ball speed in mph, launch and axis in deg, spin in rpm).

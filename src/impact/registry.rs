@@ -204,14 +204,19 @@ pub fn current_name(name: &str) -> &str {
 pub const GROUPS: &[Group] =
     &[Group { name: "both", members: &["adjusted", "continuous"], on_turf: &["adjusted", "ground"] }];
 
-/// The model (or comma-separated models) a configured name stands for, the one place groups are resolved: a
-/// group expands to its members, on the turf (`on_turf`: a soil is given) to its turf members, which must then
-/// include the ground model.
+/// The models a configured name (or a comma-separated list of names) stands for, comma-separated: the one place
+/// groups are resolved. A group expands to its members, on the turf (`on_turf`: a soil is given) to its turf
+/// members; on the turf the list must then include the ground model.
 pub fn resolve(name: &str, on_turf: bool) -> Result<String, ImpactError> {
-    let list = match GROUPS.iter().find(|g| g.name == name) {
-        Some(g) => (if on_turf { g.on_turf } else { g.members }).join(","),
-        None => name.to_string(),
-    };
+    let list = name
+        .split(',')
+        .map(str::trim)
+        .map(|item| match GROUPS.iter().find(|g| g.name == item) {
+            Some(g) => (if on_turf { g.on_turf } else { g.members }).join(","),
+            None => item.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(",");
     for n in list.split(',').map(str::trim) {
         if entry(n).is_none() {
             return Err(ImpactError::UnknownModel { name: n.to_string(), expected: names() });

@@ -2,7 +2,7 @@
 //! from markers on the target line and the floor (`lab`), and the tracked body in the club frame from the club
 //! at address (`club`). Marker positions come in already averaged over the trial's frames (lab frame, m).
 //!
-//! The world frame (DESIGN.md section 2) has its origin at the resting ball's centre, x toward the target, y up,
+//! The world frame (ARCHITECTURE.md section 2) has its origin at the resting ball's centre, x toward the target, y up,
 //! z right of the target line. The club frame at a square address has the world's axes; its face normal is
 //! `n0 = (cos L, sin L, 0)`, up-the-face `u0 = (-sin L, cos L, 0)`, toe `t0 = (0, 0, 1)` for static loft L.
 

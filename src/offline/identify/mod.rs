@@ -21,6 +21,7 @@
 //! - [`fisher`]: the Fisher information of the shots and each parameter's Cramér-Rao bound.
 //! - [`synth`]: synthetic datasets with known parameters and launch-monitor noise.
 //! - [`club_toml`]: the fitted parameters written as a club file.
+//! - [`trackman_reading`]: TrackMan's loft and face angle (the contact point's) turned into the face centre's.
 //!
 //! Everything is deterministic for a seed: parallel sums are collected per shot and added in shot order.
 
@@ -34,6 +35,7 @@ pub mod objective;
 pub mod optimize;
 pub mod params;
 pub mod synth;
+pub mod trackman_reading;
 
 pub use cost::{CostScales, FieldStats, ModelTable, FIELDS};
 pub use dataset::{DatasetLine, Shot};
