@@ -160,8 +160,9 @@ def cv_table():
     for m in ("adjusted", "slip", "continuous"):
         row += [f"{cvs[m]['cost_before']:.4f}", f"{cvs[m]['cost_after']:.4f}"]
     lines.append("| " + " | ".join(row) + " |")
-    return lines + ["", "5-fold cross-validated MAE on held-out shots (each fold fitted without them); the noise's own "
-                        "MAE is σ sqrt(2/π)."]
+    return lines + ["", "5-fold cross-validated MAE on held-out shots (each fold fitted without them; a two-layer fold's "
+                        "local search starts from the fit on all shots, `fit --fold-global` searches each globally); "
+                        "the noise's own MAE is σ sqrt(2/π)."]
 
 
 def dur(s):

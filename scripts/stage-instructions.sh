@@ -15,8 +15,21 @@ STAGES=(continuous/driver continuous/iron7 maw/driver maw/iron7
     standard/iron7 adjusted/driver extrapolate/poly/driver extrapolate/arc/iron7 club_data/iron7
     flight/trajectory pipeline/sample/iron7)
 
-count() { # BIN STAGE N -> instructions
-    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 | sed -n 's/.*Collected : //p'
+# A stage's name in a build from before each model was published under its registry name (the registry's
+# FORMER_NAMES: maw was continuous/maw, ...).
+former() {
+    case "$1" in
+    continuous/*) echo "continuous/two_layer/${1#continuous/}" ;;
+    maw/* | arakawa/*) echo "continuous/$1" ;;
+    standard/* | adjusted/* | slip/*) echo "impulse/$1" ;;
+    *) echo "$1" ;;
+    esac
+}
+
+count() { # BIN STAGE N -> instructions (under the stage's former name when the build does not know it)
+    local stage="$2"
+    "$1" "$stage" 0 >/dev/null 2>&1 || stage="$(former "$2")"
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$stage" "$3" 2>&1 | sed -n 's/.*Collected : //p'
 }
 
 OUT="$(mktemp)"

@@ -18,7 +18,7 @@ use impactd::equipment::BallSpec;
 use impactd::impact::Equipment;
 use impactd::offline::identify::club_toml::to_toml;
 use impactd::offline::identify::dataset::resolve;
-use impactd::offline::identify::fit::{run as fit_run, FitOptions, FitReport};
+use impactd::offline::identify::fit::{run as fit_run, FitOptions, FitReport, LocalMethod};
 use impactd::offline::identify::{FitModel, Objective, ParamSpace, FIELDS};
 
 #[derive(Debug, Args)]
@@ -47,9 +47,18 @@ pub struct FitArgs {
     /// Generations of the global search.
     #[arg(long, default_value_t = 100, value_parser = super::checked::count_or_zero_usize)]
     pub generations: usize,
-    /// Nelder-Mead evaluations after the global search.
+    /// Passes over the shots of the local search after the global one, at most (it stops sooner when the cost
+    /// no longer falls).
     #[arg(long, default_value_t = 400, value_parser = super::checked::count_or_zero_usize)]
     pub local_evaluations: usize,
+    /// The local search: Levenberg-Marquardt on the residuals (default for a model resolved in time) or
+    /// Nelder-Mead (default otherwise).
+    #[arg(long, value_enum)]
+    pub local: Option<LocalArg>,
+    /// Run the global search in every cross-validation fold too (default only for a model without a coarse
+    /// step; a model resolved in time starts each fold's local search from the fit on all shots).
+    #[arg(long)]
+    pub fold_global: bool,
     /// Shots the global search evaluates (a seeded subsample; default all, 150 for a model resolved in time).
     #[arg(long, value_parser = super::checked::count_usize)]
     pub global_shots: Option<usize>,
@@ -77,6 +86,16 @@ pub struct FitArgs {
     /// The report as one JSON object.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `--local`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum LocalArg {
+    /// Nelder-Mead's simplex (derivative-free).
+    NelderMead,
+    /// Levenberg-Marquardt steps on the reweighted residuals (finite-difference Jacobian).
+    #[value(name = "levenberg-marquardt", alias = "lm")]
+    LevenbergMarquardt,
 }
 
 /// `--objective`.
@@ -122,6 +141,11 @@ pub fn run(args: &FitArgs) -> Result<ExitCode> {
         population: args.population,
         generations: args.generations,
         local_evaluations: args.local_evaluations,
+        local: args.local.map(|l| match l {
+            LocalArg::NelderMead => LocalMethod::NelderMead,
+            LocalArg::LevenbergMarquardt => LocalMethod::LevenbergMarquardt,
+        }),
+        fold_global: args.fold_global.then_some(true),
         global_shots: args.global_shots,
         coarse_global: !args.exact_global,
         stall_generations: args.stall_generations,

@@ -7,8 +7,10 @@ use serde::{Deserialize, Serialize};
 use super::cost::{cost, evaluate, evaluate_with, field_stats, CostScales, FieldStats};
 use super::dataset::Shot;
 use super::fisher;
+pub use super::local::LocalMethod;
+use super::local::{refine, LocalMinimum};
 use super::objective::Objective;
-use super::optimize::{differential_evolution, nelder_mead, DeOptions, NmOptions, Progress};
+use super::optimize::{differential_evolution, DeOptions, Progress};
 use super::params::{BuildFn, ParamSpace};
 use super::IdentifyError;
 use crate::equipment::{BallSpec, LoadedClub};
@@ -24,8 +26,14 @@ pub struct FitOptions {
     /// Differential evolution population (default: 10 per parameter, at least 20) and generations.
     pub population: Option<usize>,
     pub generations: usize,
-    /// Nelder-Mead evaluations.
+    /// The local stage's passes over the shots at most (Nelder-Mead's evaluations; Levenberg-Marquardt's trial
+    /// steps and Jacobian columns).
     pub local_evaluations: usize,
+    /// The local stage's method (`None`: [`LocalMethod::for_space`]).
+    pub local: Option<LocalMethod>,
+    /// Whether each cross-validation fold runs the global search too (`None`: only for a model without a coarse
+    /// step; a model resolved in time starts each fold's local stage from the fit on all shots).
+    pub fold_global: Option<bool>,
     /// Shots the global stage evaluates (a seeded subsample); the local stage uses all. `None`: all shots for a
     /// model without a coarse step, [`GLOBAL_SHOTS_IN_TIME`] for one resolved in time.
     pub global_shots: Option<usize>,
@@ -51,6 +59,8 @@ impl Default for FitOptions {
             population: None,
             generations: 100,
             local_evaluations: 400,
+            local: None,
+            fold_global: None,
             global_shots: None,
             coarse_global: true,
             stall_generations: 10,
@@ -166,9 +176,8 @@ pub fn fit_once(
         }
         _ => shots.to_vec(),
     };
-    let (sub_scales, scales) = (CostScales::of(&subsample), CostScales::of(shots));
+    let sub_scales = CostScales::of(&subsample);
     let mut global_objective = |u: &[Real]| objective_on(u, &subsample, &sub_scales, coarse);
-    let mut objective = |u: &[Real]| objective_on(u, shots, &scales, None);
     let d = space.defs.len();
     let mut de = DeOptions::for_dimension(d, options.seed);
     de.generations = options.generations;
@@ -178,17 +187,28 @@ pub fn fit_once(
     }
     let start = space.to_unit(&space.get(club));
     let global = differential_evolution(&mut global_objective, d, Some(&start), &de, progress);
-    let global_cost = objective(&global.x);
-    let nm = NmOptions { max_evaluations: options.local_evaluations, ..Default::default() };
-    let local = nelder_mead(&mut objective, &global.x, &nm, progress);
-    let best = if local.cost <= global_cost { local.x } else { global.x };
-    let (n_global, n_all) = (subsample.len() as u64, shots.len() as u64);
+    let local = fit_local(space, club, ball, shots, options, &global.x, progress);
     Ok(Fitted {
-        values: space.from_unit(&best),
-        cost: local.cost.min(global_cost),
-        evaluations: global.evaluations + local.evaluations + 1,
-        simulations: global.evaluations as u64 * n_global + (local.evaluations as u64 + 1) * n_all,
+        values: space.from_unit(&local.x),
+        cost: local.cost,
+        evaluations: global.evaluations + local.evaluations,
+        simulations: global.evaluations as u64 * subsample.len() as u64 + local.simulations,
     })
+}
+
+/// The local stage alone from `x0` (unit cube) on `shots`: the refinement after the global search, and each
+/// cross-validation fold of a model resolved in time, started from the fit on all shots.
+pub fn fit_local(
+    space: &ParamSpace,
+    club: &LoadedClub,
+    ball: &BallSpec,
+    shots: &[Shot],
+    options: &FitOptions,
+    x0: &[Real],
+    progress: &mut dyn FnMut(Progress),
+) -> LocalMinimum {
+    let method = options.local.unwrap_or_else(|| LocalMethod::for_space(space));
+    refine(space, club, ball, shots, options.objective, method, options.local_evaluations, x0, progress)
 }
 
 /// The fold of each shot: a seeded shuffle dealt round-robin into `k` folds.
@@ -220,6 +240,9 @@ pub fn run(
     }
     let display =
         |values: &[Real]| -> Vec<Real> { space.defs.iter().zip(values).map(|(d, v)| v * d.display_factor).collect() };
+    let started = std::time::Instant::now();
+    let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
+    let fit_seconds = started.elapsed().as_secs_f64();
     let mut cv = None;
     let mut cv_simulations = 0;
     let cv_started = std::time::Instant::now();
@@ -234,13 +257,22 @@ pub fn run(
         let mut fold_values = Vec::new();
         // The starting parameters and each fold's fitted ones on its held-out shots: one pass over all shots each.
         cv_simulations = 2 * shots.len() as u64;
+        let fold_global = options.fold_global.unwrap_or(space.model.coarse.is_none());
+        let warm_start = space.to_unit(&fitted.values);
         for f in 0..k {
             let train: Vec<Shot> = shots.iter().zip(&fold).filter(|(_, &g)| g != f).map(|(s, _)| *s).collect();
             let label = format!("fold {}/{k}", f + 1);
-            let fitted = fit_once(space, club, ball, &train, options, &mut |p| progress(&label, p))?;
-            fold_values.push(display(&fitted.values));
-            cv_simulations += fitted.simulations;
-            let fitted_club = space.club_with(club, &fitted.values);
+            let mut report = |p| progress(&label, p);
+            let (values, simulations) = if fold_global {
+                let fitted = fit_once(space, club, ball, &train, options, &mut report)?;
+                (fitted.values, fitted.simulations)
+            } else {
+                let local = fit_local(space, club, ball, &train, options, &warm_start, &mut report);
+                (space.from_unit(&local.x), local.simulations)
+            };
+            fold_values.push(display(&values));
+            cv_simulations += simulations;
+            let fitted_club = space.club_with(club, &values);
             let held: Vec<usize> = (0..shots.len()).filter(|&i| fold[i] == f).collect();
             let held_shots: Vec<Shot> = held.iter().map(|&i| shots[i]).collect();
             for (i, p) in held.iter().zip(evaluate(space, &fitted_club, ball, &held_shots)?) {
@@ -258,9 +290,6 @@ pub fn run(
         });
     }
     let cv_seconds = cv_started.elapsed().as_secs_f64();
-    let started = std::time::Instant::now();
-    let fitted = fit_once(space, club, ball, shots, options, &mut |p| progress("all shots", p))?;
-    let fit_seconds = started.elapsed().as_secs_f64();
     let fitted_club = space.club_with(club, &fitted.values);
     let fitted_predictions = evaluate(space, &fitted_club, ball, shots)?;
     let sigma = fisher::residual_sigma(&fitted_predictions, shots, space.defs.len());

@@ -16,6 +16,8 @@
 //! - [`cost`]: eq. 3.13 and the seed's table statistics, evaluated in parallel over shots in a fixed order.
 //! - [`params`]: each model's identifiable parameters with bounds ([`params::ParamSet`]).
 //! - [`optimize`]: differential evolution (the global search) and Nelder-Mead (the local refinement).
+//! - [`least_squares`]: Levenberg-Marquardt on reweighted residuals (the local refinement of a model resolved in
+//!   time); [`local`]: the local stage, by either.
 //! - [`objective`]: what a fit minimises: eq. 3.13 (the default) or the launch monitor's noise likelihood.
 //! - [`fit`]: the seed's procedure (global, then local) and k-fold cross-validation.
 //! - [`fisher`]: the Fisher information of the shots and each parameter's Cramér-Rao bound.
@@ -31,6 +33,8 @@ pub mod cost;
 pub mod dataset;
 pub mod fisher;
 pub mod fit;
+pub mod least_squares;
+pub mod local;
 pub mod objective;
 pub mod optimize;
 pub mod params;

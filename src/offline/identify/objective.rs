@@ -83,6 +83,52 @@ impl Objective {
     }
 }
 
+impl Objective {
+    /// Each residual's part in a Gauss-Newton step at `predictions` (the Levenberg-Marquardt refinement's): the
+    /// weight of its square in the cost's local curvature and its slope, `(w, ψ)`, so that the step solves
+    /// `Σ w g g' δ = -Σ ψ g` (`g` the residual's derivatives by the parameters). For the likelihoods `ψ = w r`
+    /// with `w = 1 / σ_i²`, the given noise's or the current residuals' (`mean_j r_i,j²`: the profile
+    /// likelihood's gradient is that of weighted squares with the noise estimated at the current point). Eq.
+    /// 3.13's `|r| / s_i` has slope `sign(r) / s_i` and no curvature but at `r = 0`: over residuals scattered by
+    /// noise of density `f_i` its expected curvature is `2 f_i(0) / s_i`, and for normal noise `f_i(0) =
+    /// 1 / (π MAE_i)` with the field's current mean absolute residual (the sandwich's `A` in
+    /// [`super::fisher::l1_scatter`]). A failed shot weighs nothing.
+    pub fn step_weights(
+        &self,
+        predictions: &[Option<[Real; 5]>],
+        shots: &[Shot],
+        scales: &CostScales,
+    ) -> Vec<[(Real, Real); 5]> {
+        let residuals: Vec<Option<[Real; 5]>> = predictions
+            .iter()
+            .zip(shots)
+            .map(|(p, s)| p.map(|x| std::array::from_fn(|i| x[i] - s.measured[i])))
+            .collect();
+        let predicted = residuals.iter().flatten().count().max(1) as Real;
+        let mean_of = |f: &dyn Fn(Real) -> Real| -> [Real; 5] {
+            std::array::from_fn(|i| residuals.iter().flatten().map(|r| f(r[i])).sum::<Real>() / predicted)
+        };
+        let curvature: [Real; 5] = match self {
+            Objective::LeastAbsolute => {
+                let mae = mean_of(&|r| r.abs());
+                std::array::from_fn(|i| 2.0 / (std::f64::consts::PI * scales.0[i] * mae[i].max(1e-300)))
+            }
+            Objective::Likelihood { noise: Some(sigma) } => sigma.map(|s| 1.0 / (s * s)),
+            Objective::Likelihood { noise: None } => mean_of(&|r| r * r).map(|m| 1.0 / m.max(1e-300)),
+        };
+        residuals
+            .iter()
+            .map(|r| match r {
+                None => [(0.0, 0.0); 5],
+                Some(r) => std::array::from_fn(|i| match self {
+                    Objective::LeastAbsolute => (curvature[i], r[i].signum() / scales.0[i]),
+                    Objective::Likelihood { .. } => (curvature[i], curvature[i] * r[i]),
+                }),
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,5 +165,31 @@ mod tests {
         assert!(wls.value(&failed, &s, &scales) > 1e3);
         assert!(Objective::likelihood(Some([0.5, 0.0, 0.3, 150.0, 150.0])).unwrap_err().to_string().contains("launch"));
         assert_eq!(Objective::default().name(), "eq_3_13");
+    }
+
+    #[test]
+    fn gauss_newton_weights() {
+        let s = shots(&[[100.0, 10.0, 1.0, 3000.0, 100.0], [110.0, 12.0, -1.0, 3200.0, -100.0]]);
+        let scales = CostScales::of(&s);
+        let p = vec![Some([102.0, 10.0, 0.5, 3100.0, 100.0]), None];
+        let w = Objective::LeastAbsolute.step_weights(&p, &s, &scales);
+        assert_eq!(w[1], [(0.0, 0.0); 5], "a failed shot weighs nothing");
+        // Eq. 3.13: slope sign(r) / s_i; curvature 2 / (π s_i MAE_i), here MAE = |r| on the one predicted shot.
+        assert_eq!(w[0][0].1, 1.0 / 105.0);
+        assert_eq!(w[0][2].1, -1.0 / 1.0);
+        assert!((w[0][3].0 - 2.0 / (std::f64::consts::PI * 3100.0 * 100.0)).abs() < 1e-18);
+        // The normal density's 2 f(0) with σ = MAE sqrt(π/2): 2 / (σ sqrt(2π)) = 2 / (π MAE).
+        let sigma = 2.0 * (std::f64::consts::PI / 2.0).sqrt();
+        assert!((w[0][0].0 * 105.0 - 2.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-15);
+        let given = Objective::likelihood(Some([0.5, 0.2, 0.3, 150.0, 150.0])).unwrap().step_weights(&p, &s, &scales);
+        for ((w, slope), want) in given[0].iter().zip([4.0, 25.0, 1.0 / 0.09, 1.0 / 22500.0, 1.0 / 22500.0]) {
+            assert!((w / want - 1.0).abs() < 1e-12, "{w} against {want}");
+            assert!(slope.is_finite());
+        }
+        assert!((given[0][0].1 - 4.0 * 2.0).abs() < 1e-12 && (given[0][3].1 - 100.0 / 22500.0).abs() < 1e-15);
+        // Estimated noise: 1 / mean r² over the predicted shots.
+        let estimated = Objective::likelihood(None).unwrap().step_weights(&p, &s, &scales);
+        assert!((estimated[0][0].0 - 0.25).abs() < 1e-15 && (estimated[0][3].0 - 1e-4).abs() < 1e-18);
+        assert!((estimated[0][2].1 - 4.0 * -0.5).abs() < 1e-12 && (estimated[0][2].0 - 4.0).abs() < 1e-12);
     }
 }

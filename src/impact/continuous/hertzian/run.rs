@@ -1,57 +1,48 @@
-//! The integration of [`super::HertzModel`]: RK4 on both free bodies, the tangential law's history committed
-//! after each step, the separation located by secant.
+//! The integration of [`super::HertzModel`]: RK4 on the shared parts (any [`ClubPart`] and [`BallPart`]: the
+//! seed's models use a free head and a rigid ball) and the contact's tangential slip, the tangential law's history
+//! committed after each step, the separation located by secant.
 
 use super::{HertzModel, HertzResult, HertzTracePoint};
+use crate::impact::continuous::ball::{rk4_mean, BallPart};
+use crate::impact::continuous::club::{ClubPart, Head};
 use crate::impact::continuous::law::hertz::{
     elastic_energy, equivalent_radius, normal_force, ContactArm, ContactKinematics, Hertz, TangentialLaw,
 };
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::{Equipment, ImpactError, ImpactState, Launch};
-use crate::math::{Real, UnitQuaternion, Vector3};
-
-type Rotation3 = crate::math::Rotation3;
+use crate::math::{Real, Vector3};
 
 /// A step the tangential law flags ([`TangentialLaw::refine`]) is split into this many.
 const REFINE: usize = 8;
 
 #[derive(Debug, Clone, Copy)]
-struct State {
-    p_c_m: Vector3,
-    v_c_mps: Vector3,
-    q_c: UnitQuaternion,
-    w_c_body_radps: Vector3,
-    p_b_m: Vector3,
-    v_b_mps: Vector3,
-    w_b_radps: Vector3,
+struct State<CS, BS> {
+    club: CS,
+    ball: BS,
     /// Tangential slip of the ball's contact point relative to the face's, integrated (m).
     slip_m: Vector3,
 }
 
 /// Time derivatives, in the same layout.
 #[derive(Debug, Clone, Copy)]
-struct Rates {
-    v_c_mps: Vector3,
-    a_c_mps2: Vector3,
-    q_dot: crate::math::Quaternion,
-    alpha_c_body_radps2: Vector3,
-    v_b_mps: Vector3,
-    a_b_mps2: Vector3,
-    alpha_b_radps2: Vector3,
+struct Rates<CR, BR> {
+    club: CR,
+    ball: BR,
     slip_rate_mps: Vector3,
 }
 
-struct Setup {
+struct Setup<C, B> {
     k: Real,
     hertz: Hertz,
     surface: FaceSurface,
     r_ball_m: Real,
     contact_arm: ContactArm,
-    m_b_kg: Real,
-    i_b_kgm2: Real,
-    m_c_kg: Real,
-    i_c_kgm2: crate::math::Matrix3,
-    i_c_inv_per_kgm2: crate::math::Matrix3,
+    ball: B,
+    club: C,
 }
+
+type PartState<C, B> = State<<C as ClubPart>::State, <B as BallPart>::State>;
+type PartRates<C, B> = Rates<<C as ClubPart>::Rate, <B as BallPart>::Rate>;
 
 /// The contact at a state: kinematics for the law, the contact point's lever arms, the normal force.
 struct Contact {
@@ -60,13 +51,15 @@ struct Contact {
     r_c: Vector3,
 }
 
-impl Setup {
-    fn contact(&self, s: &State, s_step: &Vector3) -> Option<Contact> {
-        self.contact_rot(s, &s.q_c.to_rotation_matrix(), s_step)
+impl<C: ClubPart, B: BallPart> Setup<C, B> {
+    fn contact(&self, s: &PartState<C, B>, s_step: &Vector3) -> Option<Contact> {
+        self.contact_at(s, &self.club.head(&s.club), s_step)
     }
 
-    fn contact_rot(&self, s: &State, rot: &Rotation3, s_step: &Vector3) -> Option<Contact> {
-        let ball = rot.inverse_transform_vector(&(s.p_b_m - s.p_c_m));
+    fn contact_at(&self, s: &PartState<C, B>, head: &Head, s_step: &Vector3) -> Option<Contact> {
+        let rot = &head.world_from_club;
+        let (p_b_m, v_b_mps) = B::centre(&s.ball);
+        let ball = rot.inverse_transform_vector(&(p_b_m - head.position_m));
         let (x, normal) = match self.surface {
             FaceSurface::Plane { point, normal } => (self.r_ball_m - normal.dot(&(ball - point)), normal),
             FaceSurface::Sphere { centre, radius_m } => {
@@ -80,10 +73,10 @@ impl Setup {
         }
         let x = x.max(0.0);
         let n = rot * normal;
-        let point = s.p_b_m - self.contact_arm.arm_m(self.r_ball_m, x) * n;
-        let (r_b, r_c) = (point - s.p_b_m, point - s.p_c_m);
-        let w_c = rot * s.w_c_body_radps;
-        let v_rel = (s.v_b_mps + s.w_b_radps.cross(&r_b)) - (s.v_c_mps + w_c.cross(&r_c));
+        let point = p_b_m - self.contact_arm.arm_m(self.r_ball_m, x) * n;
+        let (r_b, r_c) = (point - p_b_m, point - head.position_m);
+        let w_c = head.angular_velocity_radps;
+        let v_rel = (v_b_mps + B::surface_spin(&s.ball).cross(&r_b)) - (head.velocity_mps + w_c.cross(&r_c));
         let xdot = -v_rel.dot(&n);
         if x == 0.0 && xdot <= 0.0 {
             return None; // touching, not pressing
@@ -101,96 +94,72 @@ impl Setup {
     }
 
     /// The rates at an intermediate stage.
-    fn rates(&self, s: &State, s_step: &Vector3, law: &dyn TangentialLaw) -> Rates {
-        let rot = s.q_c.to_rotation_matrix();
-        match self.contact_rot(s, &rot, s_step) {
+    fn rates(&self, s: &PartState<C, B>, s_step: &Vector3, law: &dyn TangentialLaw) -> PartRates<C, B> {
+        let head = self.club.head(&s.club);
+        match self.contact_at(s, &head, s_step) {
             Some(c) => {
                 let f_t = law.force(&c.kin);
-                self.rates_with(s, &rot, Some((&c, &f_t)))
+                self.rates_with(s, &head, Some((&c, &f_t)))
             }
-            None => self.rates_with(s, &rot, None),
+            None => self.rates_with(s, &head, None),
         }
     }
 
-    /// The rates at `s` with the contact and tangential force found there (`None`: apart).
-    fn rates_with(&self, s: &State, rot: &Rotation3, cf: Option<(&Contact, &Vector3)>) -> Rates {
-        let w = s.w_c_body_radps;
-        let q_dot = s.q_c.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5;
-        // The head's torque in its body frame: gyroscopic, plus the contact's.
-        let mut torque_body = -w.cross(&(self.i_c_kgm2 * w));
-        let mut r = Rates {
-            v_c_mps: s.v_c_mps,
-            a_c_mps2: Vector3::zeros(),
-            q_dot,
-            alpha_c_body_radps2: Vector3::zeros(),
-            v_b_mps: s.v_b_mps,
-            a_b_mps2: Vector3::zeros(),
-            alpha_b_radps2: Vector3::zeros(),
-            slip_rate_mps: Vector3::zeros(),
-        };
+    /// The rates at `s` with the contact and tangential force found there (`None`: apart): the parts' rates
+    /// under the contact force on the ball and its opposite on the head at the same point.
+    fn rates_with(&self, s: &PartState<C, B>, head: &Head, cf: Option<(&Contact, &Vector3)>) -> PartRates<C, B> {
+        let (mut f, mut r_b, mut torque_club, mut slip_rate_mps) =
+            (Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
         if let Some((c, f_t)) = cf {
-            let f = c.kin.normal_force_n * c.kin.normal + *f_t;
-            r.a_b_mps2 = f / self.m_b_kg;
-            r.alpha_b_radps2 = c.r_b.cross(&f) / self.i_b_kgm2;
-            r.a_c_mps2 = -f / self.m_c_kg;
-            torque_body += rot.inverse_transform_vector(&c.r_c.cross(&(-f)));
-            r.slip_rate_mps = c.kin.slip_velocity_mps;
+            f = c.kin.normal_force_n * c.kin.normal + *f_t;
+            r_b = c.r_b;
+            torque_club = c.r_c.cross(&(-f));
+            slip_rate_mps = c.kin.slip_velocity_mps;
         }
-        r.alpha_c_body_radps2 = self.i_c_inv_per_kgm2 * torque_body;
-        r
+        Rates {
+            club: self.club.rate(&s.club, head, -f, torque_club),
+            ball: self.ball.rate(&s.ball, f, r_b),
+            slip_rate_mps,
+        }
     }
 
-    fn momentum(&self, s: &State) -> (Vector3, Vector3) {
-        let rot = s.q_c.to_rotation_matrix();
-        let linear = self.m_c_kg * s.v_c_mps + self.m_b_kg * s.v_b_mps;
-        let angular = self.m_c_kg * s.p_c_m.cross(&s.v_c_mps)
-            + rot * (self.i_c_kgm2 * s.w_c_body_radps)
-            + self.m_b_kg * s.p_b_m.cross(&s.v_b_mps)
-            + self.i_b_kgm2 * s.w_b_radps;
-        (linear, angular)
+    fn momentum(&self, s: &PartState<C, B>) -> (Vector3, Vector3) {
+        let (lc, ac) = self.club.momentum(&s.club);
+        let (lb, ab) = self.ball.momentum(&s.ball);
+        (lc + lb, ac + ab)
     }
 
-    fn energy(&self, s: &State, law: &dyn TangentialLaw) -> Real {
-        let ke = 0.5 * self.m_c_kg * s.v_c_mps.norm_squared()
-            + 0.5 * s.w_c_body_radps.dot(&(self.i_c_kgm2 * s.w_c_body_radps))
-            + 0.5 * self.m_b_kg * s.v_b_mps.norm_squared()
-            + 0.5 * self.i_b_kgm2 * s.w_b_radps.norm_squared();
+    fn energy(&self, s: &PartState<C, B>, law: &dyn TangentialLaw) -> Real {
+        let ke = self.club.energy_j(&s.club) + self.ball.energy_j(&s.ball);
         let x = self.contact(s, &s.slip_m).map(|c| c.kin.x_m).unwrap_or(0.0);
         ke + elastic_energy(self.k, x) + law.stored_energy_j()
     }
 }
 
-fn advance(s: &State, r: &Rates, h: Real) -> State {
+fn advance<C: ClubPart, B: BallPart>(s: &PartState<C, B>, r: &PartRates<C, B>, h: Real) -> PartState<C, B> {
     State {
-        p_c_m: s.p_c_m + r.v_c_mps * h,
-        v_c_mps: s.v_c_mps + r.a_c_mps2 * h,
-        q_c: UnitQuaternion::new_unchecked(s.q_c.quaternion() + r.q_dot * h),
-        w_c_body_radps: s.w_c_body_radps + r.alpha_c_body_radps2 * h,
-        p_b_m: s.p_b_m + r.v_b_mps * h,
-        v_b_mps: s.v_b_mps + r.a_b_mps2 * h,
-        w_b_radps: s.w_b_radps + r.alpha_b_radps2 * h,
+        club: C::advance(&s.club, &r.club, h),
+        ball: B::advance(&s.ball, &r.ball, h),
         slip_m: s.slip_m + r.slip_rate_mps * h,
     }
 }
 
-fn combine(k: [&Rates; 4]) -> Rates {
-    let c = |f: fn(&Rates) -> Vector3| (f(k[0]) + 2.0 * f(k[1]) + 2.0 * f(k[2]) + f(k[3])) / 6.0;
-    Rates {
-        v_c_mps: c(|r| r.v_c_mps),
-        a_c_mps2: c(|r| r.a_c_mps2),
-        q_dot: (k[0].q_dot + k[1].q_dot * 2.0 + k[2].q_dot * 2.0 + k[3].q_dot) / 6.0,
-        alpha_c_body_radps2: c(|r| r.alpha_c_body_radps2),
-        v_b_mps: c(|r| r.v_b_mps),
-        a_b_mps2: c(|r| r.a_b_mps2),
-        alpha_b_radps2: c(|r| r.alpha_b_radps2),
-        slip_rate_mps: c(|r| r.slip_rate_mps),
+/// `s + h (k1 + 2 k2 + 2 k3 + k4) / 6`, the head's attitude normalised.
+fn advance_rk4<C: ClubPart, B: BallPart>(s: &PartState<C, B>, k: [&PartRates<C, B>; 4], h: Real) -> PartState<C, B> {
+    let [k1, k2, k3, k4] = k;
+    State {
+        club: C::advance_rk4(&s.club, [&k1.club, &k2.club, &k3.club, &k4.club], h),
+        ball: B::advance_rk4(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
+        slip_m: s.slip_m + rk4_mean(k1.slip_rate_mps, k2.slip_rate_mps, k3.slip_rate_mps, k4.slip_rate_mps) * h,
     }
 }
 
-pub(super) fn run(
+/// Runs the collision of `ball` (at rest against the face) and `club` (moving as `state` says).
+pub(super) fn run<C: ClubPart, B: BallPart>(
     model: &HertzModel,
     state: &ImpactState,
     eq: &Equipment,
+    (club_part, ball_part): (C, B),
     (hertz, contact_arm): (Hertz, ContactArm),
     law: &mut dyn TangentialLaw,
     trace_every: usize,
@@ -213,11 +182,8 @@ pub(super) fn run(
         surface,
         r_ball_m: eq.ball.radius_m,
         contact_arm,
-        m_b_kg: eq.ball.mass_kg,
-        i_b_kgm2: eq.ball.inertia_kg_m2,
-        m_c_kg: club.mass_kg,
-        i_c_kgm2: club.inertia_kg_m2,
-        i_c_inv_per_kgm2: club.inertia_inv_kg_m2,
+        ball: ball_part,
+        club: club_part,
     };
     let contact = club.face.contact(state.impact_h_m, state.impact_v_m)?;
     let ball_club = match surface {
@@ -229,16 +195,11 @@ pub(super) fn run(
     let iso = state.world_from_club;
     let rot = iso.rotation;
     let mut s = State {
-        p_c_m: iso.translation.vector,
-        v_c_mps: state.cg_velocity_mps,
-        q_c: rot,
-        w_c_body_radps: rot.inverse_transform_vector(&state.angular_velocity_radps),
-        p_b_m: iso.translation.vector + rot * ball_club,
-        v_b_mps: Vector3::zeros(),
-        w_b_radps: Vector3::zeros(),
+        club: setup.club.initial(state),
+        ball: setup.ball.at_rest(iso.translation.vector + rot * ball_club),
         slip_m: Vector3::zeros(),
     };
-    let n0 = (s.p_b_m - s.p_c_m - rot * contact.point_m).normalize();
+    let n0 = (B::centre(&s.ball).0 - iso.translation.vector - rot * contact.point_m).normalize();
     let v_face0 = state.cg_velocity_mps + state.angular_velocity_radps.cross(&(rot * contact.point_m));
     let xdot0 = v_face0.dot(&n0);
     if xdot0 <= 0.0 {
@@ -247,7 +208,8 @@ pub(super) fn run(
     // The ball slips against the face's tangential motion; Figure 3.5's tangential axis.
     let face_t = v_face0 - xdot0 * n0;
     let face_dir = if face_t.norm() > 1e-9 { face_t.normalize() } else { rot * club.face.u0() };
-    let reduced_mass = setup.m_b_kg * setup.m_c_kg / (setup.m_b_kg + setup.m_c_kg);
+    let m_b_kg = setup.ball.mass_kg();
+    let reduced_mass = m_b_kg * club.mass_kg / (m_b_kg + club.mass_kg);
     law.begin(-face_dir, xdot0, setup.k, r_eq, reduced_mass);
     let spin_axis = face_dir.cross(&n0);
 
@@ -262,15 +224,15 @@ pub(super) fn run(
     let mut committed: Option<Option<(Contact, Vector3)>> = None;
     loop {
         let s0 = s.slip_m;
-        let rot = s.q_c.to_rotation_matrix();
+        let head = setup.club.head(&s.club);
         let c1 = match committed.take() {
             Some(cf) => cf,
-            None => setup.contact_rot(&s, &rot, &s0).map(|c| {
+            None => setup.contact_at(&s, &head, &s0).map(|c| {
                 let f_t = law.force(&c.kin);
                 (c, f_t)
             }),
         };
-        let k1 = setup.rates_with(&s, &rot, c1.as_ref().map(|(c, f)| (c, f)));
+        let k1 = setup.rates_with(&s, &head, c1.as_ref().map(|(c, f)| (c, f)));
         if let Some((c, f_t)) = &c1 {
             touched = true;
             peak = peak.max(c.kin.normal_force_n);
@@ -285,7 +247,7 @@ pub(super) fn run(
                 t_us: t_s * 1e6,
                 normal_force_n: fn_,
                 tangential_force_n: ft,
-                ball_spin_rpm: crate::units::radps_to_rpm(s.w_b_radps.dot(&spin_axis)),
+                ball_spin_rpm: crate::units::radps_to_rpm(setup.ball.spin(&s.ball).dot(&spin_axis)),
                 compression_mm: x * 1e3,
                 stuck_rings: law.stuck_rings(),
             });
@@ -307,19 +269,17 @@ pub(super) fn run(
             _ => model.step_s,
         };
         let step = |h: Real| {
-            let k2 = setup.rates(&advance(&s, &k1, 0.5 * h), &s0, law);
-            let k3 = setup.rates(&advance(&s, &k2, 0.5 * h), &s0, law);
-            let k4 = setup.rates(&advance(&s, &k3, h), &s0, law);
-            let mut next = advance(&s, &combine([&k1, &k2, &k3, &k4]), h);
-            next.q_c = UnitQuaternion::new_normalize(next.q_c.into_inner());
-            next
+            let k2 = setup.rates(&advance::<C, B>(&s, &k1, 0.5 * h), &s0, law);
+            let k3 = setup.rates(&advance::<C, B>(&s, &k2, 0.5 * h), &s0, law);
+            let k4 = setup.rates(&advance::<C, B>(&s, &k3, h), &s0, law);
+            advance_rk4::<C, B>(&s, [&k1, &k2, &k3, &k4], h)
         };
         let mut next = step(h);
         // Separation inside the step: shorten it to end where the overlap closes (secant on the overlap), so
         // the forces that jump there (Arakawa's ẋ term) stop at the right instant.
         let c_next = setup.contact(&next, &s0);
         if let (Some((c0, _)), None) = (&c1, &c_next) {
-            let gap = |st: &State| signed_overlap(&setup, st);
+            let gap = |st: &PartState<C, B>| signed_overlap(&setup, st);
             let (mut lo, mut x_lo, mut hi, mut x_hi) = (0.0, c0.kin.x_m, h, gap(&next));
             let mut t = lo + (hi - lo) * x_lo / (x_lo - x_hi);
             for _ in 0..4 {
@@ -363,15 +323,15 @@ pub(super) fn run(
     if !touched {
         return Err(HertzModel::not_converged("the face never pressed the ball".into()));
     }
-    let rot = s.q_c.to_rotation_matrix();
+    let head = setup.club.head(&s.club);
     let size = ft_max.max(-ft_min);
     Ok(HertzResult {
         launch: Launch {
-            ball_velocity_mps: s.v_b_mps,
-            ball_spin_radps: s.w_b_radps,
-            club_velocity_mps: s.v_c_mps,
-            club_angular_velocity_radps: rot * s.w_c_body_radps,
-            impulse_ns: setup.m_b_kg * s.v_b_mps,
+            ball_velocity_mps: B::centre(&s.ball).1,
+            ball_spin_radps: setup.ball.spin(&s.ball),
+            club_velocity_mps: head.velocity_mps,
+            club_angular_velocity_radps: head.angular_velocity_radps,
+            impulse_ns: m_b_kg * B::centre(&s.ball).1,
         },
         contact_time_s: contact_time,
         peak_normal_force_n: peak,
@@ -387,9 +347,9 @@ pub(super) fn run(
 }
 
 /// The overlap along the normal, negative when apart (m).
-fn signed_overlap(setup: &Setup, st: &State) -> Real {
-    let rot = st.q_c.to_rotation_matrix();
-    let ball = rot.inverse_transform_vector(&(st.p_b_m - st.p_c_m));
+fn signed_overlap<C: ClubPart, B: BallPart>(setup: &Setup<C, B>, st: &PartState<C, B>) -> Real {
+    let head = setup.club.head(&st.club);
+    let ball = head.world_from_club.inverse_transform_vector(&(B::centre(&st.ball).0 - head.position_m));
     match setup.surface {
         FaceSurface::Plane { point, normal } => setup.r_ball_m - normal.dot(&(ball - point)),
         FaceSurface::Sphere { centre, radius_m } => setup.r_ball_m + radius_m - (ball - centre).norm(),
