@@ -50,9 +50,12 @@ pub enum DeliveryError {
     Model(ImpactError),
     #[error("{0}")]
     Implausible(#[from] crate::wire::OutOfBounds),
-    /// The line is JSON but not a delivery (a field of the wrong type).
+    /// The line is JSON but not a delivery (a field of the wrong type), or an answer that is not JSON.
     #[error("{0}")]
-    Input(String),
+    Input(#[source] serde_json::Error),
+    /// An answer that is not a JSON object.
+    #[error("an answer that is not an object")]
+    NotAnObject,
 }
 
 impl DeliveryError {
@@ -129,15 +132,12 @@ pub fn run_models(
 ) -> Result<Tally, JsonlError> {
     let equipment = Equipment::new(club.clone());
     crate::jsonl::process_many("impactd predict", input, out, err, |line: Map<String, Value>| {
-        let d: DeliveryInput =
-            serde_json::from_value(Value::Object(line.clone())).map_err(|e| DeliveryError::Input(e.to_string()))?;
+        let d: DeliveryInput = serde_json::from_value(Value::Object(line.clone())).map_err(DeliveryError::Input)?;
         let mut answers = Vec::with_capacity(predictors.len());
         for &predictor in predictors {
             let answer = answer(&d, club, &equipment, predictor)?;
-            let Value::Object(mut fields) =
-                serde_json::to_value(answer).map_err(|e| DeliveryError::Input(e.to_string()))?
-            else {
-                return Err(DeliveryError::Input("an answer that is not an object".into()));
+            let Value::Object(mut fields) = serde_json::to_value(answer).map_err(DeliveryError::Input)? else {
+                return Err(DeliveryError::NotAnObject);
             };
             if predictors.len() > 1 {
                 fields.insert("model".into(), Value::String(predictor.model().name().to_string()));

@@ -86,8 +86,14 @@ fn each_error_is_printed_once() {
 fn impossible_arguments_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let map = dir.path().join("map.svg");
-    let cases: [(Vec<&str>, &str); 4] = [
+    let iron7 = recording("iron7.mcap");
+    let cases: [(Vec<&str>, &str); 5] = [
         (vec!["eval", "extrapolation", "--shots", "0"], "0 is not a count within 1"),
+        // A pace so slow that a gap between two samples would overflow a `Duration`.
+        (
+            vec!["replay", iron7.to_str().unwrap(), "--rate", "1e-12"],
+            "0.000000000001 is not a multiple of real time within 0.001 and 1000000",
+        ),
         (vec!["bench", "--filter", "nosuch"], "no stage's name contains it"),
         (vec!["map", "--club-speed-mph", "0", "-o", map.to_str().unwrap()], "club_speed_mph"),
         (vec!["map", "--club-speed-mph", "900", "-o", map.to_str().unwrap()], "club_speed_mph"),

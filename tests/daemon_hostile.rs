@@ -12,8 +12,8 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
-use impactd::daemon::live::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES};
 use impactd::daemon::sim::{run_sim, SimOptions};
+use impactd::daemon::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES};
 use impactd::daemon::{DaemonConfig, RunOptions, RunSummary};
 use impactd::equipment::ClubSpec;
 use impactd::wire::{keys, LaunchPrediction};

@@ -1,15 +1,18 @@
 //! The house's boundaries that the compiler does not check (ARCHITECTURE.md section 1, "Layout").
 //!
-//! The live path (the pipeline, the models, the kinematics, flight, pairing and the daemon's live loop) never
-//! names the offline tools (`crate::offline`: identification, plots, synthetic swings, evaluation), so the code a
-//! rig runs on every sample stays small enough to audit for latency. A file's own `#[cfg(test)]` module may use
-//! them (tests draw synthetic swings).
+//! The live path (the pipeline, the models, the kinematics, flight, pairing and the daemon's live loop, with the
+//! bridges, the recording and the session numbers it feeds) never names the offline tools (`crate::offline`:
+//! identification, plots, synthetic swings, evaluation), so the code a rig runs on every sample stays small enough
+//! to audit for latency. A file's own `#[cfg(test)]` module may use them (tests draw synthetic swings).
+//!
+//! No module imports one that imports it back: the top-level modules, and inside `daemon` its sub-modules, form
+//! no circle (ARCHITECTURE.md section 1).
 
 #![allow(clippy::unwrap_used)]
 
 use std::path::{Path, PathBuf};
 
-const LIVE_PATH: [&str; 8] = [
+const LIVE_PATH: [&str; 11] = [
     "src/pipeline.rs",
     "src/impact",
     "src/kinematics",
@@ -18,6 +21,9 @@ const LIVE_PATH: [&str; 8] = [
     "src/integrate.rs",
     "src/face.rs",
     "src/daemon/live",
+    "src/daemon/bridges",
+    "src/daemon/recording",
+    "src/session",
 ];
 
 fn rust_files(path: &Path, out: &mut Vec<PathBuf>) {
@@ -68,4 +74,267 @@ fn the_check_sees_a_use_of_the_offline_tools() {
     let code = "use crate::offline::swing::Swing;\nfn f() {}\n#[cfg(test)]\nmod tests { use crate::offline::plot; }";
     assert_eq!(names_offline(outside_tests(code)), vec!["use crate::offline::swing::Swing;".to_string()]);
     assert!(names_offline("pub offline_m: Real,").is_empty(), "a field named offline_m is not the module");
+}
+
+/// The module path of a file under `src/`: `src/daemon/live/mod.rs` -> `daemon::live`, `src/face.rs` -> `face`.
+fn module_of(relative: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = relative.iter().map(|p| p.to_string_lossy().to_string()).collect();
+    if let Some(last) = parts.pop() {
+        let stem = last.trim_end_matches(".rs");
+        if stem != "mod" && stem != "lib" {
+            parts.push(stem.to_string());
+        }
+    }
+    parts
+}
+
+fn is_ident(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '_'
+}
+
+/// The first identifier of `text` and what follows it.
+fn ident(text: &str) -> (&str, &str) {
+    let end = text.find(|c: char| !is_ident(c)).unwrap_or(text.len());
+    (&text[..end], &text[end..])
+}
+
+/// The paths one code line names through `crate::` or `super::`, absolute (without `crate`), for a file of
+/// module `module`; a `{a, b::c}` group gives one path per member.
+fn named_paths(module: &[String], line: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let mut rest = line;
+    while let Some(at) = rest.find(['c', 's']) {
+        let before = rest[..at].chars().last();
+        let tail = &rest[at..];
+        rest = &rest[at + 1..];
+        if before.is_some_and(is_ident) {
+            continue;
+        }
+        let mut path: Vec<String>;
+        let mut after;
+        if let Some(t) = tail.strip_prefix("crate::") {
+            path = Vec::new();
+            after = t;
+        } else if tail.starts_with("super::") {
+            path = module.to_vec();
+            after = tail;
+            while let Some(t) = after.strip_prefix("super::") {
+                path.pop();
+                after = t;
+            }
+        } else {
+            continue;
+        }
+        loop {
+            let (name, t) = ident(after);
+            if name.is_empty() {
+                break;
+            }
+            path.push(name.to_string());
+            match t.strip_prefix("::") {
+                Some(t) => after = t,
+                None => {
+                    after = t;
+                    break;
+                }
+            }
+        }
+        if let Some(group) = after.strip_prefix('{') {
+            let mut depth = 0;
+            let mut member = String::new();
+            for c in group.chars() {
+                match c {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => break,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        let (name, _) = ident(member.trim());
+                        if !name.is_empty() && name != "self" {
+                            out.push([path.clone(), vec![name.to_string()]].concat());
+                        }
+                        member.clear();
+                        continue;
+                    }
+                    _ => {}
+                }
+                member.push(c);
+            }
+            let (name, _) = ident(member.trim());
+            if !name.is_empty() && name != "self" {
+                out.push([path.clone(), vec![name.to_string()]].concat());
+            }
+        }
+        if !path.is_empty() {
+            out.push(path);
+        }
+        rest = after;
+    }
+    out
+}
+
+/// What a folder's root file hands on (`pub use live::{run, RunOptions};` in `daemon/mod.rs`): the re-exported
+/// path -> the module that defines it.
+fn re_exports(module: &[String], code: &str) -> Vec<(Vec<String>, Vec<String>)> {
+    let mut out = Vec::new();
+    for line in code.lines() {
+        let Some(rest) = line.trim().strip_prefix("pub use ") else { continue };
+        let (sub, rest) = ident(rest);
+        if sub.is_empty() || sub == "crate" || sub == "super" || !rest.starts_with("::") {
+            continue;
+        }
+        let target = [module.to_vec(), vec![sub.to_string()]].concat();
+        let rest = &rest[2..];
+        let names: Vec<&str> = match rest.strip_prefix('{') {
+            Some(group) => group.split(['}', ',']).map(|n| ident(n.trim()).0).filter(|n| !n.is_empty()).collect(),
+            None => vec![ident(rest).0],
+        };
+        for name in names {
+            out.push(([module.to_vec(), vec![name.to_string()]].concat(), target.clone()));
+        }
+    }
+    out
+}
+
+/// Edges between units, each with the lines that make it (`file: line`).
+type Graph = std::collections::BTreeMap<String, std::collections::BTreeMap<String, Vec<String>>>;
+
+/// The unit graphs of the crate: the top-level modules, and the sub-modules of `daemon`.
+fn module_graphs(src: &Path) -> (Graph, Graph) {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let texts: Vec<(Vec<String>, String, String)> = files
+        .iter()
+        .filter(|f| !f.ends_with("main.rs") || f.parent() != Some(src))
+        .map(|f| {
+            let relative = f.strip_prefix(src).unwrap();
+            let text = std::fs::read_to_string(f).unwrap();
+            (module_of(relative), format!("src/{}", relative.display()), outside_tests(&text).to_string())
+        })
+        .collect();
+    let top_units: std::collections::BTreeSet<String> =
+        texts.iter().filter_map(|(m, _, _)| m.first().cloned()).collect();
+    let daemon_units: std::collections::BTreeSet<String> =
+        texts.iter().filter(|(m, _, _)| m.len() >= 2 && m[0] == "daemon").map(|(m, _, _)| m[1].clone()).collect();
+    let aliases: Vec<(Vec<String>, Vec<String>)> = texts
+        .iter()
+        .filter(|(_, file, _)| file.ends_with("mod.rs") || file.ends_with("lib.rs"))
+        .flat_map(|(m, _, code)| re_exports(m, code))
+        .collect();
+    let (mut top, mut daemon) = (Graph::new(), Graph::new());
+    for (module, file, code) in &texts {
+        for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
+            for mut path in named_paths(module, line) {
+                if let Some((from, to)) = aliases.iter().find(|(from, _)| path.starts_with(from)) {
+                    path = [to.clone(), path[from.len()..].to_vec()].concat();
+                }
+                let evidence = format!("{file}: {}", line.trim());
+                if let (Some(a), Some(b)) = (module.first(), path.first()) {
+                    if a != b && top_units.contains(b) {
+                        top.entry(a.clone()).or_default().entry(b.clone()).or_default().push(evidence.clone());
+                    }
+                }
+                if module.len() >= 2 && path.len() >= 2 && module[0] == "daemon" && path[0] == "daemon" {
+                    let (a, b) = (&module[1], &path[1]);
+                    if a != b && daemon_units.contains(b) {
+                        daemon.entry(a.clone()).or_default().entry(b.clone()).or_default().push(evidence);
+                    }
+                }
+            }
+        }
+    }
+    (top, daemon)
+}
+
+/// The circles of a graph: its strongly connected components of more than one unit, sorted.
+fn circles(graph: &Graph) -> Vec<Vec<String>> {
+    let reach = |from: &String| {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut stack = vec![from.clone()];
+        while let Some(n) = stack.pop() {
+            for next in graph.get(&n).into_iter().flat_map(|m| m.keys()) {
+                if seen.insert(next.clone()) {
+                    stack.push(next.clone());
+                }
+            }
+        }
+        seen
+    };
+    let nodes: std::collections::BTreeSet<String> =
+        graph.iter().flat_map(|(a, m)| std::iter::once(a.clone()).chain(m.keys().cloned())).collect();
+    let reaches: std::collections::BTreeMap<&String, _> = nodes.iter().map(|n| (n, reach(n))).collect();
+    let mut out: Vec<Vec<String>> = Vec::new();
+    for n in &nodes {
+        if out.iter().any(|c| c.contains(n)) {
+            continue;
+        }
+        let component: Vec<String> =
+            nodes.iter().filter(|m| reaches[n].contains(*m) && reaches[*m].contains(n)).cloned().collect();
+        if component.len() > 1 {
+            out.push(component);
+        }
+    }
+    out
+}
+
+/// A readable account of each circle: its units and the lines that tie them.
+fn describe(graph: &Graph, found: &[Vec<String>]) -> String {
+    let mut text = String::new();
+    for component in found {
+        text += &format!("circle: {}\n", component.join(" <-> "));
+        for a in component {
+            for (b, lines) in graph.get(a).into_iter().flat_map(|m| m.iter()) {
+                if component.contains(b) {
+                    text += &format!("  {a} -> {b} ({} lines), e.g. {}\n", lines.len(), lines[0]);
+                }
+            }
+        }
+    }
+    text
+}
+
+#[test]
+fn no_module_imports_one_that_imports_it_back() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let (top, daemon) = module_graphs(&src);
+    assert!(top.len() > 15 && top.contains_key("pipeline"), "the top-level graph was not read: {:?}", top.keys());
+    assert!(daemon.len() > 5 && daemon.contains_key("live"), "the daemon's graph was not read: {:?}", daemon.keys());
+    let (top_circles, daemon_circles) = (circles(&top), circles(&daemon));
+    assert!(
+        top_circles.is_empty() && daemon_circles.is_empty(),
+        "modules import each other in a circle:\n{}{}",
+        describe(&top, &top_circles),
+        describe(&daemon, &daemon_circles)
+    );
+}
+
+#[test]
+fn the_cycle_check_sees_a_circle() {
+    // Made-up graphs: a -> b -> c -> a (and c -> d) is one circle; a chain is none.
+    let graph = |edges: &[(&str, &str)]| {
+        let mut g = Graph::new();
+        for (a, b) in edges {
+            g.entry(a.to_string()).or_default().entry(b.to_string()).or_default().push(format!("{a}.rs"));
+        }
+        g
+    };
+    let looped = graph(&[("a", "b"), ("b", "c"), ("c", "a"), ("c", "d")]);
+    assert_eq!(circles(&looped), vec![vec!["a".to_string(), "b".to_string(), "c".to_string()]]);
+    assert!(describe(&looped, &circles(&looped)).contains("c -> a"));
+    assert!(circles(&graph(&[("a", "b"), ("b", "c"), ("a", "c")])).is_empty());
+    // The lines are read as the check reads them: `super::` from a file, groups, and a folder's re-exports.
+    let module: Vec<String> = vec!["daemon".into(), "bridges".into(), "peers".into()];
+    let s = |p: &[&str]| p.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    assert_eq!(
+        named_paths(&module, "use super::super::stats::RateLimiter;"),
+        vec![s(&["daemon", "stats", "RateLimiter"])]
+    );
+    assert_eq!(
+        named_paths(&module, "use crate::daemon::{wall_ns, live::x};"),
+        vec![s(&["daemon", "wall_ns"]), s(&["daemon", "live"]), s(&["daemon"])]
+    );
+    assert!(named_paths(&module, "let supercrate::x = 1; // a_crate::y").is_empty());
+    assert_eq!(
+        re_exports(&s(&["daemon"]), "pub use live::{run, RunOptions};"),
+        vec![(s(&["daemon", "run"]), s(&["daemon", "live"])), (s(&["daemon", "RunOptions"]), s(&["daemon", "live"]))]
+    );
 }

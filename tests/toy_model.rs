@@ -1,6 +1,7 @@
 //! A new model is its own file: a toy model written here, behind `ImpactModel` alone, is predicted, reported and
-//! traced by `predict` and drawn by the force chart with nothing outside this file knowing its type. (In the
-//! crate it would take one more line: its entry in `impact::registry::MODELS`.)
+//! traced by `predict` and drawn by the force chart with nothing outside this file knowing its type; and built by
+//! name from a registry entry as `impactd::impact::registry::MODELS` holds one (in the crate, that entry is the one more
+//! line a new model takes).
 //!
 //! The toy is the point-mass limit of the impulse models (ARCHITECTURE.md section 6): a head of mass M meeting a
 //! ball of mass m head-on with restitution e sends it off at `v (1 + e) M / (M + m)`; its "trace" is a
@@ -8,7 +9,8 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::ClubSpec;
+use impactd::equipment::{ClubSpec, LoadedClub};
+use impactd::impact::registry::{build_from, BuildOptions, ModelEntry};
 use impactd::impact::report::Value;
 use impactd::impact::{
     Course, Equipment, Fields, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, Report, RunOptions, Trace,
@@ -92,4 +94,30 @@ fn a_model_in_one_file_is_predicted_reported_traced_and_drawn() {
     assert!(chart.title.contains("contact 450 µs"), "{}", chart.title);
     // Without a trace asked, no course.
     assert!(toy.run(&state, &eq, &RunOptions::default()).unwrap().course.is_none());
+}
+
+/// The toy's registry entry, written as an entry of `MODELS` is.
+const TOY: ModelEntry = ModelEntry {
+    name: "toy/point_mass",
+    summary: "a point-mass head meeting a point-mass ball head-on",
+    sections: &[],
+    resolved_in_time: true,
+    fit: None,
+    build: |_, _| Ok(std::sync::Arc::new(PointMass { cor: 0.8, contact_s: 450e-6 })),
+};
+
+#[test]
+fn the_toy_is_built_by_name_from_its_registry_entry() {
+    let club = LoadedClub { club: ClubSpec::driver(), sections: Default::default() };
+    let models = build_from(&[TOY], "toy/point_mass", &club, &BuildOptions::default()).unwrap();
+    assert_eq!(models.iter().map(|m| m.name()).collect::<Vec<_>>(), ["toy/point_mass"]);
+    let input = "{\"club_speed_mph\":100,\"dynamic_loft_deg\":10.5}\n";
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    run(&club.club, Predictor::Traced(models[0].as_ref()), input.as_bytes(), &mut out, &mut err).unwrap();
+    let line: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(line["toy"]["kind"], "point mass");
+    assert_eq!(line["contact_time_us"].as_f64().unwrap(), 450.0);
+    // A name the registry does not hold is refused, naming what it holds.
+    let e = build_from(&[TOY], "toy/other", &club, &BuildOptions::default()).err().unwrap().to_string();
+    assert!(e.contains("toy/other") && e.contains("toy/point_mass"), "{e}");
 }

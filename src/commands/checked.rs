@@ -43,11 +43,15 @@ pub fn capture_rate_hz(text: &str) -> Result<f64, String> {
     Ok(v)
 }
 
-/// A multiple of real time (replay pace).
+/// The slowest replay pace: a thousandth of real time (a second of samples in about 17 minutes).
+pub const MIN_PACE: f64 = 1e-3;
+
+/// A multiple of real time (replay pace), at least [`MIN_PACE`]: a smaller one would wait longer between two
+/// samples than any replay is watched.
 pub fn pace(text: &str) -> Result<f64, String> {
     let v = number(text)?;
-    if !(v > 0.0 && v <= 1e6) {
-        return Err(format!("{v} is not a multiple of real time within 0 and 1000000"));
+    if !(MIN_PACE..=1e6).contains(&v) {
+        return Err(format!("{v} is not a multiple of real time within {MIN_PACE} and 1000000"));
     }
     Ok(v)
 }
@@ -110,6 +114,7 @@ mod tests {
             assert!(seconds(bad).is_err(), "{bad}");
             assert!(pace(bad).is_err(), "{bad}");
         }
+        assert!(pace("1e-12").is_err() && pace("0.001").is_ok() && pace("1000000").is_ok());
         assert!(capture_rate_hz("NaN").is_err() && capture_rate_hz("720").is_ok());
         assert!(magnitude("NaN").is_err() && magnitude("0").is_ok());
         assert!(count("18446744073709551615").is_err() && count("0").is_err() && count("5").is_ok());

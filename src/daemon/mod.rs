@@ -11,6 +11,7 @@ pub mod live;
 pub mod recording;
 pub mod replay;
 pub mod sim;
+pub mod stats;
 
 pub use config::DaemonConfig;
 pub use live::{run, RunOptions, RunSummary};
@@ -51,8 +52,13 @@ pub enum DaemonError {
     NotMcap { path: String },
     #[error("{path}: {reason}")]
     Unreadable { path: String, reason: String },
-    #[error("{path} line {line}: {reason}")]
-    BadSampleLine { path: String, line: usize, reason: String },
+    #[error("{path} line {line}: {source}")]
+    BadSampleLine {
+        path: String,
+        line: usize,
+        #[source]
+        source: std::io::Error,
+    },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
     BadRigName(String),
     #[error("{option} {reason}")]

@@ -96,8 +96,7 @@ impl ClubFile {
     /// Parses a club file's text: its tables become [`ModelSections`], the rest must be the club's fields
     /// (unknown fields are errors that name them).
     pub fn parse(text: &str) -> Result<LoadedClub, EquipmentError> {
-        let mut table: toml::Table =
-            toml::from_str(text).map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        let mut table: toml::Table = toml::from_str(text).map_err(|e| EquipmentError::Parse(e.into()))?;
         let section_names: Vec<String> = table.iter().filter(|(_, v)| v.is_table()).map(|(k, _)| k.clone()).collect();
         let mut sections = ModelSections::default();
         for name in section_names {
@@ -105,8 +104,7 @@ impl ClubFile {
                 sections.insert(&name, t);
             }
         }
-        let file = ClubFile::deserialize(toml::Value::Table(table))
-            .map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        let file = ClubFile::deserialize(toml::Value::Table(table)).map_err(|e| EquipmentError::Parse(e.into()))?;
         Ok(LoadedClub { club: file.into_spec()?, sections })
     }
 

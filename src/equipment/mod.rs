@@ -24,6 +24,25 @@ pub use outline::FaceOutline;
 
 use crate::math::{Matrix3, Real};
 
+/// A TOML error that reads as its message alone (its line, column and excerpt are not what a club file's error
+/// says); the error itself is kept in it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TomlMessage(pub Box<toml::de::Error>);
+
+impl std::fmt::Display for TomlMessage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0.message())
+    }
+}
+
+impl std::error::Error for TomlMessage {}
+
+impl From<toml::de::Error> for TomlMessage {
+    fn from(e: toml::de::Error) -> Self {
+        TomlMessage(Box::new(e))
+    }
+}
+
 /// Errors of the equipment layer.
 #[derive(Debug, thiserror::Error)]
 pub enum EquipmentError {
@@ -32,7 +51,14 @@ pub enum EquipmentError {
     #[error("unknown soil '{0}' (expected soft, medium or firm, or a path to a soil .toml file)")]
     UnknownSoil(String),
     #[error("club file is not valid TOML for a club: {0}")]
-    Parse(String),
+    Parse(#[source] TomlMessage),
+    /// A soil file that could not be read (said as a club file's parse error, as it always was).
+    #[error("club file is not valid TOML for a club: {path}: {source}")]
+    SoilRead {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
     #[error("club field `{field}` {reason}")]
     Invalid { field: &'static str, reason: String },
     #[error("club file {path}: {source}")]

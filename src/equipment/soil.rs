@@ -99,7 +99,7 @@ impl SoilSpec {
 
     /// A soil from the text of a TOML soil file, validated.
     pub fn from_toml_str(text: &str) -> Result<Self, EquipmentError> {
-        let soil: SoilSpec = toml::from_str(text).map_err(|e| EquipmentError::Parse(e.message().to_string()))?;
+        let soil: SoilSpec = toml::from_str(text).map_err(|e| EquipmentError::Parse(e.into()))?;
         soil.validate()?;
         Ok(soil)
     }
@@ -114,7 +114,7 @@ impl SoilSpec {
             if e.kind() == std::io::ErrorKind::NotFound {
                 EquipmentError::UnknownSoil(name_or_path.to_string())
             } else {
-                EquipmentError::Parse(format!("{name_or_path}: {e}"))
+                EquipmentError::SoilRead { path: name_or_path.to_string(), source: e }
             }
         })?;
         let mut soil = Self::from_toml_str(&text)?;

@@ -41,11 +41,12 @@ pub struct ModelEntry {
     pub resolved_in_time: bool,
     /// Its identifiable parameters (`impactd fit`), if it has any.
     pub fit: Option<FitModel>,
-    build: BuildFn,
+    /// How it builds.
+    pub build: BuildFn,
 }
 
 /// How an entry builds its model from a club and the options.
-type BuildFn = fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>;
+pub type BuildFn = fn(&LoadedClub, &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError>;
 
 fn impulse(variant: ImpulseVariant, club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     let tuning = ImpulseTuning::from_sections(&club.club, &club.sections)?;
@@ -249,14 +250,25 @@ pub fn entry(name: &str) -> Option<&'static ModelEntry> {
 /// in the order their predictions are published, each with its parameters from the club's sections. A section
 /// that belongs to no model is an error (a typo would otherwise be ignored).
 pub fn build(name: &str, club: &LoadedClub, options: &BuildOptions) -> Result<Vec<Arc<dyn ImpactModel>>, ImpactError> {
-    check_sections(club)?;
-    let list = resolve(name, false)?;
-    let names: Vec<&str> = list.split(',').map(str::trim).collect();
-    names
-        .iter()
+    build_from(MODELS, &resolve(name, false)?, club, options)
+}
+
+/// The comma-separated models `list` (groups already resolved) built from `entries`: [`build`] over [`MODELS`],
+/// or over a registry of one's own (a model tried before its entry joins [`MODELS`]).
+pub fn build_from(
+    entries: &[ModelEntry],
+    list: &str,
+    club: &LoadedClub,
+    options: &BuildOptions,
+) -> Result<Vec<Arc<dyn ImpactModel>>, ImpactError> {
+    check_sections(entries, club)?;
+    list.split(',')
+        .map(str::trim)
         .map(|n| {
-            let e =
-                entry(n).ok_or_else(|| ImpactError::UnknownModel { name: n.to_string(), expected: self::names() })?;
+            let e = entries.iter().find(|m| m.name == n).ok_or_else(|| ImpactError::UnknownModel {
+                name: n.to_string(),
+                expected: entries.iter().map(|m| m.name).collect::<Vec<_>>().join(", "),
+            })?;
             (e.build)(club, options)
         })
         .collect()
@@ -264,15 +276,15 @@ pub fn build(name: &str, club: &LoadedClub, options: &BuildOptions) -> Result<Ve
 
 /// One model by name (not a group).
 pub fn build_one(name: &str, club: &LoadedClub, options: &BuildOptions) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-    check_sections(club)?;
+    check_sections(MODELS, club)?;
     let e = entry(name).ok_or_else(|| ImpactError::UnknownModel { name: name.to_string(), expected: self::names() })?;
     (e.build)(club, options)
 }
 
-fn check_sections(club: &LoadedClub) -> Result<(), ImpactError> {
+fn check_sections(entries: &[ModelEntry], club: &LoadedClub) -> Result<(), ImpactError> {
     for section in club.sections.names() {
-        if !MODELS.iter().any(|m| m.sections.contains(&section)) {
-            let known: Vec<&str> = MODELS.iter().flat_map(|m| m.sections.iter().copied()).collect();
+        if !entries.iter().any(|m| m.sections.contains(&section)) {
+            let known: Vec<&str> = entries.iter().flat_map(|m| m.sections.iter().copied()).collect();
             return Err(ImpactError::UnknownSection { section: section.to_string(), known: known.join(", ") });
         }
     }

@@ -22,7 +22,7 @@ use crate::math::{Real, Vector3};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MarkerSetError {
     #[error("not a marker set: {0}")]
-    Toml(String),
+    Toml(#[source] Box<toml::de::Error>),
     #[error("a marker set needs at least 3 markers, this one has {0}")]
     TooFew(usize),
     #[error("a marker set has at most {MAX_MARKERS} markers, this one has {0}")]
@@ -94,7 +94,7 @@ impl MarkerSet {
 
     /// Reads the TOML text of a marker set.
     pub fn from_toml(text: &str) -> Result<Self, MarkerSetError> {
-        let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(e.to_string()))?;
+        let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(Box::new(e)))?;
         Self::new(file.markers.into_iter().map(|(l, p)| (l, Vector3::from(p))))
     }
 

@@ -16,7 +16,10 @@ use std::collections::{BTreeMap, VecDeque};
 use crate::math::Real;
 use crate::wire::{ComparisonMessage, ComparisonStatus, LaunchFields, LaunchPrediction, MeasuredLaunch};
 
+mod dataset_line;
 pub mod fields;
+
+pub use dataset_line::DatasetLine;
 
 use fields::{fields_of_launch, fields_of_measured, launch_fields};
 

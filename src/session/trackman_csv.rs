@@ -12,7 +12,7 @@
 //! recorded prediction), so `compare` on an export reproduces the residuals the daemon recorded live.
 
 use crate::math::Real;
-use crate::offline::identify::DatasetLine;
+use crate::pairing::DatasetLine;
 use crate::units::{MPS_PER_MPH, M_PER_YD};
 use crate::wire::{DeliveryInput, LaunchFields, LaunchPrediction};
 

@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
 
-use crate::daemon::live::stats::RateLimiter;
+use crate::daemon::stats::RateLimiter;
 
 /// The bounds of one surface.
 #[derive(Debug, Clone, Copy, PartialEq)]

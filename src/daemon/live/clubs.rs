@@ -10,9 +10,9 @@ use std::time::{Duration, Instant};
 
 use super::inputs::Route;
 use super::queue::{Incoming, InputKind};
-use super::stats::RateLimiter;
 use super::Worker;
 use crate::daemon::config::RigConfig;
+use crate::daemon::stats::RateLimiter;
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::wire::{self, keys, ClubSource};
 

@@ -30,10 +30,10 @@ use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, Simulato
 use crate::daemon::bridges::opengolfsim;
 use crate::daemon::bridges::web::{WebServer, WebStatusSource};
 use crate::daemon::live::sinks::{RigPublishers, RigSinks};
-use crate::daemon::live::stats::{
+use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
+use crate::daemon::stats::{
     Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
 };
-use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
@@ -49,7 +49,6 @@ mod shot_log;
 mod status;
 use queue::{Incoming, InputKind};
 pub mod sinks;
-pub mod stats;
 mod truth;
 
 /// Length of each rig's input queue.
@@ -94,7 +93,10 @@ pub async fn run(
         .transpose()?;
     let unknown = Arc::new(AtomicU64::new(0));
     let foxglove = match &options.foxglove {
-        Some(address) => Some(FoxgloveServer::start(address, &config).await?),
+        Some(address) => {
+            let rigs: Vec<&str> = config.rigs.iter().map(|r| r.name.as_str()).collect();
+            Some(FoxgloveServer::start(address, &rigs).await?)
+        }
         None => None,
     };
     // The screens draw each rig's flights with its flight model (the default where the rig adds no flight).

@@ -6,9 +6,9 @@ use std::collections::BTreeMap;
 
 use zenoh::Wait;
 
-use crate::daemon::live::stats::LatencyWindow;
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
+use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
 use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;
@@ -171,7 +171,7 @@ impl RigSinks {
         self.publish(|p| &p.launch, "launch", &data);
         self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
         if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
-            self.recorder.send(crate::daemon::bridges::foxglove::server::flight_record(l, flight, now_ns));
+            self.recorder.send(crate::daemon::recording::channels::flight_record(l, flight, now_ns));
         }
         self.recorder.send(Record::Flush);
         data

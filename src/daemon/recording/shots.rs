@@ -8,7 +8,7 @@ use std::path::Path;
 use super::reader::OnDamage;
 use super::stream::read_messages;
 use crate::daemon::DaemonError;
-use crate::offline::identify::DatasetLine;
+use crate::pairing::DatasetLine;
 use crate::wire::{ComparisonMessage, DeliveryInput, LaunchPrediction};
 
 /// What a recording holds of measured shots.

@@ -3,7 +3,7 @@
 //! Every zenoh message in and out is a record with `log_time` = receive (or publish) wall time and
 //! `publish_time` = the capture or publish time, topic `/` + key, message encoding `json`, schema encoding
 //! `jsonschema`. Foxglove's well-known `foxglove.PoseInFrame` (the club in the world) and `foxglove.SceneUpdate`
-//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`crate::daemon::bridges::foxglove::server`], shared
+//! (ball and club at impact, the predicted flight) channels sit beside them (built in [`crate::daemon::recording::channels`], shared
 //! with the live view), and a `session` metadata record holds versions and the configuration. Chunks are
 //! zstd-compressed and closed (flushed to the file) after every shot and at least once a second, so a killed
 //! daemon loses at most the last second. Sending never blocks: a full queue drops the record and counts it.
@@ -16,12 +16,12 @@ use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TryS
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use crate::daemon::bridges::foxglove::server::Schema;
+use crate::daemon::recording::channels::Schema;
 pub use crate::daemon::recording::record::Record;
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{wall_ns, DaemonError};
 
-/// The `session` metadata of a recording: versions and the configuration.
-pub fn session_metadata(config: &DaemonConfig) -> BTreeMap<String, String> {
+/// The `session` metadata of a recording: versions and the configuration (the daemon's `DaemonConfig`).
+pub fn session_metadata(config: &impl serde::Serialize) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
     m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
@@ -124,7 +124,12 @@ pub struct RecorderHandle {
     tx: Option<SyncSender<Record>>,
     dropped: Arc<AtomicU64>,
     error: Arc<OnceLock<String>>,
-    live: Option<crate::daemon::bridges::foxglove::live::LiveTap>,
+    live: Option<Arc<dyn RecordTap>>,
+}
+
+/// Another taker of what is recorded (the Foxglove live view): it takes a record without waiting.
+pub trait RecordTap: Send + Sync {
+    fn send(&self, record: Record);
 }
 
 impl RecorderHandle {
@@ -134,7 +139,7 @@ impl RecorderHandle {
     }
 
     /// This handle, also feeding the live view.
-    pub fn with_live(mut self, live: Option<crate::daemon::bridges::foxglove::live::LiveTap>) -> Self {
+    pub fn with_live(mut self, live: Option<Arc<dyn RecordTap>>) -> Self {
         self.live = live;
         self
     }
@@ -259,7 +264,7 @@ impl Channels {
         w: &mut mcap::Writer<W>,
         record: Record,
     ) -> Result<(), mcap::McapError> {
-        let Some(e) = crate::daemon::bridges::foxglove::server::encode(record) else { return Ok(()) };
+        let Some(e) = crate::daemon::recording::channels::encode(record) else { return Ok(()) };
         let channel_id = self.channel(w, &e.topic, e.schema)?;
         self.sequence = self.sequence.wrapping_add(1);
         let header = mcap::records::MessageHeader {

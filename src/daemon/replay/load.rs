@@ -65,11 +65,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
                 Ok(true) => {}
                 Ok(false) => break,
                 Err(e) => {
-                    return Err(DaemonError::BadSampleLine {
-                        path: path.display().to_string(),
-                        line: n,
-                        reason: e.to_string(),
-                    })
+                    return Err(DaemonError::BadSampleLine { path: path.display().to_string(), line: n, source: e })
                 }
             }
             let reason = match std::str::from_utf8(&line) {

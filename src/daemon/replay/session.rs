@@ -8,9 +8,9 @@ use std::time::{Duration, Instant};
 use super::{recorded_latency, ReplayInput, ReplayStats};
 use crate::daemon::config::RigConfig;
 use crate::daemon::live::sinks::{self, RigPublishers, RigSinks, StatusInputs};
-use crate::daemon::live::stats::LatencyWindow;
 use crate::daemon::recording::writer::session_metadata;
 use crate::daemon::recording::writer::{Recorder, RecorderHandle};
+use crate::daemon::stats::LatencyWindow;
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
@@ -242,7 +242,9 @@ pub async fn run(
         }
         if let Some(r) = options.rate {
             let t0 = *first_t.get_or_insert(msg.t_ns);
-            let due = Duration::from_secs_f64(msg.t_ns.saturating_sub(t0) as f64 * 1e-9 / r);
+            // A pace too slow for a `Duration` waits for ever rather than panics (the command refuses one).
+            let due =
+                Duration::try_from_secs_f64(msg.t_ns.saturating_sub(t0) as f64 * 1e-9 / r).unwrap_or(Duration::MAX);
             // Time spent paused does not count: the pace resumes where it stopped.
             if let Some(wait) = due.checked_sub(start.elapsed().saturating_sub(paused)) {
                 std::thread::sleep(wait);

@@ -65,7 +65,7 @@ pub fn to_toml(loaded: &LoadedClub, comment: &str) -> Result<String, IdentifyErr
             .filter_map(|n| loaded.sections.get(n).map(|t| (n.to_string(), t.clone())))
             .collect(),
     };
-    let body = toml::to_string(&file).map_err(|e| IdentifyError::Write(e.to_string()))?;
+    let body = toml::to_string(&file).map_err(IdentifyError::Write)?;
     let mut out: String = comment.lines().map(|l| format!("# {l}\n")).collect();
     out.push_str(&body);
     Ok(out)

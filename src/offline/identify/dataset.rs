@@ -3,19 +3,11 @@
 //! "launch_direction_deg", "backspin_rpm", "sidespin_rpm"}}` (TrackMan signs; `carry_yd` optional), resolved to
 //! an impact state on a club once, since no identified parameter changes the state at first contact.
 
-use serde::{Deserialize, Serialize};
-
 use super::IdentifyError;
 use crate::impact::{Equipment, ImpactState};
 use crate::math::Real;
-use crate::wire::{DeliveryInput, Handedness, LaunchFields};
-
-/// One line of a dataset. Other fields (labels, notes) are not read.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct DatasetLine {
-    pub delivery: DeliveryInput,
-    pub measured: LaunchFields,
-}
+pub use crate::pairing::DatasetLine;
+use crate::wire::Handedness;
 
 /// A shot ready for the models: the state at first contact (right-handed world) and the measured launch fields
 /// in the order of [`super::FIELDS`], mirrored into the right-handed world for a left-hander.

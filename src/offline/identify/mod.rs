@@ -69,5 +69,5 @@ pub enum IdentifyError {
     #[error("noise: {0}")]
     Noise(String),
     #[error("writing the club file: {0}")]
-    Write(String),
+    Write(#[source] toml::ser::Error),
 }

@@ -1,7 +1,7 @@
 //! `--foxglove HOST:PORT`: the live view, a server of the Foxglove WebSocket protocol (`foxglove.websocket.v1`,
 //! github.com/foxglove/ws-protocol) that Foxglove opens with "Open connection" -> "Foxglove WebSocket".
 //!
-//! It advertises every rig's channels ([`crate::daemon::bridges::foxglove::server::rig_channels`]: clubhead samples, impact, launch,
+//! It advertises every rig's channels ([`crate::daemon::recording::channels::rig_channels`]: clubhead samples, impact, launch,
 //! status, measured launches, club pose, impact scene and the predicted ball flight) with their JSON Schemas and
 //! streams the messages of the channels a client subscribes to: server info and advertise as JSON text, data
 //! as binary frames (opcode 1, subscription id u32 LE, log time ns u64 LE, the JSON payload). The records come
@@ -29,9 +29,10 @@ use tokio_tungstenite::tungstenite::http::{HeaderValue, StatusCode};
 use tokio_tungstenite::tungstenite::protocol::WebSocketConfig;
 use tokio_tungstenite::tungstenite::Message;
 
-use crate::daemon::bridges::foxglove::server::{encode, rig_channels};
 use crate::daemon::bridges::peers::{PeerLimits, PeerSlot, Peers};
+use crate::daemon::recording::channels::{encode, rig_channels};
 use crate::daemon::recording::record::Record;
+use crate::daemon::recording::writer::RecordTap;
 use crate::daemon::DaemonError;
 use crate::wire::LiveViewStatus;
 
@@ -58,8 +59,8 @@ pub struct LiveTap {
     dropped: Arc<AtomicU64>,
 }
 
-impl LiveTap {
-    pub fn send(&self, record: Record) {
+impl RecordTap for LiveTap {
+    fn send(&self, record: Record) {
         if self.tx.try_send(record).is_err() {
             self.dropped.fetch_add(1, Ordering::Relaxed);
         }
@@ -90,14 +91,14 @@ struct Outgoing {
 }
 
 impl FoxgloveServer {
-    /// Binds `address` and serves the channels of the configuration's rigs on the current tokio runtime.
-    pub async fn start(address: &str, config: &crate::daemon::DaemonConfig) -> Result<Self, DaemonError> {
+    /// Binds `address` and serves the channels of the named rigs on the current tokio runtime.
+    pub async fn start(address: &str, rigs: &[&str]) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("serving the Foxglove live view on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
         let local_addr = listener.local_addr().map_err(io)?;
         let mut topics = HashMap::new();
         let mut channels = Vec::new();
-        for (topic, schema) in config.rigs.iter().flat_map(|r| rig_channels(&r.name)) {
+        for (topic, schema) in rigs.iter().flat_map(|rig| rig_channels(rig)) {
             let id = channels.len() as u32 + 1;
             channels.push(serde_json::json!({
                 "id": id, "topic": topic, "encoding": "json", "schemaName": schema.name(),
@@ -149,8 +150,8 @@ impl FoxgloveServer {
         self.local_addr
     }
 
-    pub fn tap(&self) -> LiveTap {
-        self.tap.clone()
+    pub fn tap(&self) -> Arc<dyn RecordTap> {
+        Arc::new(self.tap.clone())
     }
 
     /// Records the view could not keep up with.

@@ -1,5 +1,4 @@
-//! Foxglove: the channels and schemas the recording and the live view share ([`server`]), and the live
-//! WebSocket server ([`live`]).
+//! Foxglove: the live WebSocket server ([`live`]), on the channels the recording writes
+//! ([`crate::daemon::recording::channels`]).
 
 pub mod live;
-pub mod server;

@@ -11,7 +11,7 @@ use std::thread::JoinHandle;
 use serde::{Deserialize, Serialize};
 
 use super::shared::{lock, Conn, Deliver, Shared};
-use crate::daemon::live::stats::LatencyWindow;
+use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
 use crate::wire::{ConnectionState, MocapInputStatus};
 

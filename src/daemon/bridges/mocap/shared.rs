@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use crate::daemon::live::stats::LatencyWindow;
+use crate::daemon::stats::LatencyWindow;
 use crate::mocap::track::BodySample;
 use crate::wire::{ConnectionState, MocapInputStatus};
 

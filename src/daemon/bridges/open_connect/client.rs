@@ -85,7 +85,7 @@ impl Protocol for OpenConnect {
     }
     fn shot(&self, launch: &LaunchPrediction, number: u64) -> Result<Vec<u8>, OpenConnectError> {
         let message = ShotMessage::from_prediction(launch, &self.device_id, number)?;
-        serde_json::to_vec(&message).map_err(|e| OpenConnectError::Invalid(e.to_string()))
+        serde_json::to_vec(&message).map_err(OpenConnectError::Encode)
     }
     fn answer(&self, object: &[u8]) -> Result<Answer, String> {
         let reply = serde_json::from_slice::<Reply>(object).map_err(|e| e.to_string())?;

@@ -30,10 +30,10 @@ use super::splitter::{Frame, Splitter};
 use super::{LaunchMonitorConfig, MAX_MESSAGE_BYTES};
 use crate::capped::quote;
 use crate::daemon::bridges::peers::{PeerSlot, Peers};
-use crate::daemon::live::stats::Budget;
-use crate::daemon::live::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
+use crate::daemon::stats::Budget;
+use crate::daemon::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
 use crate::daemon::{wall_ns, DaemonError};
 use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, OpenConnectTraffic, TrafficDirection};
 

@@ -28,6 +28,9 @@ pub enum OpenConnectError {
     /// A received message that is not a usable shot.
     #[error("{0}")]
     Invalid(String),
+    /// A message that could not be written as JSON.
+    #[error("{0}")]
+    Encode(#[source] serde_json::Error),
     #[error("{what} {address}: {source}")]
     Io {
         what: &'static str,

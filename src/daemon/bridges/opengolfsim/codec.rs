@@ -91,7 +91,7 @@ pub struct Incoming {
 
 /// One message's bytes: the JSON object and its newline.
 pub fn encode(message: &Outgoing) -> Result<Vec<u8>, OpenConnectError> {
-    let mut bytes = serde_json::to_vec(message).map_err(|e| OpenConnectError::Invalid(e.to_string()))?;
+    let mut bytes = serde_json::to_vec(message).map_err(OpenConnectError::Encode)?;
     bytes.push(b'\n');
     Ok(bytes)
 }

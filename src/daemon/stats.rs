@@ -1,4 +1,5 @@
-//! Latency percentiles over a window of recent shots, and a rate limiter for log lines.
+//! Latency percentiles over a window of recent shots, a rate limiter for log lines and a recording budget: what
+//! the live loop, replay and the bridges share.
 
 use std::time::{Duration, Instant};
 
@@ -97,36 +98,6 @@ pub const REJECTED_BYTES_PER_S: usize = 64 * 1024;
 /// The most of one rejected payload that is kept.
 pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_limiter_fed_distinct_keys_stays_bounded() {
-        let mut l = RateLimiter::new(Duration::from_secs(60));
-        let allowed = (0..10_000).filter(|i| l.allow(&format!("k{i}")).is_some()).count();
-        assert_eq!(allowed, RATE_LIMITER_KEYS);
-        assert_eq!(l.tracked(), RATE_LIMITER_KEYS);
-        let mut short = RateLimiter::new(Duration::ZERO);
-        for i in 0..10_000 {
-            short.allow(&format!("k{i}"));
-        }
-        assert!(short.tracked() <= RATE_LIMITER_KEYS);
-    }
-
-    #[test]
-    fn quantiles() {
-        let mut w = LatencyWindow::new(100);
-        for i in 1..=100 {
-            w.push(i as f64);
-        }
-        assert_eq!(w.quantile(0.5), 50.0);
-        assert_eq!(w.quantile(0.99), 99.0);
-        w.push(1000.0);
-        assert_eq!(w.quantile(1.0), 1000.0);
-    }
-}
-
 /// A recording budget: at most `max_records` records and `max_bytes` bytes per second; beyond it payloads are
 /// counted, not stored (so a flood cannot fill the disk).
 #[derive(Debug, Clone)]
@@ -161,5 +132,35 @@ impl Budget {
             self.refused += 1;
             false
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_limiter_fed_distinct_keys_stays_bounded() {
+        let mut l = RateLimiter::new(Duration::from_secs(60));
+        let allowed = (0..10_000).filter(|i| l.allow(&format!("k{i}")).is_some()).count();
+        assert_eq!(allowed, RATE_LIMITER_KEYS);
+        assert_eq!(l.tracked(), RATE_LIMITER_KEYS);
+        let mut short = RateLimiter::new(Duration::ZERO);
+        for i in 0..10_000 {
+            short.allow(&format!("k{i}"));
+        }
+        assert!(short.tracked() <= RATE_LIMITER_KEYS);
+    }
+
+    #[test]
+    fn quantiles() {
+        let mut w = LatencyWindow::new(100);
+        for i in 1..=100 {
+            w.push(i as f64);
+        }
+        assert_eq!(w.quantile(0.5), 50.0);
+        assert_eq!(w.quantile(0.99), 99.0);
+        w.push(1000.0);
+        assert_eq!(w.quantile(1.0), 1000.0);
     }
 }
