@@ -175,7 +175,7 @@ fn angular_impulses_match_r_cross_f() {
     for (eq, p, st) in cases {
         let r = run(eq, &st, &p, two_layer(eq, &p));
         let i = eq.club.inertia_kg_m2;
-        let l_head = |s: &FreeHeadState| s.q.to_rotation_matrix() * (i * s.w_body);
+        let l_head = |s: &FreeHeadState| s.world_from_body.to_rotation_matrix() * (i * s.body_rate_radps);
         let head_change = l_head(&r.head1) - l_head(&r.head0);
         let head_impulse = r.integral(|c, f| c.r_club_m.cross(&-(f.normal_n * c.normal + f.friction_n)));
         assert!(

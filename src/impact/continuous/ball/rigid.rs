@@ -22,9 +22,9 @@ impl RigidBall {
 /// Centre position and velocity and spin.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidBallState {
-    pub p: Vector3,
-    pub v: Vector3,
-    pub w: Vector3,
+    pub centre_m: Vector3,
+    pub velocity_mps: Vector3,
+    pub spin_radps: Vector3,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -47,31 +47,35 @@ impl BallPart for RigidBall {
     }
 
     fn at_rest(&self, centre_m: Vector3) -> RigidBallState {
-        RigidBallState { p: centre_m, v: Vector3::zeros(), w: Vector3::zeros() }
+        RigidBallState { centre_m, velocity_mps: Vector3::zeros(), spin_radps: Vector3::zeros() }
     }
 
     #[inline]
     fn centre(s: &RigidBallState) -> (Vector3, Vector3) {
-        (s.p, s.v)
+        (s.centre_m, s.velocity_mps)
     }
 
     #[inline]
     fn surface_spin(s: &RigidBallState) -> Vector3 {
-        s.w
+        s.spin_radps
     }
 
     fn spin(&self, s: &RigidBallState) -> Vector3 {
-        s.w
+        s.spin_radps
     }
 
     #[inline]
     fn rate(&self, s: &RigidBallState, force_n: Vector3, r_m: Vector3) -> RigidBallRate {
-        RigidBallRate { v: s.v, a: force_n / self.mass_kg, alpha: r_m.cross(&force_n) / self.inertia_kg_m2 }
+        RigidBallRate { v: s.velocity_mps, a: force_n / self.mass_kg, alpha: r_m.cross(&force_n) / self.inertia_kg_m2 }
     }
 
     #[inline]
     fn advance(s: &RigidBallState, r: &RigidBallRate, h: Real) -> RigidBallState {
-        RigidBallState { p: s.p + r.v * h, v: s.v + r.a * h, w: s.w + r.alpha * h }
+        RigidBallState {
+            centre_m: s.centre_m + r.v * h,
+            velocity_mps: s.velocity_mps + r.a * h,
+            spin_radps: s.spin_radps + r.alpha * h,
+        }
     }
 
     #[inline]
@@ -86,10 +90,13 @@ impl BallPart for RigidBall {
     }
 
     fn momentum(&self, s: &RigidBallState) -> (Vector3, Vector3) {
-        (self.mass_kg * s.v, self.mass_kg * s.p.cross(&s.v) + self.inertia_kg_m2 * s.w)
+        (
+            self.mass_kg * s.velocity_mps,
+            self.mass_kg * s.centre_m.cross(&s.velocity_mps) + self.inertia_kg_m2 * s.spin_radps,
+        )
     }
 
     fn energy_j(&self, s: &RigidBallState) -> Real {
-        0.5 * self.mass_kg * s.v.norm_squared() + 0.5 * self.inertia_kg_m2 * s.w.norm_squared()
+        0.5 * self.mass_kg * s.velocity_mps.norm_squared() + 0.5 * self.inertia_kg_m2 * s.spin_radps.norm_squared()
     }
 }

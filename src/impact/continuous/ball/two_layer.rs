@@ -39,11 +39,12 @@ impl TwoLayerBall {
 /// Centre position and velocity, core and cover spins and their relative rotation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLayerBallState {
-    pub p: Vector3,
-    pub v: Vector3,
-    pub w_core: Vector3,
-    pub w_cover: Vector3,
-    pub theta: Vector3,
+    pub centre_m: Vector3,
+    pub velocity_mps: Vector3,
+    pub core_spin_radps: Vector3,
+    pub cover_spin_radps: Vector3,
+    /// The cover's rotation relative to the core (rotation vector, rad).
+    pub cover_twist_rad: Vector3,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -69,35 +70,35 @@ impl BallPart for TwoLayerBall {
 
     fn at_rest(&self, centre_m: Vector3) -> TwoLayerBallState {
         TwoLayerBallState {
-            p: centre_m,
-            v: Vector3::zeros(),
-            w_core: Vector3::zeros(),
-            w_cover: Vector3::zeros(),
-            theta: Vector3::zeros(),
+            centre_m,
+            velocity_mps: Vector3::zeros(),
+            core_spin_radps: Vector3::zeros(),
+            cover_spin_radps: Vector3::zeros(),
+            cover_twist_rad: Vector3::zeros(),
         }
     }
 
     #[inline]
     fn centre(s: &TwoLayerBallState) -> (Vector3, Vector3) {
-        (s.p, s.v)
+        (s.centre_m, s.velocity_mps)
     }
 
     #[inline]
     fn surface_spin(s: &TwoLayerBallState) -> Vector3 {
-        s.w_cover
+        s.cover_spin_radps
     }
 
     fn spin(&self, s: &TwoLayerBallState) -> Vector3 {
-        (self.core_inertia_kg_m2 * s.w_core + self.cover_inertia_kg_m2 * s.w_cover)
+        (self.core_inertia_kg_m2 * s.core_spin_radps + self.cover_inertia_kg_m2 * s.cover_spin_radps)
             / (self.core_inertia_kg_m2 + self.cover_inertia_kg_m2)
     }
 
     #[inline]
     fn rate(&self, s: &TwoLayerBallState, force_n: Vector3, r_m: Vector3) -> TwoLayerBallRate {
-        let w_rel = s.w_cover - s.w_core;
-        let spring = self.k_ball_nm_per_rad * s.theta + self.c_ball_nms_per_rad * w_rel;
+        let w_rel = s.cover_spin_radps - s.core_spin_radps;
+        let spring = self.k_ball_nm_per_rad * s.cover_twist_rad + self.c_ball_nms_per_rad * w_rel;
         TwoLayerBallRate {
-            v: s.v,
+            v: s.velocity_mps,
             a: force_n / self.mass_kg,
             alpha_core: spring / self.core_inertia_kg_m2,
             alpha_cover: (r_m.cross(&force_n) - spring) / self.cover_inertia_kg_m2,
@@ -108,11 +109,11 @@ impl BallPart for TwoLayerBall {
     #[inline]
     fn advance(s: &TwoLayerBallState, r: &TwoLayerBallRate, h: Real) -> TwoLayerBallState {
         TwoLayerBallState {
-            p: s.p + r.v * h,
-            v: s.v + r.a * h,
-            w_core: s.w_core + r.alpha_core * h,
-            w_cover: s.w_cover + r.alpha_cover * h,
-            theta: s.theta + r.theta_dot * h,
+            centre_m: s.centre_m + r.v * h,
+            velocity_mps: s.velocity_mps + r.a * h,
+            core_spin_radps: s.core_spin_radps + r.alpha_core * h,
+            cover_spin_radps: s.cover_spin_radps + r.alpha_cover * h,
+            cover_twist_rad: s.cover_twist_rad + r.theta_dot * h,
         }
     }
 
@@ -134,25 +135,27 @@ impl BallPart for TwoLayerBall {
         let [k1, k2, k3, k4] = k;
         let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
         TwoLayerBallState {
-            p: s.p + c(k1.v, k2.v, k3.v, k4.v),
-            v: s.v + c(k1.a, k2.a, k3.a, k4.a),
-            w_core: s.w_core + c(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
-            w_cover: s.w_cover + c(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
-            theta: s.theta + c(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
+            centre_m: s.centre_m + c(k1.v, k2.v, k3.v, k4.v),
+            velocity_mps: s.velocity_mps + c(k1.a, k2.a, k3.a, k4.a),
+            core_spin_radps: s.core_spin_radps + c(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
+            cover_spin_radps: s.cover_spin_radps + c(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
+            cover_twist_rad: s.cover_twist_rad + c(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
         }
     }
 
     fn momentum(&self, s: &TwoLayerBallState) -> (Vector3, Vector3) {
         (
-            self.mass_kg * s.v,
-            self.mass_kg * s.p.cross(&s.v) + self.core_inertia_kg_m2 * s.w_core + self.cover_inertia_kg_m2 * s.w_cover,
+            self.mass_kg * s.velocity_mps,
+            self.mass_kg * s.centre_m.cross(&s.velocity_mps)
+                + self.core_inertia_kg_m2 * s.core_spin_radps
+                + self.cover_inertia_kg_m2 * s.cover_spin_radps,
         )
     }
 
     fn energy_j(&self, s: &TwoLayerBallState) -> Real {
-        0.5 * self.mass_kg * s.v.norm_squared()
-            + 0.5 * self.core_inertia_kg_m2 * s.w_core.norm_squared()
-            + 0.5 * self.cover_inertia_kg_m2 * s.w_cover.norm_squared()
-            + 0.5 * self.k_ball_nm_per_rad * s.theta.norm_squared()
+        0.5 * self.mass_kg * s.velocity_mps.norm_squared()
+            + 0.5 * self.core_inertia_kg_m2 * s.core_spin_radps.norm_squared()
+            + 0.5 * self.cover_inertia_kg_m2 * s.cover_spin_radps.norm_squared()
+            + 0.5 * self.k_ball_nm_per_rad * s.cover_twist_rad.norm_squared()
     }
 }

@@ -23,10 +23,10 @@ impl FreeHead {
 /// Position, velocity, attitude and body rate of the head.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeHeadState {
-    pub p: Vector3,
-    pub v: Vector3,
-    pub q: UnitQuaternion,
-    pub w_body: Vector3,
+    pub cg_m: Vector3,
+    pub velocity_mps: Vector3,
+    pub world_from_body: UnitQuaternion,
+    pub body_rate_radps: Vector3,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -44,27 +44,32 @@ impl ClubPart for FreeHead {
     fn initial(&self, state: &ImpactState) -> FreeHeadState {
         let rot = state.world_from_club.rotation;
         FreeHeadState {
-            p: state.world_from_club.translation.vector,
-            v: state.cg_velocity_mps,
-            q: rot,
-            w_body: rot.inverse_transform_vector(&state.angular_velocity_radps),
+            cg_m: state.world_from_club.translation.vector,
+            velocity_mps: state.cg_velocity_mps,
+            world_from_body: rot,
+            body_rate_radps: rot.inverse_transform_vector(&state.angular_velocity_radps),
         }
     }
 
     #[inline]
     fn head(&self, s: &FreeHeadState) -> Head {
-        let world_from_club = s.q.to_rotation_matrix();
-        Head { position_m: s.p, angular_velocity_radps: world_from_club * s.w_body, world_from_club, velocity_mps: s.v }
+        let world_from_club = s.world_from_body.to_rotation_matrix();
+        Head {
+            position_m: s.cg_m,
+            angular_velocity_radps: world_from_club * s.body_rate_radps,
+            world_from_club,
+            velocity_mps: s.velocity_mps,
+        }
     }
 
     #[inline(always)]
     fn rate(&self, s: &FreeHeadState, head: &Head, force_n: Vector3, torque_nm: Vector3) -> FreeHeadRate {
         let torque_body = head.world_from_club.inverse_transform_vector(&torque_nm);
-        let w = s.w_body;
+        let w = s.body_rate_radps;
         FreeHeadRate {
-            v: s.v,
+            v: s.velocity_mps,
             a: force_n / self.mass_kg,
-            q_dot: s.q.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5,
+            q_dot: s.world_from_body.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5,
             alpha_body: self.inertia_inv_kg_m2 * (torque_body - w.cross(&(self.inertia_kg_m2 * w))),
         }
     }
@@ -72,10 +77,10 @@ impl ClubPart for FreeHead {
     #[inline]
     fn advance(s: &FreeHeadState, r: &FreeHeadRate, h: Real) -> FreeHeadState {
         FreeHeadState {
-            p: s.p + r.v * h,
-            v: s.v + r.a * h,
-            q: UnitQuaternion::new_unchecked(s.q.quaternion() + r.q_dot * h),
-            w_body: s.w_body + r.alpha_body * h,
+            cg_m: s.cg_m + r.v * h,
+            velocity_mps: s.velocity_mps + r.a * h,
+            world_from_body: UnitQuaternion::new_unchecked(s.world_from_body.quaternion() + r.q_dot * h),
+            body_rate_radps: s.body_rate_radps + r.alpha_body * h,
         }
     }
 
@@ -90,17 +95,21 @@ impl ClubPart for FreeHead {
             alpha_body: c(k1.alpha_body, k2.alpha_body, k3.alpha_body, k4.alpha_body),
         };
         let mut next = Self::advance(s, &mean, h);
-        next.q = UnitQuaternion::new_normalize(next.q.into_inner());
+        next.world_from_body = UnitQuaternion::new_normalize(next.world_from_body.into_inner());
         next
     }
 
     fn momentum(&self, s: &FreeHeadState) -> (Vector3, Vector3) {
-        let rot = s.q.to_rotation_matrix();
-        (self.mass_kg * s.v, self.mass_kg * s.p.cross(&s.v) + rot * (self.inertia_kg_m2 * s.w_body))
+        let rot = s.world_from_body.to_rotation_matrix();
+        (
+            self.mass_kg * s.velocity_mps,
+            self.mass_kg * s.cg_m.cross(&s.velocity_mps) + rot * (self.inertia_kg_m2 * s.body_rate_radps),
+        )
     }
 
     fn energy_j(&self, s: &FreeHeadState) -> Real {
-        0.5 * self.mass_kg * s.v.norm_squared() + 0.5 * s.w_body.dot(&(self.inertia_kg_m2 * s.w_body))
+        0.5 * self.mass_kg * s.velocity_mps.norm_squared()
+            + 0.5 * s.body_rate_radps.dot(&(self.inertia_kg_m2 * s.body_rate_radps))
     }
 }
 

@@ -58,9 +58,9 @@ pub struct ShaftClubRate {
     pub modal_load: ModalVec,
     /// Forces on the club (world); at the grip, the force the rigid swing needs (the clamp's elastic reaction is
     /// integrated per step).
-    pub f_ball: Vector3,
-    pub f_ground: Vector3,
-    pub f_grip_rigid: Vector3,
+    pub f_ball_n: Vector3,
+    pub f_ground_n: Vector3,
+    pub f_grip_rigid_n: Vector3,
 }
 
 /// The head's motion and the rigid club's it rides on.
@@ -144,9 +144,9 @@ impl SteppedClub for ShaftClub<'_> {
         let fi = self.elastic_frame.inverse();
         ShaftClubRate {
             modal_load: self.modal.load(&(fi * force), &(fi * torque)),
-            f_ball: load.ball_force_n,
-            f_ground: load.ground_force_n,
-            f_grip_rigid: self.rigid_momentum_and_force(&m.rigid).1,
+            f_ball_n: load.ball_force_n,
+            f_ground_n: load.ground_force_n,
+            f_grip_rigid_n: self.rigid_momentum_and_force(&m.rigid).1,
         }
     }
 
@@ -185,10 +185,11 @@ impl SteppedClub for ShaftClub<'_> {
         );
         ShaftClubState {
             shaft,
-            j_ball_ns: s.j_ball_ns + c(r1.f_ball, r2.f_ball, r3.f_ball, r4.f_ball),
-            j_ground_ns: s.j_ground_ns + c(r1.f_ground, r2.f_ground, r3.f_ground, r4.f_ground),
+            j_ball_ns: s.j_ball_ns + c(r1.f_ball_n, r2.f_ball_n, r3.f_ball_n, r4.f_ball_n),
+            j_ground_ns: s.j_ground_ns + c(r1.f_ground_n, r2.f_ground_n, r3.f_ground_n, r4.f_ground_n),
             j_grip_ns: s.j_grip_ns
-                + (c(r1.f_grip_rigid, r2.f_grip_rigid, r3.f_grip_rigid, r4.f_grip_rigid) + self.elastic_frame * clamp),
+                + (c(r1.f_grip_rigid_n, r2.f_grip_rigid_n, r3.f_grip_rigid_n, r4.f_grip_rigid_n)
+                    + self.elastic_frame * clamp),
         }
     }
 }

@@ -66,7 +66,7 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
         if self.out.ball_touched {
             return self.ladder.short();
         }
-        let ball_club = head.world_from_club.inverse_transform_vector(&(s.ball.p - head.position_m));
+        let ball_club = head.world_from_club.inverse_transform_vector(&(s.ball.centre_m - head.position_m));
         let gap = self.face_normal.dot(&(ball_club - self.face_point_m)) - self.ball_radius_m;
         self.ladder.at_most(0.5 * gap / self.approach_mps)
     }
@@ -122,11 +122,11 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
         } else if out.ball_touched && self.launch.is_none() {
             let b = &asm.ball;
             self.launch = Some(Launch {
-                ball_velocity_mps: s.ball.v,
+                ball_velocity_mps: s.ball.velocity_mps,
                 ball_spin_radps: b.spin(&s.ball),
                 club_velocity_mps: head.velocity_mps,
                 club_angular_velocity_radps: head.angular_velocity_radps,
-                impulse_ns: b.mass_kg * s.ball.v,
+                impulse_ns: b.mass_kg * s.ball.velocity_mps,
             });
             out.t_separation_s = t_s;
         }
