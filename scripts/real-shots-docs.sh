@@ -13,6 +13,10 @@
 #   region relation     per club, TrackMan's measured spin over 2.5 v sin(a) / R from its own loft, face and launch
 #   region strike-height  the validation session's located shots by TrackMan's impact height: measured and
 #                       predicted smash (adjusted), ball speed bias
+#   region variants     the validation session's located shots on copies of the 8- and 5-iron presets with the
+#                       heel-toe inertia scaled or the CG moved toward the heel (adjusted, through predict)
+#   region heel-toe     the same shots 3 to 13 mm up, by TrackMan's impact offset: measured smash, ball speed bias
+#                       of the free head (adjusted) and of the head on the seed's shaft (ground --soil none)
 #   region spin-relation  the validation session with TrackMan's loft and face read through its spin relation
 #   region heldout-relation  the held-out session, the same reading
 #   region spin-launch  per club of the validation session (measured spins), the launch the seed's ball needs below
@@ -172,6 +176,49 @@ for preset, club_mph, attack, loft_dyn in [("iron8", 90, -7.5, 21.5), ("iron5", 
                             ["adjusted, sweet spot at the face centre", smash(variant(text, loft, sweet_spot_mm=0.0))],
                             ["adjusted, sweet spot 6 mm above it", smash(variant(text, loft, sweet_spot_mm=6.0))]]})
 json.dump(rows, open(f"{out}/slope.json", "w"))
+
+# The validation session's located shots (the deliveries `compare --by-club` gives an iron: TrackMan's loft and
+# face are the face centre's on a planar face) on copies of the 8- and 5-iron presets: the heel-toe inertia (head
+# and share) scaled, or the CG moved toward the heel. Ball speed MAE / bias; the 8-iron's spin on measured shots.
+import csv
+lines = open("tests/data/trackman/validation-8i-5i.csv", encoding="utf-8-sig").read().splitlines()
+table = list(csv.reader(lines[1:]))
+head = table[0]
+fields = [("club_speed_mph", "Club Speed"), ("attack_angle_deg", "Attack Angle"), ("club_path_deg", "Club Path"),
+          ("face_angle_deg", "Face Angle"), ("dynamic_loft_deg", "Dyn. Loft"), ("impact_h_mm", "Impact Offset"),
+          ("impact_v_mm", "Impact Height"), ("dynamic_lie_deg", "Dynamic Lie")]
+
+
+def heelward(text, mm):
+    c = numbers(text, "cg_to_face_center_m")
+    return re.sub(r"^cg_to_face_center_m = .*$", f"cg_to_face_center_m = [{c[0]}, {c[1]}, {c[2] + mm * 1e-3:.5f}]",
+                  text, flags=re.M)
+
+
+variants = []
+for label, change in [("the presets", lambda t, L: t),
+                      ("heel-toe inertia x 1.5", lambda t, L: variant(t, L, inertia_scale=1.5)),
+                      ("heel-toe inertia x 2", lambda t, L: variant(t, L, inertia_scale=2.0)),
+                      ("heel-toe inertia x 3", lambda t, L: variant(t, L, inertia_scale=3.0)),
+                      ("sweet spot 4 mm toward the heel", lambda t, L: heelward(t, 4.0 - 1.12)),
+                      ("sweet spot 7 mm toward the heel", lambda t, L: heelward(t, 7.0 - 1.12))]:
+    cells = {}
+    for club, preset in [("8 Iron", "iron8"), ("5 Iron", "iron5")]:
+        sel = [d for d in (dict(zip(head, r)) for r in table[2:])
+               if d["Club"] == club and d["Club Speed"] and d["Impact Height"]]
+        text = open(f"clubs/presets/{preset}.toml").read()
+        path = f"{out}/variant.toml"
+        open(path, "w").write(change(text, numbers(text, "loft_deg")[0]))
+        lines_in = "".join(json.dumps({k: float(d[c]) for k, c in fields}) + "\n" for d in sel)
+        p = subprocess.run([bin, "predict", "--club", path, "--model", "adjusted"], input=lines_in,
+                           capture_output=True, text=True, check=True)
+        q = [json.loads(l) for l in p.stdout.splitlines()]
+        e = [x["ball_speed_mph"] - float(d["Ball Speed"]) for x, d in zip(q, sel)]
+        spin = [abs(x["total_spin_rpm"] - float(d["Spin Rate"])) for x, d in zip(q, sel)
+                if d["Spin Rate Type"] == "Measured"]
+        cells[club] = (sum(map(abs, e)) / len(e), sum(e) / len(e), sum(spin) / len(spin))
+    variants.append({"label": label, "cells": cells})
+json.dump(variants, open(f"{out}/variants.json", "w"))
 PY
 
 # The validation session's located shots, as `compare --by-club` gives them (irons: TrackMan's loft and face
@@ -190,9 +237,12 @@ for club, preset in [("8 Iron", "iron8"), ("5 Iron", "iron5")]:
     text = "".join(json.dumps({k: float(d[c]) for k, c in fields}) + "\n" for d in sel)
     p = subprocess.run([bin, "predict", "--club", preset, "--model", "adjusted"], input=text, capture_output=True,
                        text=True, check=True)
-    for d, q in zip(sel, (json.loads(l) for l in p.stdout.splitlines())):
-        result.append({"club": club, "v": float(d["Impact Height"]), "club_speed": float(d["Club Speed"]),
-                       "ball_speed": float(d["Ball Speed"]), "predicted": q["ball_speed_mph"]})
+    g = subprocess.run([bin, "predict", "--club", preset, "--model", "ground", "--soil", "none"], input=text,
+                       capture_output=True, text=True, check=True)
+    for d, q, qg in zip(sel, (json.loads(l) for l in p.stdout.splitlines()), (json.loads(l) for l in g.stdout.splitlines())):
+        result.append({"club": club, "v": float(d["Impact Height"]), "h": float(d["Impact Offset"]),
+                       "club_speed": float(d["Club Speed"]), "ball_speed": float(d["Ball Speed"]),
+                       "predicted": q["ball_speed_mph"], "on_shaft": qg["ball_speed_mph"]})
 json.dump(result, open(f"{out}/strike-height.json", "w"))
 PY
 
@@ -323,6 +373,18 @@ for club in ["8 Iron", "5 Iron"]:
         strike.append(f"| {club} | {label} | {len(g)} | {mean(lambda x: x['ball_speed'] / x['club_speed']):.3f} | "
                       f"{mean(lambda x: x['predicted'] / x['club_speed']):.3f} | {mean(lambda x: x['predicted'] - x['ball_speed']):+.1f} |")
 
+heel_toe = ["| club | TrackMan impact offset (mm), strikes 3 to 13 mm up | shots | measured smash | ball speed bias, adjusted (mph) | ball speed bias, ground --soil none (mph) |",
+            "|---|---|---|---|---|---|"]
+for club in ["8 Iron", "5 Iron"]:
+    for lo, hi, label in [(-99, -3, "heel, below -3"), (-3, 3, "-3 to 3"), (3, 99, "toe, 3 and above")]:
+        g = [x for x in json.load(open(f"{out}/strike-height.json"))
+             if x["club"] == club and 3 <= x["v"] < 13 and lo <= x["h"] < hi]
+        if not g:
+            continue
+        mean = lambda f: sum(f(x) for x in g) / len(g)
+        heel_toe.append(f"| {club} | {label} | {len(g)} | {mean(lambda x: x['ball_speed'] / x['club_speed']):.3f} | "
+                        f"{mean(lambda x: x['predicted'] - x['ball_speed']):+.1f} | {mean(lambda x: x['on_shaft'] - x['ball_speed']):+.1f} |")
+
 spin_launch = ["| club | measured spins | TrackMan's ball-to-face angle (deg) | the seed's ball needs (deg) | launch below TrackMan's (deg) | spin at TrackMan's launch (rpm, MAE) |",
                "|---|---|---|---|---|---|"]
 lines = open("tests/data/trackman/validation-8i-5i.csv", encoding="utf-8-sig").read().splitlines()
@@ -345,7 +407,14 @@ for club, q in per_club.items():
     m = lambda i: sum(x[i] for x in q) / len(q)
     spin_launch.append(f"| {club} | {len(q)} | {m(0):.2f} | {m(1):.2f} | {m(1) - m(0):.2f} | {m(2):.0f} |")
 
+variants = ["| the 8- and 5-iron presets | 8-iron ball speed MAE / bias (mph) | 5-iron ball speed MAE / bias (mph) | 8-iron spin MAE (rpm) |",
+            "|---|---|---|---|"]
+for v in json.load(open(f"{out}/variants.json")):
+    c8, c5 = v["cells"]["8 Iron"], v["cells"]["5 Iron"]
+    variants.append(f"| {v['label']} | {c8[0]:.2f} / {c8[1]:+.2f} | {c5[0]:.2f} / {c5[1]:+.2f} | {c8[2]:.0f} |")
+
 docs_regions.replace("docs/real-shots.md", {
+    "variants": variants,
     "relation": relation,
     "tour": tour,
     "validation": club_table("validation.json"),
@@ -355,6 +424,7 @@ docs_regions.replace("docs/real-shots.md", {
     "slope": slope,
     "heldout": club_table("heldout.json"),
     "strike-height": strike,
+    "heel-toe": heel_toe,
     "spin-launch": spin_launch,
     "spin-relation": club_table("spin-relation.json"),
     "heldout-relation": club_table("heldout-relation.json"),
