@@ -33,4 +33,4 @@ pub mod two_layer;
 
 pub use assembly::{Assembly, ContactForces, ContinuousResult, Integration, TracePoint};
 pub use start::Start;
-pub use two_layer::{ContinuousModel, TwoLayerParams, TwoLayerReading};
+pub use two_layer::{ContinuousModel, TwoLayerContact, TwoLayerParams, TwoLayerReading};

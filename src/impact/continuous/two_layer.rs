@@ -53,6 +53,14 @@ pub struct TwoLayerParams {
     pub v_tr_mps: Real,
 }
 
+/// The ball's contact with the face as [`TwoLayerParams::contact`] builds it: an assembly's law, ball and surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoLayerContact {
+    pub law: Volumetric,
+    pub ball: TwoLayerBall,
+    pub surface: FaceSurface,
+}
+
 /// Which reading of Table 3.5 (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -146,6 +154,22 @@ impl TwoLayerParams {
         Ok(Some(p))
     }
 
+    /// The parameters checked against `ball` and built into the parts every model with this ball shares
+    /// (`continuous`, `ground`): the volumetric law (eq. 3.14-3.15), the two-layer ball and `club`'s face.
+    pub fn contact(&self, club: &ClubSpec, ball: &BallSpec) -> Result<TwoLayerContact, ImpactError> {
+        self.validate(ball)?;
+        Ok(TwoLayerContact {
+            law: Volumetric {
+                k_v_n_per_m3: self.k_v_n_per_m3,
+                d_s_per_m: self.d_s_per_m,
+                mu: self.mu,
+                v_tr_mps: self.v_tr_mps,
+            },
+            ball: TwoLayerBall::new(ball, self.cover_thickness_m, self.k_ball_nm_per_rad, self.c_ball_nms_per_rad),
+            surface: FaceSurface::of_club(club),
+        })
+    }
+
     /// Checks every parameter, naming a bad one.
     pub fn validate(&self, ball: &BallSpec) -> Result<(), ImpactError> {
         let positive = [
@@ -220,25 +244,9 @@ impl ContinuousModel {
     ) -> Result<ContinuousResult, ImpactError> {
         let club = &equipment.club;
         let params = self.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::default()));
-        params.validate(&equipment.ball)?;
+        let TwoLayerContact { law, ball, surface } = params.contact(club, &equipment.ball)?;
         let start = super::start::Start::new(state, equipment)?;
-        let assembly = Assembly {
-            law: Volumetric {
-                k_v_n_per_m3: params.k_v_n_per_m3,
-                d_s_per_m: params.d_s_per_m,
-                mu: params.mu,
-                v_tr_mps: params.v_tr_mps,
-            },
-            ball: TwoLayerBall::new(
-                &equipment.ball,
-                params.cover_thickness_m,
-                params.k_ball_nm_per_rad,
-                params.c_ball_nms_per_rad,
-            ),
-            club: FreeHead::new(club),
-            ground: NoGround,
-            surface: FaceSurface::of_club(club),
-        };
+        let assembly = Assembly { law, ball, club: FreeHead::new(club), ground: NoGround, surface };
         let integration =
             Integration { step_s: self.step_s, max_contact_s: self.max_contact_s, trace_every, model: "continuous" };
         let stepping = if self.max_step_growth > 1.0 {
