@@ -30,7 +30,7 @@ struct StageRate<CR, BR> {
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
     /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, the ball's contact, and
     /// what `bound` makes of the contact and the law's force there (`None` out of contact).
-    #[inline]
+    #[inline(always)]
     fn stage_rate(
         &self,
         s: &SteppedState<B, C>,
