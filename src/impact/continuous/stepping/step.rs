@@ -27,6 +27,12 @@ struct StageRate<CR, BR> {
     ball: BR,
 }
 
+/// A stage's rates, the ball's contact (if any) and the step's bound made of it.
+type StageOut<CR, BR> = (StageRate<CR, BR>, Option<ContactForces>, Option<Real>);
+
+/// A step's end, what acted at its start and the step's size (s).
+type StepEnd<B, C, G> = (SteppedState<B, C>, StepStart<<C as SteppedClub>::Motion, <G as SampledGround>::Forces>, Real);
+
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
     /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, the ball's contact, and
     /// what `bound` makes of the contact and the law's force there (`None` out of contact).
@@ -38,7 +44,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         law_state: &L::State,
         ground: &G::Forces,
         bound: impl FnOnce(&Contact, &ContactForce) -> Option<Real>,
-    ) -> (StageRate<C::Rate, B::Rate>, Option<ContactForces>, Option<Real>) {
+    ) -> StageOut<C::Rate, B::Rate> {
         let head = C::head(motion);
         let mut bound_s = None;
         let contact = self.contact(&head, &s.ball).map(|c| {
@@ -95,7 +101,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         hold_ground: bool,
         ground: Option<&G::Forces>,
         bound: impl FnOnce(&Contact, &ContactForce) -> Option<Real>,
-    ) -> (SteppedState<B, C>, StepStart<C::Motion, G::Forces>, Real) {
+    ) -> StepEnd<B, C, G> {
         let g1 = match ground {
             Some(g) => *g,
             None => self.ground.forces_on(&C::head(&motion)),
