@@ -207,8 +207,8 @@ const H_LAMBDA: Real = 2.4;
 /// cover nearly sticks under a large normal force (`λ = 4 μ F_N / v_tr · (1/m + R²/I_cover + ...)`, up to about
 /// 4.5e6 1/s), which bounds classical Runge-Kutta's step there; elsewhere (the first touch, a sliding cover, the
 /// release) the step grows up to `max_step_growth` times `step_s` while `h λ` stays within 2.4
-/// ([`StiffnessStep`], on the assembly's multi-rate stepping). Halving `step_s` halves every step. The contact time is resolved to the last step
-/// (at most `max_step_growth · step_s`, 3.6 us).
+/// ([`StiffnessStep`], on the assembly's multi-rate stepping). Halving `step_s` halves every step. The contact
+/// time is resolved to the last step (at most `max_step_growth · step_s`, 3.6 us).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContinuousModel {
     /// Parameters; `None` uses the one-cycle reading of Table 3.5 for the club ([`TwoLayerParams::preset`]).

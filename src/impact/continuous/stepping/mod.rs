@@ -15,8 +15,8 @@
 //! - when to stop: after each step it sees the step's start, its state and what acted then ([`StepStart`]).
 //!
 //! Every model of the shared parts runs here. [`FixedStep`] is the plain policy (one step, stop when the ball
-//! leaves); [`StiffnessStep`] the two-layer model's, measuring what a [`ContinuousResult`](super::assembly::ContinuousResult)
-//! reports.
+//! leaves); [`StiffnessStep`] the two-layer model's, measuring what a
+//! [`ContinuousResult`](super::assembly::ContinuousResult) reports.
 
 mod fixed;
 mod ladder;
