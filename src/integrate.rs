@@ -1,4 +1,4 @@
-//! Time integration shared by the continuous impact models and ball flight.
+//! Time integration of ball flight (the impact models integrate in `impact::continuous`).
 //!
 //! A system gives the rate of its state ([`Ode::rate`]) and how a state moves along rates ([`Ode::advance`],
 //! [`Ode::advance_rk4`]); [`rk4_step`] takes one classical fourth-order Runge-Kutta step. The caller owns the

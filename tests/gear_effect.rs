@@ -8,10 +8,11 @@
 
 use impactd::equipment::ClubSpec;
 use impactd::impact::continuous::ball::{BallPart, RigidBall, TwoLayerBall};
-use impactd::impact::continuous::club::{ClubPart, FreeHead, FreeHeadState, Head};
+use impactd::impact::continuous::club::{ClubLoad, ClubPart, FreeHead, FreeHeadState, Head, SteppedClub};
 use impactd::impact::continuous::ground::NoGround;
 use impactd::impact::continuous::law::volumetric::Volumetric;
 use impactd::impact::continuous::law::{Contact, ContactForce, ContactLaw};
+use impactd::impact::continuous::stepping::StiffnessStep;
 use impactd::impact::continuous::surface::{FaceSurface, Overlap};
 use impactd::impact::continuous::{Assembly, Integration, Start, TwoLayerParams};
 use impactd::impact::LaunchMetrics;
@@ -56,7 +57,7 @@ impl ClubPart for LastHead {
         self.head.head(s)
     }
     fn rate(&self, s: &FreeHeadState, head: &Head, force_n: Vector3, torque_nm: Vector3) -> Self::Rate {
-        self.head.rate(s, head, force_n, torque_nm)
+        ClubPart::rate(&self.head, s, head, force_n, torque_nm)
     }
     fn advance(s: &FreeHeadState, r: &Self::Rate, h: Real) -> FreeHeadState {
         FreeHead::advance(s, r, h)
@@ -69,6 +70,49 @@ impl ClubPart for LastHead {
     }
     fn energy_j(&self, s: &FreeHeadState) -> Real {
         self.head.energy_j(s)
+    }
+}
+
+/// The same head on the assembly's stepping (classical Runge-Kutta's own stages).
+impl SteppedClub for LastHead {
+    type State = FreeHeadState;
+    type Rate = <FreeHead as SteppedClub>::Rate;
+    type Motion = Head;
+    type Step = Real;
+    type Half = ();
+    fn step(&self, h_s: Real) -> Real {
+        h_s
+    }
+    fn step_s(step: &Real) -> Real {
+        *step
+    }
+    fn motion(&self, s: &FreeHeadState, t_s: Real) -> Head {
+        self.head.motion(s, t_s)
+    }
+    fn head(m: &Head) -> Head {
+        *m
+    }
+    fn rate(&self, s: &FreeHeadState, m: &Head, load: &ClubLoad) -> Self::Rate {
+        SteppedClub::rate(&self.head, s, m, load)
+    }
+    fn free_half(&self, step: &Real, s: &FreeHeadState) {
+        self.head.free_half(step, s)
+    }
+    fn half(&self, step: &Real, s: &FreeHeadState, free: &(), k: &Self::Rate) -> FreeHeadState {
+        self.head.half(step, s, free, k)
+    }
+    fn fourth(
+        &self,
+        step: &Real,
+        s: &FreeHeadState,
+        s2: &FreeHeadState,
+        k1: &Self::Rate,
+        k3: &Self::Rate,
+    ) -> FreeHeadState {
+        self.head.fourth(step, s, s2, k1, k3)
+    }
+    fn finish(&self, step: &Real, s: &FreeHeadState, k: [&Self::Rate; 4]) -> FreeHeadState {
+        self.head.finish(step, s, k)
     }
 }
 
@@ -133,7 +177,7 @@ fn run<B: BallPart>(eq: &Equipment, st: &ImpactState, p: &TwoLayerParams, ball: 
         surface: FaceSurface::of_club(club),
     };
     let integration = Integration { step_s: STEP_S, max_contact_s: 3e-3, trace_every: 0, model: "continuous" };
-    let r = asm.simulate(st, start.ball_centre_m, start.slip0, &integration).unwrap();
+    let r = StiffnessStep::new(&asm.club, integration, None, start.slip0).run(&asm, st, start.ball_centre_m).unwrap();
     Run {
         launch: r.launch,
         contact_time_s: r.contact_time_s,

@@ -1,8 +1,8 @@
 //! Continuous impact models (seed section 3.2 and chapter 4): the collision resolved in time.
 //!
-//! Each model is an [`Assembly`] of parts behind small traits, integrated by the shared Runge-Kutta step of
-//! [`crate::integrate`] ([`Assembly::simulate`], fixed step) or by the assembly's multi-rate stepping
-//! ([`stepping`]: `Assembly::run_stepped`, a policy choosing each step, events, the ground's forces held):
+//! Each model is an [`Assembly`] of parts behind small traits, integrated by the assembly's multi-rate stepping
+//! ([`stepping`]: `Assembly::run_stepped`, classical Runge-Kutta's stages with a policy choosing each step,
+//! events, the ground's forces held):
 //!
 //! - [`law`]: the contact law, normal and tangential force (eq. 3.14-3.15 in [`law::volumetric`]);
 //! - [`ball`]: rigid, or two-layer (core and cover, Table 3.5);
@@ -33,4 +33,4 @@ pub mod two_layer;
 
 pub use assembly::{Assembly, ContactForces, ContinuousResult, Integration, TracePoint};
 pub use start::Start;
-pub use two_layer::{ContinuousModel, TwoLayerParams, TwoLayerReading};
+pub use two_layer::{ContinuousModel, TwoLayerContact, TwoLayerParams, TwoLayerReading};

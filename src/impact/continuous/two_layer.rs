@@ -22,11 +22,12 @@
 //! Assumptions (seed 3.2.1): the contact never reaches the face's edges; a face whose bulge and roll differ is
 //! taken as a sphere of their geometric-mean radius.
 
-use super::assembly::{Assembly, ContinuousResult, Integration, StepSize};
+use super::assembly::{Assembly, ContinuousResult, Integration};
 use super::ball::TwoLayerBall;
 use super::club::FreeHead;
 use super::ground::NoGround;
 use super::law::volumetric::Volumetric;
+use super::stepping::{StiffnessBound, StiffnessStep};
 use super::surface::FaceSurface;
 use crate::equipment::{BallSpec, ClubSpec, ModelSections};
 use crate::impact::{Equipment, ImpactError, ImpactModel, ImpactState, ModelRun, RunOptions};
@@ -51,6 +52,14 @@ pub struct TwoLayerParams {
     pub cover_thickness_m: Real,
     /// Friction transition velocity (m/s).
     pub v_tr_mps: Real,
+}
+
+/// The ball's contact with the face as [`TwoLayerParams::contact`] builds it: an assembly's law, ball and surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoLayerContact {
+    pub law: Volumetric,
+    pub ball: TwoLayerBall,
+    pub surface: FaceSurface,
 }
 
 /// Which reading of Table 3.5 (module docs).
@@ -146,6 +155,22 @@ impl TwoLayerParams {
         Ok(Some(p))
     }
 
+    /// The parameters checked against `ball` and built into the parts every model with this ball shares
+    /// (`continuous`, `ground`): the volumetric law (eq. 3.14-3.15), the two-layer ball and `club`'s face.
+    pub fn contact(&self, club: &ClubSpec, ball: &BallSpec) -> Result<TwoLayerContact, ImpactError> {
+        self.validate(ball)?;
+        Ok(TwoLayerContact {
+            law: Volumetric {
+                k_v_n_per_m3: self.k_v_n_per_m3,
+                d_s_per_m: self.d_s_per_m,
+                mu: self.mu,
+                v_tr_mps: self.v_tr_mps,
+            },
+            ball: TwoLayerBall::new(ball, self.cover_thickness_m, self.k_ball_nm_per_rad, self.c_ball_nms_per_rad),
+            surface: FaceSurface::of_club(club),
+        })
+    }
+
     /// Checks every parameter, naming a bad one.
     pub fn validate(&self, ball: &BallSpec) -> Result<(), ImpactError> {
         let positive = [
@@ -172,7 +197,7 @@ impl TwoLayerParams {
     }
 }
 
-/// The largest `h λ` a step takes at the default step on the friction's slip mode (eq. 3.15, [`StepSize`]):
+/// The largest `h λ` a step takes at the default step on the friction's slip mode (eq. 3.15, [`StiffnessStep`]):
 /// classical Runge-Kutta is stable on a decaying mode up to 2.785, and `λ` grows within a step as the force does.
 const H_LAMBDA: Real = 2.4;
 
@@ -182,8 +207,8 @@ const H_LAMBDA: Real = 2.4;
 /// cover nearly sticks under a large normal force (`λ = 4 μ F_N / v_tr · (1/m + R²/I_cover + ...)`, up to about
 /// 4.5e6 1/s), which bounds classical Runge-Kutta's step there; elsewhere (the first touch, a sliding cover, the
 /// release) the step grows up to `max_step_growth` times `step_s` while `h λ` stays within 2.4
-/// ([`StepSize::Stiffness`]). Halving `step_s` halves every step. The contact time is resolved to the last step
-/// (at most `max_step_growth · step_s`, 3.6 us).
+/// ([`StiffnessStep`], on the assembly's multi-rate stepping). Halving `step_s` halves every step. The contact
+/// time is resolved to the last step (at most `max_step_growth · step_s`, 3.6 us).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContinuousModel {
     /// Parameters; `None` uses the one-cycle reading of Table 3.5 for the club ([`TwoLayerParams::preset`]).
@@ -220,37 +245,17 @@ impl ContinuousModel {
     ) -> Result<ContinuousResult, ImpactError> {
         let club = &equipment.club;
         let params = self.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::default()));
-        params.validate(&equipment.ball)?;
+        let TwoLayerContact { law, ball, surface } = params.contact(club, &equipment.ball)?;
         let start = super::start::Start::new(state, equipment)?;
-        let assembly = Assembly {
-            law: Volumetric {
-                k_v_n_per_m3: params.k_v_n_per_m3,
-                d_s_per_m: params.d_s_per_m,
-                mu: params.mu,
-                v_tr_mps: params.v_tr_mps,
-            },
-            ball: TwoLayerBall::new(
-                &equipment.ball,
-                params.cover_thickness_m,
-                params.k_ball_nm_per_rad,
-                params.c_ball_nms_per_rad,
-            ),
-            club: FreeHead::new(club),
-            ground: NoGround,
-            surface: FaceSurface::of_club(club),
-        };
+        let assembly = Assembly { law, ball, club: FreeHead::new(club), ground: NoGround, surface };
         let integration =
             Integration { step_s: self.step_s, max_contact_s: self.max_contact_s, trace_every, model: "continuous" };
-        let stepping = if self.max_step_growth > 1.0 {
-            StepSize::Stiffness {
-                growth: self.max_step_growth,
-                h_lambda: H_LAMBDA * self.step_s / Self::STEP_S,
-                slip_compliance_per_kg: slip_compliance_per_kg(&assembly.ball, club),
-            }
-        } else {
-            StepSize::Fixed
-        };
-        assembly.simulate_with_step(state, start.ball_centre_m, start.slip0, &integration, &stepping)
+        let bound = (self.max_step_growth > 1.0).then(|| StiffnessBound {
+            growth: self.max_step_growth,
+            h_lambda: H_LAMBDA * self.step_s / Self::STEP_S,
+            slip_compliance_per_kg: slip_compliance_per_kg(&assembly.ball, club),
+        });
+        StiffnessStep::new(&assembly.club, integration, bound, start.slip0).run(&assembly, state, start.ball_centre_m)
     }
 }
 
@@ -267,7 +272,7 @@ impl ImpactModel for ContinuousModel {
 /// An upper bound of how fast a tangential force at the contact changes the slip there (1/kg): the ball's
 /// translation and its cover's turn (`1/m + R²/I_cover`), and the head's (`1/m_club + |r|²/I_min`, `r` from the CG
 /// to the contact: at most the face centre's distance plus the face's half-diagonal and 10 mm for the overlap).
-fn slip_compliance_per_kg(ball: &TwoLayerBall, club: &ClubSpec) -> Real {
+pub(super) fn slip_compliance_per_kg(ball: &TwoLayerBall, club: &ClubSpec) -> Real {
     let r_club_m = club.face.center_m.norm() + club.face_half_width_m.hypot(club.face_half_height_m) + 0.01;
     let i_min = club.inertia_kg_m2.symmetric_eigenvalues().min();
     1.0 / ball.mass_kg

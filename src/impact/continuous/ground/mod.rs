@@ -22,14 +22,6 @@ pub struct GroundWrench {
     pub torque_nm: Vector3,
 }
 
-/// Ground reaction on the head as a function of its motion.
-pub trait GroundReaction {
-    /// The wrench on the head at this instant.
-    fn wrench(&self, head: &Head) -> GroundWrench;
-    /// Whether the ground exists at all (lets the assembly skip it).
-    const PRESENT: bool = true;
-}
-
 /// A ground whose reaction at an instant is a value: the assembly's multi-rate stepping can evaluate it once and
 /// hold it over several steps (it changes over milliseconds, a ball's contact over microseconds), and a model can
 /// measure what it holds (sinkage, phase).
@@ -45,14 +37,6 @@ pub trait SampledGround {
 /// No ground: a ball on a tee, or a model without ground reaction.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NoGround;
-
-impl GroundReaction for NoGround {
-    const PRESENT: bool = false;
-    #[inline]
-    fn wrench(&self, _: &Head) -> GroundWrench {
-        GroundWrench::default()
-    }
-}
 
 impl SampledGround for NoGround {
     type Forces = ();
@@ -73,16 +57,5 @@ impl SampledGround for SoilGround {
     #[inline]
     fn wrench_of(forces: &GroundForces) -> GroundWrench {
         GroundWrench { force_n: forces.force_n(), torque_nm: forces.torque_nm() }
-    }
-}
-
-impl GroundReaction for SoilGround {
-    fn wrench(&self, head: &Head) -> GroundWrench {
-        let pose = crate::math::Isometry3::from_parts(
-            crate::math::Translation3::from(head.position_m),
-            crate::math::UnitQuaternion::from_rotation_matrix(&head.world_from_club),
-        );
-        let f = self.forces(&pose, &head.velocity_mps, &head.angular_velocity_radps);
-        GroundWrench { force_n: f.force_n(), torque_nm: f.torque_nm() }
     }
 }

@@ -30,6 +30,7 @@ pub mod sections;
 use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::SoleSpec;
+use crate::equipment::EquipmentError;
 use crate::impact::continuous::ground::{GroundPhase, SoilGround};
 use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::modal::ModalClub;
@@ -98,14 +99,27 @@ impl GroundModel {
     /// Assembles the club once (its modes), for many shots.
     pub fn prepare(&self, equipment: &Equipment) -> Result<PreparedGround, ImpactError> {
         let club = &equipment.club;
-        let shaft_err = |e: ShaftError| ImpactError::NotConverged { model: "ground", reason: e.to_string() };
         let model = self.clone();
-        let flexible =
-            FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh).map_err(shaft_err)?;
-        let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_err)?;
+        let flexible = FlexibleClub::new(&model.shaft, &HeadOnShaft::of(club), &model.sole, model.mesh)
+            .map_err(shaft_error("mesh"))?;
+        let modal = ModalClub::new(&flexible, model.max_mode_hz, 0.0).map_err(shaft_error("max_mode_hz"))?;
         let shaft_cg_m = flexible.tip_m + (flexible.butt_m - flexible.tip_m) * shaft_cg_fraction(&model.shaft);
         let steps = StepLadder::new(|h_s| ModalStepper::new(&modal, h_s), model.ball_step_s, model.ground_step_s);
         Ok(PreparedGround { model, equipment: equipment.clone(), modal, shaft_cg_m, steps })
+    }
+}
+
+/// A flexible club the model's parameters cannot build is a bad parameter: the shaft's or the sole's field it
+/// names, or `mesh_field` for the discretisation (the mesh, the modes kept); matrices that are not positive
+/// definite are a numerical failure.
+fn shaft_error(mesh_field: &'static str) -> impl Fn(ShaftError) -> ImpactError {
+    move |e| match e {
+        ShaftError::Equipment(EquipmentError::Invalid { field, reason }) => {
+            ImpactError::InvalidParameter { field: field.into(), reason }
+        }
+        ShaftError::Equipment(e) => ImpactError::InvalidParameter { field: "shaft".into(), reason: e.to_string() },
+        ShaftError::Mesh(reason) => ImpactError::InvalidParameter { field: mesh_field.into(), reason },
+        ShaftError::NotPositiveDefinite => ImpactError::NotConverged { model: "ground", reason: e.to_string() },
     }
 }
 
@@ -221,5 +235,46 @@ impl PreparedGround {
         );
         ground.force_mask = self.model.force_mask;
         Ok(ground)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::soil::SoilSpec;
+    use crate::equipment::ClubSpec;
+
+    /// The field an error names, if it is a bad parameter.
+    fn invalid_field(model: &GroundModel) -> Option<String> {
+        match model.prepare(&Equipment::new(ClubSpec::iron7())) {
+            Err(ImpactError::InvalidParameter { field, .. }) => Some(field),
+            Err(e) => panic!("not a bad parameter: {e:?}"),
+            Ok(_) => None,
+        }
+    }
+
+    /// A shaft, sole or mesh the model cannot build is `InvalidParameter` naming the field (it was reported as
+    /// the model not converging); the seed's 7-iron setup builds.
+    #[test]
+    fn a_bad_shaft_parameter_is_an_invalid_parameter() {
+        let good = GroundModel::new(SoilSpec::firm());
+        assert_eq!(invalid_field(&good), None);
+        let mut m = good.clone();
+        m.shaft.mass_kg = -1.0;
+        assert_eq!(invalid_field(&m).as_deref(), Some("shaft.mass_kg"));
+        let mut m = good.clone();
+        m.shaft.youngs_modulus_pa = Real::NAN;
+        assert_eq!(invalid_field(&m).as_deref(), Some("shaft.youngs_modulus_pa"));
+        let mut m = good.clone();
+        m.sole.sole_width_m = 0.0;
+        assert_eq!(invalid_field(&m).as_deref(), Some("sole.sole_width_m"));
+        // Table 4.2's four stations need three elements at least.
+        let mut m = good.clone();
+        m.mesh.elements = 2;
+        assert_eq!(invalid_field(&m).as_deref(), Some("mesh"));
+        // The club's first mode is a few hertz: none is left below 0.5 Hz.
+        let mut m = good;
+        m.max_mode_hz = 0.5;
+        assert_eq!(invalid_field(&m).as_deref(), Some("max_mode_hz"));
     }
 }

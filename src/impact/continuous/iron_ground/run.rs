@@ -6,12 +6,11 @@ use super::placement::{classify, first_ground_contact_s, Strike};
 use super::policy::{StrikeSteps, StrikeSystem};
 use super::{GroundResult, PreparedGround};
 use crate::impact::continuous::assembly::{Assembly, State};
-use crate::impact::continuous::ball::{BallPart, TwoLayerBall};
+use crate::impact::continuous::ball::BallPart;
 use crate::impact::continuous::club::{ShaftClub, ShaftClubState};
-use crate::impact::continuous::law::volumetric::Volumetric;
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::surface::FaceSurface;
-use crate::impact::continuous::{TwoLayerParams, TwoLayerReading};
+use crate::impact::continuous::{TwoLayerContact, TwoLayerParams, TwoLayerReading};
 use crate::impact::{ImpactError, ImpactState};
 use crate::math::Real;
 use crate::units::MPS_PER_MPH;
@@ -25,14 +24,13 @@ pub(super) fn simulate(
     let model = &p.model;
     let club = &p.equipment.club;
     let params = model.params.unwrap_or_else(|| TwoLayerParams::preset(club, TwoLayerReading::default()));
-    params.validate(&p.equipment.ball)?;
+    let TwoLayerContact { law, ball, surface } = params.contact(club, &p.equipment.ball)?;
     let mut ground = p.ground_for(state)?;
     let motion = ConstantTwist {
         world_from_club: state.world_from_club,
         cg_velocity_mps: state.cg_velocity_mps,
         angular_velocity_radps: state.angular_velocity_radps,
     };
-    let surface = FaceSurface::of_club(club);
     let FaceSurface::Plane { point: face_point, normal: face_normal } = surface else {
         return Err(ImpactError::InvalidParameter {
             field: "club".into(),
@@ -66,23 +64,7 @@ pub(super) fn simulate(
         shaft_mass_kg: model.shaft.mass_kg,
         shaft_cg_m: p.shaft_cg_m,
     };
-    let asm: StrikeSystem = Assembly {
-        law: Volumetric {
-            k_v_n_per_m3: params.k_v_n_per_m3,
-            d_s_per_m: params.d_s_per_m,
-            mu: params.mu,
-            v_tr_mps: params.v_tr_mps,
-        },
-        ball: TwoLayerBall::new(
-            &p.equipment.ball,
-            params.cover_thickness_m,
-            params.k_ball_nm_per_rad,
-            params.c_ball_nms_per_rad,
-        ),
-        club: shaft_club,
-        ground,
-        surface,
-    };
+    let asm: StrikeSystem = Assembly { law, ball, club: shaft_club, ground, surface };
     let ball_centre = super::placement::ball_centre_m(state, club, &p.equipment.ball)?;
     let s0 = State { club: ShaftClubState::default(), ball: asm.ball.at_rest(ball_centre) };
     let momentum_start = asm.club.momentum_ns(&s0.club, t0);

@@ -1,6 +1,5 @@
 //! The plain policy: one step size, no events, the ground evaluated at every stage, stopping when the ball leaves
-//! the face, as the fixed-step `Assembly::simulate` does. A model of the shared parts runs on the multi-rate
-//! stepping with it and nothing of its own.
+//! the face. A model of the shared parts runs on the multi-rate stepping with it and nothing of its own.
 
 use super::{Flow, StepPolicy, StepStart, SteppedState};
 use crate::impact::continuous::assembly::Assembly;

@@ -6,32 +6,35 @@
 //! scheme on the same stages. What the policy decides:
 //!
 //! - the step's size, from a ladder of sizes whose coefficients are built once ([`StepLadder`]): long while
-//!   slow forces act alone, short in the ball's contact;
+//!   slow forces act alone, short in the ball's contact; or shortened by the ball's contact at the step's start
+//!   ([`StiffnessStep`]: as far as the friction's stiffness allows);
 //! - events: instants a step must end at (a first touch, the end of a follow-through); a step that would pass
 //!   one ends there, with coefficients built for that one step;
 //! - the ground's clock: whether its forces are evaluated once at a step's start and held over the step and
 //!   the steps that follow, for how long (they change over milliseconds, the ball's over microseconds);
 //! - when to stop: after each step it sees the step's start, its state and what acted then ([`StepStart`]).
 //!
-//! The plain fixed-step Runge-Kutta stays [`Assembly::simulate`]; this is the way for models whose club or ground
-//! need more. [`FixedStep`] is the plain policy (one step, stop when the ball leaves): with it a model of the
-//! shared parts runs here unchanged.
+//! Every model of the shared parts runs here. [`FixedStep`] is the plain policy (one step, stop when the ball
+//! leaves); [`StiffnessStep`] the two-layer model's, measuring what a
+//! [`ContinuousResult`](super::assembly::ContinuousResult) reports.
 
 mod fixed;
 mod ladder;
 mod step;
+mod stiffness;
 #[cfg(test)]
 mod tests;
 
 pub use fixed::FixedStep;
 pub use ladder::StepLadder;
 pub use step::StepStart;
+pub use stiffness::{StiffnessBound, StiffnessStep};
 
 use super::assembly::{Assembly, State};
 use super::ball::BallPart;
 use super::club::{Head, SteppedClub};
 use super::ground::SampledGround;
-use super::law::ContactLaw;
+use super::law::{Contact, ContactForce, ContactLaw};
 use crate::impact::ImpactError;
 use crate::math::Real;
 
@@ -57,6 +60,12 @@ pub trait StepPolicy<L, B: BallPart, C: SteppedClub, G: SampledGround> {
     /// `Some(hold_s)`: during a step of `h_s` the ground's forces are those of the step's start, and a start
     /// within `hold_s` of the last evaluation reuses it. `None` (the default): evaluated at every stage.
     fn ground_hold_s(&self, _h_s: Real) -> Option<Real> {
+        None
+    }
+    /// A step shorter than the one chosen, from the ball's contact at its start and the law's force there: the
+    /// step ends after `Some(h_s)` when that is shorter (its coefficients built for it; the ground's hold as
+    /// chosen for the longer one). `None` (the default): the step as chosen.
+    fn contact_step_s(&self, _asm: &Assembly<L, B, C, G>, _contact: &Contact, _force: &ContactForce) -> Option<Real> {
         None
     }
     /// After the step of `h_s` from `s` at `t_s`, with what acted at its start.
@@ -102,7 +111,9 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             let h = C::step_s(step);
             let hold_s = policy.ground_hold_s(h);
             let reuse = held.filter(|(_, t)| hold_s.is_some_and(|hold_s| t_s - t < hold_s - 0.5 * h)).map(|(g, _)| g);
-            let (next, start) = self.step_stepped(&s, t_s, motion, step, &law_state, hold_s.is_some(), reuse.as_ref());
+            let bound = |c: &Contact, f: &ContactForce| policy.contact_step_s(self, c, f);
+            let (next, start, h) =
+                self.step_stepped(&s, t_s, motion, step, &law_state, hold_s.is_some(), reuse.as_ref(), bound);
             if reuse.is_none() {
                 held = hold_s.map(|_| (start.ground, t_s));
             }

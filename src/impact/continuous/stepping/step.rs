@@ -10,7 +10,7 @@ use crate::impact::continuous::assembly::{Assembly, ContactForces, State};
 use crate::impact::continuous::ball::BallPart;
 use crate::impact::continuous::club::{ClubLoad, SteppedClub};
 use crate::impact::continuous::ground::SampledGround;
-use crate::impact::continuous::law::{ContactForce, ContactLaw};
+use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
 use crate::math::{Real, Vector3};
 
 /// What acted at a step's start: the club's motion, the ball's contact (if any) and the ground's forces.
@@ -27,19 +27,30 @@ struct StageRate<CR, BR> {
     ball: BR,
 }
 
+/// A stage's rates, the ball's contact (if any) and the step's bound made of it.
+type StageOut<CR, BR> = (StageRate<CR, BR>, Option<ContactForces>, Option<Real>);
+
+/// A step's end, what acted at its start and the step's size (s).
+type StepEnd<B, C, G> = (SteppedState<B, C>, StepStart<<C as SteppedClub>::Motion, <G as SampledGround>::Forces>, Real);
+
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
-    /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, and the ball's contact.
-    #[inline]
+    /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, the ball's contact, and
+    /// what `bound` makes of the contact and the law's force there (`None` out of contact).
+    #[inline(always)]
     fn stage_rate(
         &self,
         s: &SteppedState<B, C>,
         motion: &C::Motion,
         law_state: &L::State,
         ground: &G::Forces,
-    ) -> (StageRate<C::Rate, B::Rate>, Option<ContactForces>) {
+        bound: impl FnOnce(&Contact, &ContactForce) -> Option<Real>,
+    ) -> StageOut<C::Rate, B::Rate> {
         let head = C::head(motion);
+        let mut bound_s = None;
         let contact = self.contact(&head, &s.ball).map(|c| {
-            let ContactForce { normal_n, friction_n } = self.law.force(&c, law_state);
+            let force = self.law.force(&c, law_state);
+            bound_s = bound(&c, &force);
+            let ContactForce { normal_n, friction_n } = force;
             let forces = ContactForces { normal_n, friction_n, in_contact: true, depth_m: c.overlap.depth_m };
             (forces, normal_n * c.normal + friction_n, c.r_ball_m)
         });
@@ -56,7 +67,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             club: self.club.rate(&s.club, motion, &load),
             ball: self.ball.rate(&s.ball, f_on_ball, r_ball),
         };
-        (rate, contact.map(|c| c.0))
+        (rate, contact.map(|c| c.0), bound_s)
     }
 
     /// The rates of a later stage in `s` at `t_s`: the ground's forces `held`, or evaluated there.
@@ -70,14 +81,15 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     ) -> StageRate<C::Rate, B::Rate> {
         let motion = self.club.motion(&s.club, t_s);
         match held {
-            Some(g) => self.stage_rate(s, &motion, law_state, g).0,
-            None => self.stage_rate(s, &motion, law_state, &self.ground.forces_on(&C::head(&motion))).0,
+            Some(g) => self.stage_rate(s, &motion, law_state, g, |_, _| None).0,
+            None => self.stage_rate(s, &motion, law_state, &self.ground.forces_on(&C::head(&motion)), |_, _| None).0,
         }
     }
 
-    /// One step from `s` at `t_s` (the club's motion there `motion`) with `step`'s coefficients. With
-    /// `hold_ground` the ground's forces of the step's start (`ground` when given, else evaluated) act over the
-    /// whole step. Returns the step's end and what acted at its start.
+    /// One step from `s` at `t_s` (the club's motion there `motion`) with `step`'s coefficients, or shorter where
+    /// `bound` of the ball's contact at the start says (a step built for it). With `hold_ground` the ground's
+    /// forces of the step's start (`ground` when given, else evaluated) act over the whole step. Returns the
+    /// step's end, what acted at its start and the step's size (s).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn step_stepped(
         &self,
@@ -88,13 +100,22 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         law_state: &L::State,
         hold_ground: bool,
         ground: Option<&G::Forces>,
-    ) -> (SteppedState<B, C>, StepStart<C::Motion, G::Forces>) {
-        let h = C::step_s(step);
+        bound: impl FnOnce(&Contact, &ContactForce) -> Option<Real>,
+    ) -> StepEnd<B, C, G> {
         let g1 = match ground {
             Some(g) => *g,
             None => self.ground.forces_on(&C::head(&motion)),
         };
-        let (k1, contact) = self.stage_rate(s, &motion, law_state, &g1);
+        let (k1, contact, bound_s) = self.stage_rate(s, &motion, law_state, &g1, bound);
+        let shorter;
+        let step = match bound_s {
+            Some(h_s) if h_s < C::step_s(step) => {
+                shorter = self.club.step(h_s);
+                &shorter
+            }
+            _ => step,
+        };
+        let h = C::step_s(step);
         let held = hold_ground.then_some(&g1);
         let club = &self.club;
         // Stages two and three share the club's free motion over the half step.
@@ -114,6 +135,6 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             club: club.finish(step, &s.club, [&k1.club, &k2.club, &k3.club, &k4.club]),
             ball: B::advance_rk4_scaled(&s.ball, [&k1.ball, &k2.ball, &k3.ball, &k4.ball], h),
         };
-        (next, StepStart { motion, ball: contact, ground: g1 })
+        (next, StepStart { motion, ball: contact, ground: g1 }, h)
     }
 }
