@@ -140,7 +140,7 @@ impl SteppedClub for FreeHead {
         *m
     }
 
-    #[inline]
+    #[inline(always)]
     fn rate(&self, s: &FreeHeadState, m: &Head, load: &ClubLoad) -> FreeHeadRate {
         let force_n = load.ground_force_n + load.ball_force_n;
         let torque_nm = load.ground_torque_nm + load.ball_lever_m.cross(&load.ball_force_n);

@@ -31,7 +31,7 @@ use super::assembly::{Assembly, State};
 use super::ball::BallPart;
 use super::club::{Head, SteppedClub};
 use super::ground::SampledGround;
-use super::law::ContactLaw;
+use super::law::{Contact, ContactLaw};
 use crate::impact::ImpactError;
 use crate::math::{Real, Vector3};
 
@@ -103,12 +103,16 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         // The ground's forces held, and when they were evaluated.
         let mut held: Option<(G::Forces, Real)> = None;
         let stateful = std::mem::size_of::<L::State>() > 0;
+        // The ball's contact at the step's start when the last step found it at its end (a stateful law's commit).
+        let mut known: Option<Option<Contact>> = None;
         loop {
             let motion = self.club.motion(&s.club, t_s);
             let head = C::head(&motion);
             let mut nominal = policy.step(t_s, &s, &head);
+            let mut first = known.take();
             if let Some(fine) = policy.refined_step() {
-                if self.contact(&head, &s.ball).is_some_and(|c| self.law.refine(&c, &law_state)) {
+                let c = *first.get_or_insert_with(|| self.contact(&head, &s.ball));
+                if c.is_some_and(|c| self.law.refine(&c, &law_state)) {
                     nominal = fine;
                 }
             }
@@ -131,7 +135,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
             let reuse = held.filter(|(_, t)| hold_s.is_some_and(|hold_s| t_s - t < hold_s - 0.5 * h)).map(|(g, _)| g);
             let hold = hold_s.is_some();
             let (mut next, start, mut slip_next) =
-                self.step_stepped(&s, t_s, motion, step, &law_state, hold, reuse.as_ref(), slip_m);
+                self.step_stepped(&s, t_s, motion, step, &law_state, hold, reuse.as_ref(), slip_m, first);
             if reuse.is_none() {
                 held = hold_s.map(|_| (start.ground, t_s));
             }
@@ -145,7 +149,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
                 (Some(c0), None) if separation => {
                     let redo = |t: Real| {
                         let step = self.club.step(t);
-                        self.step_stepped(&s, t_s, motion, &step, &law_state, hold, reuse.as_ref(), slip_m)
+                        self.step_stepped(&s, t_s, motion, &step, &law_state, hold, reuse.as_ref(), slip_m, first)
                     };
                     let t = self.separation_s(c0.depth_m, h, &next, t_s, |t| redo(t).0);
                     (next, _, slip_next) = redo(t);
@@ -166,6 +170,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
                     c
                 });
                 self.law.commit(c.as_ref(), &mut law_state, h);
+                known = Some(c_next);
             }
             s = next;
             slip_m = slip_next;

@@ -14,7 +14,7 @@ use crate::impact::continuous::assembly::{Assembly, ContactForces, State};
 use crate::impact::continuous::ball::{rk4_mean, BallPart};
 use crate::impact::continuous::club::{ClubLoad, SteppedClub};
 use crate::impact::continuous::ground::SampledGround;
-use crate::impact::continuous::law::{ContactForce, ContactLaw};
+use crate::impact::continuous::law::{Contact, ContactForce, ContactLaw};
 use crate::math::{Real, Vector3};
 
 /// What acted at a step's start: the club's motion, the ball's contact (if any) and the ground's forces.
@@ -34,10 +34,10 @@ struct StageRate<CR, BR> {
 }
 
 impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B, C, G> {
-    /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, and the ball's contact;
-    /// `slip_since_m` is the contact's slip since the step's start (tracked laws only), `FIRST` the step's
-    /// first stage ([`ContactLaw::start_force`]).
-    #[inline]
+    /// The rates in `s` with the club's motion `motion` and the ground's forces `ground`, and the ball's contact
+    /// (`known`: already found there); `slip_since_m` is the contact's slip since the step's start (tracked laws
+    /// only), `FIRST` the step's first stage ([`ContactLaw::start_force`]).
+    #[inline(always)]
     fn stage_rate<const FIRST: bool>(
         &self,
         s: &SteppedState<B, C>,
@@ -45,10 +45,12 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         law_state: &L::State,
         ground: &G::Forces,
         slip_since_m: Vector3,
+        known: Option<Option<Contact>>,
     ) -> (StageRate<C::Rate, B::Rate>, Option<ContactForces>) {
         let head = C::head(motion);
         let mut slip_mps = Vector3::zeros();
-        let contact = self.contact(&head, &s.ball).map(|mut c| {
+        let contact = known.unwrap_or_else(|| self.contact(&head, &s.ball));
+        let contact = contact.map(|mut c| {
             if L::TRACKS_SLIP {
                 c.slip_since_step_m = slip_since_m - slip_since_m.dot(&c.normal) * c.normal;
                 slip_mps = c.slip_mps;
@@ -76,7 +78,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     }
 
     /// The rates of a later stage in `s` at `t_s`: the ground's forces `held`, or evaluated there.
-    #[inline]
+    #[inline(always)]
     fn later_stage_rate(
         &self,
         s: &SteppedState<B, C>,
@@ -87,19 +89,21 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
     ) -> StageRate<C::Rate, B::Rate> {
         let motion = self.club.motion(&s.club, t_s);
         match held {
-            Some(g) => self.stage_rate::<false>(s, &motion, law_state, g, slip_since_m).0,
+            Some(g) => self.stage_rate::<false>(s, &motion, law_state, g, slip_since_m, None).0,
             None => {
                 let g = self.ground.forces_on(&C::head(&motion));
-                self.stage_rate::<false>(s, &motion, law_state, &g, slip_since_m).0
+                self.stage_rate::<false>(s, &motion, law_state, &g, slip_since_m, None).0
             }
         }
     }
 
     /// One step from `s` at `t_s` (the club's motion there `motion`) with `step`'s coefficients. With
     /// `hold_ground` the ground's forces of the step's start (`ground` when given, else evaluated) act over the
-    /// whole step. `slip_m` is the contact's integrated slip at the start (tracked laws only). Returns the step's
-    /// end, what acted at its start and the integrated slip at its end.
+    /// whole step. `slip_m` is the contact's integrated slip at the start (tracked laws only); `first`, the
+    /// ball's contact at the start when already found. Returns the step's end, what acted at its start and the
+    /// integrated slip at its end.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     pub(super) fn step_stepped(
         &self,
         s: &SteppedState<B, C>,
@@ -110,6 +114,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         hold_ground: bool,
         ground: Option<&G::Forces>,
         slip_m: Vector3,
+        first: Option<Option<Contact>>,
     ) -> (SteppedState<B, C>, StepStart<C::Motion, G::Forces>, Vector3) {
         let h = C::step_s(step);
         let g1 = match ground {
@@ -119,7 +124,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         // The slip since the step's start at a stage whose integrated slip is `at` (as the stage's state holds
         // it, so the rounding is the integrated slip's).
         let since = |at: Vector3| if L::TRACKS_SLIP { at - slip_m } else { Vector3::zeros() };
-        let (k1, contact) = self.stage_rate::<true>(s, &motion, law_state, &g1, since(slip_m));
+        let (k1, contact) = self.stage_rate::<true>(s, &motion, law_state, &g1, since(slip_m), first);
         let held = hold_ground.then_some(&g1);
         let club = &self.club;
         // Stages two and three share the club's free motion over the half step.
