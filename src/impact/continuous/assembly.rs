@@ -131,7 +131,12 @@ impl<L: ContactLaw, B: BallPart, C, G> Assembly<L, B, C, G> {
     #[inline(always)]
     pub(super) fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
         let (centre_m, velocity_mps) = B::centre(ball);
-        let at = BallAt { centre_m, velocity_mps, surface_spin_radps: B::surface_spin(ball), radius_m: self.ball.radius_m() };
+        let at = BallAt {
+            centre_m,
+            velocity_mps,
+            surface_spin_radps: B::surface_spin(ball),
+            radius_m: self.ball.radius_m(),
+        };
         self.law.contact(&self.surface, head, &at)
     }
 }

@@ -23,6 +23,8 @@
 
 mod policy;
 mod run;
+#[cfg(test)]
+mod tests;
 
 use super::law::{
     arakawa::{ArakawaLaw, ArakawaParams},

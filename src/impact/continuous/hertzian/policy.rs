@@ -156,8 +156,10 @@ impl<T: Tangential> StepPolicy<HertzContact<T>, RigidBall, FreeHead, NoGround> f
             self.ft_min_n = self.ft_min_n.min(along);
         }
         if self.trace_every > 0 && self.steps % self.trace_every == 0 {
-            let (normal_n, along_n, x_m) =
-                start.ball.as_ref().map_or((0.0, 0.0, 0.0), |c| (c.normal_n, c.friction_n.dot(&self.face_dir), c.depth_m));
+            let (normal_n, along_n, x_m) = start
+                .ball
+                .as_ref()
+                .map_or((0.0, 0.0, 0.0), |c| (c.normal_n, c.friction_n.dot(&self.face_dir), c.depth_m));
             self.trace.push(HertzTracePoint {
                 t_us: t_s * 1e6,
                 normal_force_n: normal_n,

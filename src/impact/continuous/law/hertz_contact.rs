@@ -140,3 +140,102 @@ impl<T: Tangential> ContactLaw for HertzContact<T> {
         self.tangential.stored_energy_j(&state.tangential)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::continuous::law::arakawa::{ArakawaLaw, ArakawaParams};
+    use crate::impact::continuous::law::hertz::Begin;
+    use crate::math::Rotation3;
+
+    const R_M: Real = 0.0213;
+
+    /// A flat face through the club frame's origin facing +x, the head at rest at the world's origin.
+    fn face() -> (FaceSurface, Head) {
+        let head = Head {
+            position_m: Vector3::zeros(),
+            world_from_club: Rotation3::identity(),
+            velocity_mps: Vector3::zeros(),
+            angular_velocity_radps: Vector3::zeros(),
+        };
+        (FaceSurface::Plane { point: Vector3::zeros(), normal: Vector3::x() }, head)
+    }
+
+    fn law() -> HertzContact<ArakawaLaw> {
+        let p = ArakawaParams::IRON7;
+        let k = p.hertz().stiffness(R_M);
+        let begin = Begin { slip_dir: Vector3::y(), xdot0_mps: 40.0, k, r_eq_m: R_M, reduced_mass_kg: 0.04 };
+        HertzContact {
+            k,
+            d_s_per_m: p.d_s_per_m,
+            contact_arm: ContactArm::Radius,
+            tangential: ArakawaLaw::new(&p, &begin),
+        }
+    }
+
+    /// The ball `depth_m` into the face, moving at `v` (m/s) with spin `w` (rad/s).
+    fn ball(depth_m: Real, v: Vector3, w: Vector3) -> BallAt {
+        BallAt {
+            centre_m: Vector3::new(R_M - depth_m, 0.0, 0.0),
+            velocity_mps: v,
+            surface_spin_radps: w,
+            radius_m: R_M,
+        }
+    }
+
+    /// The force acts on the normal through the ball's centre at the radius (Maw, Barber and Fawcett's arm); the
+    /// approach and slip are the contact point's: a ball 1 mm in, moving at −2 m/s along the normal and 3 m/s
+    /// along +y, spinning 100 rad/s about −z: `ẋ` = 2 m/s, slip `3 + 100 × 0.0213` = 5.13 m/s along +y.
+    #[test]
+    fn the_contact_is_on_the_radius_through_the_centre() {
+        let (surface, head) = face();
+        let c =
+            law().contact(&surface, &head, &ball(1e-3, Vector3::new(-2.0, 3.0, 0.0), -100.0 * Vector3::z())).unwrap();
+        assert!((c.overlap.depth_m - 1e-3).abs() < 1e-15 && c.normal == Vector3::x());
+        assert!((c.r_ball_m + R_M * Vector3::x()).norm() < 1e-15, "{:?}", c.r_ball_m);
+        assert!((c.approach_mps - 2.0).abs() < 1e-12);
+        assert!((c.slip_mps - Vector3::new(0.0, 3.0 + 100.0 * R_M, 0.0)).norm() < 1e-12, "{:?}", c.slip_mps);
+    }
+
+    /// Touching (within 1 pm) while approaching is a contact with no force: the run starts at the first touch;
+    /// touching while leaving, or 10 pm apart, is none.
+    #[test]
+    fn a_touch_counts_only_while_approaching() {
+        let (surface, head) = face();
+        let law = law();
+        let c = law.contact(&surface, &head, &ball(-1e-13, Vector3::new(-1.0, 0.0, 0.0), Vector3::zeros())).unwrap();
+        assert_eq!(c.overlap.depth_m, 0.0);
+        assert_eq!(law.force(&c, &law.initial_state()).normal_n, 0.0);
+        assert!(law.contact(&surface, &head, &ball(-1e-13, Vector3::new(1.0, 0.0, 0.0), Vector3::zeros())).is_none());
+        assert!(law.contact(&surface, &head, &ball(-1e-11, Vector3::new(-1.0, 0.0, 0.0), Vector3::zeros())).is_none());
+    }
+
+    /// After a commit the next step's first stage takes the committed tangential force; recomputing it at the
+    /// same instant (no slip since) gives the same force to rounding (1e-12 relative here), and the normal force
+    /// is eq. 3.16's either way.
+    #[test]
+    fn the_first_stage_takes_the_committed_force() {
+        let (surface, head) = face();
+        let law = law();
+        let mut state = law.initial_state();
+        let mut c = law.contact(&surface, &head, &ball(2e-3, Vector3::new(-10.0, 3.0, 0.0), Vector3::zeros())).unwrap();
+        assert_eq!(law.start_force(&c, &state), law.force(&c, &state));
+        c.slip_since_step_m = 1e-5 * Vector3::y();
+        law.commit(Some(&c), &mut state, 1e-6);
+        let committed = law.tangential.force(&law.kinematics(&c), &HertzState::<_>::default().tangential);
+        let start = law.start_force(&Contact { slip_since_step_m: Vector3::zeros(), ..c }, &state);
+        let again = law.force(&Contact { slip_since_step_m: Vector3::zeros(), ..c }, &state);
+        assert!(start.friction_n.norm() > 1.0, "{:?}", start.friction_n);
+        assert!((start.friction_n - again.friction_n).norm() <= 1e-12 * start.friction_n.norm());
+        assert_eq!(start.normal_n, normal_force(law.k, law.d_s_per_m, c.overlap.depth_m, c.approach_mps));
+        let nominal = normal_force(law.k, law.d_s_per_m, 2e-3, 10.0);
+        assert!((start.normal_n - nominal).abs() < 1e-12 * nominal, "{} vs {nominal}", start.normal_n);
+        assert_eq!(start.normal_n, again.normal_n);
+        // What the commit found is what the first stage takes (from a fresh state the force on the same slip).
+        assert!((start.friction_n - committed).norm() <= 1e-12 * committed.norm(), "{start:?} vs {committed:?}");
+        // Out of contact the history is released: the next contact starts from its own force.
+        law.commit(None, &mut state, 1e-6);
+        assert_eq!(law.start_force(&c, &state), law.force(&c, &state));
+        assert_eq!(law.history_energy_j(&state), 0.0);
+    }
+}

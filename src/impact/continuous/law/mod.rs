@@ -73,7 +73,8 @@ pub trait ContactLaw {
     #[inline(always)]
     fn contact(&self, surface: &FaceSurface, head: &Head, ball: &BallAt) -> Option<Contact> {
         let rot = &head.world_from_club;
-        let overlap = surface.overlap(&rot.inverse_transform_vector(&(ball.centre_m - head.position_m)), ball.radius_m)?;
+        let overlap =
+            surface.overlap(&rot.inverse_transform_vector(&(ball.centre_m - head.position_m)), ball.radius_m)?;
         let normal = rot * overlap.normal;
         let r_club_m = rot * overlap.centroid_m;
         let r_ball_m = head.position_m + r_club_m - ball.centre_m;

@@ -11,13 +11,25 @@
 //!   one ends there, with coefficients built for that one step;
 //! - the ground's clock: whether its forces are evaluated once at a step's start and held over the step and
 //!   the steps that follow, for how long (they change over milliseconds, the ball's over microseconds);
-//! - when to stop: after each step it sees the step's start, its state and what acted then ([`StepStart`]).
+//! - when to stop: after each step it sees the step's start, its state and what acted then ([`StepStart`]), and
+//!   the contact law's history then ([`StepPolicy::law_state`]);
+//! - a finer step where the contact law flags a step's start near one of its switches
+//!   ([`StepPolicy::refined_step`], [`ContactLaw::refine`]);
+//! - whether the step in which the ball leaves ends where the overlap closes, found by secant, and the run there
+//!   ([`StepPolicy::end_at_separation`]).
+//!
+//! The contact law's history ([`ContactLaw::State`]) starts as the law says ([`ContactLaw::initial_state`]) and
+//! is committed after each step with the contact at its end; the contact found there is the next step's start.
+//! A law that reads the slip since a step's start ([`ContactLaw::TRACKS_SLIP`]) has it integrated beside the
+//! parts by the same stages.
 //!
 //! The plain fixed-step Runge-Kutta stays [`Assembly::simulate`]; this is the way for models whose club or ground
 //! need more. [`FixedStep`] is the plain policy (one step, stop when the ball leaves): with it a model of the
 //! shared parts runs here unchanged.
 
 mod fixed;
+#[cfg(test)]
+mod hook_tests;
 mod ladder;
 mod step;
 #[cfg(test)]

@@ -25,6 +25,9 @@ pub struct StepStart<M, F> {
     pub ground: F,
 }
 
+/// A step's end, what acted at its start and the contact's integrated slip at its end.
+pub(super) type Stepped<B, C, F> = (SteppedState<B, C>, StepStart<<C as SteppedClub>::Motion, F>, Vector3);
+
 /// The rates of one stage.
 struct StageRate<CR, BR> {
     club: CR,
@@ -115,7 +118,7 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
         ground: Option<&G::Forces>,
         slip_m: Vector3,
         first: Option<Option<Contact>>,
-    ) -> (SteppedState<B, C>, StepStart<C::Motion, G::Forces>, Vector3) {
+    ) -> Stepped<B, C, G::Forces> {
         let h = C::step_s(step);
         let g1 = match ground {
             Some(g) => *g,

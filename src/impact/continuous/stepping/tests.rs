@@ -14,7 +14,7 @@ use crate::impact::{Delivery, Equipment, ImpactError, ImpactState};
 use crate::math::{Real, Vector3};
 
 /// A 7-iron struck 6 mm toward the toe and 4 mm up the face, turning: the contact's moment acts on the head.
-fn strike() -> (Equipment, ImpactState) {
+pub(super) fn strike() -> (Equipment, ImpactState) {
     let eq = Equipment::new(ClubSpec::iron7());
     let delivery = Delivery {
         club_speed_mps: 40.0,
@@ -31,7 +31,7 @@ fn strike() -> (Equipment, ImpactState) {
 }
 
 /// The two-layer model's assembly, as `ContinuousModel::simulate` builds it, on ground `G`.
-fn assembly<G>(eq: &Equipment, ground: G) -> Assembly<Volumetric, TwoLayerBall, FreeHead, G> {
+pub(super) fn assembly<G>(eq: &Equipment, ground: G) -> Assembly<Volumetric, TwoLayerBall, FreeHead, G> {
     let p = TwoLayerParams::preset(&eq.club, TwoLayerReading::default());
     Assembly {
         law: Volumetric { k_v_n_per_m3: p.k_v_n_per_m3, d_s_per_m: p.d_s_per_m, mu: p.mu, v_tr_mps: p.v_tr_mps },
@@ -92,7 +92,7 @@ impl<G: SampledGround> StepPolicy<Volumetric, TwoLayerBall, FreeHead, G> for Fix
     }
 }
 
-fn start_state(
+pub(super) fn start_state(
     asm: &Assembly<Volumetric, TwoLayerBall, FreeHead, impl Sized>,
     eq: &Equipment,
     state: &ImpactState,
