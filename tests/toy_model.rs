@@ -1,7 +1,8 @@
 //! A new model is its own file: a toy model written here, behind `ImpactModel` alone, is predicted, reported and
 //! traced by `predict` and drawn by the force chart with nothing outside this file knowing its type; and built by
 //! name from a registry entry as `impactd::impact::registry::MODELS` holds one (in the crate, that entry is the one more
-//! line a new model takes).
+//! line a new model takes). A continuous model is the same plus its parts: every one of them (two-layer, Maw,
+//! Arakawa, the iron on the turf) runs on the shared `Assembly` (ARCHITECTURE.md, "Adding things").
 //!
 //! The toy is the point-mass limit of the impulse models (ARCHITECTURE.md section 6): a head of mass M meeting a
 //! ball of mass m head-on with restitution e sends it off at `v (1 + e) M / (M + m)`; its "trace" is a

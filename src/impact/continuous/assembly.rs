@@ -9,7 +9,7 @@
 
 use super::ball::BallPart;
 use super::club::{ClubPart, Head};
-use super::law::{Contact, ContactLaw};
+use super::law::{BallAt, Contact, ContactLaw};
 use super::surface::FaceSurface;
 use crate::impact::Launch;
 use crate::math::{Real, Vector3};
@@ -90,27 +90,17 @@ pub struct ContinuousResult {
 }
 
 impl<L: ContactLaw, B: BallPart, C, G> Assembly<L, B, C, G> {
-    /// The contact between ball and face in a state, if they overlap.
+    /// The contact between ball and face in a state, if they touch (as the law places it).
     #[inline(always)]
     pub(super) fn contact(&self, head: &Head, ball: &B::State) -> Option<Contact> {
-        let (p_b, v_b) = B::centre(ball);
-        let rot = &head.world_from_club;
-        let overlap =
-            self.surface.overlap(&rot.inverse_transform_vector(&(p_b - head.position_m)), self.ball.radius_m())?;
-        let normal = rot * overlap.normal;
-        let r_club_m = rot * overlap.centroid_m;
-        let r_ball_m = head.position_m + r_club_m - p_b;
-        let v_club = head.velocity_mps + head.angular_velocity_radps.cross(&r_club_m);
-        let v_ball = v_b + B::surface_spin(ball).cross(&r_ball_m);
-        let v_rel = v_ball - v_club;
-        Some(Contact {
-            overlap,
-            normal,
-            r_club_m,
-            r_ball_m,
-            approach_mps: -v_rel.dot(&normal),
-            slip_mps: v_rel - v_rel.dot(&normal) * normal,
-        })
+        let (centre_m, velocity_mps) = B::centre(ball);
+        let at = BallAt {
+            centre_m,
+            velocity_mps,
+            surface_spin_radps: B::surface_spin(ball),
+            radius_m: self.ball.radius_m(),
+        };
+        self.law.contact(&self.surface, head, &at)
     }
 }
 

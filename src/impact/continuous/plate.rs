@@ -14,8 +14,8 @@
 //!   ("simple") theory rolls from `ψ₁ < 4χ` with `ψ₂ = 0`, while with tangential compliance `ψ₂ < 0` at small
 //!   `ψ₁`: the contact point's tangential velocity reverses.
 
-use super::law::hertz::{normal_force, ContactKinematics, Hertz, TangentialLaw};
-use super::law::maw::{MawParams, MawRings};
+use super::law::hertz::{normal_force, Begin, ContactKinematics, Hertz, Tangential};
+use super::law::maw::{MawParams, MawRings, MawState};
 use crate::equipment::BallSpec;
 use crate::math::{Real, Vector3};
 
@@ -73,9 +73,10 @@ pub fn impact(
     let r = ball.radius_m;
     let k = hertz.stiffness(r);
     let (m, i) = (ball.mass_kg, ball.inertia_kg_m2);
-    let mut law = MawRings::new(params);
     let a = incidence_deg.to_radians();
-    law.begin(Vector3::y(), speed_mps * a.cos(), k, r, m);
+    let begin = Begin { slip_dir: Vector3::y(), xdot0_mps: speed_mps * a.cos(), k, r_eq_m: r, reduced_mass_kg: m };
+    let law = MawRings::new(params, &begin);
+    let mut rings = law.initial_state();
     // x: approach (overlap); vn: approach rate; vt: centre's tangential velocity; w: spin (+ gives -y contact
     // velocity); s: slip since the start.
     let mut st = S { x: 0.0, vn: speed_mps * a.cos(), vt: speed_mps * a.sin(), w: 0.0, s: 0.0 };
@@ -95,9 +96,9 @@ pub fn impact(
             arm,
         )
     };
-    let rates = |st: &S, s0: Real, law: &MawRings| -> (S, Real, Real) {
+    let rates = |st: &S, s0: Real, rings: &MawState| -> (S, Real, Real) {
         let (c, arm) = kin(st, s0);
-        let f_t = if st.x > 0.0 { law.force(&c).y } else { 0.0 };
+        let f_t = if st.x > 0.0 { law.force(&c, rings).y } else { 0.0 };
         let f_n = c.normal_force_n;
         // Friction -y at the contact point (r = -arm x) gives the spin torque -arm * f_t about +z.
         (S { x: st.vn, vn: -f_n / m, vt: f_t / m, w: -arm * f_t / i, s: c.slip_velocity_mps.y }, f_n, f_t)
@@ -114,22 +115,22 @@ pub fn impact(
     let h = step_s;
     loop {
         let s0 = st.s;
-        let (k1, f_n, f_t) = rates(&st, s0, &law);
+        let (k1, f_n, f_t) = rates(&st, s0, &rings);
         if every > 0 && steps % every == 0 {
             samples.push(PlateSample {
                 t_us: steps as Real * h * 1e6,
                 normal_force_n: f_n,
                 tangential_force_n: -f_t,
                 spin_radps: st.w,
-                stuck_rings: law.stuck_rings().unwrap_or(0),
+                stuck_rings: law.stuck_rings(&rings).unwrap_or(0),
             });
         }
         if (steps > 0 && st.x <= 0.0) || steps > 1_000_000 {
             break;
         }
-        let (k2, ..) = rates(&add(&st, &k1, 0.5 * h), s0, &law);
-        let (k3, ..) = rates(&add(&st, &k2, 0.5 * h), s0, &law);
-        let (k4, ..) = rates(&add(&st, &k3, h), s0, &law);
+        let (k2, ..) = rates(&add(&st, &k1, 0.5 * h), s0, &rings);
+        let (k3, ..) = rates(&add(&st, &k2, 0.5 * h), s0, &rings);
+        let (k4, ..) = rates(&add(&st, &k3, h), s0, &rings);
         let mut next = st;
         for (dst, f) in [
             (&mut next.x, (k1.x, k2.x, k3.x, k4.x)),
@@ -141,7 +142,7 @@ pub fn impact(
             *dst += h * (f.0 + 2.0 * f.1 + 2.0 * f.2 + f.3) / 6.0;
         }
         st = next;
-        law.commit(&kin(&st, s0).0);
+        law.commit(&kin(&st, s0).0, &mut rings);
         steps += 1;
     }
     PlateImpact {

@@ -74,6 +74,16 @@ impl FaceSurface {
         }
     }
 
+    /// The overlap's depth along the normal with a ball of radius `r` centred at `ball_m` (club frame), negative
+    /// when apart (m).
+    #[inline]
+    pub fn signed_depth_m(&self, ball_m: &Vector3, r: Real) -> Real {
+        match *self {
+            FaceSurface::Plane { point, normal } => r - normal.dot(&(ball_m - point)),
+            FaceSurface::Sphere { centre, radius_m } => r + radius_m - (ball_m - centre).norm(),
+        }
+    }
+
     /// The overlap with a ball of radius `r` centred at `ball_m` (club frame), if any.
     #[inline]
     pub fn overlap(&self, ball_m: &Vector3, r: Real) -> Option<Overlap> {

@@ -7,22 +7,25 @@
 //!   the contact point sits `R` from the ball's centre, the small-strain arm of Maw, Barber and Fawcett's theory
 //!   (`contact_arm = "mid_overlap"` in the section: `R − x/2`; [`super::law::hertz::ContactArm`]).
 //! - Stiffness eq. 3.17 with eq. 3.18's equivalent radius; tangential law [`MawRings`] or [`ArakawaLaw`].
-//! - Integration: classical RK4 at a fixed step (default 2 µs for Maw, 1 µs for Arakawa) from first contact
-//!   until the bodies separate, on the continuous models' shared parts (a free head and a rigid ball, `club` and
-//!   `ball`) plus the contact's integrated slip.
+//! - Integration: the shared [`Assembly`](super::Assembly) of a free head, a rigid ball and no ground with eq.
+//!   3.16 and the tangential law as one contact law ([`HertzContact`](super::law::hertz_contact::HertzContact)),
+//!   on the assembly's stepping (`Assembly::run_stepped`, classical RK4 at a fixed step: default 2 µs for Maw,
+//!   1 µs for Arakawa) from first contact until the bodies separate, the contact's slip integrated beside.
 //!   The ring states are history variables: inside a step each ring follows the slip since the step's start
-//!   (its own stick/slip test at every stage) and the step's end is committed; the committed contact and force
-//!   are the next step's first stage. Steps the law flags near one of its switches (Arakawa's envelope near
-//!   eq. 3.23's sign change) are split in eight. Both bodies feel equal and
-//!   opposite forces at the same point, so linear and angular momentum are conserved to rounding.
+//!   (its own stick/slip test at every stage) and the step's end is committed; the committed force is the next
+//!   step's first stage. Steps the law flags near one of its switches (Arakawa's envelope near eq. 3.23's sign
+//!   change) are split in eight, and the step in which the ball leaves ends where the overlap closes
+//!   (`policy.rs`). Both bodies feel equal and opposite forces at the same point, so linear and angular
+//!   momentum are conserved to rounding.
 //!
 //! Assumptions: a rigid ball (its spin is the launch spin), no gravity or shaft in the half millisecond of
 //! contact, the contact never reaches the face's edges.
 
+mod policy;
 mod run;
+#[cfg(test)]
+mod tests;
 
-use super::ball::RigidBall;
-use super::club::FreeHead;
 use super::law::{
     arakawa::{ArakawaLaw, ArakawaParams},
     maw::{MawParams, MawRings},
@@ -123,8 +126,9 @@ impl HertzModel {
         Ok(HertzModel { law: HertzLaw::Arakawa(p), ..Self::arakawa() })
     }
 
-    pub(crate) fn not_converged(reason: String) -> ImpactError {
-        ImpactError::NotConverged { model: "continuous/hertz", reason }
+    /// An error naming this model as the registry does.
+    pub(crate) fn not_converged(&self, reason: String) -> ImpactError {
+        ImpactError::NotConverged { model: self.law_name(), reason }
     }
 
     /// Runs the collision, recording a trace every `trace_every` steps (0: none).
@@ -139,14 +143,12 @@ impl HertzModel {
             HertzLaw::Maw(p) => {
                 let p = p.unwrap_or(if curved { MawParams::DRIVER } else { MawParams::IRON7 });
                 p.validate().map_err(|e| bad_section("maw", e))?;
-                let law = &mut MawRings::new(&p);
-                run::run(self, state, eq, parts(eq), (p.hertz(), p.contact_arm), law, trace_every)
+                run::run(self, state, eq, (p.hertz(), p.contact_arm), |b| MawRings::new(&p, b), trace_every)
             }
             HertzLaw::Arakawa(p) => {
                 let p = p.unwrap_or(if curved { ArakawaParams::DRIVER } else { ArakawaParams::IRON7 });
                 p.validate().map_err(|e| bad_section("arakawa", e))?;
-                let law = &mut ArakawaLaw::new(&p);
-                run::run(self, state, eq, parts(eq), (p.hertz(), p.contact_arm), law, trace_every)
+                run::run(self, state, eq, (p.hertz(), p.contact_arm), |b| ArakawaLaw::new(&p, b), trace_every)
             }
         }
     }
@@ -154,10 +156,7 @@ impl HertzModel {
 
 impl ImpactModel for HertzModel {
     fn name(&self) -> &'static str {
-        match self.law {
-            HertzLaw::Maw(_) => "maw",
-            HertzLaw::Arakawa(_) => "arakawa",
-        }
+        self.law_name()
     }
 
     fn run(&self, state: &ImpactState, equipment: &Equipment, o: &RunOptions) -> Result<ModelRun, ImpactError> {
@@ -193,11 +192,6 @@ impl HertzResult {
             momentum_after: self.momentum_after,
         }
     }
-}
-
-/// The seed's parts for both models: a free head and a rigid ball.
-fn parts(eq: &Equipment) -> (FreeHead, RigidBall) {
-    (FreeHead::new(&eq.club), RigidBall::new(&eq.ball))
 }
 
 fn bad_section(section: &str, e: super::law::hertz::LawError) -> ImpactError {

@@ -39,7 +39,7 @@
 //!   docs/models.md) and the 7-iron does not converge in the step at 50-55 m/s. Kept for comparison with the
 //!   seed's text.
 
-use super::hertz::{non_negative, positive, ContactKinematics, Hertz, LawError, TangentialLaw};
+use super::hertz::{non_negative, positive, Begin, ContactKinematics, Hertz, LawError, Tangential};
 use crate::math::{Real, Vector3};
 
 /// The parameters of Table 3.7.
@@ -111,8 +111,8 @@ impl ArakawaParams {
     }
 }
 
-/// Arakawa's law through one impact: its parameters, the tangential axis (literal reading), the stick
-/// stiffness and the committed tangential force on the face (friction reading).
+/// Arakawa's law for one impact, set up at first contact ([`Begin`]): its parameters, the tangential axis and
+/// the stick stiffness.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ArakawaLaw {
     params: ArakawaParams,
@@ -121,6 +121,11 @@ pub struct ArakawaLaw {
     stick_stiffness_n_per_m: Real,
     /// Mindlin's `2 G*` (N/m²): the envelope reading's stick stiffness is this times the contact radius.
     stick_modulus_n_per_m2: Real,
+}
+
+/// Arakawa's law's history: the committed tangential force on the face (friction and envelope readings).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ArakawaState {
     /// The contact radius (m) and stick stiffness (N/m) at the committed state.
     radius_m: Real,
     committed_stiffness_n_per_m: Real,
@@ -129,17 +134,19 @@ pub struct ArakawaLaw {
 }
 
 impl ArakawaLaw {
-    pub fn new(params: &ArakawaParams) -> Self {
+    /// The law for an impact beginning as `b` says: the stick stiffness is Mindlin's `2 G* b` with
+    /// `G* = (G*/E*) E*`, `E* = 3 k / (4 √R)`, at the largest contact radius `√(R x_max)` of the elastic Hertz
+    /// estimate (friction reading) or at the current radius (envelope).
+    pub fn new(params: &ArakawaParams, b: &Begin) -> Self {
+        let e_star = 3.0 * b.k / (4.0 * b.r_eq_m.sqrt());
+        let ratio = params.hertz().tangential_ratio();
+        let stick_modulus_n_per_m2 = 2.0 * ratio * e_star;
         ArakawaLaw {
             params: *params,
-            r_eq_m: 0.0,
-            axis: Vector3::zeros(),
-            stick_stiffness_n_per_m: 0.0,
-            stick_modulus_n_per_m2: 0.0,
-            radius_m: 0.0,
-            committed_stiffness_n_per_m: 0.0,
-            force_n: Vector3::zeros(),
-            stuck: false,
+            r_eq_m: b.r_eq_m,
+            axis: b.slip_dir,
+            stick_stiffness_n_per_m: stick_modulus_n_per_m2 * (b.r_eq_m * b.max_approach_m()).sqrt(),
+            stick_modulus_n_per_m2,
         }
     }
 
@@ -151,18 +158,18 @@ impl ArakawaLaw {
     /// axis that eq. 3.23's sign gives (forward, against the initial slip, while `F_T > 0`; reversed while
     /// `F_T < 0`): the closest point of that set, which holds the origin, so the stick spring's energy never
     /// grows by the projection.
-    fn friction(&self, c: &ContactKinematics) -> (Vector3, bool) {
+    fn friction(&self, c: &ContactKinematics, st: &ArakawaState) -> (Vector3, bool) {
         let signed = self.magnitude(c.normal_force_n, c.xdot_mps);
         let n = c.normal;
-        let carried = self.force_n - self.force_n.dot(&n) * n;
+        let carried = st.force_n - st.force_n.dot(&n) * n;
         let mut stuck = true;
         let (mut trial, bound) = if self.params.reading == ArakawaReading::Envelope {
             // The stick spring follows the contact (eq. 3.19): 2 G* b; area newly gained carries no traction and
             // a shrinking contact releases its share.
             let b = (self.r_eq_m * c.x_m.max(0.0)).sqrt();
-            let kept = if b < self.radius_m { b / self.radius_m } else { 1.0 };
+            let kept = if b < st.radius_m { b / st.radius_m } else { 1.0 };
             // The stiffness over the step at the mean radius (second order in the step).
-            let k = self.stick_modulus_n_per_m2 * 0.5 * (b + self.radius_m);
+            let k = self.stick_modulus_n_per_m2 * 0.5 * (b + st.radius_m);
             (kept * carried + k * c.slip_since_step_m, signed.abs())
         } else {
             (carried + self.stick_stiffness_n_per_m * c.slip_since_step_m, signed.max(0.0))
@@ -192,29 +199,24 @@ impl ArakawaLaw {
     }
 }
 
-impl TangentialLaw for ArakawaLaw {
-    fn begin(&mut self, slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real) {
-        self.r_eq_m = r_eq_m;
-        self.axis = slip_dir;
-        // Elastic Hertz: the largest approach x_max = (5 m v² / (4 k))^(2/5), contact radius √(R x_max);
-        // Mindlin's tangential stiffness 2 G* b with G* = (G*/E*) E*, E* = 3 k / (4 √R).
-        let x_max = (5.0 * reduced_mass_kg * xdot0_mps * xdot0_mps / (4.0 * k)).powf(0.4);
-        let e_star = 3.0 * k / (4.0 * r_eq_m.sqrt());
-        let ratio = self.params.hertz().tangential_ratio();
-        self.stick_modulus_n_per_m2 = 2.0 * ratio * e_star;
-        self.stick_stiffness_n_per_m = self.stick_modulus_n_per_m2 * (r_eq_m * x_max).sqrt();
-        self.radius_m = 0.0;
-        self.committed_stiffness_n_per_m = self.stick_stiffness_n_per_m;
-        self.force_n = Vector3::zeros();
-        self.stuck = false;
+impl Tangential for ArakawaLaw {
+    type State = ArakawaState;
+
+    fn initial_state(&self) -> ArakawaState {
+        ArakawaState {
+            radius_m: 0.0,
+            committed_stiffness_n_per_m: self.stick_stiffness_n_per_m,
+            force_n: Vector3::zeros(),
+            stuck: false,
+        }
     }
 
-    fn force(&self, c: &ContactKinematics) -> Vector3 {
+    fn force(&self, c: &ContactKinematics, st: &ArakawaState) -> Vector3 {
         if c.x_m < 0.0 {
             return Vector3::zeros();
         }
         if self.params.reading != ArakawaReading::Literal {
-            return if c.x_m > 0.0 && c.normal_force_n > 0.0 { -self.friction(c).0 } else { Vector3::zeros() };
+            return if c.x_m > 0.0 && c.normal_force_n > 0.0 { -self.friction(c, st).0 } else { Vector3::zeros() };
         }
         let n = c.normal;
         let t = self.axis - self.axis.dot(&n) * n;
@@ -225,39 +227,39 @@ impl TangentialLaw for ArakawaLaw {
         -self.magnitude(c.normal_force_n, c.xdot_mps) * t / norm
     }
 
-    fn commit(&mut self, c: &ContactKinematics) -> Vector3 {
+    fn commit(&self, c: &ContactKinematics, st: &mut ArakawaState) -> Vector3 {
         if self.params.reading != ArakawaReading::Literal {
-            (self.force_n, self.stuck) =
-                if c.x_m > 0.0 && c.normal_force_n > 0.0 { self.friction(c) } else { (Vector3::zeros(), false) };
+            (st.force_n, st.stuck) =
+                if c.x_m > 0.0 && c.normal_force_n > 0.0 { self.friction(c, st) } else { (Vector3::zeros(), false) };
             if self.params.reading == ArakawaReading::Envelope {
-                self.radius_m = (self.r_eq_m * c.x_m.max(0.0)).sqrt();
-                self.committed_stiffness_n_per_m = self.stick_modulus_n_per_m2 * self.radius_m;
+                st.radius_m = (self.r_eq_m * c.x_m.max(0.0)).sqrt();
+                st.committed_stiffness_n_per_m = self.stick_modulus_n_per_m2 * st.radius_m;
             }
-            -self.force_n
+            -st.force_n
         } else {
-            self.force(c)
+            self.force(c, st)
         }
     }
 
-    fn stored_energy_j(&self) -> Real {
-        if self.committed_stiffness_n_per_m <= 0.0 {
+    fn stored_energy_j(&self, st: &ArakawaState) -> Real {
+        if st.committed_stiffness_n_per_m <= 0.0 {
             return 0.0;
         }
-        0.5 * self.force_n.norm_squared() / self.committed_stiffness_n_per_m
+        0.5 * st.force_n.norm_squared() / st.committed_stiffness_n_per_m
     }
 
     /// The envelope reading near its bound: eq. 3.23 within twice the committed force (the bound sweeps
     /// through zero within microseconds of the largest compression).
-    fn refine(&self, c: &ContactKinematics) -> bool {
+    fn refine(&self, c: &ContactKinematics, st: &ArakawaState) -> bool {
         let f_t = self.magnitude(c.normal_force_n, c.xdot_mps).abs();
         self.params.reading == ArakawaReading::Envelope
-            && f_t < 2.0 * self.force_n.norm()
+            && f_t < 2.0 * st.force_n.norm()
             && f_t < 2.0 * self.params.mu * c.normal_force_n
     }
 
     /// The friction reading's contact is one ring: 1 while it sticks.
-    fn stuck_rings(&self) -> Option<usize> {
-        (self.params.reading != ArakawaReading::Literal).then_some(usize::from(self.stuck))
+    fn stuck_rings(&self, st: &ArakawaState) -> Option<usize> {
+        (self.params.reading != ArakawaReading::Literal).then_some(usize::from(st.stuck))
     }
 }
 
@@ -265,11 +267,15 @@ impl TangentialLaw for ArakawaLaw {
 mod tests {
     use super::*;
 
+    /// First contact at 40 m/s along +y, k = 1e7 N/m^1.5, R = 21.3 mm, a 40 g reduced mass.
+    const BEGIN: Begin =
+        Begin { slip_dir: Vector3::new(0.0, 1.0, 0.0), xdot0_mps: 40.0, k: 1e7, r_eq_m: 0.0213, reduced_mass_kg: 0.04 };
+
     /// eq. 3.23 by hand: μ F_N + μ η π R ẋ = 0.118 * 1000 + 0.118 * 2.06e5 * π * 0.0213 * 10.
     #[test]
     fn eq_3_23() {
-        let mut law = ArakawaLaw::new(&ArakawaParams { reading: ArakawaReading::Literal, ..ArakawaParams::IRON7 });
-        law.begin(Vector3::y(), 40.0, 1e7, 0.0213, 0.04);
+        let law = ArakawaLaw::new(&ArakawaParams { reading: ArakawaReading::Literal, ..ArakawaParams::IRON7 }, &BEGIN);
+        let st = law.initial_state();
         let want = 0.118 * 1000.0 + 0.118 * 2.06e5 * std::f64::consts::PI * 0.0213 * 10.0;
         assert!((law.magnitude(1000.0, 10.0) - want).abs() < 1e-9 * want);
         let c = ContactKinematics {
@@ -280,30 +286,30 @@ mod tests {
             slip_velocity_mps: Vector3::y(),
             slip_since_step_m: Vector3::zeros(),
         };
-        let f = law.force(&c);
+        let f = law.force(&c, &st);
         assert!((f.y + want).abs() < 1e-9 * want && f.x.abs() < 1e-12);
         // The friction reading: a slip of 1 m (far past the stick) slides at the bound, against the slip (+y).
-        let mut friction =
-            ArakawaLaw::new(&ArakawaParams { reading: ArakawaReading::Friction, ..ArakawaParams::IRON7 });
-        friction.begin(Vector3::y(), 40.0, 1e7, 0.0213, 0.04);
+        let friction =
+            ArakawaLaw::new(&ArakawaParams { reading: ArakawaReading::Friction, ..ArakawaParams::IRON7 }, &BEGIN);
+        let fst = friction.initial_state();
         let slid = ContactKinematics { slip_since_step_m: Vector3::y(), ..c };
-        assert!((friction.force(&slid).y + want).abs() < 1e-9 * want);
+        assert!((friction.force(&slid, &fst).y + want).abs() < 1e-9 * want);
         // A slip of 1 nm sticks: the stiffness times the slip, against it.
         let small = ContactKinematics { slip_since_step_m: 1e-9 * Vector3::y(), ..c };
-        let f = friction.force(&small).y;
+        let f = friction.force(&small, &fst).y;
         assert!((f + friction.stick_stiffness_n_per_m * 1e-9).abs() < 1e-12 * want, "{f}");
         // A negative bound (fast restitution) carries no force.
         let back = ContactKinematics { xdot_mps: -1e3, ..slid };
-        assert_eq!(friction.force(&back), Vector3::zeros());
+        assert_eq!(friction.force(&back, &fst), Vector3::zeros());
     }
 
     /// The envelope reading: while eq. 3.23 is positive the contact carries a force against the initial slip
     /// (+y) up to F_T; once it is negative (the contact shrinking) only a reversed one, up to |F_T|.
     #[test]
     fn envelope_half_discs() {
-        let mut law = ArakawaLaw::new(&ArakawaParams::IRON7);
+        let law = ArakawaLaw::new(&ArakawaParams::IRON7, &BEGIN);
+        let st = law.initial_state();
         assert_eq!(ArakawaParams::IRON7.reading, ArakawaReading::Envelope);
-        law.begin(Vector3::y(), 40.0, 1e7, 0.0213, 0.04);
         let c = |xdot_mps: Real, slip_m: Real| ContactKinematics {
             normal: Vector3::x(),
             x_m: 1e-3,
@@ -314,16 +320,16 @@ mod tests {
         };
         // Growing (F_T = 3.3 kN at 10 m/s): a forward slip of 1 m slides at F_T, a backward one carries nothing.
         let grow = law.magnitude(1000.0, 10.0);
-        assert!((law.force(&c(10.0, 1.0)).y + grow).abs() < 1e-9 * grow);
-        assert_eq!(law.force(&c(10.0, -1.0)).y, 0.0);
+        assert!((law.force(&c(10.0, 1.0), &st).y + grow).abs() < 1e-9 * grow);
+        assert_eq!(law.force(&c(10.0, -1.0), &st).y, 0.0);
         // Shrinking (F_T = -3.1 kN at -10 m/s): the other way round, bounded by |F_T|.
         let shrink = law.magnitude(1000.0, -10.0);
         assert!(shrink < 0.0);
-        assert_eq!(law.force(&c(-10.0, 1.0)).y, 0.0);
-        assert!((law.force(&c(-10.0, -1.0)).y + shrink).abs() < 1e-9 * grow);
+        assert_eq!(law.force(&c(-10.0, 1.0), &st).y, 0.0);
+        assert!((law.force(&c(-10.0, -1.0), &st).y + shrink).abs() < 1e-9 * grow);
         // A small slip sticks with Mindlin's 2 G* b at the mean of the committed (0) and current radius.
         let b = (0.0213 * 1e-3 as Real).sqrt();
-        let f = law.force(&c(10.0, 1e-9)).y;
+        let f = law.force(&c(10.0, 1e-9), &st).y;
         assert!((f + law.stick_modulus_n_per_m2 * 0.5 * b * 1e-9).abs() < 1e-9 * f.abs(), "{f}");
     }
 }

@@ -164,24 +164,60 @@ pub struct ContactKinematics {
     pub slip_since_step_m: Vector3,
 }
 
-/// A tangential contact law with its own state (Maw's rings; Arakawa's fixed tangential axis).
-pub trait TangentialLaw {
-    /// Sets up the state at first contact: `slip_dir` is the unit direction of the ball's initial slip relative
-    /// to the face (tangent plane), `xdot0_mps` the initial approach rate, `k` the Hertz stiffness, `r_eq_m` the
-    /// equivalent radius and `reduced_mass_kg` the normal reduced mass.
-    fn begin(&mut self, slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real);
+impl ContactKinematics {
+    /// Out of contact (no approach, no force, no slip), along `normal`.
+    pub fn at_rest(normal: Vector3) -> Self {
+        ContactKinematics {
+            normal,
+            x_m: 0.0,
+            xdot_mps: 0.0,
+            normal_force_n: 0.0,
+            slip_velocity_mps: Vector3::zeros(),
+            slip_since_step_m: Vector3::zeros(),
+        }
+    }
+}
+
+/// What a tangential law is set up from at first contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Begin {
+    /// Unit direction of the ball's initial slip relative to the face (tangent plane).
+    pub slip_dir: Vector3,
+    /// The initial approach rate (m/s).
+    pub xdot0_mps: Real,
+    /// The Hertz stiffness of eq. 3.17 (N/m^1.5).
+    pub k: Real,
+    /// eq. 3.18's equivalent radius (m).
+    pub r_eq_m: Real,
+    /// The normal reduced mass (kg).
+    pub reduced_mass_kg: Real,
+}
+
+impl Begin {
+    /// Elastic Hertz: the largest approach `x_max = (5 m v² / (4 k))^(2/5)` (m).
+    pub fn max_approach_m(&self) -> Real {
+        (5.0 * self.reduced_mass_kg * self.xdot0_mps * self.xdot0_mps / (4.0 * self.k)).powf(0.4)
+    }
+}
+
+/// A tangential contact law (Maw's rings; Arakawa's eq. 3.23), set up for one impact ([`Begin`]), its history in
+/// [`Self::State`]; `HertzContact` pairs it with eq. 3.16 as a contact law.
+pub trait Tangential {
+    type State: Clone + Default + std::fmt::Debug;
+    /// The state at first contact.
+    fn initial_state(&self) -> Self::State;
     /// The tangential force on the ball (N, in the tangent plane) at an intermediate stage of a step.
-    fn force(&self, c: &ContactKinematics) -> Vector3;
+    fn force(&self, c: &ContactKinematics, state: &Self::State) -> Vector3;
     /// Accepts the end of a step as the new reference state; returns the tangential force on the ball there
-    /// (what [`Self::force`] gives at the same instant with no slip since the step's start).
-    fn commit(&mut self, c: &ContactKinematics) -> Vector3;
+    /// (what [`Self::force`] gives at the same instant with no slip since the step's start, up to rounding).
+    fn commit(&self, c: &ContactKinematics, state: &mut Self::State) -> Vector3;
     /// Elastic energy the law stores (J).
-    fn stored_energy_j(&self) -> Real;
+    fn stored_energy_j(&self, state: &Self::State) -> Real;
     /// How many rings are stuck (Maw), if the law has rings.
-    fn stuck_rings(&self) -> Option<usize>;
+    fn stuck_rings(&self, state: &Self::State) -> Option<usize>;
     /// Whether the step starting at `c` (the committed state) is near a switch of the law that a full step
     /// would resolve only to first order, so it should be split.
-    fn refine(&self, _c: &ContactKinematics) -> bool {
+    fn refine(&self, _c: &ContactKinematics, _state: &Self::State) -> bool {
         false
     }
 }

@@ -23,7 +23,7 @@
 //! The ring width is the expected largest contact radius (elastic Hertz estimate from the approach speed)
 //! over the ring count; the contact may grow past it by up to the same again.
 
-use super::hertz::{positive, ContactKinematics, Hertz, LawError, TangentialLaw};
+use super::hertz::{positive, Begin, ContactKinematics, Hertz, LawError, Tangential};
 use crate::math::{Real, Vector3};
 
 /// The parameters of Table 3.6.
@@ -88,16 +88,14 @@ impl MawParams {
     }
 }
 
-/// The rings' state through one impact.
+/// The rings of one impact, laid out at first contact ([`Begin`]).
 ///
-/// Each ring's committed tangential force is kept as two coordinates in a basis of the tangent plane, `t1` the
-/// initial slip axis projected onto the plane and `t2 = n × t1`, so the forces follow the plane as the normal
-/// turns (the rings are carried with the surface) and a stage costs a few operations per ring.
+/// Each ring's committed tangential force ([`MawState`]) is kept as two coordinates in a basis of the tangent
+/// plane, `t1` the initial slip axis projected onto the plane and `t2 = n × t1`, so the forces follow the plane as
+/// the normal turns (the rings are carried with the surface) and a stage costs a few operations per ring.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MawRings {
     mu: Real,
-    rings: usize,
-    tangential_ratio: Real,
     r_eq_m: Real,
     /// Ring width Δr (m) and tangential stiffness of one ring, `2 G* Δr` (N/m).
     width_m: Real,
@@ -106,6 +104,11 @@ pub struct MawRings {
     axis: Vector3,
     /// Each ring's `r_i² / R` (m): its normal load is proportional to `x − r_i²/R`.
     depth_m: Vec<Real>,
+}
+
+/// The rings' history through one impact.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MawState {
     /// Committed tangential force each ring carries on the face (N), along `t1` and `t2`; minus it acts on the
     /// ball.
     force_t1_n: Vec<Real>,
@@ -155,21 +158,25 @@ fn ring(f1: Real, f2: Real, step1: Real, step2: Real, limit: Real) -> (Real, Rea
 }
 
 impl MawRings {
-    pub fn new(params: &MawParams) -> Self {
+    /// The rings for an impact beginning as `b` says: the ring width is the elastic Hertz estimate of the
+    /// largest contact radius, `√(R x_max)`, over the ring count; rings reach twice as far.
+    pub fn new(params: &MawParams, b: &Begin) -> Self {
+        let b_max = (b.r_eq_m * b.max_approach_m()).sqrt();
+        let width_m = b_max / params.rings as Real;
+        let e_star = 3.0 * b.k / (4.0 * b.r_eq_m.sqrt());
+        let dr2_r = width_m * width_m / b.r_eq_m;
         MawRings {
             mu: params.mu,
-            rings: params.rings,
-            tangential_ratio: params.hertz().tangential_ratio(),
-            r_eq_m: 0.0,
-            width_m: 0.0,
-            ring_stiffness_n_per_m: 0.0,
-            axis: Vector3::zeros(),
-            depth_m: Vec::new(),
-            force_t1_n: Vec::new(),
-            force_t2_n: Vec::new(),
-            stuck: 0,
-            x_committed_m: 0.0,
-            active_committed: 0,
+            r_eq_m: b.r_eq_m,
+            width_m,
+            ring_stiffness_n_per_m: 2.0 * params.hertz().tangential_ratio() * e_star * width_m,
+            axis: b.slip_dir,
+            depth_m: (0..2 * params.rings)
+                .map(|i| {
+                    let r = i as Real + 0.5;
+                    r * r * dr2_r
+                })
+                .collect(),
         }
     }
 
@@ -190,7 +197,7 @@ impl MawRings {
 
     /// The rings in contact at `c`, `None` when out of contact.
     #[inline]
-    fn sweep(&self, c: &ContactKinematics) -> Option<Sweep> {
+    fn sweep(&self, c: &ContactKinematics, st: &MawState) -> Option<Sweep> {
         if c.x_m <= 0.0 || c.normal_force_n <= 0.0 {
             return None;
         }
@@ -208,7 +215,7 @@ impl MawRings {
         let step = self.ring_stiffness_n_per_m * c.slip_since_step_m;
         Some(Sweep {
             active,
-            kept: self.active_committed.min(active),
+            kept: st.active_committed.min(active),
             scale: self.mu * c.normal_force_n / sum_w,
             t1,
             t2,
@@ -223,36 +230,26 @@ impl MawRings {
     }
 }
 
-impl TangentialLaw for MawRings {
-    fn begin(&mut self, slip_dir: Vector3, xdot0_mps: Real, k: Real, r_eq_m: Real, reduced_mass_kg: Real) {
-        // Elastic Hertz: the largest approach x_max = (5 m v² / (4 k))^(2/5), contact radius √(R x_max).
-        let x_max = (5.0 * reduced_mass_kg * xdot0_mps * xdot0_mps / (4.0 * k)).powf(0.4);
-        let b_max = (r_eq_m * x_max).sqrt();
-        self.r_eq_m = r_eq_m;
-        self.width_m = b_max / self.rings as Real;
-        let e_star = 3.0 * k / (4.0 * r_eq_m.sqrt());
-        self.ring_stiffness_n_per_m = 2.0 * self.tangential_ratio * e_star * self.width_m;
-        self.axis = slip_dir;
-        let dr2_r = self.width_m * self.width_m / r_eq_m;
-        self.depth_m = (0..2 * self.rings)
-            .map(|i| {
-                let r = i as Real + 0.5;
-                r * r * dr2_r
-            })
-            .collect();
-        self.force_t1_n = vec![0.0; 2 * self.rings];
-        self.force_t2_n = vec![0.0; 2 * self.rings];
-        self.stuck = 0;
-        self.x_committed_m = 0.0;
-        self.active_committed = 0;
+impl Tangential for MawRings {
+    type State = MawState;
+
+    fn initial_state(&self) -> MawState {
+        let n = self.depth_m.len();
+        MawState {
+            force_t1_n: vec![0.0; n],
+            force_t2_n: vec![0.0; n],
+            stuck: 0,
+            x_committed_m: 0.0,
+            active_committed: 0,
+        }
     }
 
-    fn force(&self, c: &ContactKinematics) -> Vector3 {
-        let Some(w) = self.sweep(c) else { return Vector3::zeros() };
+    fn force(&self, c: &ContactKinematics, st: &MawState) -> Vector3 {
+        let Some(w) = self.sweep(c, st) else { return Vector3::zeros() };
         let (mut a1, mut a2) = (0.0, 0.0);
-        let rings = self.force_t1_n[..w.active].iter().zip(&self.force_t2_n[..w.active]).zip(&self.depth_m);
+        let rings = st.force_t1_n[..w.active].iter().zip(&st.force_t2_n[..w.active]).zip(&self.depth_m);
         for (i, ((&f1, &f2), &depth)) in rings.enumerate() {
-            let share = if i < w.kept { 1.0 } else { entered_share(self.x_committed_m, c.x_m, depth) };
+            let share = if i < w.kept { 1.0 } else { entered_share(st.x_committed_m, c.x_m, depth) };
             // ring() without the branch: the slip factor min(1, limit/|trial|) (1 when the trial is zero).
             let (g1, g2) = (f1 + share * w.step1, f2 + share * w.step2);
             let factor = (w.scale * (c.x_m - depth) / (g1 * g1 + g2 * g2).sqrt()).min(1.0);
@@ -262,19 +259,20 @@ impl TangentialLaw for MawRings {
         -(a1 * w.t1 + a2 * w.t2)
     }
 
-    fn commit(&mut self, c: &ContactKinematics) -> Vector3 {
-        let Some(w) = self.sweep(c) else {
-            self.force_t1_n.fill(0.0);
-            self.force_t2_n.fill(0.0);
-            self.stuck = 0;
-            self.x_committed_m = c.x_m.max(0.0);
-            self.active_committed = 0;
+    fn commit(&self, c: &ContactKinematics, st: &mut MawState) -> Vector3 {
+        let Some(w) = self.sweep(c, st) else {
+            st.force_t1_n.fill(0.0);
+            st.force_t2_n.fill(0.0);
+            st.stuck = 0;
+            st.x_committed_m = c.x_m.max(0.0);
+            st.active_committed = 0;
             return Vector3::zeros();
         };
         let (mut a1, mut a2, mut stuck) = (0.0, 0.0, 0);
-        let (t1s, t2s) = (&mut self.force_t1_n[..w.active], &mut self.force_t2_n[..w.active]);
+        let x_committed_m = st.x_committed_m;
+        let (t1s, t2s) = (&mut st.force_t1_n[..w.active], &mut st.force_t2_n[..w.active]);
         for (i, ((f1, f2), &depth)) in t1s.iter_mut().zip(t2s.iter_mut()).zip(&self.depth_m).enumerate() {
-            let share = if i < w.kept { 1.0 } else { entered_share(self.x_committed_m, c.x_m, depth) };
+            let share = if i < w.kept { 1.0 } else { entered_share(x_committed_m, c.x_m, depth) };
             let (g1, g2, s) = ring(*f1, *f2, share * w.step1, share * w.step2, w.scale * (c.x_m - depth));
             (*f1, *f2) = (g1, g2);
             a1 += g1;
@@ -282,30 +280,35 @@ impl TangentialLaw for MawRings {
             stuck += usize::from(s);
         }
         // Rings the contact has left are released.
-        self.force_t1_n[w.active..].fill(0.0);
-        self.force_t2_n[w.active..].fill(0.0);
-        self.stuck = stuck;
-        self.x_committed_m = c.x_m;
-        self.active_committed = w.active;
+        st.force_t1_n[w.active..].fill(0.0);
+        st.force_t2_n[w.active..].fill(0.0);
+        st.stuck = stuck;
+        st.x_committed_m = c.x_m;
+        st.active_committed = w.active;
         -(a1 * w.t1 + a2 * w.t2)
     }
 
-    fn stored_energy_j(&self) -> Real {
+    fn stored_energy_j(&self, st: &MawState) -> Real {
         if self.ring_stiffness_n_per_m <= 0.0 {
             return 0.0;
         }
-        let sum: Real = self.force_t1_n.iter().zip(&self.force_t2_n).map(|(a, b)| a * a + b * b).sum();
+        let sum: Real = st.force_t1_n.iter().zip(&st.force_t2_n).map(|(a, b)| a * a + b * b).sum();
         0.5 * sum / self.ring_stiffness_n_per_m
     }
 
-    fn stuck_rings(&self) -> Option<usize> {
-        Some(self.stuck)
+    fn stuck_rings(&self, st: &MawState) -> Option<usize> {
+        Some(st.stuck)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// First contact at 40 m/s along +y, a 40 g reduced mass.
+    fn begin(k: Real, r_eq_m: Real) -> Begin {
+        Begin { slip_dir: Vector3::y(), xdot0_mps: 40.0, k, r_eq_m, reduced_mass_kg: 0.04 }
+    }
 
     fn kin(x_m: Real, normal_force_n: Real, slip: Real) -> ContactKinematics {
         ContactKinematics {
@@ -328,19 +331,19 @@ mod tests {
         let h = p.hertz();
         let r = 0.0213;
         let k = h.stiffness(r);
-        let mut rings = MawRings::new(&p);
-        rings.begin(Vector3::y(), 40.0, k, r, 0.04);
+        let rings = MawRings::new(&p, &begin(k, r));
+        let mut st = rings.initial_state();
         let x: Real = 3e-3;
         let f_n = k * x.powf(1.5);
         let b = (r * x).sqrt();
         let e_star = 3.0 * k / (4.0 * r.sqrt());
         let k_t = 2.0 * h.tangential_ratio() * e_star * b;
         // The normal load first (no slip), then the tangential displacement at that load.
-        rings.commit(&kin(x, f_n, 0.0));
+        rings.commit(&kin(x, f_n, 0.0), &mut st);
         let small = 1e-9;
-        let f = rings.force(&kin(x, f_n, small));
+        let f = rings.force(&kin(x, f_n, small), &st);
         assert!((f.y / (-k_t * small) - 1.0).abs() < 0.02, "{} vs {}", f.y, -k_t * small);
-        let f = rings.force(&kin(x, f_n, 1.0));
+        let f = rings.force(&kin(x, f_n, 1.0), &st);
         assert!((f.y + 0.5 * f_n).abs() < 1e-9 * f_n, "{} vs {}", f.y, -0.5 * f_n);
     }
 
@@ -353,16 +356,16 @@ mod tests {
         let h = p.hertz();
         let r = 0.0213;
         let k = h.stiffness(r);
-        let mut rings = MawRings::new(&p);
-        rings.begin(Vector3::y(), 40.0, k, r, 0.04);
+        let rings = MawRings::new(&p, &begin(k, r));
+        let mut st = rings.initial_state();
         let x: Real = 3e-3;
         let f_n = k * x.powf(1.5);
         let b = (r * x).sqrt();
         let e_star = 3.0 * k / (4.0 * r.sqrt());
         let delta_slip = 1.5 * p.mu * f_n / (2.0 * h.tangential_ratio() * e_star * b);
-        rings.commit(&kin(x, f_n, 0.0));
+        rings.commit(&kin(x, f_n, 0.0), &mut st);
         for frac in [0.2, 0.5, 0.9] {
-            let f = -rings.force(&kin(x, f_n, frac * delta_slip)).y;
+            let f = -rings.force(&kin(x, f_n, frac * delta_slip), &st).y;
             let want = p.mu * f_n * (1.0 - (1.0 - frac).powf(1.5));
             assert!((f - want).abs() < 0.01 * want, "{frac}: {f} vs {want}");
         }
@@ -378,14 +381,14 @@ mod tests {
         let r = 0.0213;
         let k = p.hertz().stiffness(r);
         let run = |steps: usize| {
-            let mut rings = MawRings::new(&p);
-            rings.begin(Vector3::y(), 40.0, k, r, 0.04);
+            let rings = MawRings::new(&p, &begin(k, r));
+            let mut st = rings.initial_state();
             let (x0, x1, slip) = (1e-3, 3e-3, 1e-6);
-            rings.commit(&kin(x0, k * x0 * Real::sqrt(x0), 0.0));
+            rings.commit(&kin(x0, k * x0 * Real::sqrt(x0), 0.0), &mut st);
             let mut f = Vector3::zeros();
             for i in 1..=steps {
                 let x = x0 + (x1 - x0) * i as Real / steps as Real;
-                f = rings.commit(&kin(x, k * x * x.sqrt(), slip / steps as Real));
+                f = rings.commit(&kin(x, k * x * x.sqrt(), slip / steps as Real), &mut st);
             }
             f.y
         };

@@ -16,7 +16,7 @@ use crate::impact::{Delivery, Equipment, ImpactError, ImpactState};
 use crate::math::{Real, Vector3};
 
 /// A 7-iron struck 6 mm toward the toe and 4 mm up the face, turning: the contact's moment acts on the head.
-fn strike() -> (Equipment, ImpactState) {
+pub(super) fn strike() -> (Equipment, ImpactState) {
     let eq = Equipment::new(ClubSpec::iron7());
     let delivery = Delivery {
         club_speed_mps: 40.0,
@@ -33,7 +33,7 @@ fn strike() -> (Equipment, ImpactState) {
 }
 
 /// The two-layer model's assembly, as `ContinuousModel::simulate` builds it, on ground `G`.
-fn assembly<G>(eq: &Equipment, ground: G) -> Assembly<Volumetric, TwoLayerBall, FreeHead, G> {
+pub(super) fn assembly<G>(eq: &Equipment, ground: G) -> Assembly<Volumetric, TwoLayerBall, FreeHead, G> {
     let p = TwoLayerParams::preset(&eq.club, TwoLayerReading::default());
     let TwoLayerContact { law, ball, surface } = p.contact(&eq.club, &eq.ball).unwrap();
     Assembly { law, ball, club: FreeHead::new(&eq.club), ground, surface }
@@ -89,7 +89,7 @@ impl<G: SampledGround> StepPolicy<Volumetric, TwoLayerBall, FreeHead, G> for Fix
     }
 }
 
-fn start_state(
+pub(super) fn start_state(
     asm: &Assembly<Volumetric, TwoLayerBall, FreeHead, impl Sized>,
     eq: &Equipment,
     state: &ImpactState,
