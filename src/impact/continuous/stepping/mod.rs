@@ -173,7 +173,18 @@ impl<L: ContactLaw, B: BallPart, C: SteppedClub, G: SampledGround> Assembly<L, B
                     let redo = |t: Real| {
                         let step = self.club.step(t);
                         let no_bound = |_: &Contact, _: &ContactForce| None;
-                        self.step_stepped(&s, t_s, motion, &step, &law_state, hold, reuse.as_ref(), slip_m, first, no_bound)
+                        self.step_stepped(
+                            &s,
+                            t_s,
+                            motion,
+                            &step,
+                            &law_state,
+                            hold,
+                            reuse.as_ref(),
+                            slip_m,
+                            first,
+                            no_bound,
+                        )
                     };
                     let t = self.separation_s(c0.depth_m, h, &next, t_s, |t| redo(t).0);
                     (next, _, slip_next, _) = redo(t);
