@@ -246,18 +246,18 @@ def report_tables(split):
         notes = []
         sk = r["skipped_rows"]
         if sk["without_club_or_ball"]:
-            notes.append(f"{sk['without_club_or_ball']} strokes without club or ball speed")
+            notes.append(f"{sk['without_club_or_ball']} without club or ball speed")
         if sk["incomplete_club_data"]:
             notes.append(f"{sk['incomplete_club_data']} with club speed but incomplete club data")
         for n in r["no_preset"]:
-            notes.append(f"{n['shots']} {n['label']} strokes (no preset)")
+            notes.append(f"{n['shots']} {n['label']} (no preset)")
         if r["unlocated_left_out"]:
             notes.append(f"{r['unlocated_left_out']} without an impact location")
         for c in r["clubs"]:
             for reason, n in c["refused"].items():
                 notes.append(f"{n} {c['label']} refused by the club ({reason})")
         if notes:
-            rows.append("Left out: " + "; ".join(notes) + ".\n")
+            rows.append("Strokes left out: " + "; ".join(notes) + ".\n")
         table = club_table(f"report-{session}.json")
         rows += [t for t in table if t.startswith("|")]
         rows.append("")
