@@ -42,7 +42,8 @@ MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
 
 # The third player's report JSON sessions: the split was fixed by date order before any comparison (1st, 3rd, 5th
 # and 7th for validation; the 2nd, 4th and 6th held out).
-REPORT_VALIDATION="2025-03-13-pw-driver-5w-7i 2025-07-11-driver-4i-5h-pw 2025-10-30-5w-driver-6i-9i 2026-02-14-driver-7i"
+REPORT_VALIDATION="2025-03-13-pw-driver-5w-7i 2025-07-11-driver-4i-5h-pw 2025-10-30-5w-driver-6i-9i
+    2026-02-14-driver-7i"
 REPORT_HELDOUT="2025-06-13-driver-7i-9i 2025-08-05-5w-driver-7i-pw 2026-02-07-driver-7i"
 for s in $REPORT_VALIDATION $REPORT_HELDOUT; do
     "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/report-$s.json" \

@@ -3,9 +3,11 @@
 //! mean, per field per model; eq. 3.13 cost; time per shot).
 //!
 //! A FILE is a TrackMan Performance Studio CSV export or TrackMan report JSON (club data as the delivery, ball
-//! data as the measurement), a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
-//! recording, without `--models`, the predictions it holds paired live with measurements (its comparisons) are
-//! tabled as recorded; with `--models`, each model is run again on the recorded deliveries.
+//! data as the measurement), a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP
+//! recording. Of a recording, without `--models`, the predictions it holds paired live with measurements (its
+//! comparisons) are tabled as recorded; with `--models`, each model is run again on the recorded deliveries. A
+//! delivery the club refuses (an impact location off its face, a lie it cannot have) is left out and counted per
+//! reason (`refused` in the JSON), not fatal.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -41,8 +43,8 @@ pub struct CompareArgs {
     /// Units of the table (the JSON keeps mph, as the field names say).
     #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
     pub units: impactd::session::Units,
-    /// TrackMan exports (CSV or report JSON): each club (the `Club` column) on its preset; ball speed, launch, spin (shots with measured
-    /// spin) and spin axis as MAE and bias per model and club.
+    /// TrackMan exports (CSV or report JSON): each club (the `Club` column) on its preset; ball speed, launch,
+    /// spin (shots with measured spin) and spin axis as MAE and bias per model and club.
     #[arg(long, conflicts_with_all = ["club", "residuals"])]
     pub by_club: bool,
     /// With --by-club: only shots with an impact location.
