@@ -14,7 +14,7 @@ cite = re.compile(r"eqs?\.\s?(\d+)\.(\d+)(?:\s?[-\u2013]\s?(?:(\d+)\.)?(\d+))?")
 where = collections.defaultdict(set)
 for dirpath, _, files in os.walk(os.path.join(root, "src")):
     for name in files:
-        if not name.endswith(".rs"):
+        if not name.endswith((".rs", ".md")):
             continue
         path = os.path.join(dirpath, name)
         rel = os.path.relpath(path, root)

@@ -6,11 +6,17 @@
 #   region height       ball speed against impact height on the 5-iron: the head alone, with the shaft's share,
 #                       on the seed's flexible shaft
 #   region reference    the validation session with TrackMan's impact heights moved down by 0-8 mm (adjusted)
+#   region slope        smash against impact height on the 8- and 5-iron presets (adjusted) beside the closed-form
+#                       effective mass, with the heel-toe inertia doubled and with the sweet spot moved up the face
 #   region heldout      the held-out session (7-iron, pitching wedge, driver), every model
 #   region tour         TrackMan's tour 7-iron at its launch: the slip model's e_y and e against spin and speed
 #   region relation     per club, TrackMan's measured spin over 2.5 v sin(a) / R from its own loft, face and launch
 #   region strike-height  the validation session's located shots by TrackMan's impact height: measured and
 #                       predicted smash (adjusted), ball speed bias
+#   region variants     the validation session's located shots on copies of the 8- and 5-iron presets with the
+#                       heel-toe inertia scaled or the CG moved toward the heel (adjusted, through predict)
+#   region heel-toe     the same shots 3 to 13 mm up, by TrackMan's impact offset: measured smash, ball speed bias
+#                       of the free head (adjusted) and of the head on the seed's shaft (ground --soil none)
 #   region spin-relation  the validation session with TrackMan's loft and face read through its spin relation
 #   region heldout-relation  the held-out session, the same reading
 #   region spin-launch  per club of the validation session (measured spins), the launch the seed's ball needs below
@@ -80,6 +86,156 @@ PY
         >"$OUT/shift-$s.json"
 done
 
+# Smash against impact height on the 8- and 5-iron presets: the adjusted model, the closed-form effective mass of
+# a normal impact (the preset's head mass, tensor and shaft share), and the same head with its heel-toe inertia
+# (head and share) doubled, or with its CG moved up the face so that the sweet spot sits at the face centre or
+# 6 mm above it (club files beside the presets, nothing else changed).
+python3 - "$BIN" "$OUT" <<'PY'
+import json, math, re, subprocess, sys
+bin, out = sys.argv[1], sys.argv[2]
+heights = [-4, 0, 4, 8, 12, 16]
+M_BALL = 0.0459  # Table 3.1
+
+
+def numbers(text, key):
+    return [float(x) for x in re.findall(r"-?[0-9.]+", re.search(rf"^{key} = (.*)$", text, re.M).group(1))]
+
+
+def variant(text, loft, inertia_scale=1.0, sweet_spot_mm=None):
+    if sweet_spot_mm is not None:
+        c = numbers(text, "cg_to_face_center_m")
+        L = math.radians(loft)
+        depth = c[0] * math.cos(L) + c[1] * math.sin(L)
+        e = -sweet_spot_mm * 1e-3  # the face centre sits e up the face from the CG's projection
+        c = [depth * math.cos(L) - e * math.sin(L), depth * math.sin(L) + e * math.cos(L), c[2]]
+        text = re.sub(r"^cg_to_face_center_m = .*$", f"cg_to_face_center_m = [{c[0]:.6f}, {c[1]:.6f}, {c[2]}]", text,
+                      flags=re.M)
+    if inertia_scale != 1.0:
+        i = numbers(text, "inertia_g_cm2")
+        i[8] *= inertia_scale
+        rows = ", ".join("[" + ", ".join(f"{x:.1f}" for x in i[3 * r:3 * r + 3]) + "]" for r in range(3))
+        text = re.sub(r"^inertia_g_cm2 = .*$", f"inertia_g_cm2 = [{rows}]", text, flags=re.M)
+        share = numbers(text, "shaft_heel_toe_inertia_g_cm2")[0]
+        text = re.sub(r"^shaft_heel_toe_inertia_g_cm2 = .*$", f"shaft_heel_toe_inertia_g_cm2 = {share * inertia_scale:.1f}",
+                      text, flags=re.M)
+    return text
+
+
+def m_eff(text, loft, v_mm):
+    """1 / (1/m + (r x n) . I^-1 (r x n)), club frame, r from the CG to the contact point."""
+    m = numbers(text, "mass_kg")[0] + 0.0101  # the adjusted model's added mass (the seed's Table 3.3 7-iron)
+    c = numbers(text, "cg_to_face_center_m")
+    i = [x * 1e-7 for x in numbers(text, "inertia_g_cm2")]
+    i[8] += numbers(text, "shaft_heel_toe_inertia_g_cm2")[0] * 1e-7
+    L = math.radians(loft)
+    n, u = (math.cos(L), math.sin(L), 0.0), (-math.sin(L), math.cos(L), 0.0)
+    r = [c[k] + v_mm * 1e-3 * u[k] for k in range(3)]
+    k = (r[1] * n[2] - r[2] * n[1], r[2] * n[0] - r[0] * n[2], r[0] * n[1] - r[1] * n[0])
+    A = [i[0:3], i[3:6], i[6:9]]
+    det = lambda M: (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+                     + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+    x = []
+    for col in range(3):
+        B = [row[:] for row in A]
+        for rr in range(3):
+            B[rr][col] = k[rr]
+        x.append(det(B) / det(A))
+    return 1.0 / (1.0 / m + sum(k[q] * x[q] for q in range(3)))
+
+
+rows = []
+for preset, club_mph, attack, loft_dyn in [("iron8", 90, -7.5, 21.5), ("iron5", 95, -7.5, 13.0)]:
+    text = open(f"clubs/presets/{preset}.toml").read()
+    loft = numbers(text, "loft_deg")[0]
+    lines = "".join(json.dumps({"club_speed_mph": club_mph, "attack_angle_deg": attack, "dynamic_loft_deg": loft_dyn,
+                                "impact_v_mm": v}) + "\n" for v in heights)
+
+    def smash(club_text):
+        path = f"{out}/slope.toml"
+        open(path, "w").write(club_text)
+        p = subprocess.run([bin, "predict", "--club", path, "--model", "adjusted"], input=lines, capture_output=True,
+                           text=True, check=True)
+        return [json.loads(l)["ball_speed_mph"] / club_mph for l in p.stdout.splitlines()]
+
+    c = numbers(text, "cg_to_face_center_m")
+    L = math.radians(loft)
+    sweet = -(-c[0] * math.sin(L) + c[1] * math.cos(L)) * 1e3  # the CG's projection on the face, mm up from the centre
+    preset_smash = smash(text)
+    # Closed form: the normal impact's (1 + e) m_eff / (m_eff + m_ball), scaled to the model's smash at the sweet spot.
+    p = subprocess.run([bin, "predict", "--club", f"clubs/presets/{preset}.toml", "--model", "adjusted"],
+                       input=json.dumps({"club_speed_mph": club_mph, "attack_angle_deg": attack,
+                                         "dynamic_loft_deg": loft_dyn, "impact_v_mm": sweet}) + "\n",
+                       capture_output=True, text=True, check=True)
+    s0 = json.loads(p.stdout)["ball_speed_mph"] / club_mph
+    f = lambda v: (lambda me: me / (me + M_BALL))(m_eff(text, loft, v))
+    closed = [s0 * f(v) / f(sweet) for v in heights]
+    # The heel-toe inertia (head and share) at which the closed form keeps 98 % of the sweet spot's smash 13 mm up
+    # the face (TrackMan's 5-iron: 1.410 below 3 mm, 1.416 from 9 to 13 mm), by bisection.
+    lo, hi = 0.0, 50000.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        t = re.sub(r"^shaft_heel_toe_inertia_g_cm2 = .*$", "shaft_heel_toe_inertia_g_cm2 = 0.0", variant(text, loft),
+                   flags=re.M)
+        i = numbers(t, "inertia_g_cm2")
+        i[8] = mid
+        rows_i = ", ".join("[" + ", ".join(f"{x:.6f}" for x in i[3 * r:3 * r + 3]) + "]" for r in range(3))
+        t = re.sub(r"^inertia_g_cm2 = .*$", f"inertia_g_cm2 = [{rows_i}]", t, flags=re.M)
+        g = lambda v: (lambda me: me / (me + M_BALL))(m_eff(t, loft, v))
+        lo, hi = (lo, mid) if g(13.0) / g(sweet) >= 0.98 else (mid, hi)
+    i = numbers(text, "inertia_g_cm2")
+    rows.append({"club": preset, "sweet_mm": sweet, "heights": heights, "needed_g_cm2": hi,
+                 "heel_toe_g_cm2": i[8] + numbers(text, "shaft_heel_toe_inertia_g_cm2")[0], "vertical_g_cm2": i[4],
+                 "series": [["adjusted, the preset", preset_smash],
+                            ["closed form, the preset's m and I", closed],
+                            ["adjusted, heel-toe inertia x 2", smash(variant(text, loft, inertia_scale=2.0))],
+                            ["adjusted, sweet spot at the face centre", smash(variant(text, loft, sweet_spot_mm=0.0))],
+                            ["adjusted, sweet spot 6 mm above it", smash(variant(text, loft, sweet_spot_mm=6.0))]]})
+json.dump(rows, open(f"{out}/slope.json", "w"))
+
+# The validation session's located shots (the deliveries `compare --by-club` gives an iron: TrackMan's loft and
+# face are the face centre's on a planar face) on copies of the 8- and 5-iron presets: the heel-toe inertia (head
+# and share) scaled, or the CG moved toward the heel. Ball speed MAE / bias; the 8-iron's spin on measured shots.
+import csv
+lines = open("tests/data/trackman/validation-8i-5i.csv", encoding="utf-8-sig").read().splitlines()
+table = list(csv.reader(lines[1:]))
+head = table[0]
+fields = [("club_speed_mph", "Club Speed"), ("attack_angle_deg", "Attack Angle"), ("club_path_deg", "Club Path"),
+          ("face_angle_deg", "Face Angle"), ("dynamic_loft_deg", "Dyn. Loft"), ("impact_h_mm", "Impact Offset"),
+          ("impact_v_mm", "Impact Height"), ("dynamic_lie_deg", "Dynamic Lie")]
+
+
+def heelward(text, mm):
+    c = numbers(text, "cg_to_face_center_m")
+    return re.sub(r"^cg_to_face_center_m = .*$", f"cg_to_face_center_m = [{c[0]}, {c[1]}, {c[2] + mm * 1e-3:.5f}]",
+                  text, flags=re.M)
+
+
+variants = []
+for label, change in [("the presets", lambda t, L: t),
+                      ("heel-toe inertia x 1.5", lambda t, L: variant(t, L, inertia_scale=1.5)),
+                      ("heel-toe inertia x 2", lambda t, L: variant(t, L, inertia_scale=2.0)),
+                      ("heel-toe inertia x 3", lambda t, L: variant(t, L, inertia_scale=3.0)),
+                      ("sweet spot 4 mm toward the heel", lambda t, L: heelward(t, 4.0 - 1.12)),
+                      ("sweet spot 7 mm toward the heel", lambda t, L: heelward(t, 7.0 - 1.12))]:
+    cells = {}
+    for club, preset in [("8 Iron", "iron8"), ("5 Iron", "iron5")]:
+        sel = [d for d in (dict(zip(head, r)) for r in table[2:])
+               if d["Club"] == club and d["Club Speed"] and d["Impact Height"]]
+        text = open(f"clubs/presets/{preset}.toml").read()
+        path = f"{out}/variant.toml"
+        open(path, "w").write(change(text, numbers(text, "loft_deg")[0]))
+        lines_in = "".join(json.dumps({k: float(d[c]) for k, c in fields}) + "\n" for d in sel)
+        p = subprocess.run([bin, "predict", "--club", path, "--model", "adjusted"], input=lines_in,
+                           capture_output=True, text=True, check=True)
+        q = [json.loads(l) for l in p.stdout.splitlines()]
+        e = [x["ball_speed_mph"] - float(d["Ball Speed"]) for x, d in zip(q, sel)]
+        spin = [abs(x["total_spin_rpm"] - float(d["Spin Rate"])) for x, d in zip(q, sel)
+                if d["Spin Rate Type"] == "Measured"]
+        cells[club] = (sum(map(abs, e)) / len(e), sum(e) / len(e), sum(spin) / len(spin))
+    variants.append({"label": label, "cells": cells})
+json.dump(variants, open(f"{out}/variants.json", "w"))
+PY
+
 # The validation session's located shots, as `compare --by-club` gives them (irons: TrackMan's loft and face
 # are the face centre's), through the adjusted model: smash and ball speed against TrackMan's impact height.
 python3 - "$BIN" "$DATA/validation-8i-5i.csv" "$OUT" <<'PY'
@@ -96,9 +252,12 @@ for club, preset in [("8 Iron", "iron8"), ("5 Iron", "iron5")]:
     text = "".join(json.dumps({k: float(d[c]) for k, c in fields}) + "\n" for d in sel)
     p = subprocess.run([bin, "predict", "--club", preset, "--model", "adjusted"], input=text, capture_output=True,
                        text=True, check=True)
-    for d, q in zip(sel, (json.loads(l) for l in p.stdout.splitlines())):
-        result.append({"club": club, "v": float(d["Impact Height"]), "club_speed": float(d["Club Speed"]),
-                       "ball_speed": float(d["Ball Speed"]), "predicted": q["ball_speed_mph"]})
+    g = subprocess.run([bin, "predict", "--club", preset, "--model", "ground", "--soil", "none"], input=text,
+                       capture_output=True, text=True, check=True)
+    for d, q, qg in zip(sel, (json.loads(l) for l in p.stdout.splitlines()), (json.loads(l) for l in g.stdout.splitlines())):
+        result.append({"club": club, "v": float(d["Impact Height"]), "h": float(d["Impact Offset"]),
+                       "club_speed": float(d["Club Speed"]), "ball_speed": float(d["Ball Speed"]),
+                       "predicted": q["ball_speed_mph"], "on_shaft": qg["ball_speed_mph"]})
 json.dump(result, open(f"{out}/strike-height.json", "w"))
 PY
 
@@ -166,8 +325,8 @@ for label, s in [("adjusted, the head alone (577 g cm2 scaled)", head), ("adjust
                  ("ground --soil none (the head on the seed's shaft)", shaft)]:
     height.append(f"| {label} | " + " | ".join(f"{x:.1f}" for x in s) + " |")
 
-reference = ["| heights moved down (mm) | adjusted 8-iron | adjusted 5-iron | continuous 8-iron | continuous 5-iron |",
-             "|---|---|---|---|---|"]
+reference = ["| heights moved down (mm) | adjusted 8-iron | adjusted 5-iron | continuous 8-iron | continuous 5-iron | adjusted 8-iron spin MAE / bias (rpm) |",
+             "|---|---|---|---|---|---|"]
 for s in [0, 2, 4, 6, 8]:
     r = json.load(open(f"{out}/shift-{s}.json"))
     cell = {}
@@ -175,8 +334,21 @@ for s in [0, 2, 4, 6, 8]:
         for m in c["models"]:
             e = m["ball_speed_mph"]
             cell[(c["label"], m["model"])] = f"{e['mae']:.2f} / {e['bias']:+.2f}"
+            cell[(c["label"], m["model"], "spin")] = f"{m['spin_rpm']['mae']:.0f} / {m['spin_rpm']['bias']:+.0f}"
     reference.append(f"| {s} | {cell[('8 Iron', 'adjusted')]} | {cell[('5 Iron', 'adjusted')]} | "
-                     f"{cell[('8 Iron', 'continuous')]} | {cell[('5 Iron', 'continuous')]} |")
+                     f"{cell[('8 Iron', 'continuous')]} | {cell[('5 Iron', 'continuous')]} | "
+                     f"{cell[('8 Iron', 'adjusted', 'spin')]} |")
+
+slope = []
+for r in json.load(open(f"{out}/slope.json")):
+    slope += [f"| {r['club']} (sweet spot {r['sweet_mm']:+.2f} mm) | " + " | ".join(f"{v} mm" for v in r["heights"]) + " |",
+              "|---|" + "---|" * len(r["heights"])]
+    for label, series in r["series"]:
+        slope.append(f"| {label} | " + " | ".join(f"{x:.3f}" for x in series) + " |")
+    slope += ["", f"{r['club']}: 98 % of the sweet spot's smash 13 mm above the face centre needs {r['needed_g_cm2']:,.0f} g cm2 "
+              f"about the heel-toe axis (the preset: {r['heel_toe_g_cm2']:,.0f} with the shaft's share; about the "
+              f"vertical axis the head has {r['vertical_g_cm2']:,.0f}).", ""]
+slope.pop()
 
 tour = ["| model | e_y | e | dynamic loft (deg) | ball speed (mph) | spin (rpm) |", "|---|---|---|---|---|---|"]
 for t in json.load(open(f"{out}/tour.json")):
@@ -215,6 +387,18 @@ for club in ["8 Iron", "5 Iron"]:
         mean = lambda f: sum(f(x) for x in g) / len(g)
         strike.append(f"| {club} | {label} | {len(g)} | {mean(lambda x: x['ball_speed'] / x['club_speed']):.3f} | "
                       f"{mean(lambda x: x['predicted'] / x['club_speed']):.3f} | {mean(lambda x: x['predicted'] - x['ball_speed']):+.1f} |")
+
+heel_toe = ["| club | TrackMan impact offset (mm), strikes 3 to 13 mm up | shots | measured smash | ball speed bias, adjusted (mph) | ball speed bias, ground --soil none (mph) |",
+            "|---|---|---|---|---|---|"]
+for club in ["8 Iron", "5 Iron"]:
+    for lo, hi, label in [(-99, -3, "heel, below -3"), (-3, 3, "-3 to 3"), (3, 99, "toe, 3 and above")]:
+        g = [x for x in json.load(open(f"{out}/strike-height.json"))
+             if x["club"] == club and 3 <= x["v"] < 13 and lo <= x["h"] < hi]
+        if not g:
+            continue
+        mean = lambda f: sum(f(x) for x in g) / len(g)
+        heel_toe.append(f"| {club} | {label} | {len(g)} | {mean(lambda x: x['ball_speed'] / x['club_speed']):.3f} | "
+                        f"{mean(lambda x: x['predicted'] - x['ball_speed']):+.1f} | {mean(lambda x: x['on_shaft'] - x['ball_speed']):+.1f} |")
 
 spin_launch = ["| club | measured spins | TrackMan's ball-to-face angle (deg) | the seed's ball needs (deg) | launch below TrackMan's (deg) | spin at TrackMan's launch (rpm, MAE) |",
                "|---|---|---|---|---|---|"]
@@ -265,17 +449,26 @@ def report_tables(split):
     return rows[:-1]
 
 
+variants = ["| the 8- and 5-iron presets | 8-iron ball speed MAE / bias (mph) | 5-iron ball speed MAE / bias (mph) | 8-iron spin MAE (rpm) |",
+            "|---|---|---|---|"]
+for v in json.load(open(f"{out}/variants.json")):
+    c8, c5 = v["cells"]["8 Iron"], v["cells"]["5 Iron"]
+    variants.append(f"| {v['label']} | {c8[0]:.2f} / {c8[1]:+.2f} | {c5[0]:.2f} / {c5[1]:+.2f} | {c8[2]:.0f} |")
+
 docs_regions.replace("docs/real-shots.md", {
     "report-validation": report_tables("validation"),
     "report-heldout": report_tables("heldout"),
+    "variants": variants,
     "relation": relation,
     "tour": tour,
     "validation": club_table("validation.json"),
     "validation-all": club_table("validation-all.json"),
     "height": height,
     "reference": reference,
+    "slope": slope,
     "heldout": club_table("heldout.json"),
     "strike-height": strike,
+    "heel-toe": heel_toe,
     "spin-launch": spin_launch,
     "spin-relation": club_table("spin-relation.json"),
     "heldout-relation": club_table("heldout-relation.json"),

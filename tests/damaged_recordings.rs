@@ -175,3 +175,59 @@ fn the_binary_says_a_file_is_damaged() {
         }
     }
 }
+
+/// The reader's reasons are typed, with their causes: a chunk whose bytes changed is a `ChunkError` naming the
+/// check that caught it, a length that points past the end stops a strict scan at that record's offset, and the
+/// error `recover` returns for a file with nothing readable has the scan's stop as its source.
+#[test]
+fn damage_reasons_are_typed_with_causes() {
+    use impactd::daemon::recording::damage::{ChunkError, DamageReason, ScanStop};
+    use std::error::Error as _;
+    let original = std::fs::read(RECORDING).unwrap();
+    let intact = scan(&original, OnDamage::Stop);
+    assert!(intact.intact());
+    let chunk = intact.chunks[0];
+    // The last byte of the first chunk's record is compressed data: the zstd frame or the CRC must refuse it.
+    let mut flipped = original.clone();
+    flipped[(chunk.offset + chunk.bytes - 1) as usize] ^= 0x01;
+    let s = scan(&flipped, OnDamage::Resync);
+    let d = s.damage.iter().find(|d| d.offset == chunk.offset).expect("the damaged chunk is reported");
+    assert!(
+        matches!(
+            d.reason,
+            DamageReason::Chunk(ChunkError::Crc { .. } | ChunkError::Zstd(_) | ChunkError::DecompressedSize { .. })
+        ),
+        "{:?}",
+        d.reason
+    );
+    if let DamageReason::Chunk(ChunkError::Zstd(cause)) = &d.reason {
+        assert!(cause.source().is_some() || !cause.to_string().is_empty());
+    }
+    // The first chunk's length claims more than the file holds: a strict scan stops there.
+    let mut long = original.clone();
+    let at = chunk.offset as usize + 1;
+    long[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
+    let s = scan(&long, OnDamage::Stop);
+    match &s.stopped {
+        Some(ScanStop::At { offset, reason: DamageReason::PastEnd { claimed_bytes, .. } }) => {
+            assert_eq!((*offset, *claimed_bytes), (chunk.offset, u64::MAX));
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        s.problems().last().unwrap(),
+        &format!(
+            "stopped: at byte {}: record 0x06 claims {} bytes; {} are left",
+            chunk.offset,
+            u64::MAX,
+            original.len() as u64 - chunk.offset - 9
+        )
+    );
+    // Nothing readable: `recover` refuses with the scan's stop as the cause.
+    let dir = tempfile::tempdir().unwrap();
+    let junk = dir.path().join("junk.mcap");
+    std::fs::write(&junk, vec![0x5au8; 4096]).unwrap();
+    let err = impactd::daemon::recording::recover::recover(&junk, &dir.path().join("out.mcap"), true).unwrap_err();
+    let source = err.source().and_then(|s| s.downcast_ref::<ScanStop>());
+    assert_eq!(source, Some(&ScanStop::NothingReadable), "{err}");
+}

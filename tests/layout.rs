@@ -338,3 +338,20 @@ fn the_cycle_check_sees_a_circle() {
         vec![(s(&["daemon", "run"]), s(&["daemon", "live"])), (s(&["daemon", "RunOptions"]), s(&["daemon", "live"]))]
     );
 }
+
+/// Small files, one job each (ARCHITECTURE.md section 7): no source file over 450 lines.
+#[test]
+fn no_source_file_is_over_450_lines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    assert!(files.len() > 100, "the sources were not found ({} files)", files.len());
+    let long: Vec<String> = files
+        .iter()
+        .filter_map(|f| {
+            let lines = std::fs::read_to_string(f).unwrap().lines().count();
+            (lines > 450).then(|| format!("{}: {lines} lines", f.strip_prefix(root).unwrap().display()))
+        })
+        .collect();
+    assert!(long.is_empty(), "files over 450 lines:\n{}", long.join("\n"));
+}

@@ -50,8 +50,14 @@ pub enum DaemonError {
     WriterPanicked { path: String },
     #[error("{path} is not an MCAP file")]
     NotMcap { path: String },
-    #[error("{path}: {reason}")]
-    Unreadable { path: String, reason: String },
+    #[error("{path}: {source}")]
+    Unreadable {
+        path: String,
+        #[source]
+        source: recording::damage::ScanStop,
+    },
+    #[error("{path}: not a regular file, and over {limit_bytes} bytes")]
+    StreamTooLarge { path: String, limit_bytes: u64 },
     #[error("{path} line {line}: {source}")]
     BadSampleLine {
         path: String,

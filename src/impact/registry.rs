@@ -67,50 +67,7 @@ fn continuous(club: &LoadedClub, o: &BuildOptions) -> Result<Arc<dyn ImpactModel
     Ok(Arc::new(ContinuousModel { params, ..ContinuousModel::default() }))
 }
 
-/// Every model. Each one's launch for one delivery, with where the number comes from (the seed's driver, Table
-/// 3.1, at 113 mph, 13 deg of dynamic loft and 1.3 deg down, the thesis' own example; its 7-iron at 85 mph, 26 deg
-/// and 4.3 deg down, the swing of its section 4.3):
-///
-/// ```
-/// use impactd::equipment::{load_club, LoadedClub};
-/// use impactd::impact::registry::{build_one, BuildOptions};
-/// use impactd::impact::{Delivery, Equipment, LaunchMetrics};
-/// use impactd::units::mph_to_mps;
-///
-/// fn ball_mph(model: &str, club: &str, speed_mph: f64, loft_deg: f64, attack_deg: f64) -> (f64, f64) {
-///     let club: LoadedClub = load_club(club).unwrap();
-///     let eq = Equipment::new(club.club.clone());
-///     let d = Delivery {
-///         club_speed_mps: mph_to_mps(speed_mph),
-///         attack_angle_rad: attack_deg.to_radians(),
-///         club_path_rad: 0.0,
-///         face_angle_rad: 0.0,
-///         dynamic_loft_rad: loft_deg.to_radians(),
-///         impact_h_m: 0.0,
-///         impact_v_m: 0.0,
-///         club_angular_velocity_radps: impactd::math::Vector3::zeros(),
-///     };
-///     let model = build_one(model, &club, &BuildOptions::default()).unwrap();
-///     let l = model.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
-///     let m = LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps);
-///     (m.ball_speed_mph, m.backspin_rpm)
-/// }
-/// // The impulse models: the exact cases of tests/data/im-golden.jsonl (the closed-form 3x3 solve, eq. 3.1-3.12).
-/// assert!((ball_mph("standard", "driver", 113.0, 13.0, -1.3).0 - 163.298903).abs() < 1e-5);
-/// assert!((ball_mph("adjusted", "driver", 113.0, 13.0, -1.3).0 - 163.956911).abs() < 1e-5);
-/// assert!((ball_mph("slip", "driver", 113.0, 13.0, -1.3).0 - 163.297371).abs() < 1e-5);
-/// // The models resolved in time lose a little more to the ball's deformation and the contact's damping: within
-/// // 2 % below the adjusted model (the seed's most accurate driver model, ball speed MAE 1 %).
-/// for model in ["continuous", "maw", "arakawa"] {
-///     let (mph, _) = ball_mph(model, "driver", 113.0, 13.0, -1.3);
-///     assert!(mph < 163.96 && mph > 0.98 * 163.96, "{model}: {mph} mph");
-/// }
-/// // The iron on the turf: a good strike, its smash factor near the tour's 7-iron (120 / 90 = 1.33, TrackMan's
-/// // tour averages, tests/data/trackman-pga-tour-averages.csv); the one-cycle ball gives 1.37 on a free head
-/// // (`continuous`) and the seed's shaft adds 3 mph at the face centre (docs/models-notes.md): 1.40.
-/// let (mph, spin) = ball_mph("ground", "iron7", 85.0, 26.0, -4.3);
-/// assert!((1.30..1.42).contains(&(mph / 85.0)) && spin > 4000.0, "{mph} mph, {spin} rpm");
-/// ```
+#[doc = include_str!("model_examples.md")]
 pub const MODELS: &[ModelEntry] = &[
     ModelEntry {
         name: "standard",

@@ -5,6 +5,7 @@
 
 pub mod c3d;
 pub mod channels;
+pub mod damage;
 pub mod info;
 pub mod launches;
 pub mod reader;

@@ -13,6 +13,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::damage::{DamageReason, ScanStop};
 use super::source::{Source, MAX_RECORD_BYTES};
 
 pub use crate::daemon::recording::records::MAX_CHUNK_BYTES;
@@ -33,7 +34,7 @@ pub struct Damage {
     pub time_range_ns: Option<(u64, u64)>,
     /// How many messages had been read before it (the neighbours bound its time range).
     pub after_message: usize,
-    pub reason: String,
+    pub reason: DamageReason,
 }
 
 /// One chunk that was read whole: where it is in the file and how many messages it held.
@@ -72,7 +73,7 @@ pub struct Scan {
     /// The footer and the closing magic were read: the file was finished.
     pub finished: bool,
     /// The scan stopped at damage it could not step over.
-    pub stopped: Option<String>,
+    pub stopped: Option<ScanStop>,
 }
 
 impl Scan {
@@ -104,38 +105,38 @@ pub enum OnDamage {
 }
 
 /// The (opcode, body, next offset) of the record at `pos`, if its length fits the file.
-fn frame<S: Source>(src: &mut S, pos: u64) -> Result<(u8, &[u8], u64), String> {
+fn frame<S: Source>(src: &mut S, pos: u64) -> Result<(u8, &[u8], u64), DamageReason> {
     let left = src.size_bytes() - pos;
     if left < 9 {
-        return Err(format!("cut off inside a record header ({left} bytes left)"));
+        return Err(DamageReason::CutInHeader { left_bytes: left });
     }
-    let header = src.get(pos, 9).map_err(|e| format!("unreadable: {e}"))?;
+    let header = src.get(pos, 9).map_err(|e| DamageReason::Unreadable(e.into()))?;
     let opcode = header[0];
     let mut len = [0u8; 8];
     len.copy_from_slice(&header[1..9]);
     let len = u64::from_le_bytes(len);
     if len > left - 9 {
-        return Err(format!("record 0x{opcode:02x} claims {len} bytes; {} are left", left - 9));
+        return Err(DamageReason::PastEnd { opcode, claimed_bytes: len, left_bytes: left - 9 });
     }
     if len > MAX_RECORD_BYTES {
-        return Err(format!("record 0x{opcode:02x} claims {len} bytes, more than any record impactd reads"));
+        return Err(DamageReason::TooLong { opcode, claimed_bytes: len });
     }
-    let body = src.get(pos + 9, len as usize).map_err(|e| format!("unreadable: {e}"))?;
+    let body = src.get(pos + 9, len as usize).map_err(|e| DamageReason::Unreadable(e.into()))?;
     Ok((opcode, body, pos + 9 + len))
 }
 
 /// [`frame`] inside a chunk's records, in memory.
-fn frame_in(bytes: &[u8], pos: usize) -> Result<(u8, &[u8], usize), String> {
+fn frame_in(bytes: &[u8], pos: usize) -> Result<(u8, &[u8], usize), DamageReason> {
     let left = bytes.len() - pos;
     if left < 9 {
-        return Err(format!("cut off inside a record header ({left} bytes left)"));
+        return Err(DamageReason::CutInHeader { left_bytes: left as u64 });
     }
     let opcode = bytes[pos];
     let mut len = [0u8; 8];
     len.copy_from_slice(&bytes[pos + 1..pos + 9]);
     let len = u64::from_le_bytes(len);
     if len > (left - 9) as u64 {
-        return Err(format!("record 0x{opcode:02x} claims {len} bytes; {} are left", left - 9));
+        return Err(DamageReason::PastEnd { opcode, claimed_bytes: len, left_bytes: (left - 9) as u64 });
     }
     let end = pos + 9 + len as usize;
     Ok((opcode, &bytes[pos + 9..end], end))
@@ -218,10 +219,10 @@ pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn 
     if !magic_ok {
         // A damaged magic costs nothing more when the records behind it are found.
         if on_damage == OnDamage::Stop || len <= MAGIC.len() as u64 {
-            s.stopped = Some("not an MCAP file (no magic)".into());
+            s.stopped = Some(ScanStop::NoMagic);
             return s;
         }
-        let reason = "the opening magic is damaged".to_string();
+        let reason = DamageReason::OpeningMagic;
         s.damage.push(Damage { offset: 0, bytes: MAGIC.len() as u64, time_range_ns: None, after_message: 0, reason });
     }
     let mut crcs = Crcs::default();
@@ -246,7 +247,7 @@ pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn 
                                 bytes: len - next,
                                 time_range_ns: None,
                                 after_message: s.message_count as usize,
-                                reason: "the footer is not followed by the closing magic".into(),
+                                reason: DamageReason::ClosingMagic,
                             });
                         }
                         break;
@@ -256,7 +257,7 @@ pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn 
                 }
                 Err(e) if on_damage == OnDamage::Stop => {
                     // The length is intact as far as anyone can tell: step over the record.
-                    let reason = format!("record 0x{opcode:02x}: {e}");
+                    let reason = DamageReason::Record { opcode, source: e };
                     s.damage.push(Damage {
                         offset: pos,
                         bytes: next - pos,
@@ -268,12 +269,12 @@ pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn 
                     pos = next;
                     continue;
                 }
-                Err(e) => format!("record 0x{opcode:02x}: {e}"),
+                Err(e) => DamageReason::Record { opcode, source: e },
             },
             Err(e) => e,
         };
         if on_damage == OnDamage::Stop {
-            s.stopped = Some(format!("at byte {pos}: {damaged}"));
+            s.stopped = Some(ScanStop::At { offset: pos, reason: damaged });
             return s;
         }
         let next = (pos + 1..len).find(|&p| valid_at(src, p)).unwrap_or(len);
@@ -283,7 +284,7 @@ pub fn scan_source<S: Source>(src: &mut S, on_damage: OnDamage, visit: &mut dyn 
         pos = next;
     }
     if !magic_ok && s.chunks.is_empty() && s.message_count == 0 {
-        s.stopped = Some("not an MCAP file (no magic, no readable record)".into());
+        s.stopped = Some(ScanStop::NothingReadable);
     }
     while s.damage_neighbours_ns.len() < s.damage.len() {
         s.damage_neighbours_ns.push((s.last_message_ns, None));
@@ -322,10 +323,7 @@ impl Scan {
                         bytes: pos,
                         time_range_ns: None,
                         after_message: self.message_count as usize,
-                        reason: format!(
-                            "the data section's CRC is {actual:08x}, its DataEnd record says {crc:08x}: a record in \
-                             it (a message, the metadata, the recorded configuration) changed after it was written"
-                        ),
+                        reason: DamageReason::DataCrc { actual, recorded: crc },
                     });
                 }
             }
@@ -354,17 +352,17 @@ impl Scan {
                             bytes: (pos + 1 + 8 + 16).saturating_sub(start),
                             time_range_ns: None,
                             after_message: self.message_count as usize,
-                            reason: format!(
-                                "the summary's CRC does not match its footer ({summary_crc:08x}): the summary, \
-                                 its statistics or indexes changed after they were written"
-                            ),
+                            reason: DamageReason::SummaryCrc { recorded: summary_crc },
                         });
                     }
                 }
                 return true;
             }
             Rec::Other => {}
-            Rec::Chunk(c) => match unpack(&c).and_then(|records| self.chunk_records(&records, crcs, visit)) {
+            Rec::Chunk(c) => match unpack(&c)
+                .map_err(DamageReason::from)
+                .and_then(|records| self.chunk_records(&records, crcs, visit))
+            {
                 Ok(messages) => {
                     self.chunks.push(ChunkSpan { offset: pos, bytes: next - pos, messages });
                     *self.compression.entry(c.compression.clone()).or_default() += 1;
@@ -387,16 +385,16 @@ impl Scan {
         records: &[u8],
         crcs: &Crcs,
         visit: &mut dyn FnMut(&Scan, RawMessage),
-    ) -> Result<u64, String> {
+    ) -> Result<u64, DamageReason> {
         let mut pos = 0;
         let mut recs = Vec::new();
         while pos < records.len() {
-            let (opcode, body, next) = frame_in(records, pos).map_err(|e| format!("inside a chunk: {e}"))?;
-            recs.push(parse(opcode, body).map_err(|e| format!("inside a chunk, record 0x{opcode:02x}: {e}"))?);
+            let (opcode, body, next) = frame_in(records, pos).map_err(|e| DamageReason::ChunkFraming(Box::new(e)))?;
+            recs.push(parse(opcode, body).map_err(|source| DamageReason::ChunkRecord { opcode, source })?);
             pos = next;
         }
         if recs.iter().any(|r| matches!(r, Rec::Chunk(_) | Rec::Footer { .. } | Rec::DataEnd { .. })) {
-            return Err("a chunk holds a chunk, a footer or a data end".into());
+            return Err(DamageReason::ChunkNesting);
         }
         let messages = recs.iter().filter(|r| matches!(r, Rec::Message(_))).count() as u64;
         for rec in recs {

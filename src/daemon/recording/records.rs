@@ -4,6 +4,8 @@
 
 use std::collections::BTreeMap;
 
+use super::damage::{ChunkError, RecordError};
+
 /// A schema record.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SchemaDef {
@@ -59,7 +61,7 @@ pub(super) struct Body<'a> {
     pos: usize,
 }
 
-pub(super) type Parse<T> = Result<T, &'static str>;
+pub(super) type Parse<T> = Result<T, RecordError>;
 
 impl<'a> Body<'a> {
     fn new(b: &'a [u8]) -> Self {
@@ -68,7 +70,7 @@ impl<'a> Body<'a> {
     fn take(&mut self, n: u64) -> Parse<&'a [u8]> {
         let left = (self.b.len() - self.pos) as u64;
         if n > left {
-            return Err("a length runs past the end of its record");
+            return Err(RecordError::LengthPastRecord);
         }
         let s = &self.b[self.pos..self.pos + n as usize];
         self.pos += n as usize;
@@ -78,17 +80,17 @@ impl<'a> Body<'a> {
         Ok(self.take(1)?[0])
     }
     fn u16(&mut self) -> Parse<u16> {
-        Ok(u16::from_le_bytes(self.take(2)?.try_into().map_err(|_| "short")?))
+        Ok(u16::from_le_bytes(self.take(2)?.try_into().map_err(|_| RecordError::LengthPastRecord)?))
     }
     fn u32(&mut self) -> Parse<u32> {
-        Ok(u32::from_le_bytes(self.take(4)?.try_into().map_err(|_| "short")?))
+        Ok(u32::from_le_bytes(self.take(4)?.try_into().map_err(|_| RecordError::LengthPastRecord)?))
     }
     fn u64(&mut self) -> Parse<u64> {
-        Ok(u64::from_le_bytes(self.take(8)?.try_into().map_err(|_| "short")?))
+        Ok(u64::from_le_bytes(self.take(8)?.try_into().map_err(|_| RecordError::LengthPastRecord)?))
     }
     fn string(&mut self) -> Parse<String> {
         let n = self.u32()?;
-        std::str::from_utf8(self.take(n.into())?).map(str::to_string).map_err(|_| "a string is not UTF-8")
+        std::str::from_utf8(self.take(n.into())?).map(str::to_string).map_err(|_| RecordError::NotUtf8)
     }
     fn bytes32(&mut self) -> Parse<&'a [u8]> {
         let n = self.u32()?;
@@ -101,7 +103,7 @@ impl<'a> Body<'a> {
             let k = inner.string()?;
             let v = inner.string()?;
             if m.insert(k, v).is_some() {
-                return Err("a map repeats a key");
+                return Err(RecordError::RepeatedKey);
             }
         }
         Ok(m)
@@ -118,7 +120,7 @@ impl<'a> Body<'a> {
         if self.done() {
             Ok(())
         } else {
-            Err("the record is longer than its fields")
+            Err(RecordError::LongerThanFields)
         }
     }
 }
@@ -236,46 +238,50 @@ pub(super) fn parse(opcode: u8, body: &[u8]) -> Parse<Rec<'_>> {
             c.bytes32()?;
             Rec::Other
         }
-        _ => return Err("unknown record type"),
+        _ => return Err(RecordError::UnknownType),
     };
     c.end()?;
     Ok(rec)
 }
 
 /// The chunk's records, decompressed within bounds and checked against the chunk's CRC.
-pub(super) fn unpack(chunk: &ChunkBody) -> Result<Vec<u8>, String> {
+pub(super) fn unpack(chunk: &ChunkBody) -> Result<Vec<u8>, ChunkError> {
     let n = chunk.uncompressed_size;
     let records = match chunk.compression.as_str() {
         "" => {
             if n != chunk.data.len() as u64 {
-                return Err(format!("uncompressed chunk of {} bytes says {n}", chunk.data.len()));
+                return Err(ChunkError::UncompressedSize { data_bytes: chunk.data.len() as u64, claimed_bytes: n });
             }
             chunk.data.to_vec()
         }
         "zstd" => {
             let bound = (chunk.data.len() as u64).saturating_mul(ZSTD_MAX_RATIO).min(MAX_CHUNK_BYTES);
             if n > bound {
-                return Err(format!("chunk claims {n} bytes uncompressed from {} (at most {bound})", chunk.data.len()));
+                return Err(ChunkError::ClaimsTooMuch {
+                    claimed_bytes: n,
+                    data_bytes: chunk.data.len() as u64,
+                    bound_bytes: bound,
+                });
             }
             match zstd::zstd_safe::get_frame_content_size(chunk.data) {
                 Ok(Some(framed)) if framed != n => {
-                    return Err(format!("chunk claims {n} bytes uncompressed, its zstd frame {framed}"))
+                    return Err(ChunkError::FrameDisagrees { claimed_bytes: n, framed_bytes: framed })
                 }
-                Err(_) => return Err("the zstd frame header is damaged".into()),
+                Err(_) => return Err(ChunkError::FrameHeader),
                 _ => {}
             }
-            let out = zstd::bulk::decompress(chunk.data, n as usize).map_err(|e| format!("zstd: {e}"))?;
+            let out = zstd::bulk::decompress(chunk.data, n as usize).map_err(|e| ChunkError::Zstd(e.into()))?;
             if out.len() as u64 != n {
-                return Err(format!("chunk decompressed to {} bytes, not {n}", out.len()));
+                return Err(ChunkError::DecompressedSize { got_bytes: out.len() as u64, claimed_bytes: n });
             }
             out
         }
-        other => return Err(format!("unsupported chunk compression `{}`", other.escape_debug())),
+        other => return Err(ChunkError::UnsupportedCompression(other.to_string())),
     };
     if chunk.crc != 0 {
         let got = crc32fast::hash(&records);
         if got != chunk.crc {
-            return Err(format!("chunk CRC {got:08x} is not the recorded {:08x}", chunk.crc));
+            return Err(ChunkError::Crc { got, recorded: chunk.crc });
         }
     }
     Ok(records)

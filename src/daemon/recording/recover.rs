@@ -10,6 +10,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
+use super::damage::DamageReason;
 use super::stream::read_opened;
 use crate::daemon::recording::reader::{ChannelDef, OnDamage, RawMessage, Scan};
 use crate::daemon::DaemonError;
@@ -31,7 +32,7 @@ pub struct Loss {
     /// neighbours' messages (`None` at an open end).
     pub from_ns: Option<u64>,
     pub to_ns: Option<u64>,
-    pub reason: String,
+    pub reason: DamageReason,
 }
 
 /// What `recover` did.
@@ -94,13 +95,7 @@ fn losses(s: &Scan) -> Vec<Loss> {
     let damaged_to_the_end = s.damage.last().is_some_and(|d| d.offset + d.bytes >= file_bytes);
     if !s.finished && s.stopped.is_none() && !damaged_to_the_end {
         let end_ns = s.last_message_ns;
-        out.push(Loss {
-            offset: 0,
-            bytes: 0,
-            from_ns: end_ns,
-            to_ns: None,
-            reason: "cut off: whatever was written after the last complete chunk".into(),
-        });
+        out.push(Loss { offset: 0, bytes: 0, from_ns: end_ns, to_ns: None, reason: DamageReason::CutOff });
     }
     out
 }
@@ -118,7 +113,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
     if !opened.is_mcap() {
         let s = read_opened(opened, input, OnDamage::Resync, |_, _, _| {})?;
         if let Some(reason) = &s.stopped {
-            return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
+            return Err(DaemonError::Unreadable { path: input.display().to_string(), source: reason.clone() });
         }
         opened = super::source::Opened::open(input)?;
     }
@@ -146,7 +141,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         return Err(mcap_err(output, e));
     }
     if let Some(reason) = &s.stopped {
-        return Err(DaemonError::Unreadable { path: input.display().to_string(), reason: reason.clone() });
+        return Err(DaemonError::Unreadable { path: input.display().to_string(), source: reason.clone() });
     }
     for (name, metadata) in &s.metadata {
         w.write_metadata(&mcap::records::Metadata { name: name.clone(), metadata: metadata.clone() })

@@ -103,9 +103,9 @@ impl Opened {
         }
         capped.read_to_end(&mut bytes).map_err(io)?;
         if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-            return Err(DaemonError::Unreadable {
+            return Err(DaemonError::StreamTooLarge {
                 path: path.display().to_string(),
-                reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
+                limit_bytes: MAX_STREAMED_RECORDING_BYTES,
             });
         }
         Ok(Opened::Bytes(bytes))

@@ -103,9 +103,9 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
         let mut bytes = Vec::new();
         file.take(MAX_STREAMED_RECORDING_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
         if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-            return Err(DaemonError::Unreadable {
+            return Err(DaemonError::StreamTooLarge {
                 path: path.display().to_string(),
-                reason: format!("not a regular file, and over {MAX_STREAMED_RECORDING_BYTES} bytes"),
+                limit_bytes: MAX_STREAMED_RECORDING_BYTES,
             });
         }
         Opened::Bytes(bytes)
