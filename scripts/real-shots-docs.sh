@@ -21,6 +21,9 @@
 #   region heldout-relation  the held-out session, the same reading
 #   region spin-launch  per club of the validation session (measured spins), the launch the seed's ball needs below
 #                       TrackMan's to reach TrackMan's spin off TrackMan's face (closed form)
+#   region report-validation  the third player's TrackMan report JSON sessions chosen for validation
+#                       (2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14), every model, one table per session
+#   region report-heldout  the same player's held-out report sessions (2025-06-13, 2025-08-05, 2026-02-07)
 # Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,6 +45,18 @@ MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
     "$DATA/validation-8i-5i.csv" 2>/dev/null >"$OUT/spin-relation.json"
 "$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
     "$DATA/heldout-7i-pw-driver.csv" 2>/dev/null >"$OUT/heldout-relation.json"
+
+# The third player's report JSON sessions: the split was fixed by date order before any comparison (1st, 3rd, 5th
+# and 7th for validation; the 2nd, 4th and 6th held out).
+REPORT_VALIDATION="2025-03-13-pw-driver-5w-7i 2025-07-11-driver-4i-5h-pw 2025-10-30-5w-driver-6i-9i
+    2026-02-14-driver-7i"
+REPORT_HELDOUT="2025-06-13-driver-7i-9i 2025-08-05-5w-driver-7i-pw 2026-02-07-driver-7i"
+for s in $REPORT_VALIDATION $REPORT_HELDOUT; do
+    "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/report-$s.json" \
+        2>/dev/null >"$OUT/report-$s.json"
+done
+echo "$REPORT_VALIDATION" >"$OUT/report-validation.list"
+echo "$REPORT_HELDOUT" >"$OUT/report-heldout.list"
 
 # The 5-iron preset without the shaft's share: the head alone, as Table 3.1's 7-iron is.
 sed '/^shaft_heel_toe_inertia_g_cm2/d' clubs/presets/iron5.toml >"$OUT/iron5-head.toml"
@@ -407,6 +422,33 @@ for club, q in per_club.items():
     m = lambda i: sum(x[i] for x in q) / len(q)
     spin_launch.append(f"| {club} | {len(q)} | {m(0):.2f} | {m(1):.2f} | {m(1) - m(0):.2f} | {m(2):.0f} |")
 
+def report_tables(split):
+    """One table per report session of the split, with what was left out before the models ran."""
+    rows = []
+    for session in open(f"{out}/report-{split}.list").read().split():
+        r = json.load(open(f"{out}/report-{session}.json"))
+        rows.append(f"**{session[:10]}** (`report-{session}.json`)\n")
+        notes = []
+        sk = r["skipped_rows"]
+        if sk["without_club_or_ball"]:
+            notes.append(f"{sk['without_club_or_ball']} without club or ball speed")
+        if sk["incomplete_club_data"]:
+            notes.append(f"{sk['incomplete_club_data']} with club speed but incomplete club data")
+        for n in r["no_preset"]:
+            notes.append(f"{n['shots']} {n['label']} (no preset)")
+        if r["unlocated_left_out"]:
+            notes.append(f"{r['unlocated_left_out']} without an impact location")
+        for c in r["clubs"]:
+            for reason, n in c["refused"].items():
+                notes.append(f"{n} {c['label']} refused by the club ({reason})")
+        if notes:
+            rows.append("Strokes left out: " + "; ".join(notes) + ".\n")
+        table = club_table(f"report-{session}.json")
+        rows += [t for t in table if t.startswith("|")]
+        rows.append("")
+    return rows[:-1]
+
+
 variants = ["| the 8- and 5-iron presets | 8-iron ball speed MAE / bias (mph) | 5-iron ball speed MAE / bias (mph) | 8-iron spin MAE (rpm) |",
             "|---|---|---|---|"]
 for v in json.load(open(f"{out}/variants.json")):
@@ -414,6 +456,8 @@ for v in json.load(open(f"{out}/variants.json")):
     variants.append(f"| {v['label']} | {c8[0]:.2f} / {c8[1]:+.2f} | {c5[0]:.2f} / {c5[1]:+.2f} | {c8[2]:.0f} |")
 
 docs_regions.replace("docs/real-shots.md", {
+    "report-validation": report_tables("validation"),
+    "report-heldout": report_tables("heldout"),
     "variants": variants,
     "relation": relation,
     "tour": tour,

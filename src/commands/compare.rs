@@ -2,10 +2,12 @@
 //! launches, in the layout of the seed's Tables 3.2-3.7 (measured mean; MAE and STD, absolute and as % of the
 //! mean, per field per model; eq. 3.13 cost; time per shot).
 //!
-//! A FILE is a TrackMan Performance Studio CSV export (club data as the delivery, ball data as the measurement), a
-//! JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP recording. Of a
-//! recording, without `--models`, the predictions it holds paired live with measurements (its comparisons) are
-//! tabled as recorded; with `--models`, each model is run again on the recorded deliveries.
+//! A FILE is a TrackMan Performance Studio CSV export or TrackMan report JSON (club data as the delivery, ball
+//! data as the measurement), a JSONL dataset (`{"delivery": {...}, "measured": {...}}` per line) or an MCAP
+//! recording. Of a recording, without `--models`, the predictions it holds paired live with measurements (its
+//! comparisons) are tabled as recorded; with `--models`, each model is run again on the recorded deliveries. A
+//! delivery the club refuses (an impact location off its face, a lie it cannot have) is left out and counted per
+//! reason (`refused` in the JSON), not fatal.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -20,12 +22,12 @@ use impactd::offline::identify::cost::model_table;
 use impactd::offline::identify::cost::recorded_table;
 #[cfg(feature = "daemon")]
 use impactd::offline::identify::dataset::fields_of_launch;
-use impactd::offline::identify::dataset::{read_jsonl, resolve};
+use impactd::offline::identify::dataset::read_jsonl;
 use impactd::offline::identify::{DatasetLine, ModelTable, FIELDS};
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// JSONL datasets, TrackMan CSV exports or MCAP recordings.
+    /// JSONL datasets, TrackMan CSV exports, TrackMan report JSON or MCAP recordings.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// The models to run, comma-separated (default for a dataset: standard,adjusted,slip,continuous; for a
@@ -41,8 +43,8 @@ pub struct CompareArgs {
     /// Units of the table (the JSON keeps mph, as the field names say).
     #[arg(long, value_enum, default_value_t = impactd::session::Units::Imperial)]
     pub units: impactd::session::Units,
-    /// TrackMan exports: each club (the `Club` column) on its preset; ball speed, launch, spin (shots with measured
-    /// spin) and spin axis as MAE and bias per model and club.
+    /// TrackMan exports (CSV or report JSON): each club (the `Club` column) on its preset; ball speed, launch,
+    /// spin (shots with measured spin) and spin axis as MAE and bias per model and club.
     #[arg(long, conflicts_with_all = ["club", "residuals"])]
     pub by_club: bool,
     /// With --by-club: only shots with an impact location.
@@ -122,7 +124,18 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
             // A TrackMan export says so on its first line; anything else is streamed as JSONL, a bounded line at a
             // time.
             let head = std::io::BufRead::fill_buf(&mut input).with_context(|| format!("reading {}", path.display()))?;
-            if impactd::session::trackman_csv::is_trackman_csv(&String::from_utf8_lossy(head)) {
+            let head = String::from_utf8_lossy(head).into_owned();
+            if impactd::session::trackman_report::is_trackman_report(&head) {
+                let mut text = String::new();
+                std::io::Read::read_to_string(&mut input, &mut text)
+                    .with_context(|| format!("reading {}", path.display()))?;
+                let (rows, skipped) = impactd::session::trackman_report::read_labelled(&text)
+                    .with_context(|| path.display().to_string())?;
+                if skipped.total() > 0 {
+                    eprintln!("{}: {}", path.display(), skipped.describe());
+                }
+                loaded.lines.extend(rows.into_iter().map(|(line, _)| line));
+            } else if impactd::session::trackman_csv::is_trackman_csv(&head) {
                 let mut text = String::new();
                 std::io::Read::read_to_string(&mut input, &mut text)
                     .with_context(|| format!("reading {}", path.display()))?;
@@ -172,6 +185,7 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
     let club = super::args::load_club(&club_name)?;
     let mut tables: Vec<ModelTable> = Vec::new();
     let mut per_shot: Vec<ShotResiduals> = Vec::new();
+    let mut refused: std::collections::BTreeMap<String, usize> = std::collections::BTreeMap::new();
     #[cfg(feature = "daemon")]
     if args.models.is_none() && loaded.any_recording {
         let mut models: Vec<String> = loaded.comparisons.iter().map(|c| c.model.clone()).collect();
@@ -194,19 +208,35 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
         }
         let ball = BallSpec::SEED;
         let equipment = Equipment { club: club.club.clone(), ball };
-        let shots = resolve(&loaded.lines, &equipment)?;
+        // A delivery the club refuses (off its face, a lie it cannot have) is left out and counted, not fatal.
+        let (mut shots, mut numbers) = (Vec::new(), Vec::new());
+        for (i, line) in loaded.lines.iter().enumerate() {
+            match line.to_shot(&equipment) {
+                Ok(s) => {
+                    shots.push(s);
+                    numbers.push(i + 1);
+                }
+                Err(e) => *refused.entry(super::compare_clubs::refusal(&e)).or_insert(0) += 1,
+            }
+        }
+        for (reason, n) in &refused {
+            eprintln!("{n} shots refused ({reason}), left out");
+        }
+        if shots.is_empty() {
+            bail!("no shot the club accepts in the files");
+        }
         let models = args.models.clone().unwrap_or_else(|| "standard,adjusted,slip,continuous".into());
         for name in models.split(',').map(str::trim) {
             let model = registry::build_one(name, &club, &BuildOptions { ball, ..Default::default() })?;
             tables.push(model_table(name, model.as_ref(), &equipment, &shots));
             if args.residuals {
                 let predicted = impactd::offline::identify::cost::predict_all(model.as_ref(), &equipment, &shots);
-                for (i, (p, s)) in predicted.iter().zip(&shots).enumerate() {
+                for ((p, s), shot) in predicted.iter().zip(&shots).zip(&numbers) {
                     let residual = p.map(|p| {
                         let r: [f64; 5] = std::array::from_fn(|k| p[k] - s.measured[k]);
                         impactd::offline::identify::dataset::launch_fields(&r)
                     });
-                    per_shot.push(ShotResiduals { model: name.to_string(), shot: i + 1, residual });
+                    per_shot.push(ShotResiduals { model: name.to_string(), shot: *shot, residual });
                 }
             }
         }
@@ -214,7 +244,8 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode> {
         bail!("--residuals needs --models (a recording's comparisons are tabled as recorded)");
     }
     if args.json {
-        let mut out = serde_json::json!({ "club": club_name, "files": args.files, "tables": tables });
+        let mut out =
+            serde_json::json!({ "club": club_name, "files": args.files, "tables": tables, "refused": refused });
         if args.residuals {
             out["residuals"] = serde_json::to_value(&per_shot)?;
         }

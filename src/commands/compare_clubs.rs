@@ -4,30 +4,41 @@
 //! and face angle are the face's at the contact point (its definitions); on a wood's curved face they are turned
 //! into the face centre's (`offline::identify::trackman_reading`).
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use impactd::equipment::BallSpec;
 use impactd::impact::registry::{self, BuildOptions};
-use impactd::impact::Equipment;
-use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats};
+use impactd::impact::{Equipment, ImpactError};
+use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name, ClubModelStats, SpinMeasured};
 use impactd::offline::identify::cost::predict_all;
-use impactd::offline::identify::dataset::resolve;
 use impactd::offline::identify::trackman_reading::{at_face_centre, through_spin_relation};
 use impactd::offline::identify::DatasetLine;
-use impactd::session::trackman_csv::{read_labelled, RowLabels};
+use impactd::session::trackman_csv::{RowLabels, SkippedRows};
+use impactd::session::{trackman_csv, trackman_report};
 
 /// One club's shots and each model's accuracy on them.
 #[derive(Debug, serde::Serialize)]
 pub struct ClubReport {
-    /// The name in the export's `Club` column.
+    /// The name in the export's `Club` column (a report's API name in the CSV's spelling: `7Iron` is `7 Iron`).
     pub label: String,
     /// The preset it ran on.
     pub club: String,
     pub shots: usize,
     /// Shots with measured spin.
     pub spin_shots: usize,
+    /// Shots no model was run on, by reason: a delivery the club refuses (an impact location off its face, a lie
+    /// its face cannot have, ...).
+    pub refused: BTreeMap<String, usize>,
     pub models: Vec<ClubModelStats>,
+}
+
+/// Shots of a club with no preset, left out.
+#[derive(Debug, serde::Serialize)]
+pub struct NoPreset {
+    pub label: String,
+    pub shots: usize,
 }
 
 /// What `--by-club` reads and reports.
@@ -36,26 +47,49 @@ pub struct ByClub {
     pub files: Vec<PathBuf>,
     /// TrackMan's loft and face read through its spin relation (`--spin-relation`).
     pub spin_relation: bool,
+    /// Rows (strokes) of the files left out before any club: no club or ball speed, incomplete club data.
+    pub skipped_rows: SkippedRows,
+    /// Shots of clubs with no preset, left out (before `--located`).
+    pub no_preset: Vec<NoPreset>,
     /// Rows with club and ball data left out: without an impact location (with `--located`).
     pub unlocated_left_out: usize,
     pub clubs: Vec<ClubReport>,
 }
 
-/// Every labelled row of the files (TrackMan exports only).
-fn read_rows(files: &[PathBuf]) -> Result<Vec<(DatasetLine, RowLabels)>> {
+/// Every labelled row of the files (TrackMan CSV exports and report JSON) and the rows skipped.
+fn read_rows(files: &[PathBuf]) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows)> {
     let mut rows = Vec::new();
+    let mut skipped = SkippedRows::default();
     for path in files {
         let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-        if !impactd::session::trackman_csv::is_trackman_csv(&text) {
-            bail!("{}: --by-club reads TrackMan CSV exports only", path.display());
+        let (r, s) = if trackman_report::is_trackman_report(&text) {
+            trackman_report::read_labelled(&text).with_context(|| path.display().to_string())?
+        } else if trackman_csv::is_trackman_csv(&text) {
+            trackman_csv::read_labelled(&text).with_context(|| path.display().to_string())?
+        } else {
+            bail!("{}: --by-club reads TrackMan CSV exports and TrackMan report JSON only", path.display());
+        };
+        if s.total() > 0 {
+            eprintln!("{}: {}", path.display(), s.describe());
         }
-        let (r, skipped) = read_labelled(&text).with_context(|| path.display().to_string())?;
-        if skipped > 0 {
-            eprintln!("{}: {skipped} rows without club or ball data skipped", path.display());
-        }
+        skipped.without_club_or_ball += s.without_club_or_ball;
+        skipped.incomplete_club_data += s.incomplete_club_data;
         rows.extend(r);
     }
-    Ok(rows)
+    Ok((rows, skipped))
+}
+
+/// The reason a delivery is refused, as the output counts it.
+pub fn refusal(e: &ImpactError) -> String {
+    match e {
+        ImpactError::OffFace { .. } => "impact location off the face".into(),
+        ImpactError::LieUnreachable { .. } => "dynamic lie the face cannot have".into(),
+        ImpactError::NotFinite { field } => format!("`{field}` not finite"),
+        ImpactError::SpeedOutOfRange { .. } => "club speed outside 1-100 m/s".into(),
+        ImpactError::NotApproaching => "club not moving toward the ball".into(),
+        ImpactError::NotConverged { model, .. } => format!("{model} not converged"),
+        other => other.to_string(),
+    }
 }
 
 /// The report: clubs in the order they first appear; `soil` for the ground model (`none`: on a tee).
@@ -73,14 +107,27 @@ pub fn by_club(
     let on_turf = soil.is_some() && models.split(',').map(str::trim).any(names_ground);
     let models = registry::resolve(models, on_turf).context("--models")?;
     let models = models.as_str();
-    let mut rows = read_rows(files)?;
+    let (mut rows, skipped_rows) = read_rows(files)?;
+    let label_of = |l: &RowLabels| l.club.clone().unwrap_or_default();
+    let mut no_preset: Vec<NoPreset> = Vec::new();
+    for (_, l) in &rows {
+        let label = label_of(l);
+        if preset_for_club_name(&label).is_some() {
+            continue;
+        }
+        match no_preset.iter_mut().find(|n| n.label == label) {
+            Some(n) => n.shots += 1,
+            None => no_preset.push(NoPreset { label, shots: 1 }),
+        }
+    }
+    rows.retain(|(_, l)| preset_for_club_name(&label_of(l)).is_some());
     let before = rows.len();
     if located {
         rows.retain(|(_, l)| l.impact_located);
     }
     let mut labels: Vec<String> = Vec::new();
     for (_, l) in &rows {
-        let name = l.club.clone().unwrap_or_default();
+        let name = label_of(l);
         if !labels.contains(&name) {
             labels.push(name);
         }
@@ -88,26 +135,23 @@ pub fn by_club(
     let ball = BallSpec::SEED;
     let mut clubs = Vec::new();
     for label in labels {
-        let Some(preset) = preset_for_club_name(&label) else {
-            bail!("club `{label}`: no preset for that name (TrackMan's club names: Driver, 3 Wood, Hybrid, 4-9 Iron, Pitching/Gap/Sand/Lob Wedge)");
-        };
-        let group: Vec<&(DatasetLine, RowLabels)> =
-            rows.iter().filter(|(_, l)| l.club.as_deref().unwrap_or_default() == label).collect();
-        let spin_measured: Vec<bool> = group.iter().map(|(_, l)| l.spin_measured).collect();
+        let Some(preset) = preset_for_club_name(&label) else { continue };
         let club = super::args::load_club(preset)?;
         let equipment = Equipment { club: club.club.clone(), ball };
-        let lines = group
-            .iter()
-            .enumerate()
-            .map(|(i, (d, _))| {
-                let trackman =
-                    if spin_relation { through_spin_relation(&d.delivery, &d.measured) } else { d.delivery.clone() };
-                let delivery = at_face_centre(&trackman, &equipment)
-                    .with_context(|| format!("club `{label}`, shot {}: TrackMan's loft and face", i + 1))?;
-                Ok(DatasetLine { delivery, measured: d.measured.clone() })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let shots = resolve(&lines, &equipment).with_context(|| format!("club `{label}`"))?;
+        let (mut shots, mut spin_measured, mut refused) = (Vec::new(), Vec::new(), BTreeMap::new());
+        for (d, l) in rows.iter().filter(|(_, l)| label_of(l) == label) {
+            let trackman =
+                if spin_relation { through_spin_relation(&d.delivery, &d.measured) } else { d.delivery.clone() };
+            let shot = at_face_centre(&trackman, &equipment)
+                .and_then(|delivery| DatasetLine { delivery, measured: d.measured.clone() }.to_shot(&equipment));
+            match shot {
+                Ok(s) => {
+                    shots.push(s);
+                    spin_measured.push(SpinMeasured { spin: l.spin_measured, axis: l.axis_measured });
+                }
+                Err(e) => *refused.entry(refusal(&e)).or_insert(0) += 1,
+            }
+        }
         let measured: Vec<[f64; 5]> = shots.iter().map(|s| s.measured).collect();
         let mut stats = Vec::new();
         for name in models.split(',') {
@@ -124,17 +168,31 @@ pub fn by_club(
             label,
             club: preset.to_string(),
             shots: shots.len(),
-            spin_shots: spin_measured.iter().filter(|m| **m).count(),
+            spin_shots: spin_measured.iter().filter(|m| m.spin).count(),
+            refused,
             models: stats,
         });
     }
-    Ok(ByClub { files: files.to_vec(), spin_relation, unlocated_left_out: before - rows.len(), clubs })
+    Ok(ByClub {
+        files: files.to_vec(),
+        spin_relation,
+        skipped_rows,
+        no_preset,
+        unlocated_left_out: before - rows.len(),
+        clubs,
+    })
 }
 
 /// The table: per club, a line per model (ball speed in mph, launch and axis in deg, spin in rpm).
 pub fn render(r: &ByClub) -> String {
     use std::fmt::Write;
     let mut s = String::new();
+    if r.skipped_rows.total() > 0 {
+        let _ = writeln!(s, "{}", r.skipped_rows.describe());
+    }
+    for n in &r.no_preset {
+        let _ = writeln!(s, "club `{}`: no preset for that name, its {} shots left out", n.label, n.shots);
+    }
     if r.unlocated_left_out > 0 {
         let _ = writeln!(s, "{} shots without an impact location left out", r.unlocated_left_out);
     }
@@ -144,6 +202,9 @@ pub fn render(r: &ByClub) -> String {
             "{} ({}): {} shots, {} with measured spin (MAE / bias, predicted - measured)",
             c.label, c.club, c.shots, c.spin_shots
         );
+        for (reason, n) in &c.refused {
+            let _ = writeln!(s, "  {n} shots refused ({reason}), left out");
+        }
         let _ = writeln!(
             s,
             "{:<12} {:>17} {:>15} {:>17} {:>15}",

@@ -6,6 +6,8 @@ pub mod metrics;
 pub mod shot_table;
 pub mod stats;
 pub mod trackman_csv;
+pub mod trackman_report;
+pub mod trackman_rows;
 
 pub use metrics::{Metric, Quantity, Units, METRICS};
 pub use stats::{summarize, Gap, GroupBy, GroupSummary, MetricStats, Outlier, SessionSummary, ShotId};

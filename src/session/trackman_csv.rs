@@ -16,6 +16,8 @@ use crate::pairing::DatasetLine;
 use crate::units::{MPS_PER_MPH, M_PER_YD};
 use crate::wire::{DeliveryInput, LaunchFields, LaunchPrediction};
 
+pub use super::trackman_rows::{RowLabels, SkippedRows};
+
 /// The columns of an export, with their units row (empty for text).
 pub const COLUMNS: [(&str, &str); 61] = [
     ("Date", ""),
@@ -239,25 +241,16 @@ fn factor(column: &str, unit: &str) -> Result<Real, TrackmanCsvError> {
     Ok(f)
 }
 
-/// What a row of an export says about its shot beyond the delivery and the launch: TrackMan's club name, whether
-/// its spin was measured (`Spin Rate Type` `Measured`, or no such column) rather than estimated by TrackMan's
-/// launch model, and whether it has an impact location (`Impact Height` filled).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct RowLabels {
-    pub club: Option<String>,
-    pub spin_measured: bool,
-    pub impact_located: bool,
-}
-
-/// The measured shots of a TrackMan export: rows with club data (club speed) and ball data (ball speed, launch
-/// angle and direction, spin rate and axis). Rows without club or ball data are skipped and counted.
+/// The measured shots of a TrackMan export: rows with club data (club speed, attack angle, club path, face angle,
+/// dynamic loft) and ball data (ball speed, launch angle and direction, spin rate). Rows without club or ball data
+/// are skipped and counted.
 pub fn read(text: &str) -> Result<(Vec<DatasetLine>, usize), TrackmanCsvError> {
     let (rows, skipped) = read_labelled(text)?;
-    Ok((rows.into_iter().map(|(line, _)| line).collect(), skipped))
+    Ok((rows.into_iter().map(|(line, _)| line).collect(), skipped.total()))
 }
 
-/// [`read`] with each row's [`RowLabels`].
-pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize), TrackmanCsvError> {
+/// [`read`] with each row's [`RowLabels`] and the skipped rows by reason.
+pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows), TrackmanCsvError> {
     let text = text.trim_start_matches('\u{feff}');
     let (body, first_row) = match text.lines().next() {
         Some(l) if l.trim().starts_with("sep=") => (&text[l.len()..], 2),
@@ -289,11 +282,11 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
     }
     let units = match records.next() {
         Some(r) => r.map_err(|source| TrackmanCsvError::Csv { row: first_row + 1, source })?,
-        None => return Ok((Vec::new(), 0)),
+        None => return Ok((Vec::new(), SkippedRows::default())),
     };
     let has_units = units.iter().any(|u| u.trim().starts_with('['));
     let mut lines = Vec::new();
-    let mut skipped = 0;
+    let mut skipped = SkippedRows::default();
     let data = if has_units { None } else { Some(Ok(units.clone())) };
     let first_data = first_row + if has_units { 2 } else { 1 };
     for (k, rec) in data.into_iter().chain(records).enumerate() {
@@ -311,11 +304,17 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
             Ok(Some(v * factor(name, unit)?))
         };
         let (Some(club_speed), Some(ball_speed)) = (value("Club Speed")?, value("Ball Speed")?) else {
-            skipped += 1;
+            skipped.without_club_or_ball += 1;
+            continue;
+        };
+        let club = [value("Attack Angle")?, value("Club Path")?, value("Face Angle")?, value("Dyn. Loft")?];
+        let [Some(attack), Some(path), Some(face), Some(loft)] = club else {
+            skipped.incomplete_club_data += 1;
             continue;
         };
         let must = |name: &'static str| value(name)?.ok_or(TrackmanCsvError::Missing { row, column: name });
-        let (spin, axis) = (must("Spin Rate")?, value("Spin Axis")?.unwrap_or(0.0));
+        // No axis is no measurement of it: the shot's spin is split as all backspin and its axis not compared.
+        let (spin, axis) = (must("Spin Rate")?, value("Spin Axis")?);
         let w = [
             value("impactd: Club Angular Velocity X")?,
             value("impactd: Club Angular Velocity Y")?,
@@ -323,10 +322,10 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
         ];
         let delivery = DeliveryInput {
             club_speed_mph: club_speed,
-            attack_angle_deg: value("Attack Angle")?.unwrap_or(0.0),
-            club_path_deg: value("Club Path")?.unwrap_or(0.0),
-            face_angle_deg: value("Face Angle")?.unwrap_or(0.0),
-            dynamic_loft_deg: value("Dyn. Loft")?,
+            attack_angle_deg: attack,
+            club_path_deg: path,
+            face_angle_deg: face,
+            dynamic_loft_deg: Some(loft),
             impact_h_mm: value("Impact Offset")?.unwrap_or(0.0),
             impact_v_mm: value("Impact Height")?.unwrap_or(0.0),
             club_angular_velocity_radps: match w {
@@ -336,7 +335,7 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
             handedness: None,
             dynamic_lie_deg: value("Dynamic Lie")?,
         };
-        let axis_rad = axis.to_radians();
+        let axis_rad = axis.unwrap_or(0.0).to_radians();
         let measured = match value("impactd: Measured Ball Speed")? {
             // A shot measured live: the launch monitor's numbers (the ball columns hold the prediction).
             Some(ball_speed_mph) => LaunchFields {
@@ -357,9 +356,11 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, usize
             },
         };
         let text_of = |name: &str| col(name).and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
+        let spin_measured = text_of("Spin Rate Type").map_or(true, |t| t.eq_ignore_ascii_case("measured"));
         let labels = RowLabels {
             club: text_of("Club").map(str::to_string),
-            spin_measured: text_of("Spin Rate Type").map_or(true, |t| t.eq_ignore_ascii_case("measured")),
+            spin_measured,
+            axis_measured: spin_measured && axis.is_some(),
             impact_located: text_of("Impact Height").is_some(),
         };
         lines.push((DatasetLine { delivery, measured }, labels));
@@ -382,6 +383,9 @@ mod tests {
         let mut row = vec![""; COLUMNS.len()];
         row[6] = "160.934";
         row[7] = "-2";
+        row[8] = "1";
+        row[12] = "14";
+        row[13] = "0.5";
         row[15] = "241.4016";
         row[17] = "12";
         row[18] = "1.5";
@@ -393,10 +397,27 @@ mod tests {
         assert!(is_trackman_csv(&text));
         let (lines, skipped) = read(&text).unwrap();
         assert_eq!((lines.len(), skipped), (1, 1));
+        assert_eq!(lines[0].delivery.dynamic_loft_deg, Some(14.0));
         let l = &lines[0];
         assert!((l.delivery.club_speed_mph - 100.0).abs() < 1e-3, "{l:?}");
         assert!((l.measured.ball_speed_mph - 150.0).abs() < 1e-3);
         assert!((l.measured.sidespin_rpm - 3000.0 * 10f64.to_radians().sin()).abs() < 1e-9);
+        // A club speed without the rest of the club data is skipped and counted, never read with zeros; a
+        // measured shot without a spin axis is read, its axis marked unmeasured (not 0).
+        let mut partial = row.clone();
+        partial[8] = "";
+        let mut no_loft = row.clone();
+        no_loft[12] = "";
+        let mut no_axis = row.clone();
+        no_axis[21] = "";
+        let text =
+            format!("{}\n{}\n{}\n{}\n{}\n{}\n", q(&header), q(&units), q(&row), q(&partial), q(&no_loft), q(&no_axis));
+        let (rows, skipped) = read_labelled(&text).unwrap();
+        assert_eq!(skipped, SkippedRows { without_club_or_ball: 0, incomplete_club_data: 2 });
+        assert_eq!(rows.len(), 2);
+        assert!(rows[0].1.spin_measured && rows[0].1.axis_measured);
+        assert!(rows[1].1.spin_measured && !rows[1].1.axis_measured);
+        assert_eq!((rows[1].0.measured.backspin_rpm, rows[1].0.measured.sidespin_rpm), (3000.0, 0.0));
         row[17] = "twelve";
         let bad = format!("sep=,\n{}\n{}\n{}\n", q(&header), q(&units), q(&row));
         let e = read(&bad).unwrap_err().to_string();

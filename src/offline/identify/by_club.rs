@@ -41,26 +41,35 @@ pub fn spin_and_axis(fields: &[Real; 5]) -> (Real, Real) {
     (fields[3].hypot(fields[4]), fields[4].atan2(fields[3]).to_degrees())
 }
 
-/// The statistics of `predicted` against `measured` (the five compared fields each), spin only where
-/// `spin_measured`.
+/// Whether a shot's spin rate and its spin axis were measured (an axis only with its spin).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SpinMeasured {
+    pub spin: bool,
+    pub axis: bool,
+}
+
+/// The statistics of `predicted` against `measured` (the five compared fields each), spin only where it was
+/// measured, the spin axis only where it was too (a shot with no axis is not one with axis 0).
 pub fn club_model_stats(
     model: &str,
     predicted: &[Option<[Real; 5]>],
     measured: &[[Real; 5]],
-    spin_measured: &[bool],
+    spin_measured: &[SpinMeasured],
 ) -> ClubModelStats {
     let (mut speed, mut launch, mut spin, mut axis) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut failed = 0;
-    for ((p, m), spin_ok) in predicted.iter().zip(measured).zip(spin_measured) {
+    for ((p, m), ok) in predicted.iter().zip(measured).zip(spin_measured) {
         let Some(p) = p else {
             failed += 1;
             continue;
         };
         speed.push(p[0] - m[0]);
         launch.push(p[1] - m[1]);
-        if *spin_ok {
-            let ((sp, ap), (sm, am)) = (spin_and_axis(p), spin_and_axis(m));
+        let ((sp, ap), (sm, am)) = (spin_and_axis(p), spin_and_axis(m));
+        if ok.spin {
             spin.push(sp - sm);
+        }
+        if ok.spin && ok.axis {
             axis.push(ap - am);
         }
     }
@@ -112,12 +121,17 @@ mod tests {
             Some([99.0, 11.0, 0.0, 3000.0, 0.0]),
             None,
         ];
-        let s = club_model_stats("x", &p, &m, &[true, false, true]);
+        let yes = SpinMeasured { spin: true, axis: true };
+        let no = SpinMeasured { spin: false, axis: false };
+        let s = club_model_stats("x", &p, &m, &[yes, no, yes]);
         assert_eq!(s.failed, 1);
         assert!((s.ball_speed_mph.mae - 2.0).abs() < 1e-12 && (s.ball_speed_mph.bias - 1.0).abs() < 1e-12);
         assert!((s.launch_angle_deg.mae - 1.0).abs() < 1e-12 && s.launch_angle_deg.bias.abs() < 1e-12);
         assert_eq!(s.spin_rpm.n, 1);
         assert!((s.spin_rpm.bias - 1000.0).abs() < 1e-9 && (s.spin_axis_deg.bias - 5.0).abs() < 1e-9);
+        // A measured spin without an axis: its spin compared, its axis (read as 0) not.
+        let s = club_model_stats("x", &p, &m, &[SpinMeasured { spin: true, axis: false }, no, yes]);
+        assert_eq!((s.spin_rpm.n, s.spin_axis_deg.n), (1, 0));
     }
 
     #[test]
