@@ -27,6 +27,7 @@ pub fn seconds(text: &str) -> Result<f64, String> {
 }
 
 /// A duration in seconds that may be 0.
+#[cfg(feature = "daemon")]
 pub fn seconds_or_zero(text: &str) -> Result<f64, String> {
     match number(text)? {
         0.0 => Ok(0.0),
@@ -44,10 +45,12 @@ pub fn capture_rate_hz(text: &str) -> Result<f64, String> {
 }
 
 /// The slowest replay pace: a thousandth of real time (a second of samples in about 17 minutes).
+#[cfg(feature = "daemon")]
 pub const MIN_PACE: f64 = 1e-3;
 
 /// A multiple of real time (replay pace), at least [`MIN_PACE`]: a smaller one would wait longer between two
 /// samples than any replay is watched.
+#[cfg(feature = "daemon")]
 pub fn pace(text: &str) -> Result<f64, String> {
     let v = number(text)?;
     if !(MIN_PACE..=1e6).contains(&v) {

@@ -36,6 +36,7 @@ mod synth;
 mod bridge;
 #[cfg(feature = "daemon")]
 mod demo;
+#[cfg(feature = "daemon")]
 mod export;
 #[cfg(feature = "daemon")]
 mod import;

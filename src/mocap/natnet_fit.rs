@@ -149,7 +149,7 @@ mod tests {
         let pose = crate::math::Isometry3::new(Vector3::new(0.3, 1.1, -0.4), Vector3::new(0.7, -1.9, 0.4));
         let markers: Vec<LabeledMarker> = (0..4)
             .map(|k| {
-                let p = pose * nalgebra::Point3::from(set.body_m[k]);
+                let p = pose * crate::math::Point3::from(set.body_m[k]);
                 LabeledMarker {
                     id: LabeledMarker::pack_id(5, map.members[k]),
                     position_m: [p.x as f32, p.y as f32, p.z as f32],
