@@ -48,13 +48,50 @@ pub fn chi(nu: Real, ball: &BallSpec) -> Real {
     (1.0 - nu) * (1.0 + 1.0 / k2) / (2.0 - nu)
 }
 
+/// The plate problem's state: the overlap, its rate (approach), the centre's tangential velocity, the spin (+
+/// gives a -y contact velocity) and the contact's slip since the start.
 #[derive(Debug, Clone, Copy)]
-struct S {
-    x: Real,
-    vn: Real,
-    vt: Real,
-    w: Real,
-    s: Real,
+struct PlateState {
+    x_m: Real,
+    xdot_mps: Real,
+    vt_mps: Real,
+    spin_radps: Real,
+    slip_m: Real,
+}
+
+/// The time derivative of a [`PlateState`], field by field.
+#[derive(Debug, Clone, Copy)]
+struct PlateRate {
+    xdot_mps: Real,
+    xddot_mps2: Real,
+    vt_dot_mps2: Real,
+    spin_dot_radps2: Real,
+    slip_rate_mps: Real,
+}
+
+impl PlateState {
+    /// `self + h r`.
+    fn advanced(&self, r: &PlateRate, h: Real) -> PlateState {
+        PlateState {
+            x_m: self.x_m + r.xdot_mps * h,
+            xdot_mps: self.xdot_mps + r.xddot_mps2 * h,
+            vt_mps: self.vt_mps + r.vt_dot_mps2 * h,
+            spin_radps: self.spin_radps + r.spin_dot_radps2 * h,
+            slip_m: self.slip_m + r.slip_rate_mps * h,
+        }
+    }
+
+    /// `self + h (k1 + 2 k2 + 2 k3 + k4) / 6`.
+    fn advanced_rk4(&self, [k1, k2, k3, k4]: [&PlateRate; 4], h: Real) -> PlateState {
+        let mean = |f: fn(&PlateRate) -> Real| h * (f(k1) + 2.0 * f(k2) + 2.0 * f(k3) + f(k4)) / 6.0;
+        PlateState {
+            x_m: self.x_m + mean(|k| k.xdot_mps),
+            xdot_mps: self.xdot_mps + mean(|k| k.xddot_mps2),
+            vt_mps: self.vt_mps + mean(|k| k.vt_dot_mps2),
+            spin_radps: self.spin_radps + mean(|k| k.spin_dot_radps2),
+            slip_m: self.slip_m + mean(|k| k.slip_rate_mps),
+        }
+    }
 }
 
 /// A ball at `speed_mps` and incidence `incidence_deg` (from the normal) on a fixed plate, Maw's rings as the
@@ -77,79 +114,73 @@ pub fn impact(
     let begin = Begin { slip_dir: Vector3::y(), xdot0_mps: speed_mps * a.cos(), k, r_eq_m: r, reduced_mass_kg: m };
     let law = MawRings::new(params, &begin);
     let mut rings = law.initial_state();
-    // x: approach (overlap); vn: approach rate; vt: centre's tangential velocity; w: spin (+ gives -y contact
-    // velocity); s: slip since the start.
-    let mut st = S { x: 0.0, vn: speed_mps * a.cos(), vt: speed_mps * a.sin(), w: 0.0, s: 0.0 };
-    let kin = |st: &S, s0: Real| {
-        let arm = if small_strain { r } else { r - 0.5 * st.x };
-        let slip = st.vt - st.w * arm;
-        let f_n = normal_force(k, hertz.d_s_per_m, st.x, st.vn);
+    let mut st = PlateState {
+        x_m: 0.0,
+        xdot_mps: speed_mps * a.cos(),
+        vt_mps: speed_mps * a.sin(),
+        spin_radps: 0.0,
+        slip_m: 0.0,
+    };
+    let kin = |st: &PlateState, s0: Real| {
+        let arm = if small_strain { r } else { r - 0.5 * st.x_m };
+        let slip = st.vt_mps - st.spin_radps * arm;
+        let f_n = normal_force(k, hertz.d_s_per_m, st.x_m, st.xdot_mps);
         (
             ContactKinematics {
                 normal: Vector3::x(),
-                x_m: st.x,
-                xdot_mps: st.vn,
+                x_m: st.x_m,
+                xdot_mps: st.xdot_mps,
                 normal_force_n: f_n,
                 slip_velocity_mps: Vector3::new(0.0, slip, 0.0),
-                slip_since_step_m: Vector3::new(0.0, st.s - s0, 0.0),
+                slip_since_step_m: Vector3::new(0.0, st.slip_m - s0, 0.0),
             },
             arm,
         )
     };
-    let rates = |st: &S, s0: Real, rings: &MawState| -> (S, Real, Real) {
+    let rates = |st: &PlateState, s0: Real, rings: &MawState| -> (PlateRate, Real, Real) {
         let (c, arm) = kin(st, s0);
-        let f_t = if st.x > 0.0 { law.force(&c, rings).y } else { 0.0 };
+        let f_t = if st.x_m > 0.0 { law.force(&c, rings).y } else { 0.0 };
         let f_n = c.normal_force_n;
         // Friction -y at the contact point (r = -arm x) gives the spin torque -arm * f_t about +z.
-        (S { x: st.vn, vn: -f_n / m, vt: f_t / m, w: -arm * f_t / i, s: c.slip_velocity_mps.y }, f_n, f_t)
-    };
-    let add = |a: &S, b: &S, h: Real| S {
-        x: a.x + b.x * h,
-        vn: a.vn + b.vn * h,
-        vt: a.vt + b.vt * h,
-        w: a.w + b.w * h,
-        s: a.s + b.s * h,
+        let rate = PlateRate {
+            xdot_mps: st.xdot_mps,
+            xddot_mps2: -f_n / m,
+            vt_dot_mps2: f_t / m,
+            spin_dot_radps2: -arm * f_t / i,
+            slip_rate_mps: c.slip_velocity_mps.y,
+        };
+        (rate, f_n, f_t)
     };
     let mut samples = Vec::new();
     let mut steps = 0usize;
     let h = step_s;
     loop {
-        let s0 = st.s;
+        let s0 = st.slip_m;
         let (k1, f_n, f_t) = rates(&st, s0, &rings);
         if every > 0 && steps % every == 0 {
             samples.push(PlateSample {
                 t_us: steps as Real * h * 1e6,
                 normal_force_n: f_n,
                 tangential_force_n: -f_t,
-                spin_radps: st.w,
+                spin_radps: st.spin_radps,
                 stuck_rings: law.stuck_rings(&rings).unwrap_or(0),
             });
         }
-        if (steps > 0 && st.x <= 0.0) || steps > 1_000_000 {
+        if (steps > 0 && st.x_m <= 0.0) || steps > 1_000_000 {
             break;
         }
-        let (k2, ..) = rates(&add(&st, &k1, 0.5 * h), s0, &rings);
-        let (k3, ..) = rates(&add(&st, &k2, 0.5 * h), s0, &rings);
-        let (k4, ..) = rates(&add(&st, &k3, h), s0, &rings);
-        let mut next = st;
-        for (dst, f) in [
-            (&mut next.x, (k1.x, k2.x, k3.x, k4.x)),
-            (&mut next.vn, (k1.vn, k2.vn, k3.vn, k4.vn)),
-            (&mut next.vt, (k1.vt, k2.vt, k3.vt, k4.vt)),
-            (&mut next.w, (k1.w, k2.w, k3.w, k4.w)),
-            (&mut next.s, (k1.s, k2.s, k3.s, k4.s)),
-        ] {
-            *dst += h * (f.0 + 2.0 * f.1 + 2.0 * f.2 + f.3) / 6.0;
-        }
-        st = next;
+        let (k2, ..) = rates(&st.advanced(&k1, 0.5 * h), s0, &rings);
+        let (k3, ..) = rates(&st.advanced(&k2, 0.5 * h), s0, &rings);
+        let (k4, ..) = rates(&st.advanced(&k3, h), s0, &rings);
+        st = st.advanced_rk4([&k1, &k2, &k3, &k4], h);
         law.commit(&kin(&st, s0).0, &mut rings);
         steps += 1;
     }
     PlateImpact {
         samples,
-        rebound_normal_mps: -st.vn,
-        rebound_contact_tangential_mps: st.vt - st.w * r,
-        spin_radps: st.w,
+        rebound_normal_mps: -st.xdot_mps,
+        rebound_contact_tangential_mps: st.vt_mps - st.spin_radps * r,
+        spin_radps: st.spin_radps,
         contact_time_s: steps as Real * h,
     }
 }
