@@ -3,13 +3,14 @@
 # `--trace`) of the deliveries in tests/data/im-golden.jsonl and of docs-models.sh's grid (35, 45, 55 m/s, centred
 # and 15 mm toe / 5 mm up), per club and model. Prints `identical` or, per differing case, the largest relative
 # difference of any number in it; exits 1 if any differ.
-# Usage: scripts/golden-predictions.sh BASELINE_IMPACTD [THIS_IMPACTD] [MODEL...]   (default models: maw arakawa)
+# Usage: scripts/golden-predictions.sh BASELINE_IMPACTD [THIS_IMPACTD] [MODEL...]   (default: every model of the
+# registry, as `impactd models --names` lists them)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BASE="$1"
 NEW="${2:-target/release/impactd}"
 shift $(($# < 2 ? $# : 2))
-MODELS=("${@:-maw arakawa}")
+if [ $# -gt 0 ]; then MODELS=("$@"); else mapfile -t MODELS < <("$NEW" models --names); fi
 python3 - "$BASE" "$NEW" ${MODELS[@]} <<'PY'
 import json, subprocess, sys
 

@@ -21,7 +21,15 @@ if [ -f "$root/scripts/test-debian-packages.txt" ]; then
   python3 -c "import venv, ensurepip" >/dev/null 2>&1 || missing+=(python3-venv)
   if [ ${#missing[@]} -gt 0 ]; then
     echo "test.sh: installing ${missing[*]} with apt" >&2
-    sudo_=""; [ "$(id -u)" -eq 0 ] || sudo_="sudo"
+    sudo_=""
+    if [ "$(id -u)" -ne 0 ]; then
+      if ! command -v sudo >/dev/null 2>&1; then
+        echo "test.sh: ${missing[*]} missing and no sudo to install them: as root, run" >&2
+        echo "  apt-get install --no-install-recommends ${missing[*]}" >&2
+        exit 1
+      fi
+      sudo_="sudo"
+    fi
     $sudo_ apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
 fi

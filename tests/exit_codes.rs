@@ -236,3 +236,22 @@ fn a_device_that_never_ends_is_refused_at_once() {
     refused(&["predict", "-i", "/dev/zero"], "limit");
     refused(&["flight", "-i", "/dev/zero"], "limit");
 }
+
+/// The README's first command can be run again: the demo replaces its own recording (impactd-demo.mcap in the
+/// working directory), while a recording named with --record is kept (the test above).
+#[test]
+fn the_demo_replaces_its_own_recording() {
+    let dir = tempfile::tempdir().unwrap();
+    for run in 0..2 {
+        let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+            .args(["demo", "--shots", "1"])
+            .current_dir(dir.path())
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "demo run {run}: {err}");
+        assert!(err.contains("impactd-demo.mcap"), "{err}");
+    }
+    assert!(dir.path().join("impactd-demo.mcap").metadata().unwrap().len() > 0);
+}

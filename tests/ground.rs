@@ -211,7 +211,7 @@ fn momentum_bookkeeping() {
     let (with, eq) = prepared(SoilSpec::firm(), true);
     for v in [-10.0, 15.0] {
         let (r, _) = run(&with, &eq, 5.0, v);
-        let dp = r.club_momentum_end - r.club_momentum_start;
+        let dp = r.club_momentum_end_ns - r.club_momentum_start_ns;
         let j = r.ball_impulse_ns + r.ground_impulse_ns + r.grip_impulse_ns;
         let rel = (dp - j).norm() / dp.norm();
         println!(

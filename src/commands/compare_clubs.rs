@@ -103,8 +103,7 @@ pub fn by_club(
 ) -> Result<ByClub> {
     // `both` and the other groups expand here as everywhere (impact::registry::resolve); `--soil` is the turf of
     // the ground model, so a group takes its turf members with it, and models without the ground ignore it.
-    let names_ground = |m: &str| m == "ground" || registry::GROUPS.iter().any(|g| g.name == m);
-    let on_turf = soil.is_some() && models.split(',').map(str::trim).any(names_ground);
+    let on_turf = soil.is_some() && models.split(',').map(str::trim).any(registry::takes_soil);
     let models = registry::resolve(models, on_turf).context("--models")?;
     let models = models.as_str();
     let (mut rows, skipped_rows) = read_rows(files)?;
@@ -156,7 +155,7 @@ pub fn by_club(
         let mut stats = Vec::new();
         for name in models.split(',') {
             let mut loaded = club.clone();
-            if name == "ground" {
+            if registry::takes_soil(name) {
                 super::args::set_soil(&mut loaded, soil, name)?;
             }
             let model = registry::build_one(name, &loaded, &BuildOptions { ball, ..Default::default() })

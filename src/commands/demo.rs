@@ -13,6 +13,9 @@ use super::args::load_club;
 use super::checked;
 use super::run::{runtime, shutdown_signal, BridgeArgs};
 
+/// Where the demo records when not told (`--record`): replaced by each demo.
+pub const DEFAULT_RECORDING: &str = "impactd-demo.mcap";
+
 #[derive(Debug, Args)]
 pub struct DemoArgs {
     /// Shots to swing.
@@ -24,10 +27,11 @@ pub struct DemoArgs {
     /// Print predictions as JSON.
     #[arg(long)]
     pub json: bool,
-    /// The recording's path.
-    #[arg(long, default_value = "impactd-demo.mcap")]
-    pub record: PathBuf,
-    /// Replace the recording if it exists (otherwise an existing file stops the demo, as with `run --record`).
+    /// The recording's path (default impactd-demo.mcap, which each demo replaces).
+    #[arg(long)]
+    pub record: Option<PathBuf>,
+    /// Replace a recording named with --record if it exists (otherwise an existing file stops the demo, as with
+    /// `run --record`); the default recording is always replaced.
     #[arg(long)]
     pub overwrite: bool,
     /// Random seed of the swings.
@@ -45,6 +49,11 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
         bail!("--shots must be at least 1");
     }
     let club = load_club(&args.club)?.club;
+    // The demo's own recording is a scratch file each demo replaces; one named with --record is kept unless asked.
+    let (record, overwrite) = match &args.record {
+        Some(path) => (path.clone(), args.overwrite),
+        None => (PathBuf::from(DEFAULT_RECORDING), true),
+    };
     let mut config = DaemonConfig::default();
     config.rigs[0].club = args.club.clone();
     args.bridges.apply(&mut config)?;
@@ -57,15 +66,15 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
         args.club,
         args.shots,
         args.rate,
-        args.record.display()
+        record.display()
     );
     let rt = runtime()?;
     let summary = rt.block_on(demo(
         DemoOptions {
             config: config.clone(),
             sim,
-            record: Some(args.record.clone()),
-            overwrite: args.overwrite,
+            record: Some(record.clone()),
+            overwrite,
             json: args.json,
             foxglove: args.bridges.foxglove.clone(),
             web: args.bridges.web(&config),
@@ -75,18 +84,14 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     let (shots, predictions): (u64, u64) =
         summary.rigs.values().fold((0, 0), |(s, p), c| (s + c.shots, p + c.predictions));
     if let Some(e) = summary.recorder.as_ref().and_then(|r| r.error.as_ref()) {
-        eprintln!(
-            "{predictions} of {} shots predicted; the recording {} failed: {e}",
-            args.shots,
-            args.record.display()
-        );
+        eprintln!("{predictions} of {} shots predicted; the recording {} failed: {e}", args.shots, record.display());
         return Ok(ExitCode::from(1));
     }
     eprintln!(
         "{predictions} of {} shots predicted ({shots} impacts detected). Recording: {} (try `impactd info {}` or open it in Foxglove)",
         args.shots,
-        args.record.display(),
-        args.record.display()
+        record.display(),
+        record.display()
     );
     let mut flagged = std::collections::BTreeMap::<&str, u64>::new();
     for (name, n) in summary.rigs.values().flat_map(|c| c.flagged.iter()) {

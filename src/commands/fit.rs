@@ -23,7 +23,7 @@ use impactd::offline::identify::{FitModel, Objective, ParamSpace, FIELDS};
 
 #[derive(Debug, Args)]
 pub struct FitArgs {
-    /// The model whose parameters to identify: adjusted, slip or continuous.
+    /// The model whose parameters to identify: one with identifiable parameters (`impactd models` names them).
     #[arg(long)]
     pub model: String,
     /// Club preset or club file: the starting parameters (its section, else the seed's).

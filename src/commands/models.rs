@@ -13,12 +13,17 @@ pub struct ModelsArgs {
     #[arg(long, conflicts_with = "presets")]
     pub sections: bool,
     /// The club presets as a table (name, loft, lie, mass, CG, inertia, the models that refuse it, SHA-256).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "sections")]
     pub presets: bool,
+    /// The model names alone, one a line (for scripts).
+    #[arg(long, conflicts_with_all = ["sections", "presets"])]
+    pub names: bool,
 }
 
 pub fn run(args: &ModelsArgs) -> Result<ExitCode> {
-    let text = if args.sections {
+    let text = if args.names {
+        registry::MODELS.iter().map(|m| format!("{}\n", m.name)).collect()
+    } else if args.sections {
         registry::sections_markdown()
     } else if args.presets {
         presets_markdown()?

@@ -157,6 +157,14 @@ pub fn current_name(name: &str) -> &str {
     FORMER_NAMES.iter().find(|(former, _)| *former == name).map_or(name, |(_, current)| current)
 }
 
+/// The model that stands on the turf: the one a soil (`--soil`, `soil = ...`) is for.
+pub const TURF_MODEL: &str = "ground";
+
+/// Whether `name` (a model or a group) takes a soil: the turf model, or a group whose turf members include it.
+pub fn takes_soil(name: &str) -> bool {
+    name == TURF_MODEL || GROUPS.iter().any(|g| g.name == name && g.on_turf.contains(&TURF_MODEL))
+}
+
 /// Every group.
 pub const GROUPS: &[Group] =
     &[Group { name: "both", members: &["adjusted", "continuous"], on_turf: &["adjusted", "ground"] }];
@@ -179,7 +187,7 @@ pub fn resolve(name: &str, on_turf: bool) -> Result<String, ImpactError> {
             return Err(ImpactError::UnknownModel { name: n.to_string(), expected: names() });
         }
     }
-    if on_turf && !list.split(',').any(|m| m.trim() == "ground") {
+    if on_turf && !list.split(',').any(|m| m.trim() == TURF_MODEL) {
         return Err(ImpactError::InvalidParameter {
             field: "soil".into(),
             reason: format!("needs the ground model (model ground or both), not {name}"),
@@ -188,7 +196,8 @@ pub fn resolve(name: &str, on_turf: bool) -> Result<String, ImpactError> {
     Ok(list)
 }
 
-/// The model names and groups, for help texts and errors: `standard, adjusted, slip, continuous, both`.
+/// The model names and groups, for help texts and errors, in the registry's order (`standard, adjusted, ...,
+/// both`).
 pub fn names() -> String {
     MODELS.iter().map(|m| m.name).chain(GROUPS.iter().map(|g| g.name)).collect::<Vec<_>>().join(", ")
 }
@@ -306,7 +315,13 @@ mod tests {
         // One name per model: each publishes under its registry name, and each former name maps to one.
         for m in MODELS {
             assert_eq!(build_one(m.name, &club, &BuildOptions::default()).unwrap().name(), m.name);
+            if let Some(fit) = &m.fit {
+                assert_eq!(fit.name, m.name, "the identifiable parameters name their entry's model");
+            }
         }
+        // A soil goes with the turf model and the groups that stand on the turf, nothing else.
+        assert!(takes_soil("ground") && takes_soil("both"));
+        assert!(!takes_soil("adjusted") && !takes_soil("continuous"));
         for (former, current) in FORMER_NAMES {
             assert!(entry(current).is_some() && entry(former).is_none(), "{former} -> {current}");
             assert_eq!(current_name(former), *current);

@@ -52,8 +52,8 @@ pub use params::{FitModel, ParamDef, ParamSpace};
 pub enum IdentifyError {
     #[error("line {line}: {reason}")]
     Line { line: usize, reason: String },
-    #[error("no parameter set for model `{0}` (fit: adjusted, slip or continuous)")]
-    UnknownModel(String),
+    #[error("no parameter set for model `{name}` (fit: {fittable})")]
+    UnknownModel { name: String, fittable: String },
     #[error("model `{model}` has no parameter `{name}` (it has: {known})")]
     UnknownParam { model: String, name: String, known: String },
     #[error("model `{0}` has no parameters to identify")]

@@ -23,7 +23,10 @@ impl FitModel {
     pub fn parse(name: &str) -> Result<&'static FitModel, IdentifyError> {
         match registry::entry(name) {
             Some(e) => e.fit.as_ref().ok_or_else(|| IdentifyError::NothingToFit(name.to_string())),
-            None => Err(IdentifyError::UnknownModel(name.to_string())),
+            None => Err(IdentifyError::UnknownModel {
+                name: name.to_string(),
+                fittable: registry::fit_models().map(|m| m.name).collect::<Vec<_>>().join(", "),
+            }),
         }
     }
 
@@ -127,6 +130,6 @@ mod tests {
         let err = ParamSpace::new(FitModel::parse("slip").unwrap(), &["e_x".into()]).unwrap_err();
         assert!(err.to_string().contains("e_y, e_z"), "{err}");
         assert!(matches!(FitModel::parse("standard"), Err(IdentifyError::NothingToFit(_))));
-        assert!(matches!(FitModel::parse("nope"), Err(IdentifyError::UnknownModel(_))));
+        assert!(matches!(FitModel::parse("nope"), Err(IdentifyError::UnknownModel { .. })));
     }
 }

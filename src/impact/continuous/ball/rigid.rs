@@ -29,9 +29,9 @@ pub struct RigidBallState {
 
 #[derive(Debug, Clone, Copy)]
 pub struct RigidBallRate {
-    v: Vector3,
-    a: Vector3,
-    alpha: Vector3,
+    velocity_mps: Vector3,
+    accel_mps2: Vector3,
+    angular_accel_radps2: Vector3,
 }
 
 impl BallPart for RigidBall {
@@ -66,15 +66,19 @@ impl BallPart for RigidBall {
 
     #[inline]
     fn rate(&self, s: &RigidBallState, force_n: Vector3, r_m: Vector3) -> RigidBallRate {
-        RigidBallRate { v: s.velocity_mps, a: force_n / self.mass_kg, alpha: r_m.cross(&force_n) / self.inertia_kg_m2 }
+        RigidBallRate {
+            velocity_mps: s.velocity_mps,
+            accel_mps2: force_n / self.mass_kg,
+            angular_accel_radps2: r_m.cross(&force_n) / self.inertia_kg_m2,
+        }
     }
 
     #[inline]
     fn advance(s: &RigidBallState, r: &RigidBallRate, h: Real) -> RigidBallState {
         RigidBallState {
-            centre_m: s.centre_m + r.v * h,
-            velocity_mps: s.velocity_mps + r.a * h,
-            spin_radps: s.spin_radps + r.alpha * h,
+            centre_m: s.centre_m + r.velocity_mps * h,
+            velocity_mps: s.velocity_mps + r.accel_mps2 * h,
+            spin_radps: s.spin_radps + r.angular_accel_radps2 * h,
         }
     }
 
@@ -82,9 +86,14 @@ impl BallPart for RigidBall {
     fn advance_rk4(s: &RigidBallState, k: [&RigidBallRate; 4], h: Real) -> RigidBallState {
         let [k1, k2, k3, k4] = k;
         let mean = RigidBallRate {
-            v: rk4_mean(k1.v, k2.v, k3.v, k4.v),
-            a: rk4_mean(k1.a, k2.a, k3.a, k4.a),
-            alpha: rk4_mean(k1.alpha, k2.alpha, k3.alpha, k4.alpha),
+            velocity_mps: rk4_mean(k1.velocity_mps, k2.velocity_mps, k3.velocity_mps, k4.velocity_mps),
+            accel_mps2: rk4_mean(k1.accel_mps2, k2.accel_mps2, k3.accel_mps2, k4.accel_mps2),
+            angular_accel_radps2: rk4_mean(
+                k1.angular_accel_radps2,
+                k2.angular_accel_radps2,
+                k3.angular_accel_radps2,
+                k4.angular_accel_radps2,
+            ),
         };
         Self::advance(s, &mean, h)
     }

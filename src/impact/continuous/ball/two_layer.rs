@@ -49,11 +49,11 @@ pub struct TwoLayerBallState {
 
 #[derive(Debug, Clone, Copy)]
 pub struct TwoLayerBallRate {
-    v: Vector3,
-    a: Vector3,
-    alpha_core: Vector3,
-    alpha_cover: Vector3,
-    theta_dot: Vector3,
+    velocity_mps: Vector3,
+    accel_mps2: Vector3,
+    core_angular_accel_radps2: Vector3,
+    cover_angular_accel_radps2: Vector3,
+    twist_rate_radps: Vector3,
 }
 
 impl BallPart for TwoLayerBall {
@@ -98,22 +98,22 @@ impl BallPart for TwoLayerBall {
         let w_rel = s.cover_spin_radps - s.core_spin_radps;
         let spring = self.k_ball_nm_per_rad * s.cover_twist_rad + self.c_ball_nms_per_rad * w_rel;
         TwoLayerBallRate {
-            v: s.velocity_mps,
-            a: force_n / self.mass_kg,
-            alpha_core: spring / self.core_inertia_kg_m2,
-            alpha_cover: (r_m.cross(&force_n) - spring) / self.cover_inertia_kg_m2,
-            theta_dot: w_rel,
+            velocity_mps: s.velocity_mps,
+            accel_mps2: force_n / self.mass_kg,
+            core_angular_accel_radps2: spring / self.core_inertia_kg_m2,
+            cover_angular_accel_radps2: (r_m.cross(&force_n) - spring) / self.cover_inertia_kg_m2,
+            twist_rate_radps: w_rel,
         }
     }
 
     #[inline]
     fn advance(s: &TwoLayerBallState, r: &TwoLayerBallRate, h: Real) -> TwoLayerBallState {
         TwoLayerBallState {
-            centre_m: s.centre_m + r.v * h,
-            velocity_mps: s.velocity_mps + r.a * h,
-            core_spin_radps: s.core_spin_radps + r.alpha_core * h,
-            cover_spin_radps: s.cover_spin_radps + r.alpha_cover * h,
-            cover_twist_rad: s.cover_twist_rad + r.theta_dot * h,
+            centre_m: s.centre_m + r.velocity_mps * h,
+            velocity_mps: s.velocity_mps + r.accel_mps2 * h,
+            core_spin_radps: s.core_spin_radps + r.core_angular_accel_radps2 * h,
+            cover_spin_radps: s.cover_spin_radps + r.cover_angular_accel_radps2 * h,
+            cover_twist_rad: s.cover_twist_rad + r.twist_rate_radps * h,
         }
     }
 
@@ -121,11 +121,26 @@ impl BallPart for TwoLayerBall {
     fn advance_rk4(s: &TwoLayerBallState, k: [&TwoLayerBallRate; 4], h: Real) -> TwoLayerBallState {
         let [k1, k2, k3, k4] = k;
         let mean = TwoLayerBallRate {
-            v: rk4_mean(k1.v, k2.v, k3.v, k4.v),
-            a: rk4_mean(k1.a, k2.a, k3.a, k4.a),
-            alpha_core: rk4_mean(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
-            alpha_cover: rk4_mean(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
-            theta_dot: rk4_mean(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
+            velocity_mps: rk4_mean(k1.velocity_mps, k2.velocity_mps, k3.velocity_mps, k4.velocity_mps),
+            accel_mps2: rk4_mean(k1.accel_mps2, k2.accel_mps2, k3.accel_mps2, k4.accel_mps2),
+            core_angular_accel_radps2: rk4_mean(
+                k1.core_angular_accel_radps2,
+                k2.core_angular_accel_radps2,
+                k3.core_angular_accel_radps2,
+                k4.core_angular_accel_radps2,
+            ),
+            cover_angular_accel_radps2: rk4_mean(
+                k1.cover_angular_accel_radps2,
+                k2.cover_angular_accel_radps2,
+                k3.cover_angular_accel_radps2,
+                k4.cover_angular_accel_radps2,
+            ),
+            twist_rate_radps: rk4_mean(
+                k1.twist_rate_radps,
+                k2.twist_rate_radps,
+                k3.twist_rate_radps,
+                k4.twist_rate_radps,
+            ),
         };
         Self::advance(s, &mean, h)
     }
@@ -135,11 +150,24 @@ impl BallPart for TwoLayerBall {
         let [k1, k2, k3, k4] = k;
         let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) * (h / 6.0);
         TwoLayerBallState {
-            centre_m: s.centre_m + c(k1.v, k2.v, k3.v, k4.v),
-            velocity_mps: s.velocity_mps + c(k1.a, k2.a, k3.a, k4.a),
-            core_spin_radps: s.core_spin_radps + c(k1.alpha_core, k2.alpha_core, k3.alpha_core, k4.alpha_core),
-            cover_spin_radps: s.cover_spin_radps + c(k1.alpha_cover, k2.alpha_cover, k3.alpha_cover, k4.alpha_cover),
-            cover_twist_rad: s.cover_twist_rad + c(k1.theta_dot, k2.theta_dot, k3.theta_dot, k4.theta_dot),
+            centre_m: s.centre_m + c(k1.velocity_mps, k2.velocity_mps, k3.velocity_mps, k4.velocity_mps),
+            velocity_mps: s.velocity_mps + c(k1.accel_mps2, k2.accel_mps2, k3.accel_mps2, k4.accel_mps2),
+            core_spin_radps: s.core_spin_radps
+                + c(
+                    k1.core_angular_accel_radps2,
+                    k2.core_angular_accel_radps2,
+                    k3.core_angular_accel_radps2,
+                    k4.core_angular_accel_radps2,
+                ),
+            cover_spin_radps: s.cover_spin_radps
+                + c(
+                    k1.cover_angular_accel_radps2,
+                    k2.cover_angular_accel_radps2,
+                    k3.cover_angular_accel_radps2,
+                    k4.cover_angular_accel_radps2,
+                ),
+            cover_twist_rad: s.cover_twist_rad
+                + c(k1.twist_rate_radps, k2.twist_rate_radps, k3.twist_rate_radps, k4.twist_rate_radps),
         }
     }
 

@@ -31,10 +31,10 @@ pub struct FreeHeadState {
 
 #[derive(Debug, Clone, Copy)]
 pub struct FreeHeadRate {
-    v: Vector3,
-    a: Vector3,
-    q_dot: crate::math::Quaternion,
-    alpha_body: Vector3,
+    velocity_mps: Vector3,
+    accel_mps2: Vector3,
+    attitude_rate_per_s: crate::math::Quaternion,
+    body_angular_accel_radps2: Vector3,
 }
 
 impl ClubPart for FreeHead {
@@ -67,20 +67,20 @@ impl ClubPart for FreeHead {
         let torque_body = head.world_from_club.inverse_transform_vector(&torque_nm);
         let w = s.body_rate_radps;
         FreeHeadRate {
-            v: s.velocity_mps,
-            a: force_n / self.mass_kg,
-            q_dot: s.world_from_body.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5,
-            alpha_body: self.inertia_inv_kg_m2 * (torque_body - w.cross(&(self.inertia_kg_m2 * w))),
+            velocity_mps: s.velocity_mps,
+            accel_mps2: force_n / self.mass_kg,
+            attitude_rate_per_s: s.world_from_body.quaternion() * crate::math::Quaternion::from_imag(w) * 0.5,
+            body_angular_accel_radps2: self.inertia_inv_kg_m2 * (torque_body - w.cross(&(self.inertia_kg_m2 * w))),
         }
     }
 
     #[inline]
     fn advance(s: &FreeHeadState, r: &FreeHeadRate, h: Real) -> FreeHeadState {
         FreeHeadState {
-            cg_m: s.cg_m + r.v * h,
-            velocity_mps: s.velocity_mps + r.a * h,
-            world_from_body: UnitQuaternion::new_unchecked(s.world_from_body.quaternion() + r.q_dot * h),
-            body_rate_radps: s.body_rate_radps + r.alpha_body * h,
+            cg_m: s.cg_m + r.velocity_mps * h,
+            velocity_mps: s.velocity_mps + r.accel_mps2 * h,
+            world_from_body: UnitQuaternion::new_unchecked(s.world_from_body.quaternion() + r.attitude_rate_per_s * h),
+            body_rate_radps: s.body_rate_radps + r.body_angular_accel_radps2 * h,
         }
     }
 
@@ -89,10 +89,19 @@ impl ClubPart for FreeHead {
         let c = |a: Vector3, b: Vector3, c: Vector3, d: Vector3| (a + 2.0 * b + 2.0 * c + d) / 6.0;
         let [k1, k2, k3, k4] = k;
         let mean = FreeHeadRate {
-            v: c(k1.v, k2.v, k3.v, k4.v),
-            a: c(k1.a, k2.a, k3.a, k4.a),
-            q_dot: (k1.q_dot + k2.q_dot * 2.0 + k3.q_dot * 2.0 + k4.q_dot) / 6.0,
-            alpha_body: c(k1.alpha_body, k2.alpha_body, k3.alpha_body, k4.alpha_body),
+            velocity_mps: c(k1.velocity_mps, k2.velocity_mps, k3.velocity_mps, k4.velocity_mps),
+            accel_mps2: c(k1.accel_mps2, k2.accel_mps2, k3.accel_mps2, k4.accel_mps2),
+            attitude_rate_per_s: (k1.attitude_rate_per_s
+                + k2.attitude_rate_per_s * 2.0
+                + k3.attitude_rate_per_s * 2.0
+                + k4.attitude_rate_per_s)
+                / 6.0,
+            body_angular_accel_radps2: c(
+                k1.body_angular_accel_radps2,
+                k2.body_angular_accel_radps2,
+                k3.body_angular_accel_radps2,
+                k4.body_angular_accel_radps2,
+            ),
         };
         let mut next = Self::advance(s, &mean, h);
         next.world_from_body = UnitQuaternion::new_normalize(next.world_from_body.into_inner());

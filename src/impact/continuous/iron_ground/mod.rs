@@ -189,8 +189,8 @@ pub struct GroundResult {
     pub ball_contact_us: Real,
     /// The club's linear momentum at the start and end, and the impulses of the ball, ground and grip on it
     /// (N s, world).
-    pub club_momentum_start: Vector3,
-    pub club_momentum_end: Vector3,
+    pub club_momentum_start_ns: Vector3,
+    pub club_momentum_end_ns: Vector3,
     pub ball_impulse_ns: Vector3,
     /// The ground's impulse on the club before the ball's first contact (N s, world).
     pub ground_impulse_before_ball_ns: Vector3,

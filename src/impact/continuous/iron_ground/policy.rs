@@ -106,7 +106,7 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
             if !out.ball_touched {
                 out.ball_touched = true;
                 out.t_ball_s = t_s;
-                out.ground_impulse_before_ball = s.club.j_ground_ns;
+                out.ground_impulse_before_ball_ns = s.club.j_ground_ns;
                 let fc = self.club.face.center_m;
                 let v_fc =
                     |b: &Head| (b.velocity_mps + b.angular_velocity_radps.cross(&(b.world_from_club * fc))).norm();

@@ -29,17 +29,19 @@ impl ConstantTwist {
     /// `exp([ω] t)` and `∫₀ᵗ exp([ω] s) ds`.
     fn rotation_and_integral(&self, t_s: Real) -> (Matrix3, Matrix3) {
         let w = self.angular_velocity_radps;
-        let wn = w.norm();
+        let rate_radps = w.norm();
         let k = skew(&w);
-        if wn * t_s.abs() < 1e-6 {
+        if rate_radps * t_s.abs() < 1e-6 {
             let r = Matrix3::identity() + k * t_s + 0.5 * k * k * t_s * t_s;
             let i = Matrix3::identity() * t_s + 0.5 * k * t_s * t_s + k * k * t_s.powi(3) / 6.0;
             return (r, i);
         }
-        let th = wn * t_s;
+        let th = rate_radps * t_s;
         let (sin, cos) = crate::math::sin_cos_small(th);
-        let r = Matrix3::identity() + k * (sin / wn) + k * k * ((1.0 - cos) / (wn * wn));
-        let i = Matrix3::identity() * t_s + k * ((1.0 - cos) / (wn * wn)) + k * k * ((th - sin) / wn.powi(3));
+        let r = Matrix3::identity() + k * (sin / rate_radps) + k * k * ((1.0 - cos) / (rate_radps * rate_radps));
+        let i = Matrix3::identity() * t_s
+            + k * ((1.0 - cos) / (rate_radps * rate_radps))
+            + k * k * ((th - sin) / rate_radps.powi(3));
         (r, i)
     }
 
@@ -50,7 +52,7 @@ impl ConstantTwist {
         PreparedTwist {
             k,
             k2: k * k,
-            wn: w.norm(),
+            rate_radps: w.norm(),
             rotation0: *self.world_from_club.rotation.to_rotation_matrix().matrix(),
             position0_m: self.world_from_club.translation.vector,
             velocity0_mps: self.cg_velocity_mps,
@@ -96,7 +98,7 @@ impl ConstantTwist {
 pub struct PreparedTwist {
     k: Matrix3,
     k2: Matrix3,
-    wn: Real,
+    rate_radps: Real,
     rotation0: Matrix3,
     position0_m: Vector3,
     velocity0_mps: Vector3,
@@ -105,16 +107,18 @@ pub struct PreparedTwist {
 impl PreparedTwist {
     /// The rigid club's attitude (world from club), CG position and CG velocity at `t_s`.
     pub fn at(&self, t_s: Real) -> (crate::math::Rotation3, Vector3, Vector3) {
-        let (k, k2, wn) = (&self.k, &self.k2, self.wn);
-        let (r, i) = if wn * t_s.abs() < 1e-6 {
+        let (k, k2, rate_radps) = (&self.k, &self.k2, self.rate_radps);
+        let (r, i) = if rate_radps * t_s.abs() < 1e-6 {
             let r = Matrix3::identity() + k * t_s + k2 * (0.5 * t_s * t_s);
             let i = Matrix3::identity() * t_s + k * (0.5 * t_s * t_s) + k2 * (t_s.powi(3) / 6.0);
             (r, i)
         } else {
-            let th = wn * t_s;
+            let th = rate_radps * t_s;
             let (sin, cos) = crate::math::sin_cos_small(th);
-            let r = Matrix3::identity() + k * (sin / wn) + k2 * ((1.0 - cos) / (wn * wn));
-            let i = Matrix3::identity() * t_s + k * ((1.0 - cos) / (wn * wn)) + k2 * ((th - sin) / wn.powi(3));
+            let r = Matrix3::identity() + k * (sin / rate_radps) + k2 * ((1.0 - cos) / (rate_radps * rate_radps));
+            let i = Matrix3::identity() * t_s
+                + k * ((1.0 - cos) / (rate_radps * rate_radps))
+                + k2 * ((th - sin) / rate_radps.powi(3));
             (r, i)
         };
         let rot = crate::math::Rotation3::from_matrix_unchecked(r * self.rotation0);
