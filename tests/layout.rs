@@ -245,6 +245,65 @@ fn module_graphs(src: &Path) -> (Graph, Graph) {
     (top, daemon)
 }
 
+/// The unit graph of every folder of the crate, by the folder's module path (`[]` the crate, `["impact",
+/// "continuous"]`, ...): its units are the modules directly inside it, an edge a -> b a line of a file inside `a`
+/// naming something inside `b`.
+fn folder_graphs(src: &Path) -> std::collections::BTreeMap<Vec<String>, Graph> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let texts: Vec<(Vec<String>, String, String)> = files
+        .iter()
+        .filter(|f| !f.ends_with("main.rs") || f.parent() != Some(src))
+        .map(|f| {
+            let relative = f.strip_prefix(src).unwrap();
+            let text = std::fs::read_to_string(f).unwrap();
+            (module_of(relative), format!("src/{}", relative.display()), outside_tests(&text).to_string())
+        })
+        .collect();
+    // Every module path and its prefixes.
+    let modules: std::collections::BTreeSet<Vec<String>> =
+        texts.iter().flat_map(|(m, _, _)| (1..=m.len()).map(|k| m[..k].to_vec())).collect();
+    let aliases: Vec<(Vec<String>, Vec<String>)> = texts
+        .iter()
+        .filter(|(_, file, _)| file.ends_with("mod.rs") || file.ends_with("lib.rs"))
+        .flat_map(|(m, _, code)| re_exports(m, code))
+        .collect();
+    let mut graphs = std::collections::BTreeMap::<Vec<String>, Graph>::new();
+    // A test module in a file of its own (`#[cfg(test)] mod tests;`) is a test, as a file's own test module is.
+    let is_test = |m: &[String]| m.last().is_some_and(|n| n == "tests" || n.ends_with("_tests"));
+    for (module, file, code) in texts.iter().filter(|(m, _, _)| !is_test(m)) {
+        for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
+            for mut path in named_paths(module, line) {
+                // Re-exports resolved to the module that defines the item, repeatedly (a re-export of one).
+                for _ in 0..4 {
+                    match aliases.iter().find(|(from, _)| path.starts_with(from)) {
+                        Some((from, to)) => path = [to.clone(), path[from.len()..].to_vec()].concat(),
+                        None => break,
+                    }
+                }
+                let common = module.iter().zip(&path).take_while(|(a, b)| a == b).count();
+                if common >= module.len() || common >= path.len() {
+                    continue;
+                }
+                let folder = module[..common].to_vec();
+                let (a, b) = (&module[common], &path[common]);
+                if modules.contains(&[folder.clone(), vec![b.clone()]].concat()) {
+                    let evidence = format!("{file}: {}", line.trim());
+                    graphs
+                        .entry(folder)
+                        .or_default()
+                        .entry(a.clone())
+                        .or_default()
+                        .entry(b.clone())
+                        .or_default()
+                        .push(evidence);
+                }
+            }
+        }
+    }
+    graphs
+}
+
 /// The circles of a graph: its strongly connected components of more than one unit, sorted.
 fn circles(graph: &Graph) -> Vec<Vec<String>> {
     let reach = |from: &String| {
@@ -305,6 +364,27 @@ fn no_module_imports_one_that_imports_it_back() {
         describe(&top, &top_circles),
         describe(&daemon, &daemon_circles)
     );
+}
+
+/// The same inside every folder, at every depth (`impact::continuous::law`, `offline::identify`, ...).
+#[test]
+fn no_folder_holds_modules_that_import_each_other() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let graphs = folder_graphs(&src);
+    let law = vec!["impact".to_string(), "continuous".to_string(), "law".to_string()];
+    assert!(graphs.len() > 10 && graphs.contains_key(&law), "the folders were not read: {:?}", graphs.keys());
+    let mut text = String::new();
+    for (folder, graph) in &graphs {
+        let found = circles(graph);
+        if !found.is_empty() {
+            text += &format!(
+                "in {}:\n{}",
+                if folder.is_empty() { "crate".into() } else { folder.join("::") },
+                describe(graph, &found)
+            );
+        }
+    }
+    assert!(text.is_empty(), "modules import each other in a circle:\n{text}");
 }
 
 #[test]

@@ -1,6 +1,6 @@
 //! The clubhead (seed Table 3.1): mass, inertia, face geometry and the usable face.
 
-use super::{g_cm2_to_kg_m2, ClubFile, EquipmentError};
+use super::g_cm2_to_kg_m2;
 use crate::face::{Face, FaceShape};
 use crate::math::{Matrix3, Real, Vector3};
 
@@ -121,21 +121,6 @@ impl ClubSpec {
     pub fn shaft_axis_up(&self) -> Vector3 {
         let lie = self.lie_deg.to_radians();
         Vector3::new(0.0, lie.sin(), -lie.cos())
-    }
-
-    /// A preset by name or alias (`driver`, `wood3`, `hybrid`, `iron4` ... `iron9`, `pw`, `gw`, `sw`, `lw`;
-    /// [`super::presets`]).
-    pub fn preset(name: &str) -> Result<Self, EquipmentError> {
-        super::presets::find(name)
-            .ok_or_else(|| EquipmentError::UnknownPreset(name.to_string()))?
-            .load()
-            .map(|loaded| loaded.club)
-    }
-
-    /// The physical club of a TOML club file's text (its model sections are ignored; see
-    /// [`ClubFile::parse`] to keep them).
-    pub fn from_toml_str(text: &str) -> Result<Self, EquipmentError> {
-        ClubFile::parse(text).map(|loaded| loaded.club)
     }
 
     /// Static loft in degrees.

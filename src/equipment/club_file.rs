@@ -208,6 +208,14 @@ impl ClubFile {
     }
 }
 
+impl ClubSpec {
+    /// The physical club of a TOML club file's text (its model sections are ignored; see [`ClubFile::parse`] to
+    /// keep them). A preset by name: `ClubSpec::preset` (presets.rs).
+    pub fn from_toml_str(text: &str) -> Result<Self, EquipmentError> {
+        ClubFile::parse(text).map(|loaded| loaded.club)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::*;

@@ -6,7 +6,7 @@
 //! A preset loads exactly as its file would (`impactd predict --club clubs/presets/sw.toml` equals `--club sw`),
 //! so a preset's content hash (`wire::ClubRef`) is the hash of those bytes.
 
-use super::{ClubFile, EquipmentError, LoadedClub};
+use super::{ClubFile, ClubSpec, EquipmentError, LoadedClub};
 
 /// One preset: the name users type, the other names it answers to, and its club file.
 pub struct Preset {
@@ -57,6 +57,14 @@ impl Preset {
     /// The bytes that identify it: its file's.
     pub fn bytes(&self) -> &'static [u8] {
         self.text.as_bytes()
+    }
+}
+
+impl ClubSpec {
+    /// A preset by name or alias (`driver`, `wood3`, `hybrid`, `iron4` ... `iron9`, `pw`, `gw`, `sw`, `lw`;
+    /// [`find`]).
+    pub fn preset(name: &str) -> Result<Self, EquipmentError> {
+        find(name).ok_or_else(|| EquipmentError::UnknownPreset(name.to_string()))?.load().map(|loaded| loaded.club)
     }
 }
 
