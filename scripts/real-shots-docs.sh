@@ -375,6 +375,27 @@ for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
         by_club.setdefault(d["Club"], []).append(float(d["Spin Rate"]) / bound)
     for club, q in by_club.items():
         relation.append(f"| {name} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
+# The third player's report sessions (every club, with a preset or not): TrackMan's JSON in SI units, spin in rpm;
+# strokes whose spin rate or axis TrackMan marks ReducedAccuracy left out.
+import glob, os
+for path in sorted(glob.glob("tests/data/trackman/report-*.json")):
+    by_club = {}
+    for g in json.load(open(path, encoding="utf-8"))["StrokeGroups"]:
+        for st in g["Strokes"]:
+            m = st.get("Measurement") or {}
+            keys = ["DynamicLoft", "FaceAngle", "LaunchAngle", "LaunchDirection", "BallSpeed", "SpinRate"]
+            ra = m.get("ReducedAccuracy") or []
+            if not all(k in m for k in keys) or "SpinRate" in ra or "SpinAxis" in ra:
+                continue
+            def unit(e, a):
+                e, a = math.radians(e), math.radians(a)
+                return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
+            n, b = unit(m["DynamicLoft"], m["FaceAngle"]), unit(m["LaunchAngle"], m["LaunchDirection"])
+            angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
+            bound = 2.5 * m["BallSpeed"] * math.sin(angle) / 0.0213 * 60 / (2 * math.pi)
+            by_club.setdefault(st["Club"], []).append(m["SpinRate"] / bound)
+    for club, q in by_club.items():
+        relation.append(f"| {os.path.basename(path)} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
 
 strike = ["| club | TrackMan impact height (mm) | shots | measured smash | predicted smash (adjusted) | ball speed bias (mph) |",
           "|---|---|---|---|---|---|"]
