@@ -319,14 +319,6 @@ struct WorkerEnd {
 }
 
 impl Worker {
-    fn p(&self) -> &Pipeline {
-        self.pipeline.as_ref().expect("the pipeline is in place between samples")
-    }
-
-    fn p_mut(&mut self) -> &mut Pipeline {
-        self.pipeline.as_mut().expect("the pipeline is in place between samples")
-    }
-
     fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
         let mut next_status = Instant::now() + period;
         self.record_club(wall_ns(), wire::ClubSource::Config, None);
@@ -345,7 +337,7 @@ impl Worker {
         let status = self.publish_status();
         WorkerEnd {
             rig: self.rig.to_string(),
-            counts: self.p().counts.clone(),
+            counts: self.pipeline.as_ref().map(|p| p.counts.clone()).unwrap_or_default(),
             simulator: status.simulator,
             simulator_task: self.simulator.take().map(SimulatorClient::close),
             launch_monitor: status.launch_monitor,
@@ -377,8 +369,10 @@ impl Worker {
         let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
             Ok(m) => m,
             Err(e) => {
-                *self.p_mut().counts.rejected.entry(e.key().to_string()).or_default() += 1;
-                self.p_mut().counts.samples += 1;
+                if let Some(p) = self.pipeline.as_mut() {
+                    *p.counts.rejected.entry(e.key().to_string()).or_default() += 1;
+                    p.counts.samples += 1;
+                }
                 let bytes = incoming.payload.len();
                 self.warn(e.key(), || format!("rejected sample: {e}"));
                 // The raw payload goes to the recording beside the reason, within the budget; beyond it the
@@ -400,14 +394,16 @@ impl Worker {
         self.sinks.sample(incoming.log_time_ns, msg.t_ns, incoming.payload);
         let mut any_event = false;
         let received = incoming.received;
-        let mut pipeline = self.pipeline.take().expect("the pipeline is in place between samples");
+        // Out of its slot while it runs the sample (its events are published as they come, by `self`); it is
+        // only ever taken here, so it is always back between samples.
+        let Some(mut pipeline) = self.pipeline.take() else { return };
         pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |event| {
             any_event = true;
             self.on_event(&rig, event, received);
         });
         self.pipeline = Some(pipeline);
         if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
-            if let Some(world_from_club) = sinks::world_from_club(self.p(), &sample) {
+            if let Some(world_from_club) = self.pipeline.as_ref().and_then(|p| sinks::world_from_club(p, &sample)) {
                 self.sinks.club_pose(sample.t_ns, incoming.log_time_ns, world_from_club);
             }
         }

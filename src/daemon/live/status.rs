@@ -13,8 +13,10 @@ use crate::wire;
 
 impl Worker {
     pub(super) fn publish_status(&mut self) -> wire::StatusMessage {
+        // The pipeline is out of its slot only while it runs a sample, never when the status is made.
+        let no_counts = crate::pipeline::Counts::default();
         let inputs = StatusInputs {
-            counts: &self.p().counts,
+            counts: self.pipeline.as_ref().map_or(&no_counts, |p| &p.counts),
             queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
             latency: &self.latency,
             uptime_s: self.started.elapsed().as_secs_f64(),
@@ -30,7 +32,7 @@ impl Worker {
         status.comparison = Some(self.pairer.status());
         status.live_view = self.live_view.as_ref().map(|v| v.status());
         status.web = self.web.as_ref().map(WebStatusSource::status);
-        status.club = Some(self.p().club_ref());
+        status.club = self.pipeline.as_ref().map(|p| p.club_ref());
         self.sinks.status(&status);
         status
     }
