@@ -358,6 +358,17 @@ for t in json.load(open(f"{out}/tour.json")):
 
 import csv, math
 relation = ["| session | club | shots | spin / (2.5 v sin a / R): min | mean | max |", "|---|---|---|---|---|---|"]
+
+def unit(e, a):
+    """The direction of elevation `e` and azimuth `a` (deg), TrackMan's x forward, y up, z right."""
+    e, a = math.radians(float(e)), math.radians(float(a))
+    return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
+
+def ratio(spin_rpm, speed_mps, loft, face, launch, direction):
+    """Measured spin over 2.5 v sin(a) / R, `a` between TrackMan's face normal and the ball's direction."""
+    n, b = unit(loft, face), unit(launch, direction)
+    angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
+    return spin_rpm / (2.5 * speed_mps * math.sin(angle) / 0.0213 * 60 / (2 * math.pi))
 for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
     lines = open(f"tests/data/trackman/{name}", encoding="utf-8-sig").read().splitlines()
     rows = list(csv.reader(lines[1:]))
@@ -366,13 +377,9 @@ for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
         d = dict(zip(head, r))
         if d["Spin Rate Type"] != "Measured" or not d["Dyn. Loft"] or not d["Club Speed"]:
             continue
-        def unit(e, a):
-            e, a = math.radians(float(e)), math.radians(float(a))
-            return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
-        n, b = unit(d["Dyn. Loft"], d["Face Angle"]), unit(d["Launch Angle"], d["Launch Direction"])
-        angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
-        bound = 2.5 * float(d["Ball Speed"]) * 0.44704 * math.sin(angle) / 0.0213 * 60 / (2 * math.pi)
-        by_club.setdefault(d["Club"], []).append(float(d["Spin Rate"]) / bound)
+        by_club.setdefault(d["Club"], []).append(ratio(float(d["Spin Rate"]), float(d["Ball Speed"]) * 0.44704,
+                                                       d["Dyn. Loft"], d["Face Angle"], d["Launch Angle"],
+                                                       d["Launch Direction"]))
     for club, q in by_club.items():
         relation.append(f"| {name} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
 # The third player's report sessions (every club, with a preset or not): TrackMan's JSON in SI units, spin in rpm;
@@ -387,13 +394,8 @@ for path in sorted(glob.glob("tests/data/trackman/report-*.json")):
             ra = m.get("ReducedAccuracy") or []
             if not all(k in m for k in keys) or "SpinRate" in ra or "SpinAxis" in ra:
                 continue
-            def unit(e, a):
-                e, a = math.radians(e), math.radians(a)
-                return (math.cos(e) * math.cos(a), math.sin(e), math.cos(e) * math.sin(a))
-            n, b = unit(m["DynamicLoft"], m["FaceAngle"]), unit(m["LaunchAngle"], m["LaunchDirection"])
-            angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
-            bound = 2.5 * m["BallSpeed"] * math.sin(angle) / 0.0213 * 60 / (2 * math.pi)
-            by_club.setdefault(st["Club"], []).append(m["SpinRate"] / bound)
+            by_club.setdefault(st["Club"], []).append(ratio(m["SpinRate"], m["BallSpeed"], m["DynamicLoft"],
+                                                            m["FaceAngle"], m["LaunchAngle"], m["LaunchDirection"]))
     for club, q in by_club.items():
         relation.append(f"| {os.path.basename(path)} | {club} | {len(q)} | {min(q):.4f} | {sum(q) / len(q):.4f} | {max(q):.4f} |")
 

@@ -198,53 +198,6 @@ fn re_exports(module: &[String], code: &str) -> Vec<(Vec<String>, Vec<String>)> 
 /// Edges between units, each with the lines that make it (`file: line`).
 type Graph = std::collections::BTreeMap<String, std::collections::BTreeMap<String, Vec<String>>>;
 
-/// The unit graphs of the crate: the top-level modules, and the sub-modules of `daemon`.
-fn module_graphs(src: &Path) -> (Graph, Graph) {
-    let mut files = Vec::new();
-    rust_files(src, &mut files);
-    let texts: Vec<(Vec<String>, String, String)> = files
-        .iter()
-        .filter(|f| !f.ends_with("main.rs") || f.parent() != Some(src))
-        .map(|f| {
-            let relative = f.strip_prefix(src).unwrap();
-            let text = std::fs::read_to_string(f).unwrap();
-            (module_of(relative), format!("src/{}", relative.display()), outside_tests(&text).to_string())
-        })
-        .collect();
-    let top_units: std::collections::BTreeSet<String> =
-        texts.iter().filter_map(|(m, _, _)| m.first().cloned()).collect();
-    let daemon_units: std::collections::BTreeSet<String> =
-        texts.iter().filter(|(m, _, _)| m.len() >= 2 && m[0] == "daemon").map(|(m, _, _)| m[1].clone()).collect();
-    let aliases: Vec<(Vec<String>, Vec<String>)> = texts
-        .iter()
-        .filter(|(_, file, _)| file.ends_with("mod.rs") || file.ends_with("lib.rs"))
-        .flat_map(|(m, _, code)| re_exports(m, code))
-        .collect();
-    let (mut top, mut daemon) = (Graph::new(), Graph::new());
-    for (module, file, code) in &texts {
-        for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
-            for mut path in named_paths(module, line) {
-                if let Some((from, to)) = aliases.iter().find(|(from, _)| path.starts_with(from)) {
-                    path = [to.clone(), path[from.len()..].to_vec()].concat();
-                }
-                let evidence = format!("{file}: {}", line.trim());
-                if let (Some(a), Some(b)) = (module.first(), path.first()) {
-                    if a != b && top_units.contains(b) {
-                        top.entry(a.clone()).or_default().entry(b.clone()).or_default().push(evidence.clone());
-                    }
-                }
-                if module.len() >= 2 && path.len() >= 2 && module[0] == "daemon" && path[0] == "daemon" {
-                    let (a, b) = (&module[1], &path[1]);
-                    if a != b && daemon_units.contains(b) {
-                        daemon.entry(a.clone()).or_default().entry(b.clone()).or_default().push(evidence);
-                    }
-                }
-            }
-        }
-    }
-    (top, daemon)
-}
-
 /// The unit graph of every folder of the crate, by the folder's module path (`[]` the crate, `["impact",
 /// "continuous"]`, ...): its units are the modules directly inside it, an edge a -> b a line of a file inside `a`
 /// naming something inside `b`.
@@ -354,15 +307,16 @@ fn describe(graph: &Graph, found: &[Vec<String>]) -> String {
 #[test]
 fn no_module_imports_one_that_imports_it_back() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let (top, daemon) = module_graphs(&src);
+    let graphs = folder_graphs(&src);
+    let (top, daemon) = (&graphs[&Vec::new()], &graphs[&vec!["daemon".to_string()]]);
     assert!(top.len() > 15 && top.contains_key("pipeline"), "the top-level graph was not read: {:?}", top.keys());
     assert!(daemon.len() > 5 && daemon.contains_key("live"), "the daemon's graph was not read: {:?}", daemon.keys());
-    let (top_circles, daemon_circles) = (circles(&top), circles(&daemon));
+    let (top_circles, daemon_circles) = (circles(top), circles(daemon));
     assert!(
         top_circles.is_empty() && daemon_circles.is_empty(),
         "modules import each other in a circle:\n{}{}",
-        describe(&top, &top_circles),
-        describe(&daemon, &daemon_circles)
+        describe(top, &top_circles),
+        describe(daemon, &daemon_circles)
     );
 }
 
