@@ -24,6 +24,10 @@
 #   region report-validation  the third player's TrackMan report JSON sessions chosen for validation
 #                       (2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14), every model, one table per session
 #   region report-heldout  the same player's held-out report sessions (2025-06-13, 2025-08-05, 2026-02-07)
+#   region matched, height-errors  scripts/matched-deliveries.py on the validation sessions: the first and third
+#                       players' irons at matched deliveries, and the adjusted model's ball-speed error per player
+#                       and club against impact height; matched-heldout, height-errors-heldout the same on the
+#                       held-out sessions (the second and third players)
 # Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -56,6 +60,9 @@ for s in $REPORT_VALIDATION $REPORT_HELDOUT; do
         2>/dev/null >"$OUT/report-$s.json"
 done
 echo "$REPORT_VALIDATION" >"$OUT/report-validation.list"
+for split in validation heldout; do
+    python3 scripts/matched-deliveries.py "$BIN" "$DATA" "$OUT" "$split"
+done
 echo "$REPORT_HELDOUT" >"$OUT/report-heldout.list"
 
 # The 5-iron preset without the shaft's share: the head alone, as Table 3.1's 7-iron is.
@@ -495,5 +502,9 @@ docs_regions.replace("docs/real-shots.md", {
     "spin-launch": spin_launch,
     "spin-relation": club_table("spin-relation.json"),
     "heldout-relation": club_table("heldout-relation.json"),
+    "matched": json.load(open(f"{out}/matched-validation.json")),
+    "height-errors": json.load(open(f"{out}/height-errors-validation.json")),
+    "matched-heldout": json.load(open(f"{out}/matched-heldout.json")),
+    "height-errors-heldout": json.load(open(f"{out}/height-errors-heldout.json")),
 })
 PY
