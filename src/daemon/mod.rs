@@ -91,6 +91,14 @@ pub enum DaemonError {
     BadRigName(String),
     #[error("{option} {reason}")]
     BadOption { option: &'static str, reason: &'static str },
+    /// A synthetic rig's shot that cannot be swung with its club, not even struck at the face centre.
+    #[error("rig {rig}: shot {shot} cannot be swung with this club, not even at the face centre: {source}")]
+    SimSwing {
+        rig: String,
+        shot: u64,
+        #[source]
+        source: crate::impact::ImpactError,
+    },
     #[error("a daemon task failed: {0}")]
     Task(#[source] tokio::task::JoinError),
 }
