@@ -182,3 +182,28 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     }
     Ok(summary)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::{ClubSpec, FaceOutline};
+
+    /// A rig that cannot swing its club fails the demo with the rig's error, as soon as it fails (the demo went
+    /// on to its timeout and then ended as if it had succeeded, with no shot).
+    #[tokio::test(flavor = "multi_thread")]
+    async fn a_rig_that_cannot_swing_fails_the_demo() {
+        let mut club = ClubSpec::driver();
+        club.face_outline = FaceOutline { vertices_mm: vec![[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]] };
+        let options = DemoOptions {
+            config: DaemonConfig::default(),
+            sim: SimOptions { club, shots: 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() },
+            record: None,
+            overwrite: false,
+            json: true,
+            foxglove: None,
+            web: None,
+        };
+        let r = demo(options, std::future::pending()).await;
+        assert!(matches!(r, Err(DaemonError::SimSwing { shot: 1, .. })), "{r:?}");
+    }
+}
