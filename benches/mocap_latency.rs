@@ -124,7 +124,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
         let mut frame = Frame::default();
         let mut bytes = Vec::new();
         while !rig.done() {
-            let s = rig.next_sample().0;
+            let s = rig.next_sample().unwrap().0;
             frame.frame_number = s.frame as i32;
             frame.timestamp_s = s.t_ns as f64 * 1e-9;
             frame.rigid_bodies.clear();

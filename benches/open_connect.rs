@@ -29,7 +29,7 @@ fn predictions(n: u64) -> Vec<LaunchPrediction> {
     let mut pipeline = Pipeline::new(RigSetup::new("rig1", options.club.clone()));
     let mut out = Vec::new();
     while !rig.done() {
-        let (sample, _) = rig.next_sample();
+        let (sample, _) = rig.next_sample().unwrap();
         pipeline.on_sample_with(&sample, &mut |e| {
             if let Event::Launch(l) = e {
                 out.push(l);

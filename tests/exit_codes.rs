@@ -255,3 +255,53 @@ fn the_demo_replaces_its_own_recording() {
     }
     assert!(dir.path().join("impactd-demo.mcap").metadata().unwrap().len() > 0);
 }
+
+/// A rig file's bad club, soil, models, conditions or labels stop `run` with exit code 2 and one line: the field,
+/// then the reason, each cause said once (the causes are kept as the error's sources, and the line does not
+/// repeat them).
+#[test]
+fn a_bad_rig_file_exits_2_naming_the_field_and_its_cause_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "club = \"iron7\"\nmodel = \"ground\"\nsoil = \"mud\"",
+            "config field `rig[0].soil` model parameter `[soil]` unknown soil 'mud' (expected soft, medium or firm, \
+             or a path to a soil .toml file); or none for the ball on a tee",
+        ),
+        (
+            "club = \"iron7\"\nmodel = \"adjusted\"\nsoil = \"firm\"",
+            "config field `rig[0].soil` model parameter `soil` needs the ground model (model ground or both), not \
+             adjusted",
+        ),
+        (
+            "model = \"fast\"",
+            "config field `rig[0].model` driver: unknown model 'fast' (expected standard, adjusted, slip, \
+             continuous, maw, arakawa, ground, both)",
+        ),
+        (
+            "[rig.clubs]\nseven = \"putter\"",
+            "config field `rig[0].clubs.seven` rig[0].clubs.seven `putter`: unknown club preset 'putter' (expected \
+             driver, wood3, hybrid, iron4-iron9, pw, gw, sw or lw, or a path to a .toml file)",
+        ),
+        (
+            "[rig.conditions]\nwind_mps = -1.0",
+            "config field `rig[0].conditions` `wind_mps` must be within 0 and 40, got -1",
+        ),
+        (
+            "[rig.conditions]\nhumidity_pct = 150.0",
+            "config field `rig[0].conditions` `humidity_pct` is relative humidity in percent, 0-100, got 150",
+        ),
+        (
+            "[rig.conditions]\nfirmness = 2.0",
+            "config field `rig[0].conditions` `firmness` must be within 0 and 1, got 2",
+        ),
+    ];
+    for (i, (rig, says)) in cases.iter().enumerate() {
+        let path = dir.path().join(format!("rig{i}.toml"));
+        std::fs::write(&path, format!("[[rig]]\nname = \"a\"\n{rig}\n")).unwrap();
+        let out = impactd(&["run", "-c", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{rig}: {err}");
+        assert_eq!(err.trim_end(), format!("impactd: {says}"), "{rig}");
+    }
+}

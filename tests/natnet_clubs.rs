@@ -27,7 +27,7 @@ fn swing(club: &str, start_ns: u64, seed: u64) -> Vec<ClubheadSample> {
     let mut rig = SimRig::new("rig1", &options, start_ns, seed);
     let mut out = Vec::new();
     while !rig.done() {
-        out.push(rig.next_sample().0);
+        out.push(rig.next_sample().unwrap().0);
     }
     out
 }

@@ -57,10 +57,9 @@ use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig}
 pub use crate::daemon::config_flight::ConditionsConfig;
 pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};
 use crate::daemon::DaemonError;
-use crate::impact::registry::{self, BuildOptions};
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::Vector3;
-use crate::pipeline::{ClubSwitch, RigSetup};
+use crate::pipeline::RigSetup;
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -160,36 +159,6 @@ fn invalid(field: String, reason: impl Into<String>) -> DaemonError {
     DaemonError::Config { field, reason: reason.into() }
 }
 
-/// A rig's `soil`: the club's `[soil]` section, and the model list it implies (`both` with a soil is the impulse
-/// model published at once and the ground model when it is ready).
-fn soil_model(r: &RigConfig, club: &mut crate::equipment::LoadedClub) -> Result<String, String> {
-    let Some(soil) = &r.soil else { return Ok(r.model.clone()) };
-    let model = registry::resolve(&r.model, true).map_err(|e| e.to_string())?;
-    let section =
-        crate::impact::continuous::iron_ground::sections::soil_arg_section(soil).map_err(|e| e.to_string())?;
-    club.sections.insert("soil", section);
-    Ok(model)
-}
-
-impl RigConfig {
-    /// The club `spec` (a preset or a club file) ready for this rig: loaded, with the rig's soil, its models built
-    /// with the rig's model and COR, and its file's SHA-256. What a put on `golf/<rig>/club` and `[rig.clubs]`
-    /// load; an error names the part of the rig it comes from (`club`, `soil` or `model`) and why.
-    pub fn prepare_club(&self, spec: &str, what: &str) -> Result<ClubSwitch, (&'static str, String)> {
-        let (mut club, bytes) =
-            crate::equipment::load_club_source(spec).map_err(|e| ("club", format!("{what} `{spec}`: {e}")))?;
-        let model = soil_model(self, &mut club).map_err(|reason| ("soil", reason))?;
-        let options = BuildOptions { cor: self.cor, ..BuildOptions::default() };
-        let models = registry::build(&model, &club, &options).map_err(|e| ("model", format!("{spec}: {e}")))?;
-        let club_ref = crate::wire::ClubRef {
-            name: club.club.name.clone(),
-            file: spec.to_string(),
-            sha256: crate::equipment::sha256_hex(&bytes),
-        };
-        Ok(ClubSwitch { club: club.club, models, club_ref: Some(club_ref), calibration: None })
-    }
-}
-
 impl Default for DaemonConfig {
     /// One rig, `rig1`, with a driver and the defaults.
     fn default() -> Self {
@@ -272,7 +241,9 @@ impl DaemonConfig {
                 if !(0.0..=1.0).contains(&r.cor) {
                     return Err(invalid(f("cor"), "must be within 0 and 1"));
                 }
-                let club = r.prepare_club(&r.club, &f("club")).map_err(|(field, e)| invalid(f(field), e))?;
+                let club = r
+                    .prepare_club(&r.club, &f("club"))
+                    .map_err(|source| DaemonError::RigClub { field: f(source.part()), source })?;
                 let estimator = EstimatorSpec::by_name(&r.estimator).ok_or_else(|| {
                     invalid(
                         f("estimator"),
@@ -308,8 +279,9 @@ impl DaemonConfig {
                 setup.club_ref = club.club_ref;
                 for (body, entry) in &r.clubs {
                     let field = f(&format!("clubs.{body}"));
-                    let mut switch =
-                        r.prepare_club(entry.club(), &field).map_err(|(_, e)| invalid(field.clone(), e))?;
+                    let mut switch = r
+                        .prepare_club(entry.club(), &field)
+                        .map_err(|source| DaemonError::RigClub { field: field.clone(), source })?;
                     let club_from_body = match entry {
                         BodyClub::Mounted(MountedClub { club_from_body: Some(p), .. }) => {
                             p.to_isometry(format!("{field}.club_from_body"))?
@@ -321,13 +293,15 @@ impl DaemonConfig {
                 }
                 setup.flight = match (&r.conditions, r.flight) {
                     (_, false) => None,
-                    (Some(c), true) => Some(c.flight().map_err(|e| invalid(f("conditions"), e))?),
+                    (Some(c), true) => {
+                        Some(c.flight().map_err(|source| DaemonError::Conditions { field: f("conditions"), source })?)
+                    }
                     (None, true) => setup.flight,
                 };
                 setup.estimator = estimator;
                 setup.calibration = calibration;
                 setup.detector.ball_position_m = Vector3::from(r.ball_position_m);
-                r.labels.check().map_err(|e| invalid(f("labels"), e.to_string()))?;
+                r.labels.check().map_err(|source| DaemonError::Labels { field: f("labels"), source })?;
                 setup.labels = r.labels.clone();
                 Ok(setup)
             })

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::flight::{Conditions, Flight, Turf};
+use crate::flight::{Conditions, ConditionsError, Flight, Turf, TurfError};
 
 /// `[rig.conditions]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -40,11 +40,22 @@ fn default_firmness() -> f64 {
     Turf::default().firmness
 }
 
+/// Why a rig's `[rig.conditions]` give no flight: a field out of its range, said in the config's own units.
+#[derive(Debug, thiserror::Error)]
+pub enum ConditionsConfigError {
+    #[error("`humidity_pct` is relative humidity in percent, 0-100, got {0}")]
+    HumidityPct(f64),
+    #[error("{0}")]
+    Air(#[from] ConditionsError),
+    #[error("{0}")]
+    Turf(#[from] TurfError),
+}
+
 impl ConditionsConfig {
     /// The flight model in these conditions, or why not (the field and its range).
-    pub fn flight(&self) -> Result<Flight, String> {
+    pub fn flight(&self) -> Result<Flight, ConditionsConfigError> {
         if !(self.humidity_pct.is_finite() && (0.0..=100.0).contains(&self.humidity_pct)) {
-            return Err(format!("`humidity_pct` is relative humidity in percent, 0-100, got {}", self.humidity_pct));
+            return Err(ConditionsConfigError::HumidityPct(self.humidity_pct));
         }
         let conditions = Conditions {
             temperature_c: self.temperature_c,
@@ -54,9 +65,9 @@ impl ConditionsConfig {
             wind_mps: self.wind_mps,
             wind_dir_deg: self.wind_dir_deg,
         };
-        conditions.validate().map_err(|e| e.to_string())?;
+        conditions.validate()?;
         let turf = Turf { firmness: self.firmness };
-        turf.validate().map_err(|e| e.to_string())?;
+        turf.validate()?;
         Ok(Flight { conditions, turf, ..Flight::default() })
     }
 }
@@ -73,9 +84,9 @@ mod tests {
         let f = c.flight().unwrap();
         assert_eq!((f.conditions.altitude_m, f.conditions.humidity), (1600.0, 0.2));
         let c: ConditionsConfig = toml::from_str("wind_mps = -3.0").unwrap();
-        assert!(c.flight().unwrap_err().contains("wind_mps"));
+        assert!(c.flight().unwrap_err().to_string().contains("wind_mps"));
         let c: ConditionsConfig = toml::from_str("humidity_pct = 150.0").unwrap();
-        assert!(c.flight().unwrap_err().contains("humidity_pct"));
+        assert!(c.flight().unwrap_err().to_string().contains("humidity_pct"));
         assert!(toml::from_str::<ConditionsConfig>("temp_c = 3.0").is_err());
     }
 }

@@ -126,12 +126,18 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let expected = options.sim.shots * options.sim.rigs.len() as u64;
     let sim_options = options.sim.clone();
     let (stop_sim_tx, stop_sim_rx) = tokio::sync::oneshot::channel::<()>();
+    // Said when the rig fails (a shot its club cannot swing): no prediction is coming, the demo ends at once.
+    let (sim_failed_tx, mut sim_failed) = tokio::sync::oneshot::channel::<()>();
     let rig_session_c = rig_session.clone();
     let sim = tokio::spawn(async move {
-        run_sim(&rig_session_c, sim_options, async {
+        let r = run_sim(&rig_session_c, sim_options, async {
             let _ = stop_sim_rx.await;
         })
-        .await
+        .await;
+        if r.is_err() {
+            let _ = sim_failed_tx.send(());
+        }
+        r
     });
     let all_predicted = async {
         while count.load(std::sync::atomic::Ordering::Relaxed) < expected {
@@ -142,17 +148,19 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     let mut stopped = false;
     // The daemon ends on its own only when it cannot start (a recording that exists, a port in use): say so at once.
     let mut ended = None;
+    let mut rig_failed = false;
     tokio::select! {
         _ = all_predicted => {}
         _ = &mut shutdown => { eprintln!("stopping"); stopped = true; }
         r = &mut daemon => { ended = Some(r); }
+        Ok(()) = &mut sim_failed => { rig_failed = true; }
         _ = async {
             // The rig finished but a shot went unpredicted: give the daemon a moment, then stop.
             let _ = tokio::time::sleep(std::time::Duration::from_secs_f64(options.sim.interval_s * (options.sim.shots as f64 + 2.0) + 5.0)).await;
         } => { eprintln!("not every shot was predicted; stopping"); }
     }
     // With a bay screen the page stays up after the shots until the demo is stopped.
-    if keep_serving && !stopped && ended.is_none() {
+    if keep_serving && !stopped && ended.is_none() && !rig_failed {
         shutdown.await;
     }
     let _ = stop_sim_tx.send(());
@@ -160,7 +168,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         // The rig may still be waiting for the daemon's subscriber.
         sim.abort();
     }
-    let _ = sim.await;
+    let rig = sim.await;
     let _ = stop_daemon.send(());
     let summary = match ended {
         Some(r) => r,
@@ -168,5 +176,34 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
     }
     .map_err(DaemonError::Task)??;
     let _ = rig_session.close().await;
+    // The rig's own failure fails the demo too (a rig aborted above, after the daemon's end, is no failure).
+    if let Ok(Err(e)) = rig {
+        return Err(e);
+    }
     Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::{ClubSpec, FaceOutline};
+
+    /// A rig that cannot swing its club fails the demo with the rig's error, as soon as it fails (the demo went
+    /// on to its timeout and then ended as if it had succeeded, with no shot).
+    #[tokio::test(flavor = "multi_thread")]
+    async fn a_rig_that_cannot_swing_fails_the_demo() {
+        let mut club = ClubSpec::driver();
+        club.face_outline = FaceOutline { vertices_mm: vec![[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]] };
+        let options = DemoOptions {
+            config: DaemonConfig::default(),
+            sim: SimOptions { club, shots: 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() },
+            record: None,
+            overwrite: false,
+            json: true,
+            foxglove: None,
+            web: None,
+        };
+        let r = demo(options, std::future::pending()).await;
+        assert!(matches!(r, Err(DaemonError::SimSwing { shot: 1, .. })), "{r:?}");
+    }
 }

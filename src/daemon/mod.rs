@@ -4,6 +4,7 @@
 pub mod bridges;
 pub mod bus;
 pub mod config;
+pub mod config_club;
 pub mod config_flight;
 pub mod config_pose;
 pub mod demo;
@@ -28,6 +29,27 @@ pub enum DaemonError {
     },
     #[error("config field `{field}` {reason}")]
     Config { field: String, reason: String },
+    /// A rig's club, soil or models (`field` names which, or the `[rig.clubs]` body) that cannot be set up.
+    #[error("config field `{field}` {source}")]
+    RigClub {
+        field: String,
+        #[source]
+        source: config_club::RigClubError,
+    },
+    /// A rig's `[rig.conditions]` that no ball flies in.
+    #[error("config field `{field}` {source}")]
+    Conditions {
+        field: String,
+        #[source]
+        source: config_flight::ConditionsConfigError,
+    },
+    /// A rig's `[rig.labels]` that no put on `golf/<rig>/session` could carry.
+    #[error("config field `{field}` {source}")]
+    Labels {
+        field: String,
+        #[source]
+        source: crate::wire::LabelsError,
+    },
     #[error("{what}: {source}")]
     Io {
         what: String,
@@ -69,6 +91,14 @@ pub enum DaemonError {
     BadRigName(String),
     #[error("{option} {reason}")]
     BadOption { option: &'static str, reason: &'static str },
+    /// A synthetic rig's shot that cannot be swung with its club, not even struck at the face centre.
+    #[error("rig {rig}: shot {shot} cannot be swung with this club, not even at the face centre: {source}")]
+    SimSwing {
+        rig: String,
+        shot: u64,
+        #[source]
+        source: crate::impact::ImpactError,
+    },
     #[error("a daemon task failed: {0}")]
     Task(#[source] tokio::task::JoinError),
 }

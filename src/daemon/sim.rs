@@ -127,10 +127,22 @@ pub struct SimRig {
     shots: u64,
     noise_m: f64,
     noise_rad: f64,
-    /// The shot being swung and the next one: index, swing, impact time (ns).
-    current: Option<(u64, Swing, u64)>,
-    next: Option<(u64, Swing, u64)>,
+    /// The shot being swung and the next one (none before the first frame).
+    swings: Option<ShotPair>,
     truth_sent: u64,
+}
+
+/// A shot of the synthetic rig: its index from the start, its swing and its impact time.
+struct Shot {
+    k: u64,
+    swing: Swing,
+    t_impact_ns: u64,
+}
+
+/// The shot being swung and the next: after its follow-through the club glides to the next one's top.
+struct ShotPair {
+    current: Shot,
+    next: Shot,
 }
 
 impl SimRig {
@@ -147,23 +159,31 @@ impl SimRig {
             shots: options.shots,
             noise_m: options.noise_mm * 1e-3,
             noise_rad: options.noise_deg.to_radians(),
-            current: None,
-            next: None,
+            swings: None,
             truth_sent: 0,
         }
     }
 
-    fn make_shot(&mut self, k: u64) -> (u64, Swing, u64) {
+    /// Shot `k`: a golfer's swing for the club, struck at the face centre when the drawn strike cannot be swung
+    /// (off this club's face); an error when even that cannot.
+    fn make_shot(&mut self, k: u64) -> Result<Shot, DaemonError> {
         let spec = SwingSpec::golfer(&self.club, &mut self.rng);
-        let swing = Swing::new(&spec, &self.equipment).ok().unwrap_or_else(|| {
-            let mut s = spec;
-            s.delivery = crate::impact::Delivery { impact_h_m: 0.0, impact_v_m: 0.0, ..spec.delivery };
-            Swing::new(&s, &self.equipment).expect("a centred swing is always valid")
-        });
+        let swing = match Swing::new(&spec, &self.equipment) {
+            Ok(swing) => swing,
+            Err(_) => {
+                let mut s = spec;
+                s.delivery = crate::impact::Delivery { impact_h_m: 0.0, impact_v_m: 0.0, ..spec.delivery };
+                Swing::new(&s, &self.equipment).map_err(|source| DaemonError::SimSwing {
+                    rig: self.name.clone(),
+                    shot: k + 1,
+                    source,
+                })?
+            }
+        };
         // Impact in the middle of the shot's span, at a random phase against the frame clock.
-        let t_impact =
+        let t_impact_ns =
             self.start_ns + k * self.interval_ns + self.interval_ns / 2 + (self.rng.unit() * self.period_ns) as u64;
-        (k, swing, t_impact)
+        Ok(Shot { k, swing, t_impact_ns })
     }
 
     /// Capture time of the next frame (ns).
@@ -176,24 +196,32 @@ impl SimRig {
         self.shots > 0 && self.next_t_ns() > self.start_ns + self.shots * self.interval_ns
     }
 
-    /// The next frame, and the truth of a shot whose impact it has just passed.
-    pub fn next_sample(&mut self) -> (ClubheadSample, Option<TruthMessage>) {
+    /// The next frame, and the truth of a shot whose impact it has just passed; an error when a shot cannot be
+    /// swung with this club ([`DaemonError::SimSwing`]).
+    pub fn next_sample(&mut self) -> Result<(ClubheadSample, Option<TruthMessage>), DaemonError> {
         let t_ns = self.next_t_ns();
         let k = (t_ns - self.start_ns) / self.interval_ns;
-        if self.current.as_ref().map(|c| c.0) != Some(k) {
-            let current = match self.next.take() {
-                Some(n) if n.0 == k => n,
-                _ => self.make_shot(k),
-            };
-            self.current = Some(current);
-            self.next = Some(self.make_shot(k + 1));
-        }
-        let (k, swing, t_impact) = self.current.as_ref().map(|(k, s, t)| (*k, s, *t)).expect("set above");
+        let swings = match self.swings.take() {
+            Some(pair) if pair.current.k == k => pair,
+            Some(ShotPair { next, .. }) if next.k == k => ShotPair { current: next, next: self.make_shot(k + 1)? },
+            _ => {
+                let current = self.make_shot(k)?;
+                ShotPair { current, next: self.make_shot(k + 1)? }
+            }
+        };
+        let next = self.sample_at(t_ns, &swings);
+        self.swings = Some(swings);
+        Ok(next)
+    }
+
+    /// The frame at `t_ns` of the shots in `swings`, and the truth of the current one once its impact is passed.
+    fn sample_at(&mut self, t_ns: u64, swings: &ShotPair) -> (ClubheadSample, Option<TruthMessage>) {
+        let (k, swing, t_impact) = (swings.current.k, &swings.current.swing, swings.current.t_impact_ns);
         let tau = (t_ns as i64 - t_impact as i64) as f64 * 1e-9;
         let mut pose = if tau > AFTER_S {
             // Walk the club back from the follow-through to the start of the next swing, smoothly.
             // The glide ends where the next shot's span begins; there the club waits at the top of its arc.
-            let (_, next_swing, _) = self.next.as_ref().expect("set above");
+            let next_swing = &swings.next.swing;
             let from = swing.pose(AFTER_S);
             let to = next_swing.pose(-BEFORE_S);
             let t0 = t_impact as f64 * 1e-9 + AFTER_S;
@@ -276,13 +304,22 @@ pub async fn run_sim(
         let drain = Duration::from_secs_f64(options.publisher_drain_s);
         threads.push(tokio::task::spawn_blocking(move || {
             let mut summary = SimSummary::default();
+            let mut failed = None;
             while !stop.load(Ordering::Relaxed) && !rig.done() {
                 let due = rig.next_t_ns();
                 let now = wall_ns();
                 if due > now {
                     std::thread::sleep(Duration::from_nanos(due - now));
                 }
-                let (sample, truth) = rig.next_sample();
+                let (sample, truth) = match rig.next_sample() {
+                    Ok(next) => next,
+                    Err(e) => {
+                        // The run has failed: the other rigs stop too.
+                        stop.store(true, Ordering::Relaxed);
+                        failed = Some(e);
+                        break;
+                    }
+                };
                 let mut msg = ClubheadSampleMsg::from_sample(&rig.name, &sample);
                 msg.body = body.clone();
                 if let Err(e) = samples.put(serde_json::to_vec(&msg).unwrap_or_default()).wait() {
@@ -298,29 +335,105 @@ pub async fn run_sim(
                 std::thread::sleep(drain);
             }
             drop((samples, truth_pub));
-            summary
+            failed.map_or(Ok(summary), Err)
         }));
     }
     let joined = async {
         let mut total = SimSummary::default();
+        let mut failed = None;
         for t in threads {
-            if let Ok(s) = t.await {
-                total.samples += s.samples;
-                total.shots += s.shots;
+            match t.await {
+                Ok(Ok(s)) => {
+                    total.samples += s.samples;
+                    total.shots += s.shots;
+                }
+                Ok(Err(e)) => {
+                    failed.get_or_insert(e);
+                }
+                Err(e) => {
+                    failed.get_or_insert(DaemonError::Task(e));
+                }
             }
         }
-        total
+        failed.map_or(Ok(total), Err)
     };
     tokio::pin!(joined);
     tokio::select! {
-        total = &mut joined => Ok(total),
+        total = &mut joined => total,
         _ = shutdown => {
             stop.store(true, Ordering::Relaxed);
-            Ok(joined.await)
+            joined.await
         }
     }
 }
 
 fn truth_put(publisher: &zenoh::pubsub::Publisher<'static>, t: &TruthMessage) -> Result<(), DaemonError> {
     publisher.put(serde_json::to_vec(t).unwrap_or_default()).wait().map_err(DaemonError::zenoh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::equipment::FaceOutline;
+    use crate::impact::ImpactError;
+
+    /// Options for a rig whose club no swing fits: its face outline leaves out the face centre, so the drawn
+    /// strike and the centred one are both off the face.
+    fn club_without_a_centre() -> SimOptions {
+        let mut club = ClubSpec::driver();
+        club.face_outline = FaceOutline { vertices_mm: vec![[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]] };
+        SimOptions { club, shots: 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() }
+    }
+
+    /// The off-face shot is an error naming the rig and the shot, with the impact layer's refusal as its source
+    /// (it was a panic: "a centred swing is always valid").
+    #[test]
+    fn a_shot_no_swing_fits_is_an_error_not_a_panic() {
+        let mut rig = SimRig::new("bay1", &club_without_a_centre(), 1_000_000_000, 1);
+        let e = rig.next_sample().unwrap_err();
+        assert!(matches!(&e, DaemonError::SimSwing { rig, shot: 1, .. } if rig == "bay1"), "{e:?}");
+        let source = std::error::Error::source(&e).and_then(|s| s.downcast_ref::<ImpactError>());
+        assert!(matches!(source, Some(ImpactError::OffFace { h_mm, v_mm }) if *h_mm == 0.0 && *v_mm == 0.0), "{e}");
+        assert!(e.to_string().starts_with("rig bay1: shot 1 cannot be swung"), "{e}");
+    }
+
+    /// The rig's frames run through each shot and into the next (the pair of shots moves on at each span); a
+    /// rig of the same seed gives the same frames.
+    #[test]
+    fn the_frames_follow_one_shot_into_the_next_the_same_for_a_seed() {
+        let options = SimOptions { shots: 3, interval_s: 0.2, ..SimOptions::default() };
+        let frames = || {
+            let mut rig = SimRig::new("bay1", &options, 1_000_000_000, 5);
+            let mut out = Vec::new();
+            while !rig.done() {
+                out.push(rig.next_sample().unwrap());
+            }
+            out
+        };
+        let (a, b) = (frames(), frames());
+        assert_eq!(a.len(), b.len());
+        assert!(a.iter().zip(&b).all(|(x, y)| x.0 == y.0 && x.1 == y.1));
+        let truths: Vec<u64> = a.iter().filter_map(|(_, t)| t.as_ref().map(|t| t.shot)).collect();
+        assert_eq!(truths, [1, 2, 3]);
+        // Where one shot's span gives way to the next, the club waits at the top of the shot it glided to: the
+        // frames either side differ by the glide's last millimetres and the noise, not by another swing's top.
+        let span = |s: &ClubheadSample| (s.t_ns - 1_000_000_000) / 200_000_000;
+        let jumps: Vec<f64> = a
+            .windows(2)
+            .filter(|w| span(&w[0].0) != span(&w[1].0))
+            .map(|w| (w[1].0.position_m - w[0].0.position_m).norm())
+            .collect();
+        assert_eq!(jumps.len(), 3, "{jumps:?}");
+        assert!(jumps.iter().all(|&j| j < 0.01), "{jumps:?} m where one shot gives way to the next");
+    }
+
+    /// `run_sim` returns the rig's error (it was a panic in the rig's thread, its shots lost without a word).
+    #[tokio::test(flavor = "multi_thread")]
+    async fn run_sim_fails_with_the_rig_that_cannot_swing() {
+        let endpoint = format!("tcp/127.0.0.1:{}", crate::daemon::bus::free_loopback_port().unwrap());
+        let session = crate::daemon::bus::ZenohArgs::loopback(vec![endpoint], vec![]).open().await.unwrap();
+        let r = run_sim(&session, club_without_a_centre(), std::future::pending()).await;
+        let _ = session.close().await;
+        assert!(matches!(r, Err(DaemonError::SimSwing { shot: 1, .. })), "{r:?}");
+    }
 }

@@ -24,12 +24,12 @@ pub use launch::LaunchMetrics;
 pub use report::{Course, Fields, ModelRun, Report, RunOptions, Trace};
 pub use sanity::LaunchWarning;
 
-use crate::equipment::{BallSpec, ClubSpec};
+use crate::equipment::{BallSpec, ClubSpec, EquipmentError};
 use crate::face::{impact_frame, FaceContact, FaceError};
 use crate::math::{Isometry3, Matrix3, Real, Vector3};
 
-/// Errors of the impact layer.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// Errors of the impact layer (not `Clone`: a part's error keeps its cause, an IO error among them).
+#[derive(Debug, thiserror::Error)]
 pub enum ImpactError {
     #[error("impact location ({h_mm:.1} mm, {v_mm:.1} mm) is off the face")]
     OffFace { h_mm: Real, v_mm: Real },
@@ -49,6 +49,19 @@ pub enum ImpactError {
     NotConverged { model: &'static str, reason: String },
     #[error("model parameter `{field}` {reason}")]
     InvalidParameter { field: String, reason: String },
+    /// A part a model stands on (the soil, sole or shaft of its club-file sections) that the equipment refuses.
+    #[error("model parameter `[{section}]` {source}")]
+    Part {
+        section: &'static str,
+        #[source]
+        source: EquipmentError,
+    },
+    /// A soil named for the turf model (`--soil`, a rig's `soil`) that is no preset and no soil file.
+    #[error("model parameter `[soil]` {source}; or {} for the ball on a tee", continuous::iron_ground::sections::TEED)]
+    Soil {
+        #[source]
+        source: EquipmentError,
+    },
     #[error("unknown model '{name}' (expected {expected})")]
     UnknownModel { name: String, expected: String },
     #[error("the club file's section [{section}] belongs to no model (known sections: {known})")]

@@ -16,7 +16,7 @@ pub fn samples(shots: u64, rate_hz: f64, seed: u64) -> Vec<ClubheadSample> {
     let mut rig = SimRig::new("rig1", &options, 1_000_000_000, seed);
     let mut out = Vec::new();
     while !rig.done() {
-        out.push(rig.next_sample().0);
+        out.push(rig.next_sample().unwrap().0);
     }
     out
 }

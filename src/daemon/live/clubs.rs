@@ -74,7 +74,7 @@ fn load(rx: Receiver<Put>, rigs: HashMap<String, (RigConfig, Route)>) {
         let key = keys::club(&put.rig);
         let switch = wire::parse_club_put(&put.payload)
             .map_err(|e| e.to_string())
-            .and_then(|spec| config.prepare_club(&spec, "club").map_err(|(_, reason)| reason));
+            .and_then(|spec| config.prepare_club(&spec, "club").map_err(|e| e.to_string()));
         match switch {
             Ok(switch) => {
                 let incoming = Incoming {

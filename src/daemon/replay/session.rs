@@ -120,7 +120,7 @@ fn replay_club_put(
             switch.club_ref.map(|c| c.sha256).unwrap_or_default(),
             change.club.sha256
         ),
-        Err((_, e)) => tracing::warn!("rig {}: the recorded club cannot be loaded: {e}", change.rig),
+        Err(e) => tracing::warn!("rig {}: the recorded club cannot be loaded: {e}", change.rig),
     }
 }
 

@@ -51,8 +51,8 @@ struct ShaftSection {
     mass_kg: Option<Real>,
 }
 
-fn invalid(section: &str, e: EquipmentError) -> ImpactError {
-    ImpactError::InvalidParameter { field: format!("[{section}]"), reason: e.to_string() }
+fn invalid(section: &'static str, source: EquipmentError) -> ImpactError {
+    ImpactError::Part { section, source }
 }
 
 /// The name that stands for no ground at all: the same strike off a tee (`--soil none`).
@@ -70,10 +70,7 @@ pub fn soil_arg_section(name_or_path: &str) -> Result<toml::Table, ImpactError> 
         t.insert("preset".into(), toml::Value::String(TEED.into()));
         return Ok(t);
     }
-    let spec = SoilSpec::load(name_or_path).map_err(|e| ImpactError::InvalidParameter {
-        field: "[soil]".into(),
-        reason: format!("{e}; or {TEED} for the ball on a tee"),
-    })?;
+    let spec = SoilSpec::load(name_or_path).map_err(|source| ImpactError::Soil { source })?;
     Ok(soil_section(&spec))
 }
 
