@@ -33,14 +33,15 @@ fn shifted(delta_mass_kg: Real, shift_m: Vector3) -> ImpulseModel {
 /// the tangential impulse answers the moment of the normal one: along `t`, the relative velocity changes by
 /// `K_tt P_t + K_tn P_n` with the coupling `K_tn = R d / I_b` (the ball's `-[r]x I_b^-1 [r]x`, `r = -R n - d t`), so
 /// the ball's velocity along `t` changes by `-(R d / I_b) v_n / K_tt` and its spin about `n x t` by
-/// `-(m_b d v_n / I_b) (1 - (R^2 / I_b) / K_tt)`, `v_n` the ball's normal speed. `K_tt = 1/m_b + R^2/I_b + 1/m_c
-/// + depth^2 / I_c` (Table 3.1: 45.9 g, 21.3 mm, 83.36 g cm2; the head's 204 g, its CG 42.1 mm behind the face
-/// centre along the normal, 4,085 g cm2 about the toe axis and 5,679 about the vertical) is 85.4 /kg along y' and
-/// 84.2 /kg along z'. Table 3.3's driver shift, 0.482 mm down the face, so lowers the launch by about 0.83 deg and
-/// the backspin by about 0.36 `m_b d v_n / I_b` (about 600 rpm at 100 mph); its 0.068 mm toward the heel adds a draw
-/// (spin about the face's up direction: the axis 2.3 deg further left on this strike). The closed forms hold to
-/// 1.5 % (0.2-0.4 % here). The added mass (2.54 g) changes neither by more than 0.5 %: the adjusted
-/// driver's lower spin, lower launch and extra draw are Table 3.3's shift, the seed's (Danaei's) physics.
+/// `-(m_b d v_n / I_b) (1 - (R^2 / I_b) / K_tt)`, `v_n` the ball's normal speed. The compliance
+/// `K_tt = 1/m_b + R^2/I_b + 1/m_c + depth^2 / I_c` (Table 3.1: 45.9 g, 21.3 mm, 83.36 g cm2; the head's 204 g,
+/// its CG 42.1 mm behind the face centre along the normal, 4,085 g cm2 about the toe axis and 5,679 about the
+/// vertical) is 85.4 /kg along y' and 84.2 /kg along z'. Table 3.3's driver shift, 0.482 mm down the face, so
+/// lowers the launch by about 0.83 deg and the backspin by about 0.36 `m_b d v_n / I_b` (about 600 rpm at 100
+/// mph); its 0.068 mm toward the heel adds a draw (spin about the face's up direction: the axis 2.3 deg further
+/// left on this strike). The closed forms hold to 1.5 % (0.2-0.4 % here). The added mass (2.54 g) changes
+/// neither by more than 0.5 %: the adjusted driver's lower spin, lower launch and extra draw are Table 3.3's
+/// shift, the seed's (Danaei's) physics.
 #[test]
 fn the_adjusted_drivers_spin_and_launch_are_its_ball_cg_shift() {
     let (eq, state) = centred();
