@@ -263,3 +263,6 @@ impl ImpactModel for ImpulseModel {
         })
     }
 }
+
+#[cfg(test)]
+mod tests;
