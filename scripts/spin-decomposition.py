@@ -16,7 +16,8 @@ the angle between the face normal and the ball's direction):
 The sum of the four is the model's spin bias exactly. Located strokes with measured spin, each club on its
 preset, the deliveries `compare --by-club` gives an iron (TrackMan's club data and impact location as they are).
 
-Usage: scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [-- extra predict args]
+Usage: scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [--append 'TOML'] [-- predict args]
+  --append   lines added to a copy of every preset (`'[slip]\\ne_y = 0.1\\ne_z = 0.0'`)
 The validation sessions only (tests/data/trackman/README.md): validation-8i-5i.csv and the third player's
 report-2025-03-13, -07-11, -10-30 and 2026-02-14.
 """
@@ -26,6 +27,7 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 BIN = os.path.join(ROOT, "target", "release", "impactd")
@@ -38,6 +40,7 @@ VALIDATION_REPORTS = ["report-2025-03-13-pw-driver-5w-7i.json", "report-2025-07-
 PRESETS = {"4 iron": "iron4", "5 iron": "iron5", "6 iron": "iron6", "7 iron": "iron7", "8 iron": "iron8",
            "9 iron": "iron9", "pitching wedge": "pw", "4iron": "iron4", "5iron": "iron5", "6iron": "iron6",
            "7iron": "iron7", "8iron": "iron8", "9iron": "iron9", "pitchingwedge": "pw"}
+TMP = tempfile.mkdtemp()
 MODELS = "standard,adjusted,slip,continuous,maw,arakawa,ground"
 
 
@@ -100,7 +103,12 @@ def closed_rpm(speed_mps, a):
     return 2.5 * speed_mps * math.sin(a) / R_M * RPM_PER_RADPS
 
 
-def predict(preset, model, deliveries, extra):
+def predict(preset, model, deliveries, extra, append=""):
+    if append:  # a copy of the preset with lines appended (a `[slip]` section, a field)
+        path = os.path.join(TMP, f"{preset}.toml")
+        text = open(os.path.join(ROOT, "clubs", "presets", f"{preset}.toml")).read()
+        open(path, "w").write(text + "\n" + append.replace("\\n", "\n") + "\n")
+        preset = path
     args = [BIN, "predict", "--club", preset, "--model", model] + (["--soil", "none"] if model == "ground" else [])
     out = []
     for d in deliveries:  # one at a time: a stroke the club refuses (a lie its face cannot have) is left out, as
@@ -110,7 +118,7 @@ def predict(preset, model, deliveries, extra):
     return out
 
 
-def decompose(models, extra):
+def decompose(models, extra, append=""):
     sessions = [("validation-8i-5i.csv", csv_strokes("validation-8i-5i.csv"))]
     sessions += [(name, report_strokes(name)) for name in VALIDATION_REPORTS]
     rows = []
@@ -122,7 +130,7 @@ def decompose(models, extra):
                 clubs.setdefault((club, preset), []).append((d, m))
         for (club, preset), shots in clubs.items():
             for model in models:
-                q = predict(preset, model, [d for d, _ in shots], extra)
+                q = predict(preset, model, [d for d, _ in shots], extra, append)
                 parts = []
                 for (d, m), p in zip(shots, q):
                     if p is None:
@@ -131,13 +139,15 @@ def decompose(models, extra):
                     a_tm = angle(n, unit(m["launch_deg"], m["direction_deg"]))
                     a_model = angle(n, unit(p["launch_angle_deg"], p["launch_direction_deg"]))
                     v_tm, v_model = m["ball_speed_mps"], p["ball_speed_mps"]
+                    path = unit(d["attack_angle_deg"], d["club_path_deg"])
                     rel = closed_rpm(v_tm, a_tm) - m["spin_rpm"]
                     launch = closed_rpm(v_tm, a_model) - closed_rpm(v_tm, a_tm)
                     speed = closed_rpm(v_model, a_model) - closed_rpm(v_tm, a_model)
                     rest = p["total_spin_rpm"] - closed_rpm(v_model, a_model)
                     parts.append({"spin_error_rpm": p["total_spin_rpm"] - m["spin_rpm"], "relation_rpm": rel,
                                   "launch_rpm": launch, "speed_rpm": speed, "rest_rpm": rest,
-                                  "launch_error_deg": p["launch_angle_deg"] - m["launch_deg"]})
+                                  "launch_error_deg": p["launch_angle_deg"] - m["launch_deg"],
+                                  "spin_loft_deg": math.degrees(angle(n, path))})
                 mean = lambda k: sum(x[k] for x in parts) / len(parts)
                 rows.append({"session": session, "club": club, "preset": preset, "model": model, "shots": len(parts),
                              "refused": sum(p is None for p in q),
@@ -145,7 +155,7 @@ def decompose(models, extra):
                              "spin_mae_rpm": sum(abs(x["spin_error_rpm"]) for x in parts) / len(parts),
                              "launch_mae_deg": sum(abs(x["launch_error_deg"]) for x in parts) / len(parts),
                              **{k: mean(k) for k in ["spin_error_rpm", "relation_rpm", "launch_rpm", "speed_rpm",
-                                                     "rest_rpm", "launch_error_deg"]}})
+                                                     "rest_rpm", "launch_error_deg", "spin_loft_deg"]}})
     return rows
 
 
@@ -154,7 +164,8 @@ def main():
     extra = argv[argv.index("--") + 1:] if "--" in argv else []
     argv = argv[:argv.index("--")] if "--" in argv else argv
     models = argv[argv.index("--models") + 1].split(",") if "--models" in argv else MODELS.split(",")
-    rows = decompose(models, extra)
+    append = argv[argv.index("--append") + 1] if "--append" in argv else ""
+    rows = decompose(models, extra, append)
     if "--json" in argv:
         json.dump(rows, sys.stdout, indent=1)
         print()
