@@ -10,6 +10,7 @@
 #   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/real-shots-docs.sh          -> docs/real-shots.md (compare --by-club on tests/data/trackman/)
+#   scripts/wedge-spin-docs.sh          -> docs/wedge-spin.md (the spin decomposition, the slip model's obliquity law)
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 #   scripts/docs-hostile.sh            -> docs/hostile-peers.md (the honest rig's latency beside each hostile probe)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
@@ -131,6 +132,7 @@ echo "face maps" >&2
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
 scripts/club-data-docs.sh
 scripts/real-shots-docs.sh
+scripts/wedge-spin-docs.sh
 echo "hostile peers" >&2
 scripts/docs-hostile.sh
 

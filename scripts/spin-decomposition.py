@@ -16,8 +16,13 @@ the angle between the face normal and the ball's direction):
 The sum of the four is the model's spin bias exactly. Located strokes with measured spin, each club on its
 preset, the deliveries `compare --by-club` gives an iron (TrackMan's club data and impact location as they are).
 
-Usage: scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [--append 'TOML'] [-- predict args]
+Usage: scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [--append 'TOML']
+                                    [--oblique FROM,FULL,E_T | --oblique none] [-- predict args]
   --append   lines added to a copy of every preset (`'[slip]\\ne_y = 0.1\\ne_z = 0.0'`)
+  --oblique  the presets' obliquity law of the slip model replaced (`none`: Table 3.4's constants alone)
+
+Besides the mean parts, each row has `shift_floor_mae_rpm`: the smallest spin MAE any one change of every stroke's
+spin by the same amount could give (the MAE about the errors' median), a floor for any uniform correction.
 The validation sessions only (tests/data/trackman/README.md): validation-8i-5i.csv and the third player's
 report-2025-03-13, -07-11, -10-30 and 2026-02-14.
 """
@@ -103,10 +108,22 @@ def closed_rpm(speed_mps, a):
     return 2.5 * speed_mps * math.sin(a) / R_M * RPM_PER_RADPS
 
 
-def predict(preset, model, deliveries, extra, append=""):
-    if append:  # a copy of the preset with lines appended (a `[slip]` section, a field)
+def with_oblique(text, oblique):
+    """The preset's text with its `oblique_*` lines dropped (`none`) or given other values (FROM,FULL,E_T)."""
+    lines = [line for line in text.splitlines() if not line.startswith("oblique_")]
+    if oblique != "none" and "[slip]" in text:
+        lo, full, e_t = oblique.split(",")
+        at = lines.index("[slip]") + 1
+        lines[at:at] = [f"oblique_from_deg = {lo}", f"oblique_full_deg = {full}", f"oblique_e_t = {e_t}"]
+    return "\n".join(lines) + "\n"
+
+
+def predict(preset, model, deliveries, extra, append="", oblique=None):
+    if append or oblique:  # a copy of the preset with lines appended (a `[slip]` section, a field) or its law changed
         path = os.path.join(TMP, f"{preset}.toml")
         text = open(os.path.join(ROOT, "clubs", "presets", f"{preset}.toml")).read()
+        if oblique:
+            text = with_oblique(text, oblique)
         open(path, "w").write(text + "\n" + append.replace("\\n", "\n") + "\n")
         preset = path
     args = [BIN, "predict", "--club", preset, "--model", model] + (["--soil", "none"] if model == "ground" else [])
@@ -118,7 +135,7 @@ def predict(preset, model, deliveries, extra, append=""):
     return out
 
 
-def decompose(models, extra, append=""):
+def decompose(models, extra, append="", oblique=None):
     sessions = [("validation-8i-5i.csv", csv_strokes("validation-8i-5i.csv"))]
     sessions += [(name, report_strokes(name)) for name in VALIDATION_REPORTS]
     rows = []
@@ -130,7 +147,7 @@ def decompose(models, extra, append=""):
                 clubs.setdefault((club, preset), []).append((d, m))
         for (club, preset), shots in clubs.items():
             for model in models:
-                q = predict(preset, model, [d for d, _ in shots], extra, append)
+                q = predict(preset, model, [d for d, _ in shots], extra, append, oblique)
                 parts = []
                 for (d, m), p in zip(shots, q):
                     if p is None:
@@ -149,10 +166,13 @@ def decompose(models, extra, append=""):
                                   "launch_error_deg": p["launch_angle_deg"] - m["launch_deg"],
                                   "spin_loft_deg": math.degrees(angle(n, path))})
                 mean = lambda k: sum(x[k] for x in parts) / len(parts)
+                errors = sorted(x["spin_error_rpm"] for x in parts)
+                median = (errors[(len(errors) - 1) // 2] + errors[len(errors) // 2]) / 2
                 rows.append({"session": session, "club": club, "preset": preset, "model": model, "shots": len(parts),
                              "refused": sum(p is None for p in q),
                              "measured_spin_rpm": sum(m["spin_rpm"] for (_, m), p in zip(shots, q) if p) / len(parts),
                              "spin_mae_rpm": sum(abs(x["spin_error_rpm"]) for x in parts) / len(parts),
+                             "shift_floor_mae_rpm": sum(abs(e - median) for e in errors) / len(errors),
                              "launch_mae_deg": sum(abs(x["launch_error_deg"]) for x in parts) / len(parts),
                              **{k: mean(k) for k in ["spin_error_rpm", "relation_rpm", "launch_rpm", "speed_rpm",
                                                      "rest_rpm", "launch_error_deg", "spin_loft_deg"]}})
@@ -165,7 +185,8 @@ def main():
     argv = argv[:argv.index("--")] if "--" in argv else argv
     models = argv[argv.index("--models") + 1].split(",") if "--models" in argv else MODELS.split(",")
     append = argv[argv.index("--append") + 1] if "--append" in argv else ""
-    rows = decompose(models, extra, append)
+    oblique = argv[argv.index("--oblique") + 1] if "--oblique" in argv else None
+    rows = decompose(models, extra, append, oblique)
     if "--json" in argv:
         json.dump(rows, sys.stdout, indent=1)
         print()

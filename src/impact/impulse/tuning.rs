@@ -184,11 +184,11 @@ mod tests {
     #[test]
     fn the_oblique_rise_is_read_whole() {
         let slip = "[slip]\ne_y = 0.0183\ne_z = 0.0423\n";
-        let whole = format!("{FLAT}\n{slip}oblique_from_deg = 32.75\noblique_full_deg = 40.0\noblique_e_t = 0.25\n");
+        let whole = format!("{FLAT}\n{slip}oblique_from_deg = 32.8\noblique_full_deg = 40.0\noblique_e_t = 0.25\n");
         let loaded = ClubFile::parse(&whole).unwrap();
         let t = ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap();
-        assert_eq!(t.slip_oblique, Some(ObliqueRise { from_deg: 32.75, full_deg: 40.0, e_t: 0.25 }));
-        for part in ["oblique_from_deg = 32.75\n", "oblique_full_deg = 40.0\noblique_e_t = 0.25\n"] {
+        assert_eq!(t.slip_oblique, Some(ObliqueRise { from_deg: 32.8, full_deg: 40.0, e_t: 0.25 }));
+        for part in ["oblique_from_deg = 32.8\n", "oblique_full_deg = 40.0\noblique_e_t = 0.25\n"] {
             let loaded = ClubFile::parse(&format!("{FLAT}\n{slip}{part}")).unwrap();
             let e = ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap_err().to_string();
             assert!(e.contains("slip.oblique_*"), "{e}");
