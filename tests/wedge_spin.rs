@@ -128,6 +128,46 @@ fn the_obliquity_law_is_eq_3_11_at_the_strikes_obliquity() {
     }
 }
 
+/// The grip never creates energy: on every iron and wedge preset carrying the law, over spin lofts from the
+/// irons' to a lob wedge's and strikes off the centre, the slip model's collision loses kinetic energy (head and
+/// ball, translation and rotation), whatever part of the rise each strike sits on.
+#[test]
+fn the_grip_never_creates_energy() {
+    use impactd::impact::impulse::{solve, ImpulseModel, ImpulseTuning, ImpulseVariant};
+    for preset in ["iron8", "iron9", "pw", "gw", "sw", "lw"] {
+        let club = load_club(preset).unwrap();
+        let eq = Equipment::new(club.club.clone());
+        let tuning = ImpulseTuning::from_sections(&club.club, &club.sections).unwrap();
+        assert!(tuning.slip_oblique.is_some(), "{preset} carries the law");
+        let model = ImpulseModel::new(ImpulseVariant::Slip).with_tuning(tuning);
+        for spin_loft in [20.0, 30.0, 34.0, 38.0, 42.0, 50.0, 60.0] {
+            for (h, v) in [(0.0, 0.0), (10.0, 5.0), (-10.0, -6.0)] {
+                let mut d = centred_delivery(80.0, -6.0, spin_loft - 6.0);
+                (d.impact_h_m, d.impact_v_m) = (h * 1e-3, v * 1e-3);
+                let p = model.problem(&d.to_state(&eq).unwrap(), &eq).unwrap();
+                let s = solve(&p).unwrap();
+                let ic = p.club_inertia_inv.try_inverse().unwrap();
+                let ib = p.ball_inertia_inv.try_inverse().unwrap();
+                let energy = |vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3| {
+                    0.5 * (p.club_mass_kg * vc.norm_squared()
+                        + wc.dot(&(ic * wc))
+                        + p.ball_mass_kg * vb.norm_squared()
+                        + wb.dot(&(ib * wb)))
+                };
+                let before =
+                    energy(p.club_velocity_mps, p.club_angular_velocity_radps, Vector3::zeros(), Vector3::zeros());
+                let after = energy(
+                    s.club_velocity_mps,
+                    s.club_angular_velocity_radps,
+                    s.ball_velocity_mps,
+                    s.ball_angular_velocity_radps,
+                );
+                assert!(after < before, "{preset} at {spin_loft} deg, ({h}, {v}) mm: {before} J -> {after} J");
+            }
+        }
+    }
+}
+
 /// (mae, bias) of `field` for the slip model on the club labelled `club` of a validation report session.
 fn slip_stat(file: &str, club: &str, field: &str) -> (f64, f64) {
     let path = format!("{}/tests/data/trackman/{file}", env!("CARGO_MANIFEST_DIR"));
