@@ -26,6 +26,11 @@
 //!
 //! The adjusted variant adds `Δm` to `m_c` (not to the inertia) and moves the ball's CG by `Δ` (impact frame),
 //! so `r_b = −R n − F Δ`. The COR is a constant (default 0.83, the rules limit, seed-tables `[cor]`).
+//!
+//! The slip variant's `e_y` and `e_z` may rise with the strike's obliquity to one grip value (Cross's tangential
+//! restitution of a ball that grips the face; the club file's `[slip]` `oblique_*` fields, `oblique.rs`): the
+//! obliquity is the angle between the contact point's closing velocity and the face normal, taken before the 3×3
+//! solve, which is otherwise unchanged.
 
 mod oblique;
 mod tuning;
