@@ -11,6 +11,7 @@
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
 #   scripts/real-shots-docs.sh          -> docs/real-shots.md (compare --by-club on tests/data/trackman/)
 #   scripts/driver-axis.py              -> docs/driver-axis.md (the driver's spin axis, validation report sessions)
+#   scripts/wedge-spin-docs.sh          -> docs/wedge-spin.md (the spin decomposition, the slip model's obliquity law)
 #   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
 #   scripts/docs-hostile.sh            -> docs/hostile-peers.md (the honest rig's latency beside each hostile probe)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
@@ -133,6 +134,7 @@ echo "face maps" >&2
 scripts/club-data-docs.sh
 scripts/real-shots-docs.sh
 python3 scripts/driver-axis.py
+scripts/wedge-spin-docs.sh
 echo "hostile peers" >&2
 scripts/docs-hostile.sh
 

@@ -12,7 +12,15 @@ pub struct SectionDoc {
 /// Every section a model reads, in the order a club file lists them.
 pub const SECTIONS: &[SectionDoc] = &[
     SectionDoc { name: "adjusted", fields: &["delta_mass_kg, ball_cg_shift_m"] },
-    SectionDoc { name: "slip", fields: &["e_y, e_z"] },
+    SectionDoc {
+        name: "slip",
+        fields: &[
+            "e_y, e_z; optionally oblique_from_deg, oblique_full_deg,",
+            "oblique_e_t together (Cross's grip rising with the strike's",
+            "obliquity, impact/impulse/oblique.rs; the iron and wedge",
+            "presets but iron7 carry it, docs/wedge-spin.md)",
+        ],
+    },
     SectionDoc {
         name: "continuous",
         fields: &[

@@ -26,9 +26,16 @@
 //!
 //! The adjusted variant adds `Δm` to `m_c` (not to the inertia) and moves the ball's CG by `Δ` (impact frame),
 //! so `r_b = −R n − F Δ`. The COR is a constant (default 0.83, the rules limit, seed-tables `[cor]`).
+//!
+//! The slip variant's `e_y` and `e_z` may rise with the strike's obliquity to one grip value (Cross's tangential
+//! restitution of a ball that grips the face; the club file's `[slip]` `oblique_*` fields, `oblique.rs`): the
+//! obliquity is the angle between the contact point's closing velocity and the face normal, taken before the 3×3
+//! solve, which is otherwise unchanged.
 
+mod oblique;
 mod tuning;
 
+pub use oblique::ObliqueRise;
 pub(crate) use tuning::section;
 pub use tuning::ImpulseTuning;
 
@@ -74,6 +81,8 @@ pub struct ImpulseParams {
     pub ball_cg_shift_m: Vector3,
     pub e_y: Real,
     pub e_z: Real,
+    /// The slip variant's rise of `e_y` and `e_z` with the impact's obliquity, if the club file gives one.
+    pub oblique: Option<ObliqueRise>,
 }
 
 /// An impulse-momentum model: a variant, a COR and the variant's parameters.
@@ -103,8 +112,14 @@ impl ImpulseModel {
     /// The parameters of this variant for `equipment`'s club.
     pub fn params(&self, equipment: &Equipment) -> ImpulseParams {
         let t = self.tuning.unwrap_or_else(|| ImpulseTuning::seed_for(&equipment.club));
-        let mut p =
-            ImpulseParams { cor: self.cor, delta_mass_kg: 0.0, ball_cg_shift_m: Vector3::zeros(), e_y: 0.0, e_z: 0.0 };
+        let mut p = ImpulseParams {
+            cor: self.cor,
+            delta_mass_kg: 0.0,
+            ball_cg_shift_m: Vector3::zeros(),
+            e_y: 0.0,
+            e_z: 0.0,
+            oblique: None,
+        };
         match self.variant {
             ImpulseVariant::Standard => {}
             ImpulseVariant::Adjusted => {
@@ -114,6 +129,7 @@ impl ImpulseModel {
             ImpulseVariant::Slip => {
                 p.e_y = t.slip_e_y;
                 p.e_z = t.slip_e_z;
+                p.oblique = t.slip_oblique;
             }
         }
         p
@@ -221,6 +237,16 @@ impl ImpulseModel {
         }
         let rot = g.world_from_club;
         let ball = &equipment.ball;
+        // The obliquity: the closing velocity of the contact point against the face normal (oblique.rs).
+        let (e_y, e_z) = match params.oblique {
+            Some(rise) => {
+                let u = g.contact_velocity_mps;
+                let cos = (u.dot(&g.world_from_impact.column(0)) / u.norm()).clamp(-1.0, 1.0);
+                let theta_deg = cos.acos().to_degrees();
+                (rise.at(params.e_y, theta_deg), rise.at(params.e_z, theta_deg))
+            }
+            None => (params.e_y, params.e_z),
+        };
         let r_ball_m = -ball.radius_m * g.world_from_impact.column(0) - g.world_from_impact * params.ball_cg_shift_m;
         Ok(ContactProblem {
             club_mass_kg: equipment.club.mass_kg + params.delta_mass_kg,
@@ -234,7 +260,7 @@ impl ImpulseModel {
             club_angular_velocity_radps: state.angular_velocity_radps,
             ball_velocity_mps: Vector3::zeros(),
             ball_angular_velocity_radps: Vector3::zeros(),
-            restitution: Vector3::new(params.cor, params.e_y, params.e_z),
+            restitution: Vector3::new(params.cor, e_y, e_z),
         })
     }
 }

@@ -3,6 +3,7 @@
 
 use serde::Deserialize;
 
+use super::oblique::ObliqueRise;
 use crate::equipment::{ClubSpec, ModelSections};
 use crate::impact::ImpactError;
 use crate::math::{Real, Vector3};
@@ -18,6 +19,8 @@ pub struct ImpulseTuning {
     pub slip_e_y: Real,
     /// Tangential restitution along z' (eq. 3.12), Table 3.4.
     pub slip_e_z: Real,
+    /// Cross's rise of both with the impact's obliquity (`oblique.rs`); `None`: Table 3.4's constants.
+    pub slip_oblique: Option<ObliqueRise>,
 }
 
 /// `[adjusted]`: the Danaei parameters (Table 3.3).
@@ -34,6 +37,9 @@ struct AdjustedSection {
 struct SlipSection {
     e_y: Real,
     e_z: Real,
+    oblique_from_deg: Option<Real>,
+    oblique_full_deg: Option<Real>,
+    oblique_e_t: Option<Real>,
 }
 
 fn invalid(field: &str, reason: impl Into<String>) -> ImpactError {
@@ -66,6 +72,7 @@ impl ImpulseTuning {
         adjusted_ball_cg_shift_m: Vector3::new(0.0, -0.482e-3, -0.068e-3),
         slip_e_y: -0.0103,
         slip_e_z: -0.0151,
+        slip_oblique: None,
     };
     /// Table 3.3 and 3.4, 7-iron column.
     pub const IRON7: ImpulseTuning = ImpulseTuning {
@@ -73,6 +80,7 @@ impl ImpulseTuning {
         adjusted_ball_cg_shift_m: Vector3::new(-0.395e-3, -0.182e-3, -0.071e-3),
         slip_e_y: 0.0183,
         slip_e_z: 0.0423,
+        slip_oblique: None,
     };
 
     /// The seed's values for a club: the driver's for a curved face, the 7-iron's for a flat one.
@@ -105,6 +113,16 @@ impl ImpulseTuning {
             }
             t.slip_e_y = s.e_y;
             t.slip_e_z = s.e_z;
+            t.slip_oblique = match (s.oblique_from_deg, s.oblique_full_deg, s.oblique_e_t) {
+                (None, None, None) => None,
+                (Some(from), Some(full), Some(e_t)) => Some(ObliqueRise::new(from, full, e_t)?),
+                _ => {
+                    return Err(invalid(
+                        "slip.oblique_*",
+                        "give all three of oblique_from_deg, oblique_full_deg and oblique_e_t, or none",
+                    ))
+                }
+            };
         }
         Ok(t)
     }
@@ -160,5 +178,24 @@ mod tests {
         let typo = ClubFile::parse(&format!("{FLAT}\n[adjusted]\ndelta_mass = 0.01\n")).unwrap();
         let e = ImpulseTuning::from_sections(&typo.club, &typo.sections).unwrap_err().to_string();
         assert!(e.contains("adjusted") && e.contains("delta_mass"), "{e}");
+    }
+
+    /// The obliquity law is read whole or not at all; its angles are checked.
+    #[test]
+    fn the_oblique_rise_is_read_whole() {
+        let slip = "[slip]\ne_y = 0.0183\ne_z = 0.0423\n";
+        let whole = format!("{FLAT}\n{slip}oblique_from_deg = 32.8\noblique_full_deg = 40.0\noblique_e_t = 0.25\n");
+        let loaded = ClubFile::parse(&whole).unwrap();
+        let t = ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap();
+        assert_eq!(t.slip_oblique, Some(ObliqueRise { from_deg: 32.8, full_deg: 40.0, e_t: 0.25 }));
+        for part in ["oblique_from_deg = 32.8\n", "oblique_full_deg = 40.0\noblique_e_t = 0.25\n"] {
+            let loaded = ClubFile::parse(&format!("{FLAT}\n{slip}{part}")).unwrap();
+            let e = ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap_err().to_string();
+            assert!(e.contains("slip.oblique_*"), "{e}");
+        }
+        let reversed = format!("{FLAT}\n{slip}oblique_from_deg = 40\noblique_full_deg = 30.0\noblique_e_t = 0.25\n");
+        let loaded = ClubFile::parse(&reversed).unwrap();
+        let e = ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap_err().to_string();
+        assert!(e.contains("slip.oblique_full_deg"), "{e}");
     }
 }
