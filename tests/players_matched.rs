@@ -46,8 +46,7 @@ fn located_irons(files: &[&str]) -> Vec<Stroke> {
     for club in clubs {
         let preset = format!("iron{}", club.trim_end_matches(" Iron"));
         let group: Vec<&mut Stroke> = strokes.iter_mut().filter(|s| s.club == club).collect();
-        let input: String =
-            group.iter().map(|s| serde_json::to_string(&s.line.delivery).unwrap() + "\n").collect();
+        let input: String = group.iter().map(|s| serde_json::to_string(&s.line.delivery).unwrap() + "\n").collect();
         let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
             .args(["predict", "--club", &preset, "--model", "adjusted"])
             .stdin(Stdio::piped())
@@ -71,12 +70,7 @@ fn located_irons(files: &[&str]) -> Vec<Stroke> {
 /// (spin loft, impact height, impact offset, face to path) of a stroke.
 fn features(s: &Stroke) -> [f64; 4] {
     let d = &s.line.delivery;
-    [
-        d.dynamic_loft_deg.unwrap() - d.attack_angle_deg,
-        d.impact_v_mm,
-        d.impact_h_mm,
-        d.face_angle_deg - d.club_path_deg,
-    ]
+    [d.dynamic_loft_deg.unwrap() - d.attack_angle_deg, d.impact_v_mm, d.impact_h_mm, d.face_angle_deg - d.club_path_deg]
 }
 
 fn smash(s: &Stroke) -> (f64, f64) {
