@@ -400,6 +400,50 @@ def identified():
     return rows
 
 
+# --- region floor ---
+def needed_turn(m):
+    """The turn of TrackMan's face about the vertical (open +, deg) at which n x b tilts as TrackMan's axis."""
+    b = unit(m["LaunchAngle"], m["LaunchDirection"])
+    f = lambda d: tilt(unit(m["DynamicLoft"], m["FaceAngle"] + d), b) - m["SpinAxis"]  # noqa: E731
+    lo, hi = -10.0, 10.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
+    return lo
+
+
+def floor():
+    """The axis a rigid ball leaving along TrackMan's direction would have if its face were TrackMan's turned by the
+    least-squares linear function of the delivery that best explains the turn TrackMan's axis needs, fitted on
+    these very strokes (in sample, so a floor for such a correction, not a prediction)."""
+    ms = [(s, m) for s, g in SESSIONS.items() for m in g if m["axis_measured"]]
+    turns = [needed_turn(m) for _, m in ms]
+    features = {
+        "impact offset": lambda m: m["ImpactOffset"] * 1e3,
+        "impact height": lambda m: m["ImpactHeight"] * 1e3,
+        "club speed": lambda m: m["ClubSpeed"],
+        "face to path": lambda m: m["FaceAngle"] - m["ClubPath"],
+        "attack angle": lambda m: m["AttackAngle"],
+        "dynamic loft": lambda m: m["DynamicLoft"],
+        "club path": lambda m: m["ClubPath"],
+    }
+    rows = ["| the turn of TrackMan's face, linear in | residual SD of the turn (deg) | "
+            + " | ".join(s[:10] for s in VALIDATION) + " | largest (deg) |", "|---" * (3 + len(VALIDATION)) + "|"]
+    for label, names in [("a constant", []), ("the impact offset", ["impact offset"]),
+                         ("the impact offset and height", ["impact offset", "impact height"]),
+                         ("all seven of the delivery", list(features))]:
+        cols = [[features[n](m) for _, m in ms] for n in names] + [[1.0] * len(ms)]
+        coef, resid = lstsq(cols, turns)
+        err = {}
+        for (s, m), t, r in zip(ms, turns, resid):
+            b = unit(m["LaunchAngle"], m["LaunchDirection"])
+            fitted = t - r
+            err.setdefault(s, []).append(abs(tilt(unit(m["DynamicLoft"], m["FaceAngle"] + fitted), b) - m["SpinAxis"]))
+        cells = [mean(err[s]) for s in VALIDATION]
+        rows.append(f"| {label} | {sd(resid):.3f} | " + " | ".join(f"{c:.2f}" for c in cells) + f" | {max(cells):.2f} |")
+    return rows
+
+
 def main():
     subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "impactd", "--example", "face_centre_reading"],
                    check=True)
@@ -414,7 +458,7 @@ def main():
             f"the turns' own SD {notes['turn_sd']:.3f})."]
     read, other = readings()
     replace(DOC, {"geometry": geo, "turn": turn, "relation": relation, "adjusted": adjusted(), "readings": read,
-                  "readings-other": other, "identified": identified()})
+                  "readings-other": other, "identified": identified(), "floor": floor()})
 
 
 if __name__ == "__main__":
