@@ -413,11 +413,16 @@ def needed_turn(m):
 
 
 def floor():
-    """The axis a rigid ball leaving along TrackMan's direction would have if its face were TrackMan's turned by the
-    least-squares linear function of the delivery that best explains the turn TrackMan's axis needs, fitted on
-    these very strokes (in sample, so a floor for such a correction, not a prediction)."""
+    """The axis a rigid ball leaving along TrackMan's direction would have if its face were TrackMan's turned by a
+    linear function of the delivery, fitted on these very strokes to the axis itself (in sample: what such a
+    correction can reach at best on them, not a prediction). The fit minimises the axis MAE by iteratively
+    reweighted least squares on the turn, each stroke weighted by the axis' sensitivity to the turn."""
     ms = [(s, m) for s, g in SESSIONS.items() for m in g if m["axis_measured"]]
     turns = [needed_turn(m) for _, m in ms]
+    axis_of = lambda m, t: tilt(unit(m["DynamicLoft"], m["FaceAngle"] + t), unit(m["LaunchAngle"],  # noqa: E731
+                                                                               m["LaunchDirection"]))
+    # d(axis)/d(turn) at the needed turn, deg per deg.
+    slope = [(axis_of(m, t + 1e-3) - axis_of(m, t - 1e-3)) / 2e-3 for (_, m), t in zip(ms, turns)]
     features = {
         "impact offset": lambda m: m["ImpactOffset"] * 1e3,
         "impact height": lambda m: m["ImpactHeight"] * 1e3,
@@ -427,20 +432,24 @@ def floor():
         "dynamic loft": lambda m: m["DynamicLoft"],
         "club path": lambda m: m["ClubPath"],
     }
-    rows = ["| the turn of TrackMan's face, linear in | residual SD of the turn (deg) | "
-            + " | ".join(s[:10] for s in VALIDATION) + " | largest (deg) |", "|---" * (3 + len(VALIDATION)) + "|"]
+    rows = ["| the turn of TrackMan's face, linear in | parameters | " + " | ".join(s[:10] for s in VALIDATION)
+            + " | largest (deg) |", "|---" * (3 + len(VALIDATION)) + "|"]
     for label, names in [("a constant", []), ("the impact offset", ["impact offset"]),
                          ("the impact offset and height", ["impact offset", "impact height"]),
                          ("all seven of the delivery", list(features))]:
         cols = [[features[n](m) for _, m in ms] for n in names] + [[1.0] * len(ms)]
-        coef, resid = lstsq(cols, turns)
+        weights = [k * k for k in slope]
+        for _ in range(50):
+            root = [math.sqrt(w) for w in weights]
+            coef, _ = lstsq([[c * r for c, r in zip(col, root)] for col in cols], [t * r for t, r in zip(turns, root)])
+            fitted = [sum(c * col[i] for c, col in zip(coef, cols)) for i in range(len(ms))]
+            axis_err = [abs(k * (t - f)) for k, t, f in zip(slope, turns, fitted)]
+            weights = [k * k / max(e, 1e-3) for k, e in zip(slope, axis_err)]
         err = {}
-        for (s, m), t, r in zip(ms, turns, resid):
-            b = unit(m["LaunchAngle"], m["LaunchDirection"])
-            fitted = t - r
-            err.setdefault(s, []).append(abs(tilt(unit(m["DynamicLoft"], m["FaceAngle"] + fitted), b) - m["SpinAxis"]))
+        for (s, m), f in zip(ms, fitted):
+            err.setdefault(s, []).append(abs(axis_of(m, f) - m["SpinAxis"]))
         cells = [mean(err[s]) for s in VALIDATION]
-        rows.append(f"| {label} | {sd(resid):.3f} | " + " | ".join(f"{c:.2f}" for c in cells) + f" | {max(cells):.2f} |")
+        rows.append(f"| {label} | {len(cols)} | " + " | ".join(f"{c:.2f}" for c in cells) + f" | {max(cells):.2f} |")
     return rows
 
 

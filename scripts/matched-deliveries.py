@@ -13,8 +13,8 @@ Every stroke with club data, an impact location and an iron preset (4- to 9-iron
 --model adjusted` on its preset. Two strokes of different players are matched when their spin loft (dynamic loft
 minus attack angle) is within 2 deg, their impact height within 3 mm, their impact offset within 10 mm and their
 face to path within 5 deg. For a matched pair (a, b) and any model f, |f(a) - v_a| + |f(b) - v_b| >=
-|(v_a - v_b) - (f(a) - f(b))|: with the adjusted model's f(a) - f(b) standing for any model's (they differ by
-0.01-0.02 of smash), that is a measured lower bound on the two strokes' errors together.
+|(v_a - v_b) - (f(a) - f(b))|: a lower bound on the two strokes' errors together for any model whose f(a) - f(b)
+is the adjusted model's (every model here differs between matched deliveries by 0.01-0.02 of smash).
 """
 import csv
 import json

@@ -113,7 +113,8 @@ fn line(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
 /// On the irons a rigid ball leaving TrackMan's face along TrackMan's direction tilts its spin axis nearly as
 /// TrackMan measured it (0.85 of the tilt, MAE 0.7-0.8 deg on the 7-iron and the wedge); on the driver, half as much
 /// (0.53, MAE 7.8 deg). The face turn that would make the tilt TrackMan's axis follows the impact offset: -0.031
-/// deg per mm (open for a heel strike, as a head the gear effect turns open during contact), residual SD 0.13 deg.
+/// deg per mm (open for a heel strike: the face TrackMan reports is more closed than the one the ball met, as a
+/// face read late in a contact the gear effect turns closed), residual SD 0.13 deg.
 #[test]
 fn trackmans_driver_axis_is_not_its_faces() {
     let drivers = strokes("Driver");

@@ -232,7 +232,8 @@ impl ImpulseModel {
     pub fn problem(&self, state: &ImpactState, equipment: &Equipment) -> Result<ContactProblem, ImpactError> {
         let params = self.params(equipment);
         let g = state.contact(&equipment.club)?;
-        if g.contact_velocity_mps.dot(&g.world_from_impact.column(0)) <= 0.0 {
+        let closing_mps = g.contact_velocity_mps.dot(&g.world_from_impact.column(0));
+        if closing_mps.is_nan() || closing_mps <= 0.0 {
             return Err(ImpactError::NotApproaching);
         }
         let rot = g.world_from_club;

@@ -43,7 +43,10 @@ impl ObliqueRise {
         if ![from_deg, full_deg, e_t].iter().all(|v| v.is_finite()) {
             return Err(invalid("oblique_*", "must be finite numbers"));
         }
-        if !(0.0..90.0).contains(&from_deg) || full_deg <= from_deg || full_deg > 90.0 {
+        if !(0.0..90.0).contains(&from_deg) {
+            return Err(invalid("oblique_from_deg", "must be within 0 and 90 (deg from the face normal)"));
+        }
+        if full_deg <= from_deg || full_deg > 90.0 {
             return Err(invalid(
                 "oblique_full_deg",
                 "the angles must satisfy 0 <= oblique_from_deg < oblique_full_deg <= 90",
@@ -57,7 +60,15 @@ impl ObliqueRise {
 
     /// The tangential restitution `e_seed` becomes at obliquity `theta_deg`.
     pub fn at(&self, e_seed: Real, theta_deg: Real) -> Real {
-        let s = ((theta_deg - self.from_deg) / (self.full_deg - self.from_deg)).clamp(0.0, 1.0);
+        // A rise built without `new` with `full <= from` is a step at `from` (no 0/0).
+        let span = self.full_deg - self.from_deg;
+        let s = if span > 0.0 {
+            ((theta_deg - self.from_deg) / span).clamp(0.0, 1.0)
+        } else if theta_deg >= self.from_deg {
+            1.0
+        } else {
+            0.0
+        };
         e_seed + (self.e_t - e_seed) * s
     }
 }
@@ -78,10 +89,18 @@ mod tests {
 
     #[test]
     fn bad_angles_and_restitutions_are_named() {
-        for (from, full, e) in [(40.0, 30.0, 0.2), (-1.0, 30.0, 0.2), (10.0, 95.0, 0.2), (10.0, 40.0, 1.5)] {
+        for (from, full, e, field) in [
+            (40.0, 30.0, 0.2, "slip.oblique_full_deg"),
+            (-1.0, 30.0, 0.2, "slip.oblique_from_deg"),
+            (90.0, 95.0, 0.2, "slip.oblique_from_deg"),
+            (10.0, 95.0, 0.2, "slip.oblique_full_deg"),
+            (10.0, 40.0, 1.5, "slip.oblique_e_t"),
+        ] {
             let e = ObliqueRise::new(from, full, e).unwrap_err().to_string();
-            assert!(e.contains("slip.oblique"), "{e}");
+            assert!(e.contains(field), "{e}");
         }
+        let step = ObliqueRise { from_deg: 30.0, full_deg: 30.0, e_t: 0.25 };
+        assert_eq!((step.at(0.0183, 29.0), step.at(0.0183, 31.0)), (0.0183, 0.25));
         assert!(ObliqueRise::new(Real::NAN, 40.0, 0.2).is_err());
     }
 }
