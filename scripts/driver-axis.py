@@ -247,12 +247,7 @@ def geometry():
     turns, h_mm, gap = [], [], []
     for _, _, m in every:
         b = unit(m["LaunchAngle"], m["LaunchDirection"])
-        f = lambda d: tilt(unit(m["DynamicLoft"], m["FaceAngle"] + d), b) - m["SpinAxis"]  # noqa: E731
-        lo, hi = -10.0, 10.0
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
-        turns.append(lo)
+        turns.append(needed_turn(m))
         h_mm.append(m["ImpactOffset"] * 1e3)
         gap.append(math.degrees(math.acos(dot(unit(m["DynamicLoft"], m["FaceAngle"]), b))))
     (c_h, c0), resid = lstsq([h_mm, [1.0] * len(h_mm)], turns)

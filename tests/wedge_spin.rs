@@ -149,35 +149,32 @@ fn the_grip_never_creates_energy() {
                 let s = solve(&p).unwrap();
                 let ic = p.club_inertia_inv.try_inverse().unwrap();
                 let ib = p.ball_inertia_inv.try_inverse().unwrap();
-                let energy = |vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3| {
+                // (club velocity, club angular velocity, ball velocity, ball angular velocity) before and after.
+                let zero = Vector3::zeros();
+                let states = [
+                    [p.club_velocity_mps, p.club_angular_velocity_radps, zero, zero],
+                    [
+                        s.club_velocity_mps,
+                        s.club_angular_velocity_radps,
+                        s.ball_velocity_mps,
+                        s.ball_angular_velocity_radps,
+                    ],
+                ];
+                let energy = |[vc, wc, vb, wb]: [Vector3; 4]| {
                     0.5 * (p.club_mass_kg * vc.norm_squared()
                         + wc.dot(&(ic * wc))
                         + p.ball_mass_kg * vb.norm_squared()
                         + wb.dot(&(ib * wb)))
                 };
-                let before =
-                    energy(p.club_velocity_mps, p.club_angular_velocity_radps, Vector3::zeros(), Vector3::zeros());
-                let after = energy(
-                    s.club_velocity_mps,
-                    s.club_angular_velocity_radps,
-                    s.ball_velocity_mps,
-                    s.ball_angular_velocity_radps,
-                );
+                let (before, after) = (energy(states[0]), energy(states[1]));
                 assert!(after < before, "{preset} at {spin_loft} deg, ({h}, {v}) mm: {before} J -> {after} J");
                 // The solver lowers the normal restitution when an impulse would create energy; the loss above
                 // must come from the law itself, so the normal closing velocity must reverse by the full COR.
                 let n = p.world_from_impact.column(0).into_owned();
-                let closing = |vc: Vector3, wc: Vector3, vb: Vector3, wb: Vector3| {
+                let closing = |[vc, wc, vb, wb]: [Vector3; 4]| {
                     ((vc + wc.cross(&p.r_club_m)) - (vb + wb.cross(&p.r_ball_m))).dot(&n)
                 };
-                let u0 =
-                    closing(p.club_velocity_mps, p.club_angular_velocity_radps, Vector3::zeros(), Vector3::zeros());
-                let u1 = closing(
-                    s.club_velocity_mps,
-                    s.club_angular_velocity_radps,
-                    s.ball_velocity_mps,
-                    s.ball_angular_velocity_radps,
-                );
+                let (u0, u1) = (closing(states[0]), closing(states[1]));
                 let e = -u1 / u0;
                 assert!((e - p.restitution.x).abs() < 1e-9, "{preset} at {spin_loft} deg: normal restitution {e}");
             }
