@@ -36,6 +36,13 @@ pub enum DaemonError {
         #[source]
         source: config_club::RigClubError,
     },
+    /// A rig's `input.markers` file that cannot be read or holds no marker set.
+    #[error("config field `{field}` {source}")]
+    Markers {
+        field: String,
+        #[source]
+        source: bridges::mocap::input::MarkerFileError,
+    },
     /// A rig's `[rig.conditions]` that no ball flies in.
     #[error("config field `{field}` {source}")]
     Conditions {

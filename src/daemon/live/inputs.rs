@@ -37,14 +37,13 @@ pub(super) fn start(
             field: format!("rig {}: input.{field}", rig.name),
             reason,
         })?;
-        let fitter =
-            match &input.markers {
-                Some(path) => Some(marker_fitter(path).map_err(|reason| DaemonError::Config {
-                    field: format!("rig {}: input.markers", rig.name),
-                    reason,
-                })?),
-                None => None,
-            };
+        let fitter = match &input.markers {
+            Some(path) => Some(marker_fitter(path).map_err(|source| DaemonError::Markers {
+                field: format!("rig {}: input.markers", rig.name),
+                source,
+            })?),
+            None => None,
+        };
         let mut routes = vec![((input.body.clone(), rig.name.clone()), InputKind::Sample, fitter)];
         // With `[rig.clubs]`, every club's body too: each sample then names its body.
         let clubs = rig.clubs.keys().filter(|b| **b != input.body);

@@ -145,10 +145,29 @@ impl MocapInputConfig {
 }
 
 /// A marker set file as a live fitter (3 mm rejection, as `impactd import`'s default), or why it cannot be read.
-pub fn marker_fitter(path: &str) -> Result<crate::kinematics::MarkerFitter, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("reading {path}: {e}"))?;
-    let set = crate::kinematics::MarkerSet::from_toml(&text).map_err(|e| format!("{path}: {e}"))?;
+pub fn marker_fitter(path: &str) -> Result<crate::kinematics::MarkerFitter, MarkerFileError> {
+    let text =
+        std::fs::read_to_string(path).map_err(|source| MarkerFileError::Read { path: path.to_string(), source })?;
+    let set = crate::kinematics::MarkerSet::from_toml(&text)
+        .map_err(|source| MarkerFileError::Parse { path: path.to_string(), source })?;
     Ok(crate::kinematics::MarkerFitter::new(set).with_reject_m(3e-3))
+}
+
+/// A marker set file (`input.markers`, `bridge --markers`) that cannot be read or holds no marker set.
+#[derive(Debug, thiserror::Error)]
+pub enum MarkerFileError {
+    #[error("reading {path}: {source}")]
+    Read {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: {source}")]
+    Parse {
+        path: String,
+        #[source]
+        source: crate::kinematics::MarkerSetError,
+    },
 }
 
 /// The server's first IPv4 address.
@@ -286,4 +305,29 @@ fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
     let p99 = w.quantile(0.99);
     out.exposure_to_transmit_p99_us = (p99 > 0.0).then_some(p99);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A marker file that is not there, or is no marker set, keeps its cause: the IO error or the marker set's
+    /// error, reachable from the daemon's error through `source()`, and says it once.
+    #[test]
+    fn a_bad_marker_file_keeps_its_cause() {
+        use std::error::Error;
+        let dir = tempfile::tempdir().unwrap();
+        let missing = dir.path().join("none.toml");
+        let e = marker_fitter(missing.to_str().unwrap()).unwrap_err();
+        assert!(matches!(&e, MarkerFileError::Read { source, .. } if source.kind() == std::io::ErrorKind::NotFound));
+        let bad = dir.path().join("bad.toml");
+        std::fs::write(&bad, "[[marker]]\nname = 3\n").unwrap();
+        let e = marker_fitter(bad.to_str().unwrap()).unwrap_err();
+        assert!(matches!(&e, MarkerFileError::Parse { .. }), "{e:?}");
+        let text = e.to_string();
+        let daemon = DaemonError::Markers { field: "rig a: input.markers".into(), source: e };
+        assert_eq!(daemon.to_string(), format!("config field `rig a: input.markers` {text}"));
+        let cause = daemon.source().and_then(|s| s.source()).unwrap();
+        assert!(cause.downcast_ref::<crate::kinematics::MarkerSetError>().is_some(), "{cause:?}");
+    }
 }
