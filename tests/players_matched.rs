@@ -10,11 +10,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-use std::io::Write;
-use std::process::{Command, Stdio};
+mod predict;
 
 use impactd::pairing::DatasetLine;
-use serde_json::Value;
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/trackman");
 
@@ -47,18 +45,7 @@ fn located_irons(files: &[&str]) -> Vec<Stroke> {
         let preset = format!("iron{}", club.trim_end_matches(" Iron"));
         let group: Vec<&mut Stroke> = strokes.iter_mut().filter(|s| s.club == club).collect();
         let input: String = group.iter().map(|s| serde_json::to_string(&s.line.delivery).unwrap() + "\n").collect();
-        let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
-            .args(["predict", "--club", &preset, "--model", "adjusted"])
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
-        let out = child.wait_with_output().unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        let answers: Vec<Value> =
-            String::from_utf8(out.stdout).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        let answers = predict::answers(&["predict", "--club", &preset, "--model", "adjusted"], &input);
         assert_eq!(answers.len(), group.len(), "{club}: one answer per stroke");
         for (s, a) in group.into_iter().zip(answers) {
             s.predicted_mph = a["ball_speed_mph"].as_f64().unwrap();

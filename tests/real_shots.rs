@@ -7,8 +7,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-use std::io::Write;
-use std::process::{Command, Stdio};
+mod predict;
+
+use std::process::Command;
 
 use serde_json::Value;
 
@@ -92,25 +93,11 @@ fn launch_spin_and_axis_on_the_validation_session() {
 #[test]
 fn the_shaft_share_reproduces_the_flexible_shaft() {
     let drop = |model: &str, extra: &[&str]| {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
-            .args(["predict", "--club", "iron5", "--model", model])
-            .args(extra)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
         let lines = "{\"club_speed_mph\":85,\"attack_angle_deg\":-4,\"dynamic_loft_deg\":19.5,\"impact_v_mm\":0}\n\
                      {\"club_speed_mph\":85,\"attack_angle_deg\":-4,\"dynamic_loft_deg\":19.5,\"impact_v_mm\":10}\n";
-        child.stdin.take().unwrap().write_all(lines.as_bytes()).unwrap();
-        let out = child.wait_with_output().unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        let v: Vec<f64> = String::from_utf8(out.stdout)
-            .unwrap()
-            .lines()
-            .map(|l| serde_json::from_str::<Value>(l).unwrap()["ball_speed_mph"].as_f64().unwrap())
-            .collect();
-        v[0] - v[1]
+        let args = [&["predict", "--club", "iron5", "--model", model][..], extra].concat();
+        let v = predict::answers(&args, lines);
+        v[0]["ball_speed_mph"].as_f64().unwrap() - v[1]["ball_speed_mph"].as_f64().unwrap()
     };
     let (free, shaft) = (drop("continuous", &[]), drop("ground", &["--soil", "none"]));
     assert!((free - shaft).abs() < 0.3, "free head with the share {free:.2} mph, on the shaft {shaft:.2} mph");
@@ -118,20 +105,9 @@ fn the_shaft_share_reproduces_the_flexible_shaft() {
 
 /// Ball speeds (mph) of `predict --club PRESET --model MODEL` on the given delivery lines.
 fn ball_speeds(preset: &str, model: &str, lines: &str) -> Vec<f64> {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_impactd"))
-        .args(["predict", "--club", preset, "--model", model])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child.stdin.take().unwrap().write_all(lines.as_bytes()).unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str::<Value>(l).unwrap()["ball_speed_mph"].as_f64().unwrap())
+    predict::answers(&["predict", "--club", preset, "--model", model], lines)
+        .iter()
+        .map(|a| a["ball_speed_mph"].as_f64().unwrap())
         .collect()
 }
 
