@@ -14,6 +14,10 @@ one way or another and run through `impactd predict`:
   region readings-other  ball speed, launch and spin under the same readings (standard and adjusted, pooled)
   region identified  the slip model on copies of the driver preset with its vertical-axis inertia scaled and e_z
                     varied: the axis a two-parameter identification on these sessions reaches
+  region flight     TrackMan's axis against its own ball flight: the curve per yard of carry against the sine of
+                    the axis and of the tilt of `n x b`
+  region floor      a turn of TrackMan's face linear in the delivery, fitted on the strokes to their axis
+  region across     the same turn fitted on three sessions and applied to the fourth
 
 The contact-point reading (`compare --by-club`'s) is `examples/face_centre_reading`. Usage, from the repository:
 `scripts/driver-axis.py` (builds impactd and the example; a few minutes on 2 cores).
@@ -427,24 +431,63 @@ def floor():
         "dynamic loft": lambda m: m["DynamicLoft"],
         "club path": lambda m: m["ClubPath"],
     }
-    rows = ["| the turn of TrackMan's face, linear in | parameters | " + " | ".join(s[:10] for s in VALIDATION)
+    def fit(names, train):
+        """IRLS on the strokes `train`: the coefficients of the turn, linear in the features `names`."""
+        cols = [[features[n](m) for _, m in ms] for n in names] + [[1.0] * len(ms)]
+        weights = [slope[i] ** 2 for i in train]
+        for _ in range(50):
+            root = [math.sqrt(w) for w in weights]
+            coef, _ = lstsq([[col[i] * r for i, r in zip(train, root)] for col in cols],
+                            [turns[i] * r for i, r in zip(train, root)])
+            axis_err = [abs(slope[i] * (turns[i] - sum(c * col[i] for c, col in zip(coef, cols)))) for i in train]
+            weights = [slope[i] ** 2 / max(e, 1e-3) for i, e in zip(train, axis_err)]
+        return [sum(c * col[i] for c, col in zip(coef, cols)) for i in range(len(ms))], len(cols)
+
+    def cells(fitted, which):
+        err = {}
+        for i, ((s, m), f) in enumerate(zip(ms, fitted)):
+            if which(i):
+                err.setdefault(s, []).append(abs(axis_of(m, f) - m["SpinAxis"]))
+        return [mean(err[s]) for s in VALIDATION if s in err]
+
+    head = ["| the turn of TrackMan's face, linear in | parameters | " + " | ".join(s[:10] for s in VALIDATION)
             + " | largest (deg) |", "|---" * (3 + len(VALIDATION)) + "|"]
+    rows, across = list(head), list(head)
+    everyone = list(range(len(ms)))
     for label, names in [("a constant", []), ("the impact offset", ["impact offset"]),
                          ("the impact offset and height", ["impact offset", "impact height"]),
                          ("all seven of the delivery", list(features))]:
-        cols = [[features[n](m) for _, m in ms] for n in names] + [[1.0] * len(ms)]
-        weights = [k * k for k in slope]
-        for _ in range(50):
-            root = [math.sqrt(w) for w in weights]
-            coef, _ = lstsq([[c * r for c, r in zip(col, root)] for col in cols], [t * r for t, r in zip(turns, root)])
-            fitted = [sum(c * col[i] for c, col in zip(coef, cols)) for i in range(len(ms))]
-            axis_err = [abs(k * (t - f)) for k, t, f in zip(slope, turns, fitted)]
-            weights = [k * k / max(e, 1e-3) for k, e in zip(slope, axis_err)]
-        err = {}
-        for (s, m), f in zip(ms, fitted):
-            err.setdefault(s, []).append(abs(axis_of(m, f) - m["SpinAxis"]))
-        cells = [mean(err[s]) for s in VALIDATION]
-        rows.append(f"| {label} | {len(cols)} | " + " | ".join(f"{c:.2f}" for c in cells) + f" | {max(cells):.2f} |")
+        fitted, k = fit(names, everyone)
+        c = cells(fitted, lambda i: True)
+        rows.append(f"| {label} | {k} | " + " | ".join(f"{x:.2f}" for x in c) + f" | {max(c):.2f} |")
+        # Fitted on the other three sessions, applied to each one in turn.
+        out = []
+        for s in VALIDATION:
+            fitted, _ = fit(names, [i for i in everyone if ms[i][0] != s])
+            out += cells(fitted, lambda i: ms[i][0] == s)
+        across.append(f"| {label} | {k} | " + " | ".join(f"{x:.2f}" for x in out) + f" | {max(out):.2f} |")
+    return rows, across
+
+
+# --- region flight ---
+def correlation(x, y):
+    mx, my = mean(x), mean(y)
+    return (sum((a - mx) * (b - my) for a, b in zip(x, y))
+            / math.sqrt(sum((a - mx) ** 2 for a in x) * sum((b - my) ** 2 for b in y)))
+
+
+def flight():
+    """TrackMan's spin axis against the flight TrackMan measured: the ball's curve (its sideways distance from the
+    launch direction's line at landing) per unit of carry bends with the sine of the axis the ball flew with."""
+    rows = ["| club | strokes with a measured axis and curve | curve / carry against sin(TrackMan's axis): "
+            "correlation | against sin(tilt of n x b): correlation |", "|---|---|---|---|"]
+    for club in ["Driver", "7Iron", "PitchingWedge"]:
+        g = [m for s in VALIDATION for m in strokes(s, club) if m["axis_measured"] and "Curve" in m and m.get("Carry")]
+        bend = [m["Curve"] / m["Carry"] for m in g]
+        axis = [math.sin(math.radians(m["SpinAxis"])) for m in g]
+        rigid = [math.sin(math.radians(tilt(unit(m["DynamicLoft"], m["FaceAngle"]),
+                                            unit(m["LaunchAngle"], m["LaunchDirection"])))) for m in g]
+        rows.append(f"| {club} | {len(g)} | {correlation(bend, axis):.3f} | {correlation(bend, rigid):.3f} |")
     return rows
 
 
@@ -461,8 +504,10 @@ def main():
             f"per mm of impact offset {notes['turn_0']:+.3f} deg (residual SD {notes['turn_resid_sd']:.3f} deg, "
             f"the turns' own SD {notes['turn_sd']:.3f})."]
     read, other = readings()
+    in_sample, across = floor()
     replace(DOC, {"geometry": geo, "turn": turn, "relation": relation, "adjusted": adjusted(), "readings": read,
-                  "readings-other": other, "identified": identified(), "floor": floor()})
+                  "readings-other": other, "identified": identified(), "floor": in_sample, "across": across,
+                  "flight": flight()})
 
 
 if __name__ == "__main__":
