@@ -14,8 +14,8 @@ one way or another and run through `impactd predict`:
   region readings-other  ball speed, launch and spin under the same readings (standard and adjusted, pooled)
   region identified  the slip model on copies of the driver preset with its vertical-axis inertia scaled and e_z
                     varied: the axis a two-parameter identification on these sessions reaches
-  region flight     TrackMan's axis against its own ball flight: the curve per yard of carry against the sine of
-                    the axis and of the tilt of `n x b`
+  region flight     TrackMan's axis against its own curve: the curve per unit of carry against the sine of the
+                    axis and of the tilt of `n x b`
   region floor      a turn of TrackMan's face linear in the delivery, fitted on the strokes to their axis
   region across     the same turn fitted on three sessions and applied to the fourth
 
@@ -477,8 +477,8 @@ def correlation(x, y):
 
 
 def flight():
-    """TrackMan's spin axis against the flight TrackMan measured: the ball's curve (its sideways distance from the
-    launch direction's line at landing) per unit of carry bends with the sine of the axis the ball flew with."""
+    """TrackMan's spin axis against its curve (the landing point's sideways distance from the launch direction's
+    line, per unit of carry), both read by TrackMan from one trajectory, and the rigid-ball tilt against the same."""
     rows = ["| club | strokes with a measured axis and curve | curve / carry against sin(TrackMan's axis): "
             "correlation | against sin(tilt of n x b): correlation |", "|---|---|---|---|"]
     for club in ["Driver", "7Iron", "PitchingWedge"]:

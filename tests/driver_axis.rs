@@ -151,12 +151,13 @@ fn correlation(x: &[f64], y: &[f64]) -> f64 {
     sxy / (sxx * syy).sqrt()
 }
 
-/// TrackMan's driver axis is the one its ball flew with: the curve TrackMan measured on the flight (sideways at
-/// landing from the launch direction's line) per unit of carry follows the sine of TrackMan's axis (correlation
-/// 0.989 on the 64 drivers) and not that of the rigid-ball tilt of TrackMan's face and ball (0.834); on the 7-iron
-/// the two agree (0.997 both). So the axis target measures the models' normal, not TrackMan's axis.
+/// TrackMan reads its axis from the ball's trajectory (its patent, US 10,962,635): its curve (sideways at landing
+/// from the launch direction's line, partly extrapolated) per unit of carry follows the sine of its axis
+/// (correlation 0.989 on the 64 drivers) and not that of the rigid-ball tilt of its face and ball (0.834); on the
+/// 7-iron the two agree (0.997 both). Consistency of TrackMan's own flight numbers, not an independent check: the
+/// face is what the rigid-ball relation does not reconcile with the flight's axis on the driver.
 #[test]
-fn trackmans_driver_axis_is_the_one_its_flight_shows() {
+fn trackmans_driver_axis_follows_its_flight_not_its_face() {
     for (club, axis_r, tilt_r) in [("Driver", 0.989, 0.834), ("7Iron", 0.997, 0.997)] {
         let g: Vec<Value> = strokes(club).into_iter().filter(|m| m["Curve"].is_number()).collect();
         let bend: Vec<f64> = g.iter().map(|m| f(m, "Curve") / f(m, "Carry")).collect();
