@@ -250,7 +250,12 @@ pub fn build_one(name: &str, club: &LoadedClub, options: &BuildOptions) -> Resul
 fn check_sections(entries: &[ModelEntry], club: &LoadedClub) -> Result<(), ImpactError> {
     for section in club.sections.names() {
         if !entries.iter().any(|m| m.sections.contains(&section)) {
-            let known: Vec<&str> = entries.iter().flat_map(|m| m.sections.iter().copied()).collect();
+            let mut known: Vec<&str> = Vec::new();
+            for s in entries.iter().flat_map(|m| m.sections.iter().copied()) {
+                if !known.contains(&s) {
+                    known.push(s);
+                }
+            }
             return Err(ImpactError::UnknownSection { section: section.to_string(), known: known.join(", ") });
         }
     }
@@ -337,5 +342,21 @@ mod tests {
             assert!(MODELS.iter().any(|m| m.sections.contains(&d.name)), "[{}] read by no model", d.name);
         }
         assert!(e.contains("nosuch") && e.contains("adjusted"), "{e}");
+    }
+
+    /// Regression: a section no model reads was refused with `continuous` twice among the known sections (the
+    /// ground model reads it too).
+    #[test]
+    fn an_unknown_section_names_each_known_section_once() {
+        let mut club = load_club("iron7").unwrap();
+        club.sections.insert("foo", toml::Table::new());
+        let e = build("standard", &club, &BuildOptions::default()).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(e.contains("[foo]"), "{e}");
+        let known = e.split("known sections: ").nth(1).unwrap_or_default().trim_end_matches(')');
+        let names: Vec<&str> = known.split(", ").collect();
+        for (i, n) in names.iter().enumerate() {
+            assert!(!names[..i].contains(n), "[{n}] named twice: {e}");
+        }
+        assert!(names.contains(&"continuous") && names.contains(&"shaft"), "{e}");
     }
 }
