@@ -30,8 +30,8 @@ pub struct CompareArgs {
     /// JSONL datasets, TrackMan CSV exports, TrackMan report JSON or MCAP recordings.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// The models to run, comma-separated (default for a dataset: standard,adjusted,slip,continuous; for a
-    /// recording: its recorded predictions).
+    /// The models to run, comma-separated (default: a recording's live comparisons, as recorded; else
+    /// standard,adjusted,slip,continuous).
     #[arg(long)]
     pub models: Option<String>,
     /// Club preset or club file (default: the recording's club, else driver).

@@ -29,7 +29,7 @@ pub struct FitArgs {
     /// Club preset or club file: the starting parameters (its section, else the seed's).
     #[arg(long, default_value = "driver")]
     pub club: String,
-    /// JSONL datasets or MCAP recordings with measured shots.
+    /// JSONL datasets, TrackMan CSV exports, TrackMan report JSON or MCAP recordings with measured shots.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// The parameters to fit, comma-separated (default: all of the model's).

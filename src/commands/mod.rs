@@ -91,7 +91,7 @@ pub enum Command {
     Synth(synth::SynthArgs),
     /// Write the JSON Schemas of every message type.
     Schemas(schemas::SchemasArgs),
-    /// The impact models of the registry (or, with --sections, the club-file sections they read).
+    /// The impact models of the registry (or the club-file sections they read, the club presets, the bare names).
     Models(models::ModelsArgs),
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
     #[cfg(feature = "daemon")]
@@ -266,6 +266,21 @@ mod tests {
         let mut missing = Vec::new();
         walk(&cmd, "impactd", &mut missing);
         assert!(missing.is_empty(), "arguments without help: {missing:?}");
+    }
+
+    /// Regression: `synth --help` showed the noise default as `0.5 0.2 0.3 150 150`, which `--noise` refuses (it
+    /// takes the five numbers comma-separated).
+    #[test]
+    fn synth_noise_default_is_shown_as_the_flag_takes_it() {
+        let mut cmd = Cli::command();
+        let help = cmd.find_subcommand_mut("synth").map(|c| c.render_long_help().to_string()).unwrap_or_default();
+        assert!(help.contains("[default: 0.5,0.2,0.3,150,150]"), "{help}");
+        assert!(!help.contains("0.5 0.2"), "{help}");
+        let parsed = Cli::try_parse_from(["impactd", "synth", "--noise", "0.5,0.2,0.3,150,150"]);
+        let default = impactd::offline::identify::synth::LmNoise::default().as_array().to_vec();
+        assert!(matches!(parsed, Ok(Cli { command: Command::Synth(ref a) }) if a.noise == default), "{parsed:?}");
+        let unset = Cli::try_parse_from(["impactd", "synth"]);
+        assert!(matches!(unset, Ok(Cli { command: Command::Synth(ref a) }) if a.noise == default), "{unset:?}");
     }
 
     #[test]

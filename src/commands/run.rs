@@ -33,7 +33,7 @@ pub struct BridgeArgs {
     /// whose configuration names none.
     #[arg(long = "open-connect", value_name = "HOST:PORT")]
     pub open_connect: Option<String>,
-    /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address.
+    /// Serve the Foxglove live view (Foxglove WebSocket protocol) on this address (default 127.0.0.1:8765).
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
     pub foxglove: Option<String>,
     /// Units of the lines printed and logged per shot (default: the configuration's `units`, imperial).

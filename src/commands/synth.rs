@@ -29,8 +29,15 @@ pub struct SynthArgs {
     /// Seed of the deliveries and the noise.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Launch-monitor noise: ball speed (mph), launch (deg), direction (deg), backspin (rpm), sidespin (rpm).
-    #[arg(long, value_delimiter = ',', default_values_t = LmNoise::default().as_array())]
+    /// Launch-monitor noise, comma-separated: ball speed (mph), launch (deg), direction (deg), backspin (rpm),
+    /// sidespin (rpm) [default: 0.5,0.2,0.3,150,150].
+    #[arg(
+        long,
+        value_name = "MPH,DEG,DEG,RPM,RPM",
+        value_delimiter = ',',
+        default_values_t = LmNoise::default().as_array(),
+        hide_default_value = true
+    )]
     pub noise: Vec<f64>,
     /// The JSONL file to write (standard output without it).
     #[arg(short, long)]
