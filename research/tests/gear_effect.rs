@@ -357,9 +357,9 @@ fn one_cycle_ball_gives_a_gear_effect() {
 /// the impulse models. The strike that gives the most ball speed therefore lies lower than the standard impulse
 /// model's (the seed finds the same, section 4.4: "the maximum carry distance occurs slightly below the center of
 /// the clubface"), by about the normal-impulse-weighted climb; the 7-iron's small loss at 17 mm toe measured
-/// from the face centre (docs/offcentre-iron.md) is mostly this shifted reference.
+/// from the face centre (research/offcentre-iron.md) is mostly this shifted reference.
 ///
-/// Measured here (85 mph, 32 deg loft, -4.5 deg attack, the delivery of docs/offcentre-iron.md): the centroid
+/// Measured here (85 mph, 32 deg loft, -4.5 deg attack, the delivery of research/offcentre-iron.md): the centroid
 /// climbs 6.5 mm over 0.47 ms; the head's pitch rate after impact is 276 rad/s against the standard model's 123;
 /// the fastest strike is 8 mm below centre (standard: 3 mm, the CG's projection on the face at -2.35 mm); 17 mm
 /// toe at that height loses 4.3 % of ball speed (2.0 % from the centre; the published 8-iron pair 5.7 %).

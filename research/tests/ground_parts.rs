@@ -1,4 +1,4 @@
-//! What the vertical and horizontal parts of the ground's force each do to a fat strike (docs/ground-parts.md):
+//! What the vertical and horizontal parts of the ground's force each do to a fat strike (research/ground-parts.md):
 //! the lean of the force is bounded by eq. 4.4-4.9 in closed form, and each part turns the ball its own way.
 
 #![allow(clippy::unwrap_used)]

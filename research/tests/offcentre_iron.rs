@@ -1,4 +1,4 @@
-//! The 7-iron's off-centre strikes against the published measurements of docs/offcentre-iron.md, through
+//! The 7-iron's off-centre strikes against the published measurements of research/offcentre-iron.md, through
 //! `impactd predict --club iron7`.
 
 #![allow(clippy::unwrap_used)]
@@ -41,7 +41,7 @@ const AT: [(f64, f64); 5] = [(0.0, 0.0), (17.0, 0.0), (17.0, -3.0), (-17.0, 0.0)
 
 /// Measured (Golf Australia 2019, GC Quad, 8-iron at 85 mph): a toe strike 17 mm from the middle, slightly low,
 /// lost 5.7 % of ball speed (106 -> 100 mph) and gained 6.0 % backspin (6,814 -> 7,224 rpm). One shot pair: the
-/// adjusted model's loss must be within 3 points of it (strike location and shot scatter, docs/offcentre-iron.md).
+/// adjusted model's loss must be within 3 points of it (strike location and shot scatter, research/offcentre-iron.md).
 #[test]
 fn the_adjusted_model_loses_ball_speed_at_the_toe_as_measured() {
     let r = predict("adjusted", &AT);

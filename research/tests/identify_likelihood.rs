@@ -1,12 +1,12 @@
 #![allow(clippy::unwrap_used)]
 //! `fit --objective likelihood` reaches the Cramér-Rao bound where eq. 3.13 does not.
 //!
-//! Datasets as docs/identify.md's: 500 driver shots from `impactd synth` (the adjusted model with Δm = 7.3 g and
+//! Datasets as research/identify-results.md's: 500 driver shots from `impactd synth` (the adjusted model with Δm = 7.3 g and
 //! a ball-CG shift of (0.31, -0.42, 0.17) mm, the noise of `LmNoise::default()`: 0.5 mph, 0.2 deg, 0.3 deg,
 //! 150 rpm, 150 rpm, independent normals), one per seed. The four parameters are fitted from the preset
 //! (Table 3.3) each way, and the scatter of the fitted Δm over the seeds (its standard deviation about its mean;
 //! the mean's offset from the truth is checked apart) is compared with the Cramér-Rao bound `identify::fisher` computes (0.17 g, every parameter
-//! unknown) and with eq. 3.13's sandwich scatter (0.31-0.35 g over seeds 11-14, docs/identify.md). Under normal
+//! unknown) and with eq. 3.13's sandwich scatter (0.31-0.35 g over seeds 11-14, research/identify-results.md). Under normal
 //! noise the maximum-likelihood estimate is asymptotically efficient (its covariance is the inverse Fisher
 //! information); eq. 3.13 is least-absolute (efficiency 2/π) and weights the fields by their measured means,
 //! not by their noise, so it cannot reach the bound.
@@ -85,7 +85,7 @@ fn likelihood_reaches_the_cramer_rao_bound_of_delta_mass_where_eq_3_13_does_not(
          given, {:.3} g ({:+.3}) estimated; Cramér-Rao bound {crb:.3} g",
         sd[0], mean[0], sd[1], mean[1], sd[2], mean[2]
     );
-    // The bound docs/identify.md quotes.
+    // The bound research/identify-results.md quotes.
     assert!((0.15..0.19).contains(&crb), "CRB {crb}");
     // The likelihood's scatter is the bound, within the sampling error of an SD over 40 seeds (1/sqrt(2 x 39) =
     // 11 % at one standard error; over 100 seeds it is 0.174 g against 0.172). Its mean error is small beside it
@@ -98,6 +98,6 @@ fn likelihood_reaches_the_cramer_rao_bound_of_delta_mass_where_eq_3_13_does_not(
         );
         assert!(mean[k].abs() < 0.1, "likelihood mean error {:+.3} g", mean[k]);
     }
-    // Eq. 3.13 scatters as its sandwich says (0.31-0.35 g, 1.8-2.1 times the bound; docs/identify.md).
+    // Eq. 3.13 scatters as its sandwich says (0.31-0.35 g, 1.8-2.1 times the bound; research/identify-results.md).
     assert!(sd[0] > 1.5 * crb && sd[0] > 1.3 * sd[1].max(sd[2]), "eq. 3.13 {:.3} g", sd[0]);
 }

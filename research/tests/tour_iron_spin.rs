@@ -59,10 +59,10 @@ fn rolling_is_bounded_by_the_balls_angular_momentum() {
 }
 
 /// With e_y = 0.20 and e = 0.78, both inside published ranges, and the shaft's share about the heel-toe axis the
-/// other iron presets carry (594 g cm2 for this head, scripts/shaft-share.py), the slip model (seed 3.1.2)
+/// other iron presets carry (594 g cm2 for this head, research/scripts/shaft-share.py), the slip model (seed 3.1.2)
 /// launches the tour 7-iron at 16.3 deg within 10 % of its spin and 3 % of its ball speed; with the seed's
 /// Table 3.4 values (e_y = 0.018, e = 0.83) it does not. (On the head alone, without the share: 6,360 rpm,
-/// 10.4 % short; docs/real-shots.md.)
+/// 10.4 % short; research/real-shots.md.)
 #[test]
 fn tangential_restitution_in_its_published_range_reaches_the_tour() {
     let share = "shaft_heel_toe_inertia_g_cm2 = 594.0\n";
@@ -80,7 +80,7 @@ fn tangential_restitution_in_its_published_range_reaches_the_tour() {
 /// and the ball's direction (launch angle and direction). A constant ratio on every shot says TrackMan's dynamic
 /// loft and face angle are computed from its ball data with a fixed relation, `w R = 2.84 |v_t|` (a ball of
 /// `I = 0.352 m R^2`, or its own impact model), not measured apart from them: a model with Table 3.1's
-/// `I = 0.4 m R^2` given TrackMan's loft and launch spins 12 % less whatever its friction law (docs/real-shots.md).
+/// `I = 0.4 m R^2` given TrackMan's loft and launch spins 12 % less whatever its friction law (research/real-shots.md).
 #[test]
 fn trackmans_dynamic_loft_and_spin_keep_a_fixed_ratio() {
     let mut ratios = Vec::new();

@@ -1,8 +1,8 @@
-//! The driver's spin axis against TrackMan (docs/driver-axis.md): the third player's four validation report
+//! The driver's spin axis against TrackMan (research/driver-axis.md): the third player's four validation report
 //! sessions of tests/data/trackman/ (2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14; the held-out ones are not
 //! read), driver strokes with an impact location and a measured spin axis, as `impactd compare --by-club
-//! --located` selects them (64). The numbers are the ones docs/driver-axis.md reports from
-//! `scripts/driver-axis.py`.
+//! --located` selects them (64). The numbers are the ones research/driver-axis.md reports from
+//! `research/scripts/driver-axis.py`.
 
 #![allow(clippy::unwrap_used)]
 

@@ -58,7 +58,7 @@ fn the_centred_driver_draws_from_its_cg_and_the_ball_cg_shift() {
         "centred sidespin: Table 3.1 + 3.3 {all:.1} rpm; none {none:.2}; CG 1 mm heel of the face centre {cg_only:.1}; \
          ball CG 0.068 mm heelward {shift_only:.1}; products of inertia {products_only:.1}"
     );
-    // The seed's club as the presets have it (docs/models-notes.md): -144 rpm, a draw.
+    // The seed's club as the presets have it (research/models-notes.md): -144 rpm, a draw.
     assert!((all + 144.0).abs() < 3.0, "{all}");
     // Symmetric heel to toe: no sidespin, no launch direction.
     assert!(none.abs() < 0.5 && dir.abs() < 1e-3, "{none} rpm, {dir} deg");

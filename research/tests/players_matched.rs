@@ -1,4 +1,4 @@
-//! Two players' irons at matched deliveries (docs/real-shots.md, "Two players' irons at matched deliveries"): the
+//! Two players' irons at matched deliveries (research/real-shots.md, "Two players' irons at matched deliveries"): the
 //! first player's validation session (tests/data/trackman/validation-8i-5i.csv) and the third player's validation
 //! report sessions (2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14), every located 4- to 9-iron stroke through
 //! `impactd predict --model adjusted` on its preset. A first-player stroke a and a third-player stroke b are
@@ -10,6 +10,7 @@
 
 #![allow(clippy::unwrap_used)]
 
+#[path = "../../tests/predict/mod.rs"]
 mod predict;
 
 use impactd::pairing::DatasetLine;

@@ -8,7 +8,7 @@
 //!   course material, which ships those tables.
 //! - Nathan's golf trajectory model with the coefficients libgolf publishes for it (`reference::nathan`).
 //!
-//! Both fly the same ball in the same air as the model. What they show (`docs/flight.md`, "Is the table within
+//! Both fly the same ball in the same air as the model. What they show (`research/flight-fit.md`, "Is the table within
 //! physical reach?"): both carry the slower drives of TrackMan's optimal-driver chart within 4 %, and both leave
 //! the table's driver-to-3-wood gap (275 − 243 = 32 yd) 10-14 yd short, as the fitted model leaves it 11.2 yd
 //! short: the conflict between those two rows is in the table's launches, not in the fitted model's shape. Neither
@@ -132,7 +132,7 @@ fn the_wind_tunnel_ball_misses_the_tour_driver() {
 }
 
 /// The driver-to-3-wood carry gap (the table: 275 − 243 = 32 yd) is short by more in the wind-tunnel ball
-/// (about 14 yd) than in the best model inside the measured ranges fitted in yards (11.2 yd, `docs/flight.md`),
+/// (about 14 yd) than in the best model inside the measured ranges fitted in yards (11.2 yd, `research/flight-fit.md`),
 /// whatever the air density between a warm day and the standard atmosphere and whatever the spin decay from none
 /// to twice Smits and Smith's. The shipped fit, scaled in percent of carry, leaves 13.5 yd.
 #[test]
