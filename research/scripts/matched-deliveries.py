@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """The irons of two players at matched deliveries, and the ball-speed error against impact height per player.
 
-Usage: scripts/matched-deliveries.py BIN DATA OUT SPLIT
+Usage: research/scripts/matched-deliveries.py BIN DATA OUT SPLIT
   BIN    the impactd binary
-  DATA   tests/data/trackman
+  DATA   tests/data/trackman (validation) or research/data/trackman (heldout)
   OUT    a directory: writes matched-SPLIT.json and height-errors-SPLIT.json (markdown rows for
-         scripts/real-shots-docs.sh)
+         research/scripts/real-shots-docs.sh)
   SPLIT  validation (the first player's session and the third player's validation report sessions) or heldout
          (the second player's session and the third player's held-out report sessions)
 

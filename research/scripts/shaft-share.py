@@ -7,7 +7,7 @@ shaft (Table 4.1, beam elements, chapter 4); with --soil none it is the same str
 inertia that, added to the free head's about its heel-toe axis, makes the continuous model lose as much ball
 speed from the face centre to 10 mm above it as the head on the seed's shaft does (bisection on the drop).
 
-Usage: scripts/shaft-share.py [PRESET...]   (default: iron4-iron9 but the seed's iron7, and the four wedges)
+Usage: research/scripts/shaft-share.py [PRESET...]   (default: iron4-iron9 but the seed's iron7, and the four wedges)
 """
 import json
 import re
@@ -16,8 +16,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-BIN = Path(__file__).resolve().parent.parent / "target" / "release" / "impactd"
-PRESETS = Path(__file__).resolve().parent.parent / "clubs" / "presets"
+BIN = Path(__file__).resolve().parents[2] / "target" / "release" / "impactd"
+PRESETS = Path(__file__).resolve().parents[2] / "clubs" / "presets"
 
 
 def speeds(club, model, extra=()):

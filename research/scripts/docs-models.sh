@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates the comparison table of docs/models.md from the binary's own JSON output: the same deliveries through
+# Regenerates the comparison table of research/maw-arakawa.md from the binary's own JSON output: the same deliveries through
 # every model (`impactd predict --json lines, --trace for the models resolved in time`) and the time per shot from
-# `impactd bench --json`. Usage: scripts/docs-models.sh [path/to/impactd] > table.md
+# `impactd bench --json`. Usage: research/scripts/docs-models.sh [path/to/impactd] > table.md
 set -euo pipefail
 BIN=${1:-target/release/impactd}
 python3 - "$BIN" <<'PY'

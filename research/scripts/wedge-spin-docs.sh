@@ -1,24 +1,24 @@
 #!/usr/bin/env bash
-# Regenerates the tables of docs/wedge-spin.md (the validation sessions only: validation-8i-5i.csv and the third
+# Regenerates the tables of research/wedge-spin.md (the validation sessions only: validation-8i-5i.csv and the third
 # player's report-2025-03-13, -07-11, -10-30 and 2026-02-14; the held-out files are not read):
 #   region anchor         the seed's measured 7-iron mean (tests/data/seed-tables.toml [experiment]) reproduced by
 #                         the slip model with Table 3.4 on the seed's 7-iron: its attack, loft and spin loft
-#   region decomposition  every model's spin error split by scripts/spin-decomposition.py (the presets as they are)
+#   region decomposition  every model's spin error split by research/scripts/spin-decomposition.py (the presets as they are)
 #   region slip           the slip model with Table 3.4's constants against the presets' obliquity law, per club
 #   region sensitivity    the law's start and grip value varied, and the full grip read at 50 deg from the normal
-# Usage: scripts/wedge-spin-docs.sh   (a minute on 2 cores)
+# Usage: research/scripts/wedge-spin-docs.sh   (a minute on 2 cores)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 cargo build --release --quiet
 BIN=target/release/impactd
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 
-python3 scripts/spin-decomposition.py --json >"$OUT/after.json"
-python3 scripts/spin-decomposition.py --json --models slip --oblique none >"$OUT/before.json"
+python3 research/scripts/spin-decomposition.py --json >"$OUT/after.json"
+python3 research/scripts/spin-decomposition.py --json --models slip --oblique none >"$OUT/before.json"
 for v in 30,40,0.25 35,40,0.25 32.8,40,0.2 32.8,40,0.3 32.8,50,0.25; do
-    python3 scripts/spin-decomposition.py --json --models slip --oblique "$v" >"$OUT/sens-$v.json"
+    python3 research/scripts/spin-decomposition.py --json --models slip --oblique "$v" >"$OUT/sens-$v.json"
 done
 
 python3 - "$BIN" "$OUT" <<'PY'
@@ -113,6 +113,6 @@ for v, label in variants:
     sensitivity.append(f"| {label} | " + " | ".join(
         f"{by[k]['spin_mae_rpm']:.0f} ({by[k]['launch_mae_deg']:.2f})" for k in clubs) + " |")
 
-docs_regions.replace("docs/wedge-spin.md", {"anchor": anchor, "decomposition": decomposition, "slip": table,
+docs_regions.replace("research/wedge-spin.md", {"anchor": anchor, "decomposition": decomposition, "slip": table,
                                              "sensitivity": sensitivity})
 PY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the tables of docs/driver-axis.md: the driver's spin axis against the third player's VALIDATION
+"""Regenerates the tables of research/driver-axis.md: the driver's spin axis against the third player's VALIDATION
 report sessions (tests/data/trackman/report-*.json: 2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14; the held-out
 sessions are not read), each stroke selected as `impactd compare --by-club --located` selects it (a driver with
 club data and an impact location; spin and axis only where `ReducedAccuracy` names neither), each delivery read
@@ -20,7 +20,7 @@ one way or another and run through `impactd predict`:
   region across     the same turn fitted on three sessions and applied to the fourth
 
 The contact-point reading (`compare --by-club`'s) is `examples/face_centre_reading`. Usage, from the repository:
-`scripts/driver-axis.py` (builds impactd and the example; a few minutes on 2 cores).
+`research/scripts/driver-axis.py` (builds impactd and the example; a few minutes on 2 cores).
 """
 import json
 import math
@@ -29,12 +29,12 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from docs_regions import replace  # noqa: E402
 
 BIN = "target/release/impactd"
 READ = "target/release/examples/face_centre_reading"
-DOC = "docs/driver-axis.md"
+DOC = "research/driver-axis.md"
 DATA = "tests/data/trackman"
 VALIDATION = ["2025-03-13-pw-driver-5w-7i", "2025-07-11-driver-4i-5h-pw", "2025-10-30-5w-driver-6i-9i",
               "2026-02-14-driver-7i"]
@@ -45,7 +45,7 @@ M_BALL, R_BALL = 0.0459, 0.0213
 CG_TO_FACE_M = (0.0408, 0.0114, 0.001)
 INERTIA_G_CM2 = ((2843.0, -733.0, 530.2), (-733.0, 5679.0, 0.5), (530.2, 0.5, 4085.0))
 LOFT_DEG = 9.8
-# The contact lasts about 0.45 ms (docs/real-shots.md: 0.4-0.5 ms); under a half-sine force the head has turned
+# The contact lasts about 0.45 ms (research/real-shots.md: 0.4-0.5 ms); under a half-sine force the head has turned
 # 0.0908 T times its final rate change by maximum compression (T/2) and, weighted by the force, T/8 on average.
 CONTACT_S = 0.45e-3
 TMP = tempfile.mkdtemp()

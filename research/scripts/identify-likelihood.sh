@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Writes docs/identify.md's region `likelihood`: the scatter of the fitted delta mass over 40 synthetic driver
+# Writes research/identify-results.md's region `likelihood`: the scatter of the fitted delta mass over 40 synthetic driver
 # datasets (`impactd synth`, seeds 11-50, the truth and noise of scripts/docs-identify.sh), fitted by eq. 3.13
 # and by `fit --objective likelihood` (noise given, and estimated), against the Cramér-Rao bound `fit` reports.
-# Run by scripts/docs-identify.sh; alone: scripts/docs-identify-likelihood.sh (about a minute on 2 cores).
+# Run by scripts/docs-identify.sh; alone: research/scripts/identify-likelihood.sh (about a minute on 2 cores).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ -x target/release/impactd ] || cargo build --release --quiet
 BIN=target/release/impactd
 OUT="$(mktemp -d)"
@@ -48,5 +48,5 @@ for label, kind, predicted in rows:
 lines += ["", f"`impactd synth --model adjusted --club driver` (Δm = 7.3 g, the issue's noise) and `impactd fit --folds 0` "
           f"on 500 driver shots each, seeds 11-50; the Cramér-Rao bound is the mean of `fit`'s ({crb:.3f} g, every "
           f"parameter unknown). The SD of an SD over 40 seeds is about 11 %."]
-replace("docs/identify.md", {"likelihood": lines})
+replace("research/identify-results.md", {"likelihood": lines})
 PY

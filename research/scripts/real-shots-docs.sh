@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the tables of docs/real-shots.md from `impactd compare --by-club --json` on the real TrackMan
+# Regenerates the tables of research/real-shots.md from `impactd compare --by-club --json` on the real TrackMan
 # sessions of tests/data/trackman/ and from `impactd predict --json` lines:
 #   region validation   the validation session, shots with an impact location, every model
 #   region validation-all  the same session, every shot with club data (unlocated ones at the face centre)
@@ -24,17 +24,19 @@
 #   region report-validation  the third player's TrackMan report JSON sessions chosen for validation
 #                       (2025-03-13, 2025-07-11, 2025-10-30, 2026-02-14), every model, one table per session
 #   region report-heldout  the same player's held-out report sessions (2025-06-13, 2025-08-05, 2026-02-07)
-#   region matched, height-errors  scripts/matched-deliveries.py on the validation sessions: the first and third
+#   region matched, height-errors  research/scripts/matched-deliveries.py on the validation sessions: the first and third
 #                       players' irons at matched deliveries, and the adjusted model's ball-speed error per player
 #                       and club against impact height; matched-heldout, height-errors-heldout the same on the
 #                       held-out sessions (the second and third players)
-# Usage: scripts/real-shots-docs.sh   (seconds on 2 cores)
+# Usage: research/scripts/real-shots-docs.sh   (seconds on 2 cores)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 cargo build --release --quiet
 BIN=target/release/impactd
 DATA=tests/data/trackman
+# The held-out sessions, which only the research reads.
+HELDOUT=research/data/trackman
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
@@ -43,26 +45,29 @@ MODELS=standard,adjusted,slip,continuous,maw,arakawa,ground
     2>/dev/null >"$OUT/validation.json"
 "$BIN" compare --by-club --json --soil none --models "$MODELS" "$DATA/validation-8i-5i.csv" \
     2>/dev/null >"$OUT/validation-all.json"
-"$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/heldout-7i-pw-driver.csv" \
+"$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$HELDOUT/heldout-7i-pw-driver.csv" \
     2>/dev/null >"$OUT/heldout.json"
 "$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
     "$DATA/validation-8i-5i.csv" 2>/dev/null >"$OUT/spin-relation.json"
 "$BIN" compare --by-club --located --json --soil none --spin-relation --models "$MODELS" \
-    "$DATA/heldout-7i-pw-driver.csv" 2>/dev/null >"$OUT/heldout-relation.json"
+    "$HELDOUT/heldout-7i-pw-driver.csv" 2>/dev/null >"$OUT/heldout-relation.json"
 
 # The third player's report JSON sessions: the split was fixed by date order before any comparison (1st, 3rd, 5th
 # and 7th for validation; the 2nd, 4th and 6th held out).
 REPORT_VALIDATION="2025-03-13-pw-driver-5w-7i 2025-07-11-driver-4i-5h-pw 2025-10-30-5w-driver-6i-9i
     2026-02-14-driver-7i"
 REPORT_HELDOUT="2025-06-13-driver-7i-9i 2025-08-05-5w-driver-7i-pw 2026-02-07-driver-7i"
-for s in $REPORT_VALIDATION $REPORT_HELDOUT; do
+for s in $REPORT_VALIDATION; do
     "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$DATA/report-$s.json" \
         2>/dev/null >"$OUT/report-$s.json"
 done
-echo "$REPORT_VALIDATION" >"$OUT/report-validation.list"
-for split in validation heldout; do
-    python3 scripts/matched-deliveries.py "$BIN" "$DATA" "$OUT" "$split"
+for s in $REPORT_HELDOUT; do
+    "$BIN" compare --by-club --located --json --soil none --models "$MODELS" "$HELDOUT/report-$s.json" \
+        2>/dev/null >"$OUT/report-$s.json"
 done
+echo "$REPORT_VALIDATION" >"$OUT/report-validation.list"
+python3 research/scripts/matched-deliveries.py "$BIN" "$DATA" "$OUT" validation
+python3 research/scripts/matched-deliveries.py "$BIN" "$HELDOUT" "$OUT" heldout
 echo "$REPORT_HELDOUT" >"$OUT/report-heldout.list"
 
 # The 5-iron preset without the shaft's share: the head alone, as Table 3.1's 7-iron is.
@@ -376,8 +381,8 @@ def ratio(spin_rpm, speed_mps, loft, face, launch, direction):
     n, b = unit(loft, face), unit(launch, direction)
     angle = math.acos(max(-1.0, min(1.0, sum(p * q for p, q in zip(n, b)))))
     return spin_rpm / (2.5 * speed_mps * math.sin(angle) / 0.0213 * 60 / (2 * math.pi))
-for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
-    lines = open(f"tests/data/trackman/{name}", encoding="utf-8-sig").read().splitlines()
+for name, folder in [("validation-8i-5i.csv", "tests/data/trackman"), ("heldout-7i-pw-driver.csv", "research/data/trackman")]:
+    lines = open(f"{folder}/{name}", encoding="utf-8-sig").read().splitlines()
     rows = list(csv.reader(lines[1:]))
     head, by_club = rows[0], {}
     for r in rows[2:]:
@@ -392,7 +397,8 @@ for name in ["validation-8i-5i.csv", "heldout-7i-pw-driver.csv"]:
 # The third player's report sessions (every club, with a preset or not): TrackMan's JSON in SI units, spin in rpm;
 # strokes whose spin rate or axis TrackMan marks ReducedAccuracy left out.
 import glob, os
-for path in sorted(glob.glob("tests/data/trackman/report-*.json")):
+for path in sorted(glob.glob("tests/data/trackman/report-*.json") + glob.glob("research/data/trackman/report-*.json"),
+                   key=os.path.basename):
     by_club = {}
     for g in json.load(open(path, encoding="utf-8"))["StrokeGroups"]:
         for st in g["Strokes"]:
@@ -485,7 +491,7 @@ for v in json.load(open(f"{out}/variants.json")):
     c8, c5 = v["cells"]["8 Iron"], v["cells"]["5 Iron"]
     variants.append(f"| {v['label']} | {c8[0]:.2f} / {c8[1]:+.2f} | {c5[0]:.2f} / {c5[1]:+.2f} | {c8[2]:.0f} |")
 
-docs_regions.replace("docs/real-shots.md", {
+docs_regions.replace("research/real-shots.md", {
     "report-validation": report_tables("validation"),
     "report-heldout": report_tables("heldout"),
     "variants": variants,

@@ -1,13 +1,12 @@
 #!/usr/bin/env python3
-"""Regenerates the off-centre tables of docs/models-notes.md (regions `gear-driver` and `gear-iron`, between
+"""Regenerates the off-centre tables of research/models-notes.md (regions `gear-driver` and `gear-iron`, between
 `<!-- generated: NAME -->` and `<!-- end -->`) from `impactd predict [--flight]` for the impulse-momentum and
 continuous models, the continuous one with Table 3.5's ball and with the one-cycle ball: the one-cycle club files
 of clubs/, and the same files with Table 3.5's core-cover spring and damping (written to a temporary directory,
 so the rows say which ball they use whichever the presets default to).
 
-Usage: scripts/gear-effect.py [path/to/impactd]   (default target/release/impactd; run from the repository)
+Usage: research/scripts/gear-effect.py [path/to/impactd]   (default target/release/impactd; run from the repository)
 """
-from docs_regions import replace
 import json
 import os
 import re
@@ -16,13 +15,16 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from docs_regions import replace  # noqa: E402
+
 BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/impactd"
-DOC = "docs/models-notes.md"
+DOC = "research/models-notes.md"
 # The driver delivery of the gear-effect question: 100 mph, level, square, 10.5 deg of dynamic loft.
 DRIVER = {"club_speed_mph": 100.0, "attack_angle_deg": 0.0, "club_path_deg": 0.0, "face_angle_deg": 0.0,
           "dynamic_loft_deg": 10.5}
 DRIVER_H_MM = [-20.0, 0.0, 20.0, 30.0]
-# The 7-iron delivery of docs/offcentre-iron.md (85 mph, -4.5 deg attack, 32 deg dynamic loft).
+# The 7-iron delivery of research/offcentre-iron.md (85 mph, -4.5 deg attack, 32 deg dynamic loft).
 IRON = {"club_speed_mph": 85.0, "attack_angle_deg": -4.5, "dynamic_loft_deg": 32.0}
 IRON_V_MM = [-12.0, -10.0, -8.0, -6.0, -4.0, -2.0, 0.0, 2.0, 4.0]
 # Table 3.5's values that the one-cycle club files change (seed Table 3.5, as TwoLayerParams::DRIVER and IRON7).

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Regenerates the table of docs/offcentre-iron.md (between `<!-- generated: offcentre -->` and `<!-- end -->`)
+"""Regenerates the table of research/offcentre-iron.md (between `<!-- generated: offcentre -->` and `<!-- end -->`)
 from `impactd predict --club iron7 --model M` for the adjusted and continuous models.
 
-Usage: scripts/offcentre-iron.py [path/to/impactd]   (default target/release/impactd; run from the repository)
+Usage: research/scripts/offcentre-iron.py [path/to/impactd]   (default target/release/impactd; run from the repository)
 """
 import json
 import re
@@ -10,7 +10,7 @@ import subprocess
 import sys
 
 BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/impactd"
-DOC = "docs/offcentre-iron.md"
+DOC = "research/offcentre-iron.md"
 # The measured shot pair's delivery: 85 mph club speed (Golf Australia 2019); attack -4.5 deg (TrackMan's tour
 # 8-iron average, reference/trackman-pga-tour-averages.csv); dynamic loft 32 deg, which gives the measured
 # centre strike's ball speed and backspin within 2 % and 4 % with the adjusted model.

@@ -16,7 +16,7 @@ the angle between the face normal and the ball's direction):
 The sum of the four is the model's spin bias exactly. Located strokes with measured spin, each club on its
 preset, the deliveries `compare --by-club` gives an iron (TrackMan's club data and impact location as they are).
 
-Usage: scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [--append 'TOML']
+Usage: research/scripts/spin-decomposition.py [--json] [--models standard,adjusted,...] [--append 'TOML']
                                     [--oblique FROM,FULL,E_T | --oblique none] [-- predict args]
   --append   lines added to a copy of every preset (`'[slip]\\ne_y = 0.1\\ne_z = 0.0'`)
   --oblique  the presets' obliquity law of the slip model replaced (`none`: Table 3.4's constants alone)
@@ -34,7 +34,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 BIN = os.path.join(ROOT, "target", "release", "impactd")
 DATA = os.path.join(ROOT, "tests", "data", "trackman")
 R_M = 0.0213  # Table 3.1's ball radius
