@@ -1,15 +1,15 @@
 #![allow(clippy::unwrap_used)]
 //! `fit --objective likelihood` reaches the Cramér-Rao bound where eq. 3.13 does not.
 //!
-//! Datasets as research/identify-results.md's: 500 driver shots from `impactd synth` (the adjusted model with Δm = 7.3 g and
-//! a ball-CG shift of (0.31, -0.42, 0.17) mm, the noise of `LmNoise::default()`: 0.5 mph, 0.2 deg, 0.3 deg,
+//! Datasets as research/identify-results.md's: 500 driver shots from `impactd synth` (the adjusted model with
+//! Δm = 7.3 g and a ball-CG shift of (0.31, -0.42, 0.17) mm, the noise of `LmNoise::default()`: 0.5 mph, 0.2 deg, 0.3 deg,
 //! 150 rpm, 150 rpm, independent normals), one per seed. The four parameters are fitted from the preset
 //! (Table 3.3) each way, and the scatter of the fitted Δm over the seeds (its standard deviation about its mean;
-//! the mean's offset from the truth is checked apart) is compared with the Cramér-Rao bound `identify::fisher` computes (0.17 g, every parameter
-//! unknown) and with eq. 3.13's sandwich scatter (0.31-0.35 g over seeds 11-14, research/identify-results.md). Under normal
-//! noise the maximum-likelihood estimate is asymptotically efficient (its covariance is the inverse Fisher
-//! information); eq. 3.13 is least-absolute (efficiency 2/π) and weights the fields by their measured means,
-//! not by their noise, so it cannot reach the bound.
+//! the mean's offset from the truth is checked apart) is compared with the Cramér-Rao bound `identify::fisher` computes
+//! (0.17 g, every parameter unknown) and with eq. 3.13's sandwich scatter (0.31-0.35 g over seeds 11-14,
+//! research/identify-results.md). Under normal noise the maximum-likelihood estimate is asymptotically efficient (its
+//! covariance is the inverse Fisher information); eq. 3.13 is least-absolute (efficiency 2/π) and weights the fields by
+//! their measured means, not by their noise, so it cannot reach the bound.
 
 use impactd::equipment::{ClubSpec, LoadedClub, ModelSections};
 use impactd::impact::Equipment;

@@ -90,7 +90,8 @@ fn launch_spin_and_axis_on_the_validation_session() {
 
 /// The share is what the seed's shaft does: on the 5-iron preset, the continuous model's free head loses as
 /// much ball speed from the face centre to 10 mm above it as the same head on the Table 4.1 shaft (the ground
-/// model on a tee) within 0.3 mph (8.35 mph at 85 mph), where the head alone loses 16.5 (research/scripts/shaft-share.py).
+/// model on a tee) within 0.3 mph (8.35 mph at 85 mph), where the head alone loses 16.5
+/// (research/scripts/shaft-share.py).
 #[test]
 fn the_shaft_share_reproduces_the_flexible_shaft() {
     let drop = |model: &str, extra: &[&str]| {
@@ -306,9 +307,9 @@ fn a_driver_rows_loft_and_face_are_the_contact_points() {
 }
 
 /// `compare --by-club --spin-relation`: TrackMan's loft and face read through its spin relation (1.136, the ratio
-/// `research/tests/tour_iron_spin.rs` measures on every measured shot) give the seed's ball TrackMan's spin at TrackMan's
-/// launch. On the validation 8-iron the default model's spin then meets the 600 rpm (497 rpm MAE; 633
-/// without) and its launch bias vanishes (-0.04 deg; -0.60 without), for 0.6 mph more ball speed error (3.75;
+/// `research/tests/tour_iron_spin.rs` measures on every measured shot) give the seed's ball TrackMan's spin at
+/// TrackMan's launch. On the validation 8-iron the default model's spin then meets the 600 rpm (497 rpm MAE;
+/// 633 without) and its launch bias vanishes (-0.04 deg; -0.60 without), for 0.6 mph more ball speed error (3.75;
 /// 3.14 without): the bounds are research/real-shots.md's numbers with a margin of about a tenth.
 #[test]
 fn trackmans_loft_through_its_relation_trades_speed_for_spin() {

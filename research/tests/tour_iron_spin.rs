@@ -84,14 +84,19 @@ fn tangential_restitution_in_its_published_range_reaches_the_tour() {
 #[test]
 fn trackmans_dynamic_loft_and_spin_keep_a_fixed_ratio() {
     let mut ratios = Vec::new();
-    let dir = format!("{}/tests/data/trackman", env!("CARGO_MANIFEST_DIR"));
-    let mut files: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|f| f.ends_with(".csv") && !f.contains(".converted") || f.ends_with(".json"))
+    // The validation sessions and the held-out ones (TrackMan's relation, not a model's: no model is fitted here).
+    let mut files: Vec<(String, String)> = ["tests/data/trackman", "research/data/trackman"]
+        .iter()
+        .flat_map(|d| {
+            let dir = format!("{}/{d}", env!("CARGO_MANIFEST_DIR"));
+            std::fs::read_dir(&dir)
+                .unwrap()
+                .map(move |e| (e.unwrap().file_name().to_string_lossy().into_owned(), dir.clone()))
+        })
+        .filter(|(f, _)| f.ends_with(".csv") && !f.contains(".converted") || f.ends_with(".json"))
         .collect();
     files.sort();
-    for file in &files {
+    for (file, dir) in &files {
         let text = std::fs::read_to_string(format!("{dir}/{file}")).unwrap();
         let (rows, _) = if file.ends_with(".json") {
             impactd::session::trackman_report::read_labelled(&text).unwrap()

@@ -1,11 +1,12 @@
-//! Iron and wedge spin against TrackMan's validation sessions (research/wedge-spin.md, research/scripts/spin-decomposition.py).
+//! Iron and wedge spin against TrackMan's validation sessions (research/wedge-spin.md,
+//! research/scripts/spin-decomposition.py).
 //!
 //! A ball at rest struck at one point gains angular momentum about its centre only from the impulse, `I w = r_b x P`
 //! (seed eq. 3.5 with `w_i = 0`): with the contact on the face normal through its centre, `|w| = m R |v_t| / I`,
 //! `v_t` the ball's velocity across the normal (Table 3.1's ball: 45.9 g, 21.3 mm, 83.36 g cm2). Each model's spin
 //! error then splits into TrackMan's relation (its spin is 1.136 times that closed form at its own launch,
-//! research/tests/tour_iron_spin.rs), the model's launch and ball speed through the closed form, and a rest the closed form
-//! does not hold for. These tests pin what the decomposition found: no rest for the rolling and slip models (the
+//! research/tests/tour_iron_spin.rs), the model's launch and ball speed through the closed form, and a rest the closed
+//! form does not hold for. These tests pin what the decomposition found: no rest for the rolling and slip models (the
 //! contact normal is TrackMan's, lie and face angle and an off-centre strike included), the adjusted model's rest
 //! is Table 3.3's ball-CG shift, and the slip model's obliquity law (Cross's grip, impact/impulse/oblique.rs) is
 //! eq. 3.11 at the strike's obliquity and brings the validation wedges' spin within 600 rpm.
