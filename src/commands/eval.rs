@@ -138,6 +138,30 @@ fn extrapolation(args: &ExtrapolationArgs) -> Result<ExitCode> {
         }
         writeln!(out)?;
     }
+    for e in report.estimators.iter().filter(|e| !e.coverage.is_empty()) {
+        writeln!(
+            out,
+            "{}: the reported uncertainty against the truth, {} shots ({} without an uncertainty)",
+            e.name, e.coverage[0].shots, e.without_uncertainty
+        )?;
+        writeln!(
+            out,
+            "  {:<22} {:>9} {:>9} {:>11} {:>11} {:>7}",
+            "field", "<=1 sigma", "<=2 sigma", "rms sigma", "rms error", "rms z"
+        )?;
+        for c in &e.coverage {
+            writeln!(
+                out,
+                "  {:<22} {:>8.1}% {:>8.1}% {:>11.4} {:>11.4} {:>7.2}",
+                c.field,
+                100.0 * c.within_1_sigma,
+                100.0 * c.within_2_sigma,
+                c.rms_sigma,
+                c.rms_error,
+                c.rms_z
+            )?;
+        }
+    }
     for e in &report.estimators {
         if !e.refused.is_empty() {
             writeln!(out, "{}: {} estimated, refused {:?}", e.name, e.shots, e.refused)?;

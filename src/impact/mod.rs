@@ -16,6 +16,7 @@ pub mod registry;
 pub mod report;
 pub mod sanity;
 pub mod tour;
+pub mod uncertainty;
 
 pub use continuous::ContinuousModel;
 pub use delivery::{Delivery, DeliveryMetrics, SwingArc};

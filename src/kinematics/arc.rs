@@ -38,6 +38,12 @@ pub struct ArcFit {
     z: [Real; 2],
     /// RMS distance of the frames from the fitted path (m).
     pub residual_rms_m: Real,
+    /// The in-plane fit's `JᵀJ` at the solution, for the parameters' covariance; and the moments of the departure
+    /// from the plane's two stages: the plane through the frames' centroid (its tilt, `β₁ x + β₂ y` in the plane's
+    /// coordinates), then `z₀ + z₁ τ`: `Σ (x, y)(x, y)ᵀ`, `Σ (1, τ)(1, τ)ᵀ` and `Σ (1, τ)(x, y)ᵀ`.
+    jtj: M9,
+    plane_moments: [crate::math::SMatrix<2, 2>; 3],
+    frames: usize,
 }
 
 #[inline]
@@ -286,6 +292,15 @@ impl ArcFit {
             p,
             z: [zc[0], zc[1]],
             residual_rms_m,
+            jtj,
+            plane_moments: taus.iter().zip(&xy).fold(
+                [crate::math::SMatrix::<2, 2>::zeros(); 3],
+                |m, (&tau, &(x, y))| {
+                    let (q, t) = (crate::math::SVector::<2>::new(x, y), crate::math::SVector::<2>::new(1.0, tau));
+                    [m[0] + q * q.transpose(), m[1] + t * t.transpose(), m[2] + t * q.transpose()]
+                },
+            ),
+            frames: n_pts,
         })
     }
 
@@ -298,6 +313,64 @@ impl ArcFit {
             + self.e1 * (self.p[0] + r * c)
             + self.e2 * (self.p[1] + r * s)
             + self.n * (self.z[0] + self.z[1] * tau)
+    }
+
+    /// The covariance of the fitted position and velocity at `t_s` (m, m/s; a 6x6 matrix, position first), from
+    /// the parameters' covariance `σ² (JᵀJ)⁻¹` per unit noise variance (the caller scales it by the frames'
+    /// noise); `None` for a singular fit. The departure from the plane is counted with the plane's tilt, as the
+    /// fit makes it in two stages (the plane, then `z₀ + z₁ τ` of what it leaves: block-diagonal, `(XᵀX)⁻¹` for the
+    /// tilt and `(TᵀT)⁻¹ Tᵀ(I − P_X)T (TᵀT)⁻¹` for the line): the frames span a metre or more of the plane, so a tilt
+    /// within the noise moves the contact across the face by a tenth of a millimetre.
+    pub fn position_velocity_covariance(&self, t_s: Real) -> Option<crate::math::SMatrix<6, 6>> {
+        let tau = (t_s - self.t_ref_s) / self.scale_s;
+        let (r, phi, dr, dphi) = in_plane(&self.p, tau);
+        let (s, c) = phi.sin_cos();
+        let u_r = self.e1 * c + self.e2 * s;
+        let u_t = self.e2 * c - self.e1 * s;
+        let t = self.scale_s;
+        // Rows: position (3) and velocity (3); columns: the nine in-plane coefficients, then z₀, z₁, β₁, β₂.
+        let mut g = crate::math::SMatrix::<6, 13>::zeros();
+        let mut set = |col: usize, dp: Vector3, dv: Vector3| {
+            for i in 0..3 {
+                g[(i, col)] = dp[i];
+                g[(3 + i, col)] = dv[i];
+            }
+        };
+        set(0, self.e1, Vector3::zeros());
+        set(1, self.e2, Vector3::zeros());
+        let pow = |k: usize| tau.powi(k as i32);
+        let dpow = |k: usize| if k == 0 { 0.0 } else { k as Real * tau.powi(k as i32 - 1) };
+        for k in 0..3 {
+            set(2 + k, u_r * pow(k), (u_r * dpow(k) + u_t * (pow(k) * dphi)) / t);
+        }
+        for k in 0..4 {
+            let dv = u_t * (dr * pow(k) + r * dpow(k)) - u_r * (r * dphi * pow(k));
+            set(5 + k, u_t * (r * pow(k)), dv / t);
+        }
+        // The in-plane place and velocity, for the plane's tilt.
+        let (x, y) = (self.p[0] + r * c, self.p[1] + r * s);
+        let (vx, vy) = ((dr * c - r * s * dphi) / t, (dr * s + r * c * dphi) / t);
+        set(9, self.n, Vector3::zeros());
+        set(10, self.n * tau, self.n / t);
+        set(11, self.n * x, self.n * vx);
+        set(12, self.n * y, self.n * vy);
+        let in_plane_cov = self.jtj.cholesky()?.inverse();
+        let [sxx, stt, stx] = self.plane_moments;
+        let (sxx_inv, stt_inv) = (sxx.try_inverse()?, stt.try_inverse()?);
+        let line_cov = stt_inv * (stt - stx * sxx_inv * stx.transpose()) * stt_inv;
+        let mut cov = crate::math::SMatrix::<13, 13>::zeros();
+        cov.fixed_view_mut::<9, 9>(0, 0).copy_from(&in_plane_cov);
+        cov.fixed_view_mut::<2, 2>(9, 9).copy_from(&line_cov);
+        cov.fixed_view_mut::<2, 2>(11, 11).copy_from(&sxx_inv);
+        Some(g * cov * g.transpose())
+    }
+
+    /// The residual's pooled variance per coordinate, `Σ r² / (3 n − 13)` (two in-plane coordinates for nine
+    /// coefficients, one out of the plane for four), and its degrees of freedom.
+    pub fn noise_variance(&self) -> (Real, usize) {
+        let dof = (3 * self.frames).saturating_sub(13);
+        let ss = self.residual_rms_m.powi(2) * self.frames as Real;
+        (if dof > 0 { ss / dof as Real } else { 0.0 }, dof)
     }
 
     /// The unit normal of the arc's plane (the frames' best-fitting plane; its sign is arbitrary).

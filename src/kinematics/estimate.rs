@@ -12,7 +12,7 @@
 //!   the wrist uncocks, it may not).
 
 use super::arc::ArcFit;
-use super::fit::{PathSpeedFit, PoseSeries, TimedPose};
+use super::fit::{PathSpeedFit, PoseFit, PoseSeries, TimedPose};
 use super::sample::ClubPose;
 use crate::face::Face;
 use crate::impact::ImpactState;
@@ -80,6 +80,23 @@ pub struct ImpactEstimate {
     /// The face centre's arc the estimate used (`arc` estimator, while it fits the frames), with times from the
     /// revealing frame: the club data of the path reuse it (`club_data::swing_arc`).
     pub arc: Option<ArcFit>,
+    /// The polynomial fits the estimate used (times from the revealing frame), for its uncertainty
+    /// (`kinematics::uncertainty`).
+    pub fits: EstimateFits,
+}
+
+/// The fits behind an estimate: the pose polynomials (the orientation's, and the face centre's path where there
+/// is no arc) and the path-length fit of the club speed, the frames' times, and the noise an arc that was fitted
+/// but not kept showed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimateFits {
+    pub pose: PoseFit,
+    pub speed: Option<PathSpeedFit>,
+    /// The fitted frames' times from the revealing frame, oldest first (s; the first `frames`).
+    pub frame_t_s: [Real; 64],
+    pub frames: usize,
+    /// An arc fitted and dropped for the polynomial path.
+    pub dropped_arc: Option<ArcFit>,
 }
 
 /// What an estimate needs to know of the scene.
@@ -159,7 +176,9 @@ pub fn estimate(
     let mut fit = series.fit(pos_frames, pos_degree, rot_frames, rot_degree).ok_or(EstimateError::SingularFit)?;
     // The arc is kept only while it fits the frames about as well as the polynomial path does: a path of another
     // shape leaves the arc a residual well above the noise, and its extrapolation a bias (README).
-    let arc = arc.filter(|a| a.residual_rms_m <= ARC_LACK_OF_FIT_RATIO * fit.residual_rms_m);
+    let kept = arc.as_ref().is_some_and(|a| a.residual_rms_m <= ARC_LACK_OF_FIT_RATIO * fit.residual_rms_m);
+    let dropped_arc = arc.filter(|_| !kept);
+    let arc = arc.filter(|_| kept);
     // A windowed fit spans enough frames to average noise. Half the span has less bias from the motion's higher
     // derivatives: where the long fit's residual is well above the short one's (noise alone makes them nearly
     // equal), the long model lacks fit and the short one is used, for position and orientation separately.
@@ -249,6 +268,7 @@ pub fn estimate(
         at.position_m = a.position(t);
         at.velocity_mps = a.velocity(t);
     }
+    let mut speed_fit = None;
     if let Some(ps) = spec.path_speed.filter(|_| spec.window_ms.is_some()) {
         let n_s = {
             let span_ns = (ps.window_ms * 1e6) as u64;
@@ -258,6 +278,7 @@ pub fn estimate(
         let degree = ps.degree.min(n_s / 2 - 1);
         if let Some(speed) = PathSpeedFit::fit(&poses[need - n_s..need], degree) {
             at.velocity_mps = at.velocity_mps.normalize() * speed.speed_mps(t);
+            speed_fit = Some(speed);
         }
     }
     let world_from_club = club_pose(at.position_m, at.orientation);
@@ -280,5 +301,12 @@ pub fn estimate(
         },
         quality: Quality { frames_used: need, residual_rms_mm, residual_rms_deg, extrapolation_ms, score },
         arc,
+        fits: EstimateFits {
+            pose: fit,
+            speed: speed_fit,
+            frame_t_s: std::array::from_fn(|i| if i < need { poses[i].t_s } else { 0.0 }),
+            frames: need,
+            dropped_arc,
+        },
     })
 }

@@ -32,6 +32,9 @@ pub struct PoseFit {
     /// RMS residuals of the fit.
     pub residual_rms_m: Real,
     pub residual_rms_rad: Real,
+    /// The position and rotation fits' normal factors, for their covariance.
+    pub position_factor: NormalFactor,
+    pub rotation_factor: NormalFactor,
 }
 
 /// The state of the fitted motion at one instant.
@@ -43,18 +46,111 @@ pub struct PoseAt {
     pub angular_velocity_radps: Vector3,
 }
 
+/// The Cholesky factor `L` of a polynomial fit's normal matrix (`AᵀA = L Lᵀ`, `A` the powers of the normalised
+/// times), kept with the fit so that its coefficients' covariance `σ² (AᵀA)⁻¹` (white noise of variance `σ²` per
+/// axis) gives the covariance of the fitted value and slope anywhere, extrapolated too
+/// (`kinematics::uncertainty`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalFactor {
+    l: [[Real; MAX_DEGREE + 1]; MAX_DEGREE + 1],
+    /// Coefficients (degree + 1).
+    coefficients: usize,
+    /// Frames fitted.
+    frames: usize,
+}
+
+impl NormalFactor {
+    const EMPTY: NormalFactor = NormalFactor { l: [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1], coefficients: 0, frames: 0 };
+
+    /// The residual's degrees of freedom per axis (frames minus coefficients).
+    pub fn dof(&self) -> usize {
+        self.frames.saturating_sub(self.coefficients)
+    }
+
+    /// Frames fitted.
+    pub fn frames(&self) -> usize {
+        self.frames
+    }
+
+    /// Per unit noise variance: the variance of the fitted value at `tau`, its covariance with the slope (per unit
+    /// of `tau`) and the slope's variance, `[φᵀMφ, φᵀMφ', φ'ᵀMφ']` with `M = (AᵀA)⁻¹`, `φ = (1, τ, τ², ...)`.
+    pub fn value_slope(&self, tau: Real) -> [Real; 3] {
+        let m = self.coefficients;
+        let mut phi = [0.0; MAX_DEGREE + 1];
+        let mut dphi = [0.0; MAX_DEGREE + 1];
+        let mut tk = 1.0;
+        for k in 0..m {
+            phi[k] = tk;
+            if k + 1 < m {
+                dphi[k + 1] = (k + 1) as Real * tk;
+            }
+            tk *= tau;
+        }
+        // Forward substitution: L a = φ, L b = φ', so φᵀMφ = a·a.
+        let (mut a, mut b) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
+        for i in 0..m {
+            let (mut sa, mut sb) = (phi[i], dphi[i]);
+            for k in 0..i {
+                sa -= self.l[i][k] * a[k];
+                sb -= self.l[i][k] * b[k];
+            }
+            a[i] = sa / self.l[i][i];
+            b[i] = sb / self.l[i][i];
+        }
+        let dot = |x: &[Real], y: &[Real]| x.iter().zip(y).take(m).map(|(p, q)| p * q).sum::<Real>();
+        [dot(&a, &a), dot(&a, &b), dot(&b, &b)]
+    }
+
+    /// The least-squares coefficients of `values` at `tau` (the times this factor was made from) by the factor:
+    /// `Lᵀ c = L⁻¹ Aᵀ y`.
+    fn solve(&self, tau: &[Real], values: &[Vector3]) -> [Vector3; MAX_DEGREE + 1] {
+        let m = self.coefficients;
+        let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
+        for (&t, y) in tau.iter().zip(values) {
+            let mut tk = 1.0;
+            for a in aty.iter_mut().take(m) {
+                *a += tk * y;
+                tk *= t;
+            }
+        }
+        let mut z = [Vector3::zeros(); MAX_DEGREE + 1];
+        for i in 0..m {
+            let mut s = aty[i];
+            for k in 0..i {
+                s -= self.l[i][k] * z[k];
+            }
+            z[i] = s / self.l[i][i];
+        }
+        let mut c = [Vector3::zeros(); MAX_DEGREE + 1];
+        for i in (0..m).rev() {
+            let mut s = z[i];
+            for k in i + 1..m {
+                s -= self.l[k][i] * c[k];
+            }
+            c[i] = s / self.l[i][i];
+        }
+        c
+    }
+}
+
 /// Fits `values` (one per frame) at normalised times `tau` with a polynomial of `degree` by least squares
 /// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5). Returns the
-/// RMS residual.
-fn poly_fit(tau: &[Real], values: &[Vector3], degree: usize, out: &mut [Vector3; MAX_DEGREE + 1]) -> Option<Real> {
+/// RMS residual; `factor` receives the normal matrix's Cholesky factor.
+fn poly_fit(
+    tau: &[Real],
+    values: &[Vector3],
+    degree: usize,
+    out: &mut [Vector3; MAX_DEGREE + 1],
+    factor: &mut NormalFactor,
+) -> Option<Real> {
     // One instance per size, so the small loops unroll.
     match degree {
-        0 => poly_fit_sized::<1>(tau, values, out),
-        1 => poly_fit_sized::<2>(tau, values, out),
-        2 => poly_fit_sized::<3>(tau, values, out),
-        3 => poly_fit_sized::<4>(tau, values, out),
-        4 => poly_fit_sized::<5>(tau, values, out),
-        5 => poly_fit_sized::<6>(tau, values, out),
+        0 => poly_fit_sized::<1>(tau, values, out, factor),
+        1 => poly_fit_sized::<2>(tau, values, out, factor),
+        2 => poly_fit_sized::<3>(tau, values, out, factor),
+        3 => poly_fit_sized::<4>(tau, values, out, factor),
+        4 => poly_fit_sized::<5>(tau, values, out, factor),
+        5 => poly_fit_sized::<6>(tau, values, out, factor),
         _ => None,
     }
 }
@@ -65,6 +161,7 @@ fn poly_fit_sized<const M: usize>(
     tau: &[Real],
     values: &[Vector3],
     out: &mut [Vector3; MAX_DEGREE + 1],
+    factor: &mut NormalFactor,
 ) -> Option<Real> {
     let mut ata = [[0.0; M]; M];
     let mut aty = [Vector3::zeros(); M];
@@ -115,6 +212,11 @@ fn poly_fit_sized<const M: usize>(
     }
     for c in out.iter_mut().skip(M) {
         *c = Vector3::zeros();
+    }
+    factor.coefficients = M;
+    factor.frames = tau.len();
+    for i in 0..M {
+        factor.l[i][..M].copy_from_slice(&l[i]);
     }
     let mut ss = 0.0;
     for (&t, y) in tau.iter().zip(values) {
@@ -214,8 +316,11 @@ impl PoseSeries {
         }
         let mut pos = [Vector3::zeros(); MAX_DEGREE + 1];
         let mut rot = [Vector3::zeros(); MAX_DEGREE + 1];
-        let rp = poly_fit(&self.tau[n - pos_frames..n], &self.p[n - pos_frames..n], pos_degree, &mut pos)?;
-        let rr = poly_fit(&self.tau[n - rot_frames..n], &self.th[n - rot_frames..n], rot_degree, &mut rot)?;
+        let (mut position_factor, mut rotation_factor) = (NormalFactor::EMPTY, NormalFactor::EMPTY);
+        let (tau_p, p) = (&self.tau[n - pos_frames..n], &self.p[n - pos_frames..n]);
+        let rp = poly_fit(tau_p, p, pos_degree, &mut pos, &mut position_factor)?;
+        let (tau_r, th) = (&self.tau[n - rot_frames..n], &self.th[n - rot_frames..n]);
+        let rr = poly_fit(tau_r, th, rot_degree, &mut rot, &mut rotation_factor)?;
         pos[0] += self.newest.position_m;
         Some(PoseFit {
             t_ref_s: self.t_ref_s,
@@ -227,6 +332,8 @@ impl PoseSeries {
             r_ref: self.newest.orientation,
             residual_rms_m: rp,
             residual_rms_rad: rr,
+            position_factor,
+            rotation_factor,
         })
     }
 }
@@ -244,6 +351,7 @@ impl PoseFit {
         self.rot = other.rot;
         self.rot_degree = other.rot_degree;
         self.residual_rms_rad = other.residual_rms_rad;
+        self.rotation_factor = other.rotation_factor;
         self
     }
 
@@ -278,6 +386,69 @@ impl PoseFit {
     pub fn t_ref_s(&self) -> Real {
         self.t_ref_s
     }
+
+    /// The window's span (s): times are normalised as `τ = (t − t_ref) / span`.
+    pub fn scale_s(&self) -> Real {
+        self.scale_s
+    }
+
+    /// Per axis and per unit noise variance: the variance of the fitted position at `t_s`, its covariance with
+    /// the velocity and the velocity's variance (1, 1/s, 1/s²).
+    pub fn position_form(&self, t_s: Real) -> [Real; 3] {
+        Self::form(&self.position_factor, (t_s - self.t_ref_s) / self.scale_s, self.scale_s)
+    }
+
+    /// The same of the rotation vector and its rate.
+    pub fn rotation_form(&self, t_s: Real) -> [Real; 3] {
+        Self::form(&self.rotation_factor, (t_s - self.t_ref_s) / self.scale_s, self.scale_s)
+    }
+
+    /// The bias of the position fit on a path known exactly: the same polynomial fitted to `path` (position and
+    /// velocity at a time, s) at the position fit's frames (`frame_t_s`, the newest of them), minus the path, in
+    /// position and velocity at `t_s`.
+    pub fn position_bias_on(
+        &self,
+        frame_t_s: &[Real],
+        path: impl Fn(Real) -> (Vector3, Vector3),
+        t_s: Real,
+    ) -> (Vector3, Vector3) {
+        let n = self.position_factor.frames.min(frame_t_s.len());
+        let times = &frame_t_s[frame_t_s.len() - n..];
+        let mut tau = [0.0; 64];
+        let mut values = [Vector3::zeros(); 64];
+        for (i, &t) in times.iter().enumerate() {
+            tau[i] = (t - self.t_ref_s) / self.scale_s;
+            values[i] = path(t).0;
+        }
+        let c = self.position_factor.solve(&tau[..n], &values[..n]);
+        let (p, v) = path(t_s);
+        let tau_s = (t_s - self.t_ref_s) / self.scale_s;
+        let degree = self.position_factor.coefficients - 1;
+        (eval(&c, degree, tau_s) - p, eval_derivative(&c, degree, tau_s) / self.scale_s - v)
+    }
+
+    /// The position fit's noise variance per axis from its residual (m²) and its degrees of freedom.
+    pub fn position_noise(&self) -> (Real, usize) {
+        Self::noise(&self.position_factor, self.residual_rms_m)
+    }
+
+    /// The rotation fit's noise variance per axis (rad²) and its degrees of freedom.
+    pub fn rotation_noise(&self) -> (Real, usize) {
+        Self::noise(&self.rotation_factor, self.residual_rms_rad)
+    }
+
+    fn form(factor: &NormalFactor, tau: Real, scale_s: Real) -> [Real; 3] {
+        let [a, b, c] = factor.value_slope(tau);
+        [a, b / scale_s, c / (scale_s * scale_s)]
+    }
+
+    /// The RMS is of the residual vectors' norms: per axis, `Σ|r|² / (3 (n − p))` with `3 (n − p)` degrees of
+    /// freedom.
+    fn noise(factor: &NormalFactor, residual_rms: Real) -> (Real, usize) {
+        let dof = 3 * factor.dof();
+        let ss = residual_rms * residual_rms * factor.frames() as Real;
+        (if dof > 0 { ss / dof as Real } else { 0.0 }, dof)
+    }
 }
 
 /// The speed along a path from its chords: the cumulative chord length `s_k = Σ |p_i − p_{i−1}|` of the frames
@@ -296,6 +467,8 @@ pub struct PathSpeedFit {
     degree: usize,
     /// RMS residual of the arc-length fit (m).
     pub residual_rms_m: Real,
+    /// The fit's normal factor, for its covariance.
+    pub factor: NormalFactor,
 }
 
 impl PathSpeedFit {
@@ -344,13 +517,27 @@ impl PathSpeedFit {
             s[i] = Vector3::new(length, 0.0, 0.0);
         }
         let mut coeffs = [Vector3::zeros(); MAX_DEGREE + 1];
-        let residual_rms_m = poly_fit(&tau[..n], &s[..n], degree, &mut coeffs)?;
-        Some(PathSpeedFit { t_ref_s, scale_s, coeffs, degree, residual_rms_m })
+        let mut factor = NormalFactor::EMPTY;
+        let residual_rms_m = poly_fit(&tau[..n], &s[..n], degree, &mut coeffs, &mut factor)?;
+        Some(PathSpeedFit { t_ref_s, scale_s, coeffs, degree, residual_rms_m, factor })
     }
 
     /// Speed along the path (m/s) at `t_s`.
     pub fn speed_mps(&self, t_s: Real) -> Real {
         eval_derivative(&self.coeffs, self.degree, (t_s - self.t_ref_s) / self.scale_s).x / self.scale_s
+    }
+
+    /// The speed's variance per unit noise variance along the path at `t_s` (1/s²).
+    pub fn speed_form(&self, t_s: Real) -> Real {
+        self.factor.value_slope((t_s - self.t_ref_s) / self.scale_s)[2] / (self.scale_s * self.scale_s)
+    }
+
+    /// The noise variance along the path from the fit's residual (m²; white, the chords' shared first endpoint
+    /// being the constant coefficient's) and its degrees of freedom.
+    pub fn noise(&self) -> (Real, usize) {
+        let dof = self.factor.dof();
+        let ss = self.residual_rms_m.powi(2) * self.factor.frames() as Real;
+        (if dof > 0 { ss / dof as Real } else { 0.0 }, dof)
     }
 }
 

@@ -15,6 +15,7 @@ pub mod sample;
 pub mod so3;
 mod spec;
 pub mod track;
+pub mod uncertainty;
 
 pub use detect::{Detection, DetectorConfig, ImpactDetector};
 pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};

@@ -114,6 +114,12 @@ pub struct EstimatorReport {
     pub errors: Errors,
     #[serde(default)]
     pub club_data: ClubDataErrors,
+    /// The reported uncertainty's coverage of the truth, per field (`offline::coverage`).
+    #[serde(default)]
+    pub coverage: Vec<crate::offline::coverage::FieldCoverage>,
+    /// Estimates that reported no uncertainty.
+    #[serde(default)]
+    pub without_uncertainty: usize,
 }
 
 /// The whole evaluation.
@@ -200,6 +206,68 @@ fn launch(model: &dyn ImpactModel, state: &ImpactState, eq: &Equipment) -> Optio
     Some(LaunchMetrics::from_ball(&l.ball_velocity_mps, &l.ball_spin_radps))
 }
 
+/// Adds one shot's errors against its reported uncertainty (the adjusted model's Jacobian, as live).
+#[allow(clippy::too_many_arguments)]
+fn add_coverage(
+    acc: &mut crate::offline::coverage::CoverageAcc,
+    config: &EvalConfig,
+    eq: &Equipment,
+    est: &crate::kinematics::ImpactEstimate,
+    scene: &crate::kinematics::Scene,
+    (m, truth): (&DeliveryMetrics, &DeliveryMetrics),
+    (l, t): (&LaunchMetrics, &LaunchMetrics),
+    t_err_us: Real,
+) {
+    use crate::impact::uncertainty::LaunchJacobian;
+    use crate::kinematics::uncertainty::{estimate_uncertainty, CalibrationSigma};
+    let Some(u) = estimate_uncertainty(est, scene, &config.club, &CalibrationSigma::default()) else {
+        acc.without += 1;
+        return;
+    };
+    let Ok(jac) =
+        LaunchJacobian::of(config.launch_model.as_ref(), eq, &m.to_delivery(), m.dynamic_lie_deg.to_radians())
+    else {
+        acc.without += 1;
+        return;
+    };
+    let (d, lu) = (u.delivery.sigmas(), jac.uncertainty(&u.delivery));
+    let wrap = |a: Real| (a + 180.0).rem_euclid(360.0) - 180.0;
+    acc.add(
+        &[
+            m.club_speed_mph - truth.club_speed_mph,
+            m.attack_angle_deg - truth.attack_angle_deg,
+            m.club_path_deg - truth.club_path_deg,
+            m.face_angle_deg - truth.face_angle_deg,
+            m.dynamic_loft_deg - truth.dynamic_loft_deg,
+            m.face_to_path_deg - truth.face_to_path_deg,
+            m.impact_h_mm - truth.impact_h_mm,
+            m.impact_v_mm - truth.impact_v_mm,
+            l.ball_speed_mph - t.ball_speed_mph,
+            l.launch_angle_deg - t.launch_angle_deg,
+            l.launch_direction_deg - t.launch_direction_deg,
+            l.total_spin_rpm - t.total_spin_rpm,
+            wrap(l.spin_axis_deg - t.spin_axis_deg),
+            t_err_us,
+        ],
+        &[
+            d.club_speed_mph,
+            d.attack_angle_deg,
+            d.club_path_deg,
+            d.face_angle_deg,
+            d.dynamic_loft_deg,
+            d.face_to_path_deg,
+            d.impact_h_mm,
+            d.impact_v_mm,
+            lu.ball_speed_mph,
+            lu.launch_angle_deg,
+            lu.launch_direction_deg,
+            lu.total_spin_rpm,
+            lu.spin_axis_deg,
+            u.t_impact_sigma_s * 1e6,
+        ],
+    );
+}
+
 /// Runs the evaluation; `progress(done)` is called after each shot.
 pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
     let eq = Equipment::new(config.club.clone());
@@ -214,6 +282,7 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
     };
     let mut accs = vec![Acc::<13>::default(); config.estimators.len()];
     let mut club_accs = vec![Acc::<7>::default(); config.estimators.len()];
+    let mut coverage = vec![crate::offline::coverage::CoverageAcc::default(); config.estimators.len()];
     let mut refused = vec![std::collections::BTreeMap::<String, usize>::new(); config.estimators.len()];
     let calibration = Calibration::default();
     for shot in 0..config.shots {
@@ -268,6 +337,14 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
                     }
                     match (launch(config.launch_model.as_ref(), &est.state, &eq), truth_launch) {
                         (Some(l), Some(t)) => {
+                            let scene = crate::kinematics::Scene {
+                                face: &config.club.face,
+                                ball_position_m: ball.ball_position_m,
+                                ball_radius_m: ball.ball_radius_m,
+                                max_extrapolation_s: ball.max_extrapolation_s,
+                            };
+                            let t_err_us = (est.t_impact_ns as Real - t_impact_ns as Real) * 1e-3;
+                            add_coverage(&mut coverage[i], config, &eq, est, &scene, (&m, &truth), (&l, &t), t_err_us);
                             accs[i].add(&[
                                 100.0 * (m.club_speed_mps - truth.club_speed_mps) / truth.club_speed_mps,
                                 m.attack_angle_deg - truth.attack_angle_deg,
@@ -313,6 +390,14 @@ pub fn run(config: &EvalConfig, mut progress: impl FnMut(usize)) -> EvalReport {
                 refused,
                 errors: acc.errors(),
                 club_data: club_acc.club_data(),
+                coverage: Vec::new(),
+                without_uncertainty: 0,
+            })
+            .zip(&coverage)
+            .map(|(report, c)| EstimatorReport {
+                coverage: if c.shots() > 0 { c.report() } else { Vec::new() },
+                without_uncertainty: c.without,
+                ..report
             })
             .collect(),
     }

@@ -7,6 +7,7 @@
 //! than a workspace crate: the tools share the core's types with no interface worth versioning apart, one crate
 //! keeps one build and one `cargo test`, and the boundary a second crate would enforce is checked by that test.
 
+pub mod coverage;
 pub mod eval;
 pub mod identify;
 pub mod plot;
