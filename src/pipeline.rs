@@ -6,9 +6,11 @@ use std::collections::BTreeMap;
 use crate::equipment::ClubSpec;
 use std::sync::Arc;
 
+use crate::impact::uncertainty::{linearised, LaunchJacobian};
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::ball_tracker::{BallIgnored, BallTracker, BallTrackerConfig};
 use crate::kinematics::track::Accepted;
+use crate::kinematics::uncertainty::{estimate_uncertainty, CalibrationSigma};
 use crate::kinematics::{
     Calibration, ClubheadSample, DetectorConfig, EstimatorSpec, ImpactDetector, Reject, Track, TrackLimits,
 };
@@ -34,6 +36,9 @@ pub struct RigSetup {
     /// Tracked bodies and the club each holds (`[rig.clubs]`): a sample of another body, once the current
     /// body has been out of view for [`BODY_SWITCH_AFTER_NS`], switches the club ([`Pipeline::on_body_sample_with`]).
     pub bodies: BTreeMap<String, ClubSwitch>,
+    /// The calibration's residuals, carried into every prediction's uncertainty (zero: no calibration reports
+    /// them yet).
+    pub calibration_sigma: CalibrationSigma,
 }
 
 /// A club to switch to: the head, its models (built by `impact::registry`), its file, and for a tracked body
@@ -66,6 +71,7 @@ impl RigSetup {
             labels: ShotLabels::default(),
             club_ref: None,
             bodies: BTreeMap::new(),
+            calibration_sigma: CalibrationSigma::default(),
         }
     }
 }
@@ -276,6 +282,15 @@ impl Pipeline {
         let mut delivery = DeliveryMetrics::from_state(&est.state, club);
         // Once per impact: the plane and low point of the path over the frames before it (docs/club-data.md).
         let config = &self.detector.config;
+        let scene = crate::kinematics::Scene {
+            face: &club.face,
+            ball_position_m: config.ball_position_m,
+            ball_radius_m: config.ball_radius_m,
+            max_extrapolation_s: config.max_extrapolation_s,
+        };
+        // How sure the delivery is (kinematics::uncertainty) and, below, each launch (impact::uncertainty).
+        let uncertainty = estimate_uncertainty(&est, &scene, club, &self.setup.calibration_sigma);
+        delivery.uncertainty = uncertainty.map(|u| u.delivery.sigmas());
         delivery.swing_arc = crate::kinematics::club_data::swing_arc(
             self.detector.pre_impact(),
             d.reveal_t_ns,
@@ -299,13 +314,26 @@ impl Pipeline {
             labels: self.setup.labels.clone(),
             ball: Some(self.ball_used()),
         }));
+        let (linear_delivery, lie_rad) = (delivery.to_delivery(), delivery.dynamic_lie_deg.to_radians());
+        let mut shared_jacobian = None;
         for i in 0..self.setup.models.len() {
             let m = Arc::clone(&self.setup.models[i]);
             // Each model's report (the ground model's `ground`) is published beside its launch.
             match m.run(&est.state, &self.equipment, &crate::impact::RunOptions::default()) {
                 Ok(crate::impact::ModelRun { launch, report, .. }) => {
                     self.counts.predictions += 1;
-                    let output = PredictOutput::new(&launch, &delivery, Default::default(), &self.equipment);
+                    let mut output = PredictOutput::new(&launch, &delivery, Default::default(), &self.equipment);
+                    output.uncertainty = uncertainty.and_then(|u| {
+                        let jacobian = |model: &dyn ImpactModel| {
+                            LaunchJacobian::of(model, &self.equipment, &linear_delivery, lie_rad).ok()
+                        };
+                        let j = if m.linearises_itself() {
+                            jacobian(m.as_ref())
+                        } else {
+                            *shared_jacobian.get_or_insert_with(|| jacobian(linearised(&m, &self.setup.models).as_ref()))
+                        };
+                        j.map(|j| j.uncertainty(&u.delivery))
+                    });
                     for w in &output.warnings {
                         *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
                     }

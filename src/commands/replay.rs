@@ -95,6 +95,14 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     for (former, current) in &input.renamed_models {
         eprintln!("{}: recorded model name {former} is now {current}; compared as {current}", args.file.display());
     }
+    let before = input.recorded_before_uncertainty();
+    if before > 0 {
+        eprintln!(
+            "{}: {before} recorded predictions were made before predictions carried their uncertainty \
+             (LaunchPrediction version 1): the replay's have it, and are compared without it",
+            args.file.display()
+        );
+    }
     if !input.skipped_lines.is_empty() {
         for l in input.skipped_lines.iter().take(5) {
             eprintln!("skipped {l}");

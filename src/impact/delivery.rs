@@ -156,6 +156,11 @@ pub struct DeliveryMetrics {
     /// (`kinematics::club_data`); absent where there is no path (a delivery typed in, a path that fits no arc).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub swing_arc: Option<SwingArc>,
+    /// One-sigma standard deviations of these numbers, propagated from the frames (`kinematics::uncertainty`;
+    /// docs/estimation.md): on every impact a rig estimates from frames; absent for a delivery typed in, an
+    /// estimator that leaves no residual (`linear2`) and recordings made before it was published.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<super::uncertainty::DeliveryUncertainty>,
 }
 
 /// TrackMan's club data of the path (docs/club-data.md): the plane of the face centre's path over the last
@@ -203,6 +208,7 @@ impl DeliveryMetrics {
             dynamic_lie_deg: shaft.y.clamp(-1.0, 1.0).asin().to_degrees(),
             closure_rate_degps: w.dot(&shaft).to_degrees(),
             swing_arc: None,
+            uncertainty: None,
         }
     }
 

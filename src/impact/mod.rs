@@ -155,4 +155,10 @@ pub trait ImpactModel: Send + Sync + std::fmt::Debug {
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
         Ok(self.run(state, equipment, &RunOptions::default())?.launch)
     }
+    /// Whether a run is cheap enough (about a microsecond) for the launch's uncertainty to linearise this model
+    /// itself (twelve runs, `uncertainty::LaunchJacobian`); the launches of the others take an impulse-momentum
+    /// model's Jacobian.
+    fn linearises_itself(&self) -> bool {
+        false
+    }
 }

@@ -168,6 +168,21 @@ impl LaunchJacobian {
     }
 }
 
+/// The model whose Jacobian a launch of `model` takes: `model` itself when it linearises itself (the
+/// impulse-momentum models), else the first of the rig's `models` that does, else the `adjusted` model with the
+/// seed's parameters for the club.
+pub fn linearised<'a>(
+    model: &'a std::sync::Arc<dyn ImpactModel>,
+    models: &'a [std::sync::Arc<dyn ImpactModel>],
+) -> std::sync::Arc<dyn ImpactModel> {
+    if model.linearises_itself() {
+        return std::sync::Arc::clone(model);
+    }
+    models.iter().find(|m| m.linearises_itself()).map(std::sync::Arc::clone).unwrap_or_else(|| {
+        std::sync::Arc::new(super::ImpulseModel::new(super::ImpulseVariant::Adjusted))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

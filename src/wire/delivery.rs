@@ -186,6 +186,11 @@ pub struct PredictOutput {
     /// Sanity flags (`impact::sanity`): empty for a shot a golfer could hit.
     #[serde(default)]
     pub warnings: Vec<crate::impact::LaunchWarning>,
+    /// One-sigma standard deviations of the launch numbers, propagated from the frames (`impact::uncertainty`;
+    /// docs/estimation.md): on every launch a rig predicts from frames; absent for a delivery typed in and in
+    /// recordings made before it was published.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<crate::impact::uncertainty::LaunchUncertainty>,
 }
 
 impl PredictOutput {
@@ -210,6 +215,7 @@ impl PredictOutput {
             closure_rate_degps: delivery.closure_rate_degps,
             ball_velocity_mps: [v.x, v.y, v.z],
             ball_spin_radps: [w.x, w.y, w.z],
+            uncertainty: None,
         }
     }
 }

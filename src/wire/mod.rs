@@ -39,8 +39,14 @@ pub use mocap::MocapInputStatus;
 pub use sample::{parse_sample, InputError};
 pub use schema::{schemas, Message, MessageType};
 
-/// Version of every message type; part of the encoding `application/json;impactd.<Type>/<version>`.
+/// The first version of every message type; part of the encoding `application/json;impactd.<Type>/<version>`
+/// (a type's own version: [`MessageType::version`]).
 pub const WIRE_VERSION: u32 = 1;
+
+/// The version of the types that carry the uncertainty of a prediction: `ImpactMessage` and `LaunchPrediction`
+/// (`delivery.uncertainty`, `launch.uncertainty`) and `PredictOutput` (`uncertainty`). Fields added, none
+/// changed: a reader of version 1 that passes unknown fields by reads them as before.
+pub const UNCERTAINTY_WIRE_VERSION: u32 = 2;
 
 /// Largest accepted payload (bytes): a clubhead sample is about 200.
 pub const MAX_PAYLOAD_BYTES: usize = 64 * 1024;

@@ -85,9 +85,20 @@ messages! {
 }
 
 impl MessageType {
-    /// The encoding on zenoh: `application/json;impactd.LaunchPrediction/1`.
+    /// The type's version: [`WIRE_VERSION`], or [`UNCERTAINTY_WIRE_VERSION`] for the types that carry a
+    /// prediction's uncertainty.
+    pub fn version(self) -> u32 {
+        match self {
+            MessageType::ImpactMessage | MessageType::LaunchPrediction | MessageType::PredictOutput => {
+                UNCERTAINTY_WIRE_VERSION
+            }
+            _ => WIRE_VERSION,
+        }
+    }
+
+    /// The encoding on zenoh: `application/json;impactd.LaunchPrediction/2`.
     pub fn encoding(self) -> String {
-        format!("application/json;impactd.{}/{WIRE_VERSION}", self.name())
+        format!("application/json;impactd.{}/{}", self.name(), self.version())
     }
 
     /// The schema name in recordings: `impactd.LaunchPrediction`.

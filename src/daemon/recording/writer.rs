@@ -25,6 +25,13 @@ pub fn session_metadata(config: &impl serde::Serialize) -> BTreeMap<String, Stri
     let mut m = BTreeMap::new();
     m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
     m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
+    // The types at another version, `Type/version` comma-separated.
+    let versions: Vec<String> = crate::wire::MessageType::ALL
+        .iter()
+        .filter(|t| t.version() != crate::wire::WIRE_VERSION)
+        .map(|t| format!("{}/{}", t.name(), t.version()))
+        .collect();
+    m.insert("wire_versions".into(), versions.join(","));
     m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
     m.insert("start_ns".into(), wall_ns().to_string());
     m

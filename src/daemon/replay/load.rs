@@ -45,6 +45,31 @@ pub struct ReplayInput {
     pub skipped: usize,
 }
 
+impl ReplayInput {
+    /// Recorded predictions made before predictions carried their uncertainty (`LaunchPrediction` version 1).
+    pub fn recorded_before_uncertainty(&self) -> usize {
+        self.recorded_launches.iter().filter(|b| before_uncertainty(b)).count()
+    }
+
+    /// The bytes a produced prediction is compared by with the recorded one at `index`: as published, or, where
+    /// that was recorded before predictions carried their uncertainty, as published without it (the rest byte for
+    /// byte as before).
+    pub fn comparable(&self, index: usize, l: &LaunchPrediction, bytes: Vec<u8>) -> Vec<u8> {
+        if !self.recorded_launches.get(index).is_some_and(|b| before_uncertainty(b)) {
+            return bytes;
+        }
+        let mut without = l.clone();
+        without.delivery.uncertainty = None;
+        without.launch.uncertainty = None;
+        serde_json::to_vec(&without).unwrap_or(bytes)
+    }
+}
+
+/// Whether recorded prediction bytes carry no uncertainty (made before version 2 of `LaunchPrediction`).
+fn before_uncertainty(data: &[u8]) -> bool {
+    !contains(data, b"\"uncertainty\":")
+}
+
 /// Skipped lines whose reason is kept.
 pub const KEPT_SKIPPED_LINES: usize = 100;
 

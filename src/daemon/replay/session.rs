@@ -268,8 +268,9 @@ pub async fn run(
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
                     let bytes = rig.sinks.launch(l, log_time_ns);
+                    let compared = input.comparable(produced.len(), l, bytes.clone());
                     on_event(e, &bytes);
-                    produced.push(bytes);
+                    produced.push(compared);
                 }
                 Event::Impact(m) => {
                     rig.sinks.impact(m, log_time_ns);

@@ -279,6 +279,10 @@ impl ImpactModel for ImpulseModel {
         self.predict(state, equipment).map(ModelRun::launch_only)
     }
 
+    fn linearises_itself(&self) -> bool {
+        true
+    }
+
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
         let s = solve(&self.problem(state, equipment)?)?;
         Ok(Launch {
