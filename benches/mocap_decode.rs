@@ -10,7 +10,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use impactd::mocap::natnet::{self, Frame, RigidBody, Version};
 use impactd::mocap::qtm::{self, Body6d, Frame6d};
 use impactd::mocap::vicon::{self, encode::FrameOut};
-use impactd::mocap::{natnet_encode, qtm_encode, track};
+use impactd::mocap::{natnet::encode as natnet_encode, qtm::encode as qtm_encode, track};
 
 fn bodies_natnet() -> Frame {
     Frame {

@@ -12,12 +12,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
 use impactd::daemon::sim::{SimOptions, SimRig};
 use impactd::daemon::{DaemonConfig, RunOptions};
 use impactd::mocap::natnet::{self, Frame, RigidBody, ServerInfo, Version};
-use impactd::mocap::natnet_encode;
+use impactd::mocap::natnet::encode as natnet_encode;
 use impactd::wire::LaunchPrediction;
 use zenoh::Wait;
 
@@ -97,7 +97,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     let bridge_task = if bridge {
         let session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
         let source =
-            Source::NatNet { host: "127.0.0.1".into(), command_port: port, data_port: 0, multicast_group: None };
+            Source::new("natnet", "127.0.0.1", port).with("data_port", 0).with("unicast", true);
         Some(tokio::spawn(async move {
             run_bridge(&session, source, vec![("club".into(), "rig1".into())], async {
                 let _ = bridge_stopped.await;

@@ -5,9 +5,9 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::mocap::natnet::{self, Frame, RigidBody, Version, RIGID_BODY_BYTES};
-use impactd::mocap::natnet_markers::LabeledMarker;
+use impactd::mocap::natnet::markers::LabeledMarker;
 use impactd::mocap::qtm::{self, Body6d, Frame6d};
-use impactd::mocap::{natnet_encode, qtm_encode};
+use impactd::mocap::{natnet::encode as natnet_encode, qtm::encode as qtm_encode};
 use proptest::prelude::*;
 
 const VERSIONS: [Version; 5] =

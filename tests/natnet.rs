@@ -14,7 +14,7 @@ mod swing;
 use std::time::Duration;
 
 use common::{client, client_result, collect, latest_input, rss_kib, spawn_client, start_daemon, wait_for, wait_until};
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::mocap::natnet::{Frame, RigidBody, Version};
@@ -89,7 +89,7 @@ fn frame_of(s: &ClubheadSample, other_id: i32) -> Frame {
 #[test]
 fn optitracks_python_client_reads_the_test_server() {
     for version in [Version::V3_1, Version::V4_0, Version::V4_1] {
-        let model = impactd::mocap::natnet_encode::model_def(version, &[(7, "wand"), (3, "club")]).unwrap();
+        let model = impactd::mocap::natnet::encode::model_def(version, &[(7, "wand"), (3, "club")]).unwrap();
         let (_, payload) = impactd::mocap::natnet::split(&model).unwrap();
         let ours = impactd::mocap::natnet::decode_model_def(payload, version).unwrap();
         assert!(ours.complete, "{version}: every data set walked");
@@ -193,7 +193,7 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     let session = client(&daemon.endpoint).await;
     let (bridged, _b) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -239,7 +239,7 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
 #[tokio::test(flavor = "multi_thread")]
 async fn bad_natnet_input_is_counted_by_reason() {
     use impactd::mocap::natnet::ServerInfo;
-    use impactd::mocap::natnet_encode;
+    use impactd::mocap::natnet::encode as natnet_encode;
     let server = NatNetServer::start(Version::V4_1, &[(7, "wand"), (3, "club")]);
     server.state.lock().unwrap().answering = false;
     let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
@@ -372,7 +372,7 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
     }))
     .unwrap();
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let routes: Vec<(String, String)> = names.iter().enumerate().map(|(i, n)| (n.clone(), format!("rig{i}"))).collect();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -484,13 +484,13 @@ async fn a_ball_body_sets_the_shots_ball() {
     let session = client(&daemon.endpoint).await;
     let (balls, _b) = collect::<BallSampleMsg>(&session, "mocap/rig1/ball");
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
         let routes = vec![("club".to_string(), "rig1".to_string())];
         let balls = vec![("ball".to_string(), "rig1".to_string())];
-        impactd::daemon::bridges::mocap::run_bridge_with_balls(&bridge_session, source, routes, balls, async {
+        impactd::daemon::inputs::run_bridge_with_balls(&bridge_session, source, routes, balls, async {
             let _ = stopped.await;
         })
         .await

@@ -15,13 +15,13 @@ use std::sync::atomic::Ordering;
 use std::time::Duration;
 
 use common::{client, client_result, collect, latest_input, spawn_client, start_daemon, wait_for, wait_until};
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::math::Quaternion;
 use impactd::math::UnitQuaternion;
 use impactd::mocap::qtm::{Body6d, Frame6d};
-use impactd::mocap::{qtm_encode, track};
+use impactd::mocap::{qtm::encode as qtm_encode, track};
 use impactd::wire::{LaunchPrediction, StatusMessage};
 use qtm_server::QtmServer;
 
@@ -164,7 +164,7 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     let session = client(&daemon.endpoint).await;
     let (bridged, _b) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let bridge_session = client(&daemon.endpoint).await;
-    let source = Source::Qtm { host: "127.0.0.1".into(), port: server.port };
+    let source = Source::new("qtm", "127.0.0.1", server.port);
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
         let routes = vec![("club".to_string(), "rig1".to_string())];

@@ -52,7 +52,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::daemon::bridges::mocap::MocapInputConfig;
+use crate::daemon::inputs::MocapInputConfig;
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
 pub use crate::daemon::config_flight::ConditionsConfig;
 pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};

@@ -8,6 +8,7 @@ pub mod config_club;
 pub mod config_flight;
 pub mod config_pose;
 pub mod demo;
+pub mod inputs;
 pub mod live;
 pub mod recording;
 pub mod replay;
@@ -41,7 +42,7 @@ pub enum DaemonError {
     Markers {
         field: String,
         #[source]
-        source: bridges::mocap::input::MarkerFileError,
+        source: inputs::config::MarkerFileError,
     },
     /// A rig's `[rig.conditions]` that no ball flies in.
     #[error("config field `{field}` {source}")]

@@ -5,11 +5,6 @@
 
 pub mod bytes;
 pub mod natnet;
-pub mod natnet_descriptions;
-pub mod natnet_encode;
-pub mod natnet_fit;
-pub mod natnet_markers;
 pub mod qtm;
-pub mod qtm_encode;
 pub mod track;
 pub mod vicon;

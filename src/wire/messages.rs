@@ -76,6 +76,10 @@ pub struct ClubheadSampleMsg {
     /// The RMS distance of the markers from their fitted places when the pose was fitted from markers (m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fit_residual_m: Option<f64>,
+    /// The motion-capture system's own latency for this frame, from capture to sending it, as the system reports
+    /// it (us; Vicon: the sum of its `LatencyInfo` samples).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub system_latency_us: Option<f64>,
     /// The tracked body (rigid body, 6DOF body or marker set) the pose is of, when the rig tracks several clubs:
     /// `[rig.clubs]` maps each body to its club, so another body coming into view switches the club.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -105,6 +109,7 @@ impl ClubheadSampleMsg {
             occluded: s.occluded,
             exposure_t_ns: None,
             fit_residual_m: None,
+            system_latency_us: None,
             body: None,
         }
     }

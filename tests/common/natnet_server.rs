@@ -1,6 +1,6 @@
 //! A NatNet server on 127.0.0.1 (UDP unicast only) that answers as Motive does: `NAT_SERVERINFO` to
 //! `NAT_CONNECT`, `NAT_MODELDEF` to `NAT_REQUEST_MODELDEF`, and frames sent from its command port to every
-//! address a connect came from. Its bytes come from `impactd::mocap::natnet_encode`; the tests check them with
+//! address a connect came from. Its bytes come from `impactd::mocap::natnet::encode`; the tests check them with
 //! OptiTrack's own Python client (`natnetsdk`).
 
 #![allow(clippy::unwrap_used)]
@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use impactd::mocap::natnet::{self, Frame, ServerInfo, Version};
-use impactd::mocap::natnet_encode;
+use impactd::mocap::natnet::encode as natnet_encode;
 
 pub struct NatNetServer {
     pub port: u16,

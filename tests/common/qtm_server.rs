@@ -1,7 +1,7 @@
 //! A QTM real-time server on 127.0.0.1 (TCP) that answers as QTM does: the greeting, `Version` (1.20-1.25),
 //! `GetParameters 6D|3D|6D 3D` (the XML naming its bodies and marker labels), `StreamFrames AllFrames 6D|6DRes
 //! [3D]` and `StreamFrames Stop`,
-//! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm_encode`; the tests
+//! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm::encode`; the tests
 //! check them with Qualisys' own Python SDK (`qtm-rt`).
 
 #![allow(clippy::unwrap_used)]
@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use impactd::mocap::qtm::{self, Frame6d};
-use impactd::mocap::qtm_encode;
+use impactd::mocap::qtm::encode as qtm_encode;
 
 struct Conn {
     stream: TcpStream,

@@ -166,7 +166,8 @@ pub fn frame_of(s: &ClubheadSample) -> DynamicObjects {
     DynamicObjects {
         frame_id: Some(s.frame as u32 - 1),
         timecode: None,
-        latency: vec![LatencySample { name: "Data Collection".into(), latency_s: 0.0025 }],
+        // 2^-8 s: 3906.25 us exactly.
+        latency: vec![LatencySample { name: "Data Collection".into(), latency_s: 0.00390625 }],
         segments,
         markers: Vec::new(),
     }

@@ -307,7 +307,7 @@ struct Worker {
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
-type InputSlot = Arc<std::sync::Mutex<Option<crate::daemon::bridges::mocap::StatusSource>>>;
+type InputSlot = Arc<std::sync::Mutex<Option<crate::daemon::inputs::StatusSource>>>;
 
 /// What a rig's worker leaves behind.
 struct WorkerEnd {

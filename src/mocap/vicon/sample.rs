@@ -85,6 +85,7 @@ fn stamp(frame: &Frame) -> Option<BodySample> {
         occluded: true,
         exposure_t_ns: None,
         fit_residual_m: None,
+        system_latency_us: frame.latency_total_s().map(|s| s * 1e6),
     })
 }
 

@@ -1,8 +1,8 @@
 //! QTM real-time packets as QTM (the server) or a client writes them: the commands the bridge sends, and the
 //! server side the test servers and benchmarks use. Qualisys' Python SDK (`qtm-rt`) checks them in the tests.
 
-use super::bytes::Writer;
-use super::qtm::{
+use crate::mocap::bytes::Writer;
+use super::{
     Body6d, Frame6d, COMPONENT_3D, COMPONENT_6D, COMPONENT_6D_RES, HEADER_BYTES, PACKET_COMMAND, PACKET_DATA,
     PACKET_ERROR, PACKET_EVENT, PACKET_NO_MORE_DATA, PACKET_XML,
 };

@@ -5,7 +5,9 @@
 //! (multicast group, or the `data_port` bound for unicast). Two threads, one per socket, share the decoding
 //! state behind one lock; each datagram is decoded into a reused frame (no allocation per frame once warm).
 //! A route with a marker set is that set fitted to the labelled markers of Motive's asset named like the route's
-//! body (`mocap::natnet_fit`), mapped again with every model definition.
+//! body (`mocap::natnet::fit`), mapped again with every model definition.
+
+pub mod protocol;
 
 use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -17,8 +19,8 @@ use super::shared::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::DaemonError;
 use crate::kinematics::MarkerFitter;
 use crate::mocap::natnet::{self, Frame, Version};
-use crate::mocap::natnet_encode;
-use crate::mocap::natnet_fit::{label_map, natnet_fitted_sample, LabelMap};
+use crate::mocap::natnet::encode as natnet_encode;
+use crate::mocap::natnet::fit::{label_map, natnet_fitted_sample, LabelMap};
 use crate::mocap::track::{natnet_sample, BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 

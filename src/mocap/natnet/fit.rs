@@ -15,8 +15,8 @@
 use crate::kinematics::{MarkerFitter, MarkerSet};
 use crate::math::Vector3;
 
-use super::natnet::{Frame, ModelDef, RigidBody};
-use super::track::{natnet_sample, BodySample};
+use super::{Frame, ModelDef, RigidBody};
+use crate::mocap::track::{natnet_sample, BodySample};
 
 /// Where each marker of a set is among Motive's labelled markers.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -105,7 +105,7 @@ pub fn natnet_fitted_sample(
 mod tests {
     use super::*;
     use crate::mocap::natnet::{MarkerSetDef, RigidBodyDef};
-    use crate::mocap::natnet_markers::{LabeledMarker, OCCLUDED, POINT_CLOUD_SOLVED};
+    use crate::mocap::natnet::markers::{LabeledMarker, OCCLUDED, POINT_CLOUD_SOLVED};
 
     fn set() -> MarkerSet {
         MarkerSet::from_toml(

@@ -24,9 +24,14 @@
 //! the rest by size.
 //! Bounded allocation: nothing is reserved from a count; a body is pushed only after its bytes were read.
 
+pub mod descriptions;
+pub mod encode;
+pub mod fit;
+pub mod markers;
+
 use super::bytes::{Reader, Truncated};
-use super::natnet_descriptions::{self as descriptions, DescriptionError};
-use super::natnet_markers::{self as markers, LabeledMarker, LABELED_MARKER_BYTES};
+use self::descriptions::DescriptionError;
+use self::markers::{LabeledMarker, LABELED_MARKER_BYTES};
 
 pub const NAT_CONNECT: u16 = 0;
 pub const NAT_SERVERINFO: u16 = 1;

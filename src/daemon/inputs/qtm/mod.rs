@@ -4,6 +4,8 @@
 //! AllFrames 6D` (`6D 3D` when a route is a marker set, fitted to the labelled markers) and reads frames until the measurement stops or the connection ends, and then connects again
 //! with back-off.
 
+pub mod protocol;
+
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -15,7 +17,7 @@ use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_L
 use crate::daemon::DaemonError;
 use crate::kinematics::MarkerFitter;
 use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
-use crate::mocap::qtm_encode;
+use crate::mocap::qtm::encode as qtm_encode;
 use crate::mocap::track::{self, qtm_sample, BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 

@@ -2,8 +2,8 @@
 //! side the test servers and benchmarks use. The layouts are those `natnet.rs` reads; OptiTrack's Python
 //! client (`natnetsdk`) checks them in the tests.
 
-use super::bytes::Writer;
-use super::natnet::{
+use crate::mocap::bytes::Writer;
+use super::{
     Frame, ServerInfo, Version, NAT_CONNECT, NAT_FRAMEOFDATA, NAT_MODELDEF, NAT_SERVERINFO, RIGID_BODY_BYTES,
 };
 

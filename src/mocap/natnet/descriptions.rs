@@ -4,7 +4,7 @@
 //! The layouts are those of OptiTrack's NatNet SDK (its Python client `natnetsdk`, `NatNetClient.py`, unpacks
 //! them field by field; the tests check the test server's bytes with it).
 
-use super::bytes::{Reader, Truncated};
+use crate::mocap::bytes::{Reader, Truncated};
 
 /// Why a description could not be walked.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

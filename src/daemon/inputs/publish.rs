@@ -1,4 +1,4 @@
-//! `impactd bridge natnet|qtm`: a NatNet or QTM client publishing each mapped body's frames as clubhead
+//! `impactd bridge natnet|qtm|vicon`: a motion-capture client publishing each mapped body's frames as clubhead
 //! samples on `mocap/<rig>/clubhead` (the JSON any rig publishes) and its health on `mocap/<rig>/input` once
 //! a second. [`run_bridge`] runs until `shutdown` completes, so tests start and stop it in-process.
 
@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use zenoh::Wait;
 
-use super::{InputHandle, Source};
+use super::{InputHandle, Route, Source};
 use crate::daemon::DaemonError;
 use crate::kinematics::MarkerFitter;
 use crate::wire::{keys, MessageType, MocapInputStatus};
@@ -46,12 +46,28 @@ pub async fn run_bridge_fitted(
     balls: Vec<(String, String)>,
     shutdown: impl Future<Output = ()>,
 ) -> Result<Vec<MocapInputStatus>, DaemonError> {
-    let mut fitters = fitters;
-    fitters.resize(routes.len() + balls.len(), None);
+    let mut fitters = fitters.into_iter();
+    let routes = routes
+        .into_iter()
+        .map(|(body, rig)| (Route { body, segment: None, fitter: fitters.next().flatten() }, rig))
+        .collect();
+    let balls = balls.into_iter().map(|(body, rig)| (Route { body, ..Route::default() }, rig)).collect();
+    run_bridge_routes(session, source, routes, balls, shutdown).await
+}
+
+/// The bridge for any protocol: club `routes` and `balls`, each a [`Route`] (a body, a segment of it, a marker
+/// set) and its rig.
+pub async fn run_bridge_routes(
+    session: &zenoh::Session,
+    source: Source,
+    routes: Vec<(Route, String)>,
+    balls: Vec<(Route, String)>,
+    shutdown: impl Future<Output = ()>,
+) -> Result<Vec<MocapInputStatus>, DaemonError> {
     let mut samples = Vec::new();
     let mut statuses = Vec::new();
     let clubs = routes.len();
-    let routes: Vec<(String, String)> = routes.into_iter().chain(balls).collect();
+    let routes: Vec<(Route, String)> = routes.into_iter().chain(balls).collect();
     for (i, (_, rig)) in routes.iter().enumerate() {
         if !keys::valid_rig_name(rig) {
             return Err(DaemonError::BadRigName(rig.clone()));
@@ -85,8 +101,9 @@ pub async fn run_bridge_fitted(
             tracing::warn!("rig {rig}: publishing a sample: {e}");
         }
     });
-    tracing::info!("bridging {} at {} for {:?}", source.protocol(), source.address(), routes);
-    let handle = InputHandle::start_fitted(source, routes, fitters, deliver)?;
+    let named: Vec<(&str, &str)> = routes.iter().map(|(r, rig)| (r.body.as_str(), rig.as_str())).collect();
+    tracing::info!("bridging {} at {} for {:?}", source.protocol(), source.address(), named);
+    let handle = InputHandle::start_routes(source, routes, deliver)?;
     tokio::pin!(shutdown);
     let mut tick = tokio::time::interval(Duration::from_secs(1));
     loop {

@@ -12,7 +12,7 @@
 //! From NatNet 4.1 the section's byte size says how long each entry is, so a later minor that appends fields
 //! still decodes (the caller takes each entry's stride from it).
 
-use super::bytes::{Reader, Truncated};
+use crate::mocap::bytes::{Reader, Truncated};
 
 /// Bytes of one labelled marker in NatNet 3.x and 4.x.
 pub const LABELED_MARKER_BYTES: usize = 4 + 12 + 4 + 2 + 4;

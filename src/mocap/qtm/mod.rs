@@ -16,6 +16,8 @@
 //! test server built on `qtm_encode`. Bounded allocation: bodies are pushed only after their bytes
 //! were read, and a packet's size is checked against [`MAX_PACKET_BYTES`] before anything is buffered.
 
+pub mod encode;
+
 use super::bytes::{Reader, Truncated};
 
 pub const HEADER_BYTES: usize = 8;
