@@ -35,9 +35,10 @@
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
 //! # or, instead of open_connect, OpenGolfSim's developer API: opengolfsim = "127.0.0.1:3111"
 //! # (opengolfsim_unit = "metric" (m/s, default) or "imperial" (mph))
-//! [rig.input]                   # read the rig's body straight from Motive (natnet) or QTM (qtm)
-//! natnet = "192.168.1.20"
-//! body = "driver"
+//! [rig.input]                   # read the rig's body straight from Motive, QTM or Vicon
+//! protocol = "natnet"           # natnet | qtm | vicon
+//! server = "192.168.1.20"       # HOST or HOST:PORT
+//! body = "driver"               # Vicon: subject = "driver"
 //! unicast = true
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"

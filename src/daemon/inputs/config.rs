@@ -148,10 +148,17 @@ impl MocapInputConfig {
 
     /// The server, or the field that is wrong and why.
     pub fn source(&self) -> Result<Source, (String, String)> {
+        self.source_in(super::PROTOCOLS)
+    }
+
+    /// [`MocapInputConfig::source`] with the protocols of `list` (entries like [`super::PROTOCOLS`]).
+    pub fn source_in(&self, list: &[&'static dyn Protocol]) -> Result<Source, (String, String)> {
         if let Some(invalid) = &self.invalid {
             return Err(invalid.clone());
         }
-        let p = self.protocol()?;
+        let p = super::protocol::protocol_in(list, &self.protocol).ok_or_else(|| {
+            ("protocol".to_string(), format!("`{}` is not a protocol impactd reads ({})", self.protocol, names()))
+        })?;
         let key = p.body_key();
         if self.body.trim().is_empty() {
             return Err((key.into(), "must name the tracked body".into()));
@@ -223,6 +230,35 @@ pub fn resolve(host: &str, port: u16) -> Result<SocketAddr, DaemonError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn input(text: &str) -> MocapInputConfig {
+        MocapInputConfig::from_table(toml::from_str(text).unwrap())
+    }
+
+    /// `protocol` and `server` name every protocol's server; the protocol's name as the key reads the same;
+    /// each protocol checks its own keys, and Vicon's body is its `subject`.
+    #[test]
+    fn the_protocol_form_and_the_name_as_key_read_the_same() {
+        let vicon = input("protocol = \"vicon\"\nserver = \"10.0.0.5\"\nsubject = \"club\"\nsegment = \"head\"");
+        assert_eq!(vicon, input("vicon = \"10.0.0.5\"\nsubject = \"club\"\nsegment = \"head\""));
+        assert_eq!(vicon.source().unwrap(), Source::new("vicon", "10.0.0.5", 801));
+        assert_eq!(input("vicon = \"h:8010\"\nsubject = \"c\"").source().unwrap().port, 8010);
+        let old = input("natnet = \"h\"\nbody = \"c\"\nunicast = true\ndata_port = 0");
+        assert_eq!(old, input("protocol = \"natnet\"\nserver = \"h\"\nbody = \"c\"\nunicast = true\ndata_port = 0"));
+        assert_eq!(old.source().unwrap(), Source::new("natnet", "h", 1510).with("data_port", 0).with("unicast", true));
+        let qtm = input("qtm = \"h\"\nbody = \"c\"\nport = 22224");
+        assert_eq!(qtm.source().unwrap(), Source::new("qtm", "h", 22224));
+        let err = |text: &str| input(text).source().unwrap_err().0;
+        assert_eq!(err("vicon = \"h\"\nbody = \"c\""), "subject");
+        assert_eq!(err("qtm = \"h\"\nbody = \"c\"\nsegment = \"s\""), "segment");
+        assert_eq!(err("protocol = \"optitrack\"\nserver = \"h\"\nbody = \"c\""), "protocol");
+        assert_eq!(err("vicon = \"h\"\nsubject = \"c\"\nunicast = true"), "unicast");
+        assert_eq!(err("protocol = \"vicon\"\nsubject = \"c\""), "server");
+        assert_eq!(err("vicon = \"h:port\"\nsubject = \"c\""), "server");
+        // Written back in the protocol form.
+        let t = old.to_table();
+        assert_eq!((t["protocol"].as_str(), t["server"].as_str()), (Some("natnet"), Some("h")));
+    }
 
     /// A marker file that is not there, or is no marker set, keeps its cause: the IO error or the marker set's
     /// error, reachable from the daemon's error through `source()`, and says it once.

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
 use super::config::resolve;
-use super::protocol::{protocol, Route, Source, Start};
+use super::protocol::{protocol, Protocol, Route, Source, Start};
 use super::shared::{lock, Conn, Deliver, Shared};
 use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
@@ -78,6 +78,16 @@ impl InputHandle {
     pub fn start_routes(source: Source, routes: Vec<(Route, String)>, deliver: Deliver) -> Result<Self, DaemonError> {
         let p = protocol(source.protocol)
             .ok_or_else(|| DaemonError::Config { field: "input.protocol".into(), reason: source.protocol.into() })?;
+        Self::start_with(p, source, routes, deliver)
+    }
+
+    /// [`InputHandle::start_routes`] with the client of `p` (a protocol from any list of entries).
+    pub fn start_with(
+        p: &dyn Protocol,
+        source: Source,
+        routes: Vec<(Route, String)>,
+        deliver: Deliver,
+    ) -> Result<Self, DaemonError> {
         let stop = Arc::new(AtomicBool::new(false));
         let named: Vec<(String, String)> = routes.iter().map(|(r, rig)| (r.body.clone(), rig.clone())).collect();
         let shared = Arc::new(Mutex::new(Shared::new(&source, &named, deliver)));

@@ -102,7 +102,12 @@ pub static PROTOCOLS: &[&dyn Protocol] =
 
 /// The protocol named `name`.
 pub fn protocol(name: &str) -> Option<&'static dyn Protocol> {
-    PROTOCOLS.iter().copied().find(|p| p.name() == name)
+    protocol_in(PROTOCOLS, name)
+}
+
+/// The protocol named `name` in a list of entries like [`PROTOCOLS`] (a test's own, with a toy protocol).
+pub fn protocol_in(list: &[&'static dyn Protocol], name: &str) -> Option<&'static dyn Protocol> {
+    list.iter().copied().find(|p| p.name() == name)
 }
 
 /// Every protocol's name, for messages.
