@@ -94,6 +94,13 @@ pub enum DaemonError {
         #[source]
         source: std::io::Error,
     },
+    /// A C3D capture that cannot be read on.
+    #[error("{path}: {source}")]
+    Capture {
+        path: String,
+        #[source]
+        source: recording::c3d::C3dError,
+    },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
     BadRigName(String),
     #[error("{option} {reason}")]

@@ -65,6 +65,9 @@ pub enum EquipmentError {
     Read { path: String, source: std::io::Error },
     #[error("club file {path} is larger than {max_bytes} bytes")]
     TooLarge { path: String, max_bytes: u64 },
+    /// A club path that names a FIFO, a device, a socket or a directory: only regular files are read.
+    #[error("club file {path} is {kind}, not a regular file")]
+    NotRegularFile { path: String, kind: &'static str },
 }
 
 /// Converts a g cm^2 tensor (the seed's unit) to kg m^2.

@@ -40,6 +40,7 @@ use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod ball;
+pub mod club_put;
 mod clubs;
 mod inputs;
 mod labels;
@@ -248,6 +249,9 @@ pub async fn run(
         input.stop();
     }
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
+    // The loader stops within its poll whatever a put's load is doing (a load given up on runs out on its own
+    // thread, which holds none of the rigs' queues).
+    club_loader.stop.store(true, Ordering::Relaxed);
     for s in measured_subscribers.into_iter().chain(club_loader.subscribers) {
         s.undeclare().await.map_err(DaemonError::zenoh)?;
     }

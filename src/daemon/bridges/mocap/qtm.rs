@@ -2,7 +2,9 @@
 //! is not there), reads the greeting, asks for protocol 1.25, maps body names to 6D indices with
 //! `GetParameters 6D` (again when QTM says the cameras or the measurement changed), then `StreamFrames
 //! AllFrames 6D` (`6D 3D` when a route is a marker set, fitted to the labelled markers) and reads frames until the measurement stops or the connection ends, and then connects again
-//! with back-off.
+//! with back-off. A connection that goes quiet is asked `QTMVersion` after [`PROBE_AFTER`]; one that stays
+//! silent for [`QUIET`] (as NatNet's) is ended and connected again (`reconnects.quiet`), so a QTM that stopped
+//! answering after the handshake does not stay "connected".
 
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
@@ -21,6 +23,11 @@ use crate::wire::ConnectionState;
 
 /// How long a reply to a command may take.
 const REPLY_WAIT: Duration = Duration::from_secs(5);
+
+/// While streaming, a connection silent this long is asked for QTM's version (any packet is a sign of life).
+pub const PROBE_AFTER: Duration = Duration::from_secs(1);
+/// While streaming, a connection silent this long is ended and connected again (NatNet's [`super::natnet::QUIET`]).
+pub const QUIET: Duration = super::natnet::QUIET;
 
 /// Events after which the body list may have changed: ask for the parameters again.
 const EVENTS_REMAP: [u8; 4] = [3, 7, 8, 11];
@@ -45,6 +52,8 @@ pub fn start(
 enum End {
     Stopped,
     Lost(String),
+    /// Nothing came within the wait.
+    Silent,
 }
 
 fn run(
@@ -75,6 +84,7 @@ fn run(
                 match session.run(&mut tracks, &mut backoff) {
                     End::Stopped => return,
                     End::Lost(why) => why,
+                    End::Silent => "QTM did not answer".into(),
                 }
             }
             Err(e) => format!("no QTM real-time server at {server} ({e})"),
@@ -165,18 +175,16 @@ impl Session<'_> {
         self.stream.write_all(&qtm_encode::command(command)).map_err(|e| End::Lost(format!("writing to QTM: {e}")))
     }
 
-    /// The next packet, waiting up to `wait` (None: forever, until stopped).
-    fn next(&mut self, wait: Option<Duration>) -> Result<(u32, usize), End> {
-        let deadline = wait.map(|w| Instant::now() + w);
+    /// The next packet, waiting up to `wait`.
+    fn next(&mut self, wait: Duration) -> Result<(u32, usize), End> {
+        let deadline = Instant::now() + wait;
         loop {
             if self.stop.load(Ordering::Relaxed) {
                 return Err(End::Stopped);
             }
             match self.reader.next(&mut self.stream) {
                 Ok(Got::Packet(kind)) => return Ok((kind, self.reader.packet.len())),
-                Ok(Got::Idle) if deadline.is_some_and(|d| Instant::now() > d) => {
-                    return Err(End::Lost("QTM did not answer".into()))
-                }
+                Ok(Got::Idle) if Instant::now() > deadline => return Err(End::Silent),
                 Ok(Got::Idle) => {}
                 Err(Broken::Closed(why)) => return Err(End::Lost(why)),
                 Err(Broken::Bad(e)) => {
@@ -191,7 +199,7 @@ impl Session<'_> {
     fn ask(&mut self, command: &str, want: u32) -> Result<String, End> {
         self.send(command)?;
         loop {
-            let (kind, _) = self.next(Some(REPLY_WAIT))?;
+            let (kind, _) = self.next(REPLY_WAIT)?;
             let text = qtm::text(&self.reader.packet);
             match kind {
                 k if k == want => return Ok(text),
@@ -257,7 +265,7 @@ impl Session<'_> {
     fn session(&mut self, tracks: &mut [BodyTrack], backoff: &mut Duration) -> Result<(), End> {
         let _ = self.stream.set_nodelay(true);
         self.stream.set_read_timeout(Some(POLL)).map_err(|e| End::Lost(format!("socket: {e}")))?;
-        let (kind, _) = self.next(Some(REPLY_WAIT))?;
+        let (kind, _) = self.next(REPLY_WAIT)?;
         if kind != qtm::PACKET_COMMAND {
             return Err(End::Lost("QTM did not greet".into()));
         }
@@ -286,7 +294,7 @@ impl Session<'_> {
         *backoff = BACKOFF_FIRST;
         let mut frame = Frame6d::default();
         loop {
-            let (kind, _) = self.next(None)?;
+            let kind = self.next_streaming()?;
             let received = Instant::now();
             match kind {
                 qtm::PACKET_DATA => self.on_data(&mut frame, tracks, received),
@@ -315,6 +323,26 @@ impl Session<'_> {
                 qtm::PACKET_COMMAND => {}
                 other => lock(self.shared).conn.reject(QtmError::UnknownPacket(other).reason()),
             }
+        }
+    }
+
+    /// The next packet while streaming: after [`PROBE_AFTER`] of silence QTM is asked for its version (a live
+    /// QTM between measurements answers); after [`QUIET`] the session ends and the client connects again.
+    fn next_streaming(&mut self) -> Result<u32, End> {
+        match self.next(PROBE_AFTER) {
+            Ok((kind, _)) => return Ok(kind),
+            Err(End::Silent) => {}
+            Err(end) => return Err(end),
+        }
+        self.send("QTMVersion")?;
+        match self.next(QUIET.saturating_sub(PROBE_AFTER)) {
+            Ok((kind, _)) => Ok(kind),
+            Err(End::Silent) => {
+                let why = format!("QTM sent nothing for {} s, not even a reply; connecting again", QUIET.as_secs());
+                lock(self.shared).conn.reconnect("quiet", why.clone());
+                Err(End::Lost(why))
+            }
+            Err(end) => Err(end),
         }
     }
 

@@ -24,6 +24,8 @@ pub type Deliver = Box<dyn FnMut(usize, &BodySample, Instant) + Send>;
 pub struct Conn {
     pub state: ConnectionState,
     pub connects: u64,
+    /// Sessions the client ended itself, by reason (`quiet`, `undecodable`).
+    pub reconnects: BTreeMap<String, u64>,
     pub server_version: Option<String>,
     pub rejected: BTreeMap<String, u64>,
     pub last_error: Option<String>,
@@ -33,6 +35,13 @@ pub struct Conn {
 impl Conn {
     pub fn reject(&mut self, reason: &str) {
         *self.rejected.entry(reason.to_string()).or_default() += 1;
+    }
+
+    /// The client ends the session itself for `reason` and connects again; said in `last_error`.
+    pub fn reconnect(&mut self, reason: &str, why: String) {
+        *self.reconnects.entry(reason.to_string()).or_default() += 1;
+        self.state = ConnectionState::Disconnected;
+        self.last_error = Some(why);
     }
 }
 
