@@ -94,6 +94,15 @@ pub enum DaemonError {
         #[source]
         source: std::io::Error,
     },
+    /// Another daemon serves the rig (its liveliness token is there): this one refuses to serve it too.
+    #[error(
+        "rig {rig} is already served by {by}: refusing to serve it too (every shot would be predicted twice); \
+         stop that daemon, or start this one with --take-over to hand the rig over"
+    )]
+    RigServed { rig: String, by: String },
+    /// `--take-over` that could not take the rig over.
+    #[error("rig {rig} is served by {by}, and --take-over cannot take it over: {reason}")]
+    TakeOver { rig: String, by: String, reason: &'static str },
     /// A C3D capture that cannot be read on.
     #[error("{path}: {source}")]
     Capture {

@@ -40,6 +40,7 @@ use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod ball;
+pub mod claim;
 pub mod club_put;
 mod clubs;
 mod inputs;
@@ -66,6 +67,8 @@ pub struct RunOptions {
     pub foxglove: Option<String>,
     /// Serve the bay screen on this `HOST:PORT`.
     pub web: Option<String>,
+    /// Take over rigs another daemon serves (it stops) instead of refusing to start ([`claim`]).
+    pub take_over: bool,
 }
 
 /// What a run did, per rig.
@@ -77,6 +80,8 @@ pub struct RunSummary {
     /// Each rig's Open Connect client and listener at the end, for rigs that have them.
     pub simulators: BTreeMap<String, SimulatorStatus>,
     pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
+    /// Why the daemon stopped when another took its rig over (`--take-over`).
+    pub taken_over: Option<String>,
 }
 
 /// Runs the daemon on `session` until `shutdown` completes.
@@ -87,6 +92,9 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
+    // Before anything is created (a recording, a port): another daemon serving one of the rigs stops the start.
+    let rig_names: Vec<String> = config.rigs.iter().map(|r| r.name.clone()).collect();
+    claim::claim(session, &rig_names, options.take_over).await?;
     let recorder = options
         .record
         .as_deref()
@@ -192,6 +200,11 @@ pub async fn run(
             }
         }
     }
+    let (taken_tx, mut taken_rx) = tokio::sync::mpsc::channel::<String>(1);
+    let claims = claim::answer(session, &rig_names, move |why| {
+        let _ = taken_tx.try_send(why);
+    })
+    .await?;
     let unknown_cb = unknown.clone();
     let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
     let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
@@ -243,7 +256,10 @@ pub async fn run(
         })
         .await
         .map_err(DaemonError::zenoh)?;
-    shutdown.await;
+    let taken_over = tokio::select! {
+        _ = shutdown => None,
+        why = taken_rx.recv() => why,
+    };
     tracing::info!("shutting down");
     for input in inputs {
         input.stop();
@@ -257,8 +273,8 @@ pub async fn run(
     }
     let _ = club_loader.thread.join();
     drop(queryables);
-    drop(tokens);
-    let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
+    let mut summary =
+        RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), taken_over, ..Default::default() };
     for w in workers {
         if let Ok(end) = w.join() {
             if let Some(task) = end.simulator_task {
@@ -282,6 +298,10 @@ pub async fn run(
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
     }
+    // Last: a daemon taking the rigs over starts once these are gone, when every port is released and the
+    // recording closed.
+    drop(claims);
+    drop(tokens);
     Ok(summary)
 }
 
