@@ -178,10 +178,16 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
                 eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts));
             }
         }
+        for d in &report.damage {
+            eprintln!("{}: damaged: {d}", args.file.display());
+        }
         if report.stats.samples == 0 {
             // Nothing was replayed: a recording of nothing is not left behind.
             if let Some(out) = &args.output {
                 let _ = std::fs::remove_file(out);
+            }
+            if report.stats.left_out == 0 {
+                bail!("{}: no clubhead sample could be read (damaged)", args.file.display());
             }
             bail!("--rig/--start-offset/--duration leave no samples");
         }
@@ -190,7 +196,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         if index.skipped > 0 {
             // A line that is not a sample is bad input, as for every command that reads lines (exit 2).
             eprintln!("{} lines of {} are not clubhead samples (exit 2)", index.skipped, args.file.display());
-            return Ok(ExitCode::from(2));
+            return Ok(ExitCode::from(super::args::BAD_INPUT_EXIT));
         }
         Ok(code)
     })

@@ -12,7 +12,7 @@ use std::sync::mpsc::{sync_channel, Receiver};
 use std::sync::Arc;
 
 use super::items::{Item, Items, ReplayIndex, ReplaySource};
-use super::parse::{self, Parsed};
+use super::parse::{self, Parsed, Pass};
 use crate::daemon::recording::reader::{ChannelDef, OnDamage, RawMessage};
 use crate::daemon::recording::source::{is_mcap, MAX_STREAMED_RECORDING_BYTES};
 use crate::daemon::recording::stream::{read_messages, read_slice};
@@ -66,8 +66,8 @@ impl ReplayFile {
         let mut damage = Vec::new();
         let mut visit = |_: &_, channel: Option<&ChannelDef>, m: RawMessage| {
             let Some(channel) = channel else { return };
-            match parse::recorded(&channel.topic, m.data, m.log_time, true) {
-                Parsed::Item(Item::Sample { msg, log_time_ns }) => index.add_sample(&msg, log_time_ns),
+            match parse::recorded(&channel.topic, m.data, m.log_time, m.publish_time, Pass::Index) {
+                Parsed::SampleAt { rig, t_ns, log_time_ns } => index.add_sample(&rig, t_ns, Some(log_time_ns)),
                 Parsed::Launch { data, key, renamed } => {
                     on_launch(&data);
                     index.add_launch(&data, key);
@@ -143,7 +143,7 @@ fn jsonl_index(
             out.write_all(&line).and_then(|_| out.write_all(b"\n")).map_err(io)?;
         }
         match parse::jsonl_line(&line) {
-            Parsed::Item(Item::Sample { msg, log_time_ns }) => index.add_sample(&msg, log_time_ns),
+            Parsed::Item(Item::Sample { msg, log_time_ns }) => index.add_sample(&msg.rig, msg.t_ns, log_time_ns),
             Parsed::Bad(reason) => index.skip_line(format!("{} line {n}", path.display()), &reason),
             _ => {}
         }
@@ -219,6 +219,36 @@ impl Iterator for ThreadItems {
     }
 }
 
+/// Reads `items` on a thread of its own (parsing beside the replay's pipelines), sending them in batches.
+fn threaded(
+    items: impl Iterator<Item = Result<Item, DaemonError>> + Send + 'static,
+) -> Result<ThreadItems, DaemonError> {
+    let (tx, rx) = sync_channel::<Result<Vec<Item>, DaemonError>>(BATCHES_IN_FLIGHT);
+    std::thread::Builder::new()
+        .name("impactd-replay-read".into())
+        .spawn(move || {
+            let mut batch = Vec::with_capacity(BATCH);
+            for item in items {
+                match item {
+                    Ok(item) => batch.push(item),
+                    Err(e) => {
+                        let _ = tx.send(Ok(std::mem::take(&mut batch)));
+                        let _ = tx.send(Err(e));
+                        return;
+                    }
+                }
+                if batch.len() == BATCH
+                    && tx.send(Ok(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)))).is_err()
+                {
+                    return;
+                }
+            }
+            let _ = tx.send(Ok(batch));
+        })
+        .map_err(|e| DaemonError::Io { what: "starting the replay's reader".into(), source: e })?;
+    Ok(ThreadItems { rx, batch: Vec::new().into_iter() })
+}
+
 /// Reads the recording (its path, or its bytes) on a thread of its own, sending its items in batches.
 fn mcap_items(path: PathBuf, bytes: Option<Arc<Vec<u8>>>) -> Result<ThreadItems, DaemonError> {
     let (tx, rx) = sync_channel::<Result<Vec<Item>, DaemonError>>(BATCHES_IN_FLIGHT);
@@ -229,7 +259,8 @@ fn mcap_items(path: PathBuf, bytes: Option<Arc<Vec<u8>>>) -> Result<ThreadItems,
             let mut gone = false;
             let mut visit = |_: &_, channel: Option<&ChannelDef>, m: RawMessage| {
                 let Some(channel) = channel.filter(|_| !gone) else { return };
-                if let Parsed::Item(item) = parse::recorded(&channel.topic, m.data, m.log_time, false) {
+                let parsed = parse::recorded(&channel.topic, m.data, m.log_time, m.publish_time, Pass::Replay);
+                if let Parsed::Item(item) = parsed {
                     batch.push(item);
                     if batch.len() == BATCH {
                         gone = tx.send(Ok(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)))).is_err();
@@ -263,12 +294,12 @@ impl ReplaySource for ReplayFile {
             Body::McapBytes(bytes) => Box::new(mcap_items(self.path.clone(), Some(bytes.clone()))?),
             Body::JsonlFile => {
                 let file = std::fs::File::open(&self.path).map_err(io)?;
-                Box::new(jsonl(std::io::BufReader::with_capacity(1 << 16, file)))
+                Box::new(threaded(jsonl(std::io::BufReader::with_capacity(1 << 16, file)))?)
             }
             Body::JsonlSpool(spool) => {
                 let mut file = spool.try_clone().map_err(io)?;
                 file.rewind().map_err(io)?;
-                Box::new(jsonl(std::io::BufReader::with_capacity(1 << 16, file)))
+                Box::new(threaded(jsonl(std::io::BufReader::with_capacity(1 << 16, file)))?)
             }
         })
     }

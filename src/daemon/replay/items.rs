@@ -24,6 +24,9 @@ pub enum Item {
     ClubPut { rig: String, change: ClubChange },
     /// A synthetic rig's recorded truth (`sim/<rig>/truth`) and its bytes.
     Truth { rig: String, t_impact_ns: u64, payload: Vec<u8> },
+    /// A recorded sample that does not parse (damage the index pass, which reads samples by their topic and
+    /// times only, does not see): why.
+    Unreadable(String),
 }
 
 /// A rig's samples in the input.
@@ -72,19 +75,19 @@ impl ReplayIndex {
         self.rigs.values().map(|r| r.samples).sum::<u64>() + self.other_rig_samples
     }
 
-    /// Counts a sample received at `log_time_ns`.
-    pub fn add_sample(&mut self, msg: &ClubheadSampleMsg, log_time_ns: Option<u64>) {
+    /// Counts a sample of `rig` captured at `t_ns` and received at `log_time_ns`.
+    pub fn add_sample(&mut self, rig: &str, t_ns: u64, log_time_ns: Option<u64>) {
         if self.samples() == 0 {
             self.first_log_time_ns = log_time_ns;
         }
         let room = self.rigs.len() < MAX_INDEXED_RIGS;
-        match self.rigs.get_mut(&msg.rig) {
+        match self.rigs.get_mut(rig) {
             Some(span) => {
                 span.samples += 1;
-                span.first_t_ns = span.first_t_ns.min(msg.t_ns);
+                span.first_t_ns = span.first_t_ns.min(t_ns);
             }
             None if room => {
-                self.rigs.insert(msg.rig.clone(), RigSpan { samples: 1, first_t_ns: msg.t_ns });
+                self.rigs.insert(rig.to_string(), RigSpan { samples: 1, first_t_ns: t_ns });
             }
             None => self.other_rig_samples += 1,
         }

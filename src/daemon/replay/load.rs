@@ -78,6 +78,7 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
             Item::Labels { rig, labels } => input.labels.push((at, rig, labels)),
             Item::ClubPut { rig, change } => input.club_puts.push((at, rig, change)),
             Item::Truth { rig, t_impact_ns, payload } => input.truths.push((at, rig, t_impact_ns, payload)),
+            Item::Unreadable(why) => input.damage.push(why),
         }
     }
     Ok(input)
@@ -96,7 +97,7 @@ impl ReplaySource for ReplayInput {
             ..ReplayIndex::default()
         };
         for (i, msg) in self.samples.iter().enumerate() {
-            index.add_sample(msg, self.log_time_ns.get(i).copied());
+            index.add_sample(&msg.rig, msg.t_ns, self.log_time_ns.get(i).copied());
         }
         Cow::Owned(index)
     }

@@ -5,9 +5,25 @@
 use super::items::Item;
 use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
 
+/// Which pass reads a recorded message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pass {
+    /// The index: a sample is counted from its topic (its rig) and its publish time (its capture time) without
+    /// being parsed; recorded predictions are read.
+    Index,
+    /// The replay: samples are parsed, recorded predictions passed over.
+    Replay,
+}
+
 /// What a message or a line is to a replay.
 pub enum Parsed {
     Item(Item),
+    /// A recorded sample, seen by the index pass: its topic's rig, capture and receive times.
+    SampleAt {
+        rig: String,
+        t_ns: u64,
+        log_time_ns: u64,
+    },
     /// A recorded prediction's bytes (under the current model name), its (rig, shot, model) and latency, and the
     /// former model name it was recorded under, if any (`(former, current)`).
     Launch {
@@ -21,15 +37,18 @@ pub enum Parsed {
     Bad(String),
 }
 
-/// A recorded message on `topic` (its key with the leading `/`), received at `log_time_ns`. `launches`: whether a
-/// recorded prediction is parsed (the index pass) or passed over (the replay).
-pub fn recorded(topic: &str, data: Vec<u8>, log_time_ns: u64, launches: bool) -> Parsed {
+/// A recorded message on `topic` (its key with the leading `/`), received at `log_time_ns` and published (a
+/// sample: captured) at `publish_time_ns`, as `pass` reads it.
+pub fn recorded(topic: &str, data: Vec<u8>, log_time_ns: u64, publish_time_ns: u64, pass: Pass) -> Parsed {
     let topic = topic.trim_start_matches('/');
     let at = log_time_ns;
-    if keys::rig_of_clubhead(topic).is_some() {
+    if let Some(rig) = keys::rig_of_clubhead(topic) {
+        if pass == Pass::Index {
+            return Parsed::SampleAt { rig: rig.to_string(), t_ns: publish_time_ns, log_time_ns };
+        }
         match serde_json::from_slice::<ClubheadSampleMsg>(&data) {
             Ok(msg) => Parsed::Item(Item::Sample { msg, log_time_ns: Some(at) }),
-            Err(e) => Parsed::Bad(format!("a recorded sample at log time {at} does not parse: {e}")),
+            Err(e) => Parsed::Item(Item::Unreadable(format!("a recorded sample at log time {at} does not parse: {e}"))),
         }
     } else if keys::rig_of_ball(topic).is_some() {
         match crate::wire::BallSampleMsg::parse(&data) {
@@ -54,7 +73,7 @@ pub fn recorded(topic: &str, data: Vec<u8>, log_time_ns: u64, launches: bool) ->
             Ok(_) => Parsed::Other,
             Err(e) => Parsed::Bad(format!("a recorded club change at log time {at} does not parse: {e}")),
         }
-    } else if launches && keys::rig_of_launch(topic).is_some() {
+    } else if pass == Pass::Index && keys::rig_of_launch(topic).is_some() {
         let mut data = data;
         let mut key = None;
         let mut renamed = None;

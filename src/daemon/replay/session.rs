@@ -75,6 +75,8 @@ pub struct ReplayReport {
     pub reproduced: usize,
     /// Part of the recording could not be read: nothing is claimed reproduced.
     pub damaged: bool,
+    /// What the replay found it could not read (beside the index's `damage`).
+    pub damage: Vec<String>,
 }
 
 impl ReplayReport {
@@ -249,9 +251,14 @@ pub async fn run(
     let (mut produced, mut reproduced) = (0usize, 0usize);
     let mut pending = Pending::default();
     let mut last_log_time_ns = None;
+    let mut damage = Vec::new();
     for item in items {
         let (msg, log_time_ns) = match item? {
             Item::Sample { msg, log_time_ns } => (msg, log_time_ns),
+            Item::Unreadable(why) => {
+                damage.push(why);
+                continue;
+            }
             side => {
                 pending.push(side);
                 if pending.len() > MAX_PENDING {
@@ -363,7 +370,8 @@ pub async fn run(
         produced,
         recorded: index.recorded_launches.len(),
         reproduced,
-        damaged: !index.damage.is_empty(),
+        damaged: !index.damage.is_empty() || !damage.is_empty(),
+        damage,
     })
 }
 
@@ -390,7 +398,7 @@ impl Pending {
             Item::Labels { rig, labels } => self.labels.push((rig, labels)),
             Item::ClubPut { rig, change } => self.club_puts.push((rig, change)),
             Item::Truth { rig, t_impact_ns, payload } => self.truths.push((rig, t_impact_ns, payload)),
-            Item::Sample { .. } => {}
+            Item::Sample { .. } | Item::Unreadable(_) => {}
         }
     }
 
