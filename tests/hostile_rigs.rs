@@ -16,6 +16,7 @@ mod natnet_server;
 #[path = "common/qtm_server.rs"]
 mod qtm_server;
 #[path = "common/swing.rs"]
+#[allow(dead_code)]
 mod swing;
 
 use std::path::Path;

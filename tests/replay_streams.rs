@@ -8,6 +8,7 @@
 
 mod common;
 #[path = "common/swing.rs"]
+#[allow(dead_code)]
 mod swing;
 
 use std::io::Write;

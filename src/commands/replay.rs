@@ -230,7 +230,9 @@ fn open(args: &ReplayArgs) -> Result<Input> {
         if args.markers.is_some() {
             bail!("--markers is for C3D captures; {} is not one", args.file.display());
         }
-        return Ok(Input::File(ReplayFile::open(&args.file)?));
+        // The rigs' capture times are needed only to count --start-offset and --duration from.
+        let times = args.start_offset > 0.0 || args.duration.is_some();
+        return Ok(Input::File(ReplayFile::open(&args.file, times)?));
     }
     let Some(markers) = &args.markers else {
         bail!("{} is a C3D capture: --markers SET.toml says which markers are the club", args.file.display());
@@ -261,6 +263,9 @@ fn selection(index: &ReplayIndex, args: &ReplayArgs) -> Result<Selection> {
             let names: Vec<&str> = rigs.iter().map(|r| r.as_str()).collect();
             bail!("--rig {missing}: no samples of that rig (rigs: {})", names.join(", "));
         }
+    }
+    if args.start_offset == 0.0 && args.duration.is_none() {
+        return Ok(Selection { rigs: args.rig.clone(), from_ns: 0, to_ns: None });
     }
     let chosen = index.rigs.iter().filter(|(name, _)| args.rig.is_empty() || args.rig.contains(name));
     let t0 = chosen.map(|(_, span)| span.first_t_ns).min().unwrap_or(0);

@@ -81,22 +81,11 @@ pub struct DaemonConfig {
     pub web: Option<WebConfig>,
     /// `[clubs]`: the directories a put on `golf/<rig>/club` may name club files in.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub clubs: Option<ClubsConfig>,
+    pub clubs: Option<crate::daemon::config_club_dirs::ClubsConfig>,
     /// The directory of the file this configuration was loaded from (absolute), which relative club directories
     /// are taken from; `None` for a configuration not read from a file.
     #[serde(skip)]
     pub config_dir: Option<PathBuf>,
-}
-
-/// `[clubs]`: where a put may name club files. A put names a preset, or a path that resolves (symbolic links
-/// followed) under one of `dirs`; a relative path is looked up in each in turn.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ClubsConfig {
-    /// Directories, relative ones taken from the configuration file's directory. Absent: the configuration
-    /// file's directory and `./clubs`; empty: presets only.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub dirs: Option<Vec<String>>,
 }
 
 /// `[web]`: where the bay screen is served.
@@ -224,31 +213,6 @@ impl DaemonConfig {
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         config.config_dir = Some(std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()));
         Ok((config, setups))
-    }
-
-    /// The directories a put may name club files in, absolute: `[clubs] dirs` (relative ones from the
-    /// configuration file's directory, else the working directory), by default that directory and `./clubs`.
-    /// A configured directory that is not one is an error naming it; a default one that does not exist is left
-    /// out.
-    pub fn club_dirs(&self) -> Result<Vec<PathBuf>, DaemonError> {
-        let cwd = std::env::current_dir()
-            .map_err(|e| DaemonError::Io { what: "finding the working directory".into(), source: e })?;
-        let base = self.config_dir.clone().unwrap_or_else(|| cwd.clone());
-        let Some(dirs) = self.clubs.as_ref().and_then(|c| c.dirs.as_ref()) else {
-            let defaults = self.config_dir.iter().cloned().chain([cwd.join("clubs")]);
-            return Ok(defaults.filter_map(|d| std::fs::canonicalize(d).ok()).filter(|d| d.is_dir()).collect());
-        };
-        dirs.iter()
-            .enumerate()
-            .map(|(i, d)| {
-                let path = base.join(d);
-                match std::fs::canonicalize(&path) {
-                    Ok(p) if p.is_dir() => Ok(p),
-                    Ok(_) => Err(invalid(format!("clubs.dirs[{i}]"), format!("`{d}` is not a directory"))),
-                    Err(e) => Err(invalid(format!("clubs.dirs[{i}]"), format!("`{d}` ({}): {e}", path.display()))),
-                }
-            })
-            .collect()
     }
 
     /// Parses and validates TOML text.

@@ -5,6 +5,7 @@ pub mod bridges;
 pub mod bus;
 pub mod config;
 pub mod config_club;
+pub mod config_club_dirs;
 pub mod config_flight;
 pub mod config_pose;
 pub mod demo;

@@ -100,8 +100,13 @@ impl DaemonProcess {
     /// SIGTERM, then its exit status; killed, and the test failed, when it hangs.
     pub fn stop(mut self) -> ExitStatus {
         self.signal("TERM");
+        let asked = Instant::now();
         match self.wait(Duration::from_secs(30)) {
-            Some(s) => s,
+            Some(s) => {
+                // Measured, not asserted.
+                eprintln!("the daemon stopped {:?} after SIGTERM", asked.elapsed());
+                s
+            }
             None => {
                 let _ = self.child.kill();
                 panic!("the daemon did not stop on SIGTERM; its log:\n{}", self.log());

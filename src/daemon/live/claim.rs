@@ -1,4 +1,5 @@
-//! One daemon per rig. Before it serves a rig, a daemon looks for another daemon's liveliness token on
+//! A daemon's presence on its rigs, and one daemon per rig. A daemon serving a rig declares its liveliness token
+//! `golf/<rig>/impactd/alive` and its configuration's queryable `golf/<rig>/impactd/config`. Before it serves a rig, a daemon looks for another daemon's liveliness token on
 //! `golf/<rig>/impactd/alive`; when there is one it asks it, on `golf/<rig>/impactd/serve`, who it is and, with
 //! `--take-over`, to hand the rig over. Without `--take-over` the newcomer refuses to start (two daemons on one
 //! rig predict every shot twice) and the daemon serving the rig says it refused one; with it, the daemon serving
@@ -13,6 +14,7 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 use zenoh::Wait;
 
+use crate::daemon::config::RigConfig;
 use crate::daemon::DaemonError;
 use crate::wire::keys;
 
@@ -113,26 +115,41 @@ pub async fn claim(session: &zenoh::Session, rigs: &[String], take_over: bool) -
     Ok(())
 }
 
-/// What a daemon serving rigs declares so that others find it: per rig, the queryable answering newcomers
-/// and the watch on other daemons' tokens.
+/// What a daemon serving rigs declares so that others find it: per rig, its liveliness tokens, the queryables
+/// of its configuration and answering newcomers, and the watch on other daemons' tokens.
 pub struct Claims {
     _queryables: Vec<zenoh::query::Queryable<()>>,
     _tokens: Vec<zenoh::liveliness::LivelinessToken>,
     _watches: Vec<zenoh::pubsub::Subscriber<()>>,
 }
 
-/// Answers newcomers asking to serve `rigs`: one taking a rig over gets `handing_over` and `taken` is called
-/// once (the daemon then stops); one that is not is told who serves the rig, and both say so in the log.
-pub async fn answer(
+/// Declares the daemon on `rigs` (its tokens, its configuration's queryable) and answers newcomers asking to
+/// serve them: one taking a rig over gets `handing_over` and `taken` is called once (the daemon then stops); one
+/// that is not is told who serves the rig, and both say so in the log.
+pub async fn declare(
     session: &zenoh::Session,
-    rigs: &[String],
+    rigs: &[RigConfig],
     taken: impl Fn(String) + Send + Sync + 'static,
 ) -> Result<Claims, DaemonError> {
     let me = DaemonId::of(session);
     let taken = Arc::new(taken);
     let stopping = Arc::new(AtomicBool::new(false));
     let mut claims = Claims { _queryables: Vec::new(), _tokens: Vec::new(), _watches: Vec::new() };
-    for rig in rigs {
+    for rig_config in rigs {
+        let rig = &rig_config.name;
+        claims._tokens.push(session.liveliness().declare_token(keys::alive(rig)).await.map_err(DaemonError::zenoh)?);
+        let (config_json, config_key) = (serde_json::to_vec(rig_config).unwrap_or_default(), keys::config(rig));
+        let config = session
+            .declare_queryable(config_key.clone())
+            .callback(move |query| {
+                if let Err(e) = query.reply(config_key.clone(), config_json.clone()).encoding("application/json").wait()
+                {
+                    tracing::warn!("config query: {e}");
+                }
+            })
+            .await
+            .map_err(DaemonError::zenoh)?;
+        claims._queryables.push(config);
         let (me_q, rig_q, taken, stopping) = (me.clone(), rig.clone(), taken.clone(), stopping.clone());
         let key = keys::serve(rig);
         let queryable = session

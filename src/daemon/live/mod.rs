@@ -23,8 +23,6 @@ use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use zenoh::Wait;
-
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use crate::daemon::bridges::opengolfsim;
@@ -117,29 +115,11 @@ pub async fn run(
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
-    let mut tokens = Vec::new();
-    let mut queryables = Vec::new();
     let mut measured_subscribers = Vec::new();
     let mut input_slots: HashMap<String, InputSlot> = HashMap::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
         let publishers = RigPublishers::declare(session, &name).await?;
-        tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
-        let config_json = serde_json::to_vec(rig_config).unwrap_or_default();
-        let config_key = keys::config(&name);
-        queryables.push(
-            session
-                .declare_queryable(config_key.clone())
-                .callback(move |query| {
-                    if let Err(e) =
-                        query.reply(config_key.clone(), config_json.clone()).encoding("application/json").wait()
-                    {
-                        tracing::warn!("config query: {e}");
-                    }
-                })
-                .await
-                .map_err(DaemonError::zenoh)?,
-        );
         let (simulator, listener) = open_connect::start_rig(
             &rig_config.name,
             rig_config.simulator.as_ref(),
@@ -201,7 +181,7 @@ pub async fn run(
         }
     }
     let (taken_tx, mut taken_rx) = tokio::sync::mpsc::channel::<String>(1);
-    let claims = claim::answer(session, &rig_names, move |why| {
+    let claims = claim::declare(session, &config.rigs, move |why| {
         let _ = taken_tx.try_send(why);
     })
     .await?;
@@ -272,7 +252,6 @@ pub async fn run(
         s.undeclare().await.map_err(DaemonError::zenoh)?;
     }
     let _ = club_loader.thread.join();
-    drop(queryables);
     let mut summary =
         RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), taken_over, ..Default::default() };
     for w in workers {
@@ -301,7 +280,6 @@ pub async fn run(
     // Last: a daemon taking the rigs over starts once these are gone, when every port is released and the
     // recording closed.
     drop(claims);
-    drop(tokens);
     Ok(summary)
 }
 

@@ -41,13 +41,16 @@ enum Body {
 }
 
 impl ReplayFile {
-    /// Opens and indexes `path`.
-    pub fn open(path: &Path) -> Result<ReplayFile, DaemonError> {
-        Self::open_with(path, |_| {})
+    /// Opens and indexes `path`. With `times`, each recorded sample is parsed for its rig's earliest capture time
+    /// (what `--start-offset` and `--duration` count from); without, a recording's samples are counted by their
+    /// topic and publish time, unparsed (JSONL is parsed either way).
+    pub fn open(path: &Path, times: bool) -> Result<ReplayFile, DaemonError> {
+        Self::open_with(path, times, |_| {})
     }
 
     /// As [`open`](Self::open); `on_launch` sees each recorded prediction's bytes as they are indexed.
-    pub fn open_with(path: &Path, mut on_launch: impl FnMut(&[u8])) -> Result<ReplayFile, DaemonError> {
+    pub fn open_with(path: &Path, times: bool, mut on_launch: impl FnMut(&[u8])) -> Result<ReplayFile, DaemonError> {
+        let pass = if times { Pass::IndexParsed } else { Pass::Index };
         let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
         let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
         let regular = file.get_ref().metadata().map_err(io)?.is_file();
@@ -66,7 +69,7 @@ impl ReplayFile {
         let mut damage = Vec::new();
         let mut visit = |_: &_, channel: Option<&ChannelDef>, m: RawMessage| {
             let Some(channel) = channel else { return };
-            match parse::recorded(&channel.topic, m.data, m.log_time, m.publish_time, Pass::Index) {
+            match parse::recorded(&channel.topic, m.data, m.log_time, m.publish_time, pass) {
                 Parsed::SampleAt { rig, t_ns, log_time_ns } => index.add_sample(&rig, t_ns, Some(log_time_ns)),
                 Parsed::Launch { data, key, renamed } => {
                     on_launch(&data);

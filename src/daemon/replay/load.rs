@@ -55,7 +55,7 @@ pub use crate::daemon::recording::source::is_mcap;
 /// replay does, so the two agree on every message.
 pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
     let mut recorded_launches = Vec::new();
-    let file = ReplayFile::open_with(path, |data| recorded_launches.push(data.to_vec()))?;
+    let file = ReplayFile::open_with(path, false, |data| recorded_launches.push(data.to_vec()))?;
     let index = file.index().into_owned();
     let mut input = ReplayInput {
         recorded_launches,

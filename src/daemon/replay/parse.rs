@@ -8,9 +8,11 @@ use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
 /// Which pass reads a recorded message.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pass {
-    /// The index: a sample is counted from its topic (its rig) and its publish time (its capture time) without
-    /// being parsed; recorded predictions are read.
+    /// The index: a sample is counted from its topic (its rig) and its publish time (its capture time, as the
+    /// daemon records it) without being parsed; recorded predictions are read.
     Index,
+    /// The index, each sample parsed for its own rig and capture time (what `--start-offset` counts from).
+    IndexParsed,
     /// The replay: samples are parsed, recorded predictions passed over.
     Replay,
 }
@@ -46,9 +48,13 @@ pub fn recorded(topic: &str, data: Vec<u8>, log_time_ns: u64, publish_time_ns: u
         if pass == Pass::Index {
             return Parsed::SampleAt { rig: rig.to_string(), t_ns: publish_time_ns, log_time_ns };
         }
-        match serde_json::from_slice::<ClubheadSampleMsg>(&data) {
-            Ok(msg) => Parsed::Item(Item::Sample { msg, log_time_ns: Some(at) }),
-            Err(e) => Parsed::Item(Item::Unreadable(format!("a recorded sample at log time {at} does not parse: {e}"))),
+        let why = |e| format!("a recorded sample at log time {at} does not parse: {e}");
+        match (serde_json::from_slice::<ClubheadSampleMsg>(&data), pass) {
+            (Ok(msg), Pass::IndexParsed) => Parsed::SampleAt { rig: msg.rig, t_ns: msg.t_ns, log_time_ns },
+            (Ok(msg), _) => Parsed::Item(Item::Sample { msg, log_time_ns: Some(at) }),
+            // Damage the replay finds again (as an item) and reports.
+            (Err(_), Pass::IndexParsed) => Parsed::Other,
+            (Err(e), _) => Parsed::Item(Item::Unreadable(why(e))),
         }
     } else if keys::rig_of_ball(topic).is_some() {
         match crate::wire::BallSampleMsg::parse(&data) {
@@ -73,7 +79,7 @@ pub fn recorded(topic: &str, data: Vec<u8>, log_time_ns: u64, publish_time_ns: u
             Ok(_) => Parsed::Other,
             Err(e) => Parsed::Bad(format!("a recorded club change at log time {at} does not parse: {e}")),
         }
-    } else if pass == Pass::Index && keys::rig_of_launch(topic).is_some() {
+    } else if pass != Pass::Replay && keys::rig_of_launch(topic).is_some() {
         let mut data = data;
         let mut key = None;
         let mut renamed = None;
