@@ -20,7 +20,11 @@ pub struct Preset {
 
 macro_rules! file {
     ($name:literal, $aliases:expr) => {
-        Preset { name: $name, aliases: $aliases, text: include_str!(concat!("../../../../clubs/presets/", $name, ".toml")) }
+        Preset {
+            name: $name,
+            aliases: $aliases,
+            text: include_str!(concat!("../../../../clubs/presets/", $name, ".toml")),
+        }
     };
 }
 

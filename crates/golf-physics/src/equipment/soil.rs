@@ -257,6 +257,9 @@ mod tests {
         assert!(e.contains("`n`"), "{e}");
         let e = SoilSpec::from_toml_str("density = 1.0").unwrap_err().to_string();
         assert!(e.contains("unknown field"), "{e}");
-        assert!(matches!(SoilSpec::load_with("mud", &|_| Err(std::io::ErrorKind::NotFound.into())), Err(EquipmentError::UnknownSoil(_))));
+        assert!(matches!(
+            SoilSpec::load_with("mud", &|_| Err(std::io::ErrorKind::NotFound.into())),
+            Err(EquipmentError::UnknownSoil(_))
+        ));
     }
 }

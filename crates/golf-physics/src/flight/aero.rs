@@ -5,7 +5,7 @@
 //! - Drag `C_D = c_d0 + c_ds · min(S, S_MAX) + c_dc · σ(Re)`: a dimpled ball's drag without spin above the drag
 //!   crisis (`c_d0`), rising linearly with the spin ratio (`c_ds`, Smits and Smith's linear form), and a step
 //!   `c_dc` below the crisis, where the boundary layer separates early. `σ(Re) = 1 / (1 + exp((Re − Re_c) /
-//!   (w Re_c)))` is the share of subcritical flow, the crisis at `Re_c` (`re_crisis`), `w` = [`CRISIS_WIDTH`]
+//!   (w Re_c)))` is the share of subcritical flow, the crisis at `Re_c` (`re_crisis`), `w` = [`Aero::crisis_width`]
 //!   wide. Above the crisis the drag at a fixed spin ratio does not depend on the Reynolds number, as the
 //!   sources find for modern balls (within their scatter). Past [`S_MAX`], the largest spin ratio the sources
 //!   measured, the spin drag is held.

@@ -8,8 +8,8 @@
 pub mod club_sections;
 pub mod continuous;
 pub mod delivered_loft;
-mod fit_model;
 mod delivery;
+mod fit_model;
 pub mod identifiable;
 pub mod impulse;
 mod launch;

@@ -33,11 +33,11 @@ pub struct EstimatorSpec {
     pub window_ms: Option<Real>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation_window_ms: Option<Real>,
-    /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`]) and the
+    /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`](super::fit::PathSpeedFit)) and the
     /// velocity's direction from the position fit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_speed: Option<PathSpeedSpec>,
-    /// When set, the face centre's position and velocity come from an arc ([`ArcFit`]) fitted to the frames
+    /// When set, the face centre's position and velocity come from an arc ([`ArcFit`](super::arc::ArcFit)) fitted to the frames
     /// within this span (ms); the polynomial position fit stands in when the arc fit fails or fits the frames
     /// worse than it (`ARC_LACK_OF_FIT_RATIO`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -70,7 +70,7 @@ impl EstimatorSpec {
 
     /// Least squares over the last 44 ms of the face centre's path (degree up to 5), the
     /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
-    /// (cubic, [`PathSpeedFit`]). The spans were chosen with
+    /// (cubic, [`PathSpeedFit`](super::fit::PathSpeedFit)). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
     pub fn poly() -> Self {
         EstimatorSpec {
@@ -87,7 +87,7 @@ impl EstimatorSpec {
     }
 
     /// The default estimator: `poly` with the face centre's path as an arc over the last `ARC_WINDOW_MS`
-    /// ([`ArcFit`]), a cubic angle and a quadratic radius in the swing's plane instead of a degree-5 polynomial in
+    /// ([`ArcFit`](super::arc::ArcFit)), a cubic angle and a quadratic radius in the swing's plane instead of a degree-5 polynomial in
     /// space, while the arc fits the frames about as well as the polynomial does (`ARC_LACK_OF_FIT_RATIO`), and
     /// `poly`'s path otherwise. The club speed stays the path-length fit's: the arc's own is twice as precise on
     /// an exact arc but biased on other paths.

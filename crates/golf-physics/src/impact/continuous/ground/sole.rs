@@ -2,7 +2,7 @@
 //! strength integrated over the wetted part of the sole's cylinder.
 //!
 //! A sole point at angle θ (from straight down, positive toward the leading edge) and heel-toe offset s is
-//! `P = c + R (sin θ x̂ − cos θ ŷ) + s ẑ` in the sole's frame ([`SoleArc`]; the club frame turned toe down by
+//! `P = c + R (sin θ x̂ − cos θ ŷ) + s ẑ` in the sole's frame ([`SoleArc`](crate::equipment::sole::SoleArc); the club frame turned toe down by
 //! `toe_down_deg` about the face normal). Its sinkage below the undisturbed
 //! playing surface is `z = y_ground − P_y`. Over the wetted arc `θ_T.E ≤ θ ≤ θ_L.E` where `z > 0`:
 //!

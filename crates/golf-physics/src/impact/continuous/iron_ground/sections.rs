@@ -194,7 +194,10 @@ bounce_deg = 6.0
         let m = GroundModel::from_sections(&sections("[soil]\npreset = \"none\"\n"), iron).unwrap();
         assert!(!m.with_ground);
         assert!(is_teed(&soil_arg_section_with("none", &|_| Err(std::io::ErrorKind::NotFound.into())).unwrap()));
-        assert!(soil_arg_section_with("mud", &|_| Err(std::io::ErrorKind::NotFound.into())).unwrap_err().to_string().contains("soil"));
+        assert!(soil_arg_section_with("mud", &|_| Err(std::io::ErrorKind::NotFound.into()))
+            .unwrap_err()
+            .to_string()
+            .contains("soil"));
         for (text, field) in [
             ("[soil]\npreset = \"mud\"\n", "[soil]"),
             ("[sole]\nlie_deg = 120.0\n", "[sole]"),

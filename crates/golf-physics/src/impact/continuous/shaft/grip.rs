@@ -9,7 +9,7 @@
 //! - `R(t) = exp([ω] t) R₀`, `v(t) = exp([ω] t) v₀` (its acceleration `ω × v` is constant in size);
 //! - `p(t) = p₀ + (t I + (1 − cos ωt)/ω² [ω] + (ωt − sin ωt)/ω³ [ω]²) v₀`.
 //!
-//! The grip is then the butt's point of the rigid club (the lie and length of [`SoleSpec`] and the shaft), and
+//! The grip is then the butt's point of the rigid club (the lie and length of [`SoleSpec`](crate::equipment::sole::SoleSpec) and the shaft), and
 //! the head rides on the shaft relative to this frame ([`super::modal`]).
 
 use crate::math::{skew, Isometry3, Matrix3, Real, Translation3, UnitQuaternion, Vector3};
