@@ -304,7 +304,11 @@ pub fn sections_markdown() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::equipment::load_club;
+    use crate::equipment::{presets, EquipmentError, LoadedClub};
+
+    fn load_club(preset: &str) -> Result<LoadedClub, EquipmentError> {
+        presets::find(preset).ok_or_else(|| EquipmentError::UnknownPreset(preset.into()))?.load()
+    }
 
     #[test]
     fn every_name_builds_and_groups_expand_in_order() {
