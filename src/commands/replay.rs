@@ -218,7 +218,7 @@ fn select(input: &mut ReplayInput, args: &ReplayArgs) -> Result<bool> {
         let from = t0.saturating_add((args.start_offset * 1e9) as u64);
         // No --duration keeps every sample from `from` on, the one at t_ns = u64::MAX too.
         let to = args.duration.map(|d| from.saturating_add((d * 1e9) as u64));
-        input.samples.retain(|s| s.t_ns >= from && to.map_or(true, |to| s.t_ns < to));
+        input.samples.retain(|s| s.t_ns >= from && to.is_none_or(|to| s.t_ns < to));
         if input.samples.is_empty() {
             bail!("--start-offset/--duration leave no samples");
         }

@@ -76,7 +76,7 @@ impl ParamSpace {
 mod tests {
     use super::*;
     use crate::equipment::{BallSpec, ClubSpec, ModelSections};
-    use crate::impact::FitModelError;
+    use crate::impact::{registry, FitModelError};
 
     fn preset(club: ClubSpec) -> LoadedClub {
         LoadedClub { club, sections: ModelSections::default() }

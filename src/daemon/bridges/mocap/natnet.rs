@@ -175,7 +175,7 @@ impl Client {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_KEEPALIVE));
                     last_keepalive = now;
                 }
-                if want_model && last_model_request.map_or(true, |t| now - t >= MODEL_REQUEST_EVERY) {
+                if want_model && last_model_request.is_none_or(|t| now - t >= MODEL_REQUEST_EVERY) {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_REQUEST_MODELDEF));
                     last_model_request = Some(now);
                 }
