@@ -79,6 +79,17 @@ impl DaemonProcess {
 
     /// Stops the daemon with SIGINT (as Ctrl-C) and waits for it.
     pub fn stop(mut self) -> std::process::ExitStatus {
+        self.interrupt()
+    }
+
+    /// Stops the daemon, as [`DaemonProcess::stop`], and returns its log's lines from byte `from` on too (the
+    /// lines it says as it stops among them).
+    pub fn stop_and_log(mut self, from: usize) -> (std::process::ExitStatus, Vec<String>) {
+        let status = self.interrupt();
+        (status, self.log_since(from).0)
+    }
+
+    fn interrupt(&mut self) -> std::process::ExitStatus {
         Command::new("kill").args(["-INT", &self.pid().to_string()]).status().unwrap();
         let start = Instant::now();
         loop {

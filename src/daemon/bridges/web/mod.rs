@@ -338,7 +338,7 @@ impl Connection {
         };
         self.slot.touch();
         let mode = if controls { "" } else { " (read-only: no token)" };
-        self.peers.info("page_connected", || format!("page {peer} connected{mode}"));
+        self.peers.info("page_connected", || format!("page connected: {peer}{mode}"));
         let page = socket::Page {
             peer: self.peer,
             slot: self.slot,
@@ -348,6 +348,6 @@ impl Connection {
             controls,
         };
         socket::serve(ws, page).await;
-        self.peers.info("page_left", || format!("page {peer} left"));
+        self.peers.info("page_left", || format!("page left: {peer}"));
     }
 }
