@@ -149,7 +149,8 @@ fn bodies_xml(names: &[String]) -> Vec<u8> {
 #[tokio::test(flavor = "multi_thread")]
 async fn a_qtm_server_alternating_its_body_list_logs_a_line_a_second_and_cuts_names() {
     let server = QtmServer::start(&["club"]);
-    let d = DaemonProcess::start(&format!("[rig.input]\nqtm = \"127.0.0.1\"\nbody = \"club\"\nport = {}\n", server.port));
+    let d =
+        DaemonProcess::start(&format!("[rig.input]\nqtm = \"127.0.0.1\"\nbody = \"club\"\nport = {}\n", server.port));
     let rig = Rig::start(&d, 20).await;
     assert!(common::wait_for(|| server.streaming() == 1), "the daemon did not stream from QTM");
     let log_from = d.log_text().len();
