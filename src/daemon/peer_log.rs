@@ -12,7 +12,7 @@ use tracing::Level;
 use crate::daemon::stats::RateLimiter;
 
 /// The most of a peer-driven line's text that is logged (what the daemon says plus what it quotes), in bytes;
-/// the cut is marked `… (N bytes)`.
+/// the cut is marked `… (N bytes in all)`.
 pub const PEER_LINE_BYTES: usize = 512;
 /// The most of one list of peer names (a mocap model's bodies) quoted in a line, in bytes.
 pub const PEER_LIST_BYTES: usize = 256;
@@ -105,10 +105,10 @@ pub fn cut(text: &str) -> String {
     escaped(text, PEER_LINE_BYTES)
 }
 
-/// A peer's string as a line quotes it: escaped and cut to `max` bytes, the cut marked `… (N bytes)`.
+/// A peer's string as a line quotes it: escaped and cut to `max` bytes, the cut marked `… (N bytes in all)`.
 pub fn escaped(text: &str, max: usize) -> String {
     let mut out = String::with_capacity(text.len().min(max) + 16);
-    for (i, c) in text.char_indices() {
+    for c in text.chars() {
         let before = out.len();
         if c.is_control() {
             out.extend(c.escape_debug());
@@ -117,7 +117,7 @@ pub fn escaped(text: &str, max: usize) -> String {
         }
         if out.len() > max {
             out.truncate(before);
-            out.push_str(&format!("… ({} bytes)", text.len() - i + before));
+            out.push_str(&format!("… ({} bytes in all)", text.len()));
             return out;
         }
     }
@@ -155,8 +155,8 @@ mod tests {
         assert_eq!(escaped("club\nWARN forged", 100), "club\\nWARN forged");
         let long = "x".repeat(1 << 20);
         let c = cut(&long);
-        assert!(c.len() <= PEER_LINE_BYTES + 24, "{}", c.len());
-        assert!(c.ends_with(&format!("… ({} bytes)", (1 << 20) - PEER_LINE_BYTES)), "{}", &c[500..]);
+        assert!(c.len() <= PEER_LINE_BYTES + 32, "{}", c.len());
+        assert!(c.ends_with("… (1048576 bytes in all)"), "{}", &c[500..]);
         // Cut at a character, never inside one.
         let wide = "é".repeat(400);
         assert!(escaped(&wide, 101).starts_with(&"é".repeat(50)));

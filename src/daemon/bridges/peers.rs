@@ -1,9 +1,12 @@
-//! The connections of one TCP surface (an Open Connect listener, the Foxglove live view), bounded: at most
-//! `max_connections` open at once, and at the cap the connection idle the longest is closed to admit the
-//! newcomer, so an honest peer that arrives behind a crowd of idle ones is answered at once and the daemon's
-//! descriptors (zenoh's, the mocap inputs') are never starved. A connection that says nothing useful within
-//! the handshake timeout, or then goes quiet for the idle timeout, is closed. Rejections are counted by kind
-//! and logged at most once a second per kind.
+//! The connections of one TCP surface (an Open Connect listener, the Foxglove live view, the bay screen),
+//! bounded: at most `max_connections` open at once. At the cap an unfinished handshake (a connection that has
+//! said nothing useful yet, the one connected longest ago) is closed first to admit the newcomer, else the
+//! connection idle the longest, so an honest peer that arrives behind a crowd of idle ones is answered at once and
+//! the daemon's descriptors (zenoh's, the mocap inputs') are never starved; a surface whose clients retry (the bay
+//! screen's pages) may instead refuse the newcomer when every connection is live ([`Peers::admit_unless_full`]),
+//! so live clients are not pushed out in turn. A connection that says nothing useful within the handshake
+//! timeout, or then goes quiet for the idle timeout, is closed. Rejections are counted by kind and logged at most
+//! once a second per kind ([`PeerLog`]).
 //!
 //! Written here rather than taken from a crate: tower's limits refuse the newcomer at the cap (the opposite of
 //! what keeps an honest connector served) and would bring an HTTP service stack for two raw TCP loops.
