@@ -87,7 +87,7 @@ mod tests {
         assert!(find("putter").is_none());
         assert_eq!(find("driver").unwrap().load().unwrap().club, super::super::ClubSpec::driver());
         assert_eq!(find("iron7").unwrap().load().unwrap().club, super::super::ClubSpec::iron7());
-        // The other irons and wedges carry the shaft's share about the heel-toe axis (scripts/shaft-share.py).
+        // The other irons and wedges carry the shaft's share about the heel-toe axis (research/scripts/shaft-share.py).
         for p in ["iron4", "iron5", "iron6", "iron8", "iron9", "pw", "gw", "sw", "lw"] {
             assert!(find(p).unwrap().load().unwrap().club.shaft_heel_toe_inertia_kg_m2 > 0.0, "{p}");
         }

@@ -77,7 +77,7 @@ impl SoilSpec {
     }
 
     /// This soil pressing `factor` times as hard at every sinkage (both moduli of eq. 4.3 scaled): how the
-    /// ground model's response to the soil's strength is measured (docs/ground-parts.md).
+    /// ground model's response to the soil's strength is measured (research/ground-parts.md).
     pub fn with_moduli_scaled(mut self, factor: Real) -> Self {
         self.k_c_n_per_m_n1 *= factor;
         self.k_phi_n_per_m_n2 *= factor;

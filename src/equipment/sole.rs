@@ -30,7 +30,7 @@
 //! the face normal through the face centre, toe down for positive angles. A shaft bowed toe-down at impact
 //! ("droop", a few degrees for a steel iron) or a lie flatter than the golfer's delivery puts the toe down;
 //! hands higher at impact than at address put it up. With no measured typical value of either sign, the level
-//! sole (0) is the default; docs/ground-findings.md measures what the tilt does to the seed's findings.
+//! sole (0) is the default; research/ground-findings.md measures what the tilt does to the seed's findings.
 
 use super::EquipmentError;
 use crate::math::{Real, UnitQuaternion, Vector3};

@@ -18,7 +18,7 @@ pub const SECTIONS: &[SectionDoc] = &[
             "e_y, e_z; optionally oblique_from_deg, oblique_full_deg,",
             "oblique_e_t together (Cross's grip rising with the strike's",
             "obliquity, impact/impulse/oblique.rs; the iron and wedge",
-            "presets but iron7 carry it, docs/wedge-spin.md)",
+            "presets but iron7 carry it, research/wedge-spin.md)",
         ],
     },
     SectionDoc {
@@ -28,7 +28,7 @@ pub const SECTIONS: &[SectionDoc] = &[
             "Table 3.5 as printed), then any of k_v_n_per_m3, d_s_per_m, mu,",
             "k_ball_nm_per_rad, c_ball_nms_per_rad, cover_thickness_m, v_tr_mps",
             "(`ground` without this section: Table 3.5 as printed, the ball its findings",
-            "in docs/ground-findings.md are measured with)",
+            "in research/ground-findings.md are measured with)",
         ],
     },
     SectionDoc { name: "maw", fields: &["e_pa, nu, d_s_per_m, mu, rings (default 20)"] },

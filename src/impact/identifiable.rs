@@ -117,7 +117,7 @@ fn continuous_coarse(club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn Impac
 }
 
 /// Maw's and Arakawa's global search: the exact model on the subsample of a model resolved in time (their steps
-/// cannot be coarsened: the stick/slip switches of the rings make the step error first order, docs/models.md).
+/// cannot be coarsened: the stick/slip switches of the rings make the step error first order, research/maw-arakawa.md).
 /// (Their rigid ball is the seed's, whatever the fit's ball: as the registry builds them.)
 fn maw_global(club: &LoadedClub, _: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
     Ok(Arc::new(HertzModel::maw_from_sections(&club.sections)?))

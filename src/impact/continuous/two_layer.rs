@@ -9,12 +9,12 @@
 //!   describes the model by that reversal (section 2.2.3: the cover sticks, the core turns against it and the
 //!   spring's energy reverses the friction; one cycle per impact), which needs a core-cover period shorter than
 //!   the contact (about 0.45 ms). With it the launch agrees with the adjusted impulse model on both clubs at
-//!   35-55 m/s (`docs/models-notes.md`).
+//!   35-55 m/s (`research/models-notes.md`).
 //! - `table`: Table 3.5 as transcribed. Its spring (`k_ball` 13.5 and 34.1 with the cover's inertia) has a period
 //!   of 2.2 ms (driver) and 1.6 ms (7-iron), five times slower than the contact, so the cover sticks and the core
 //!   barely follows: the driver's friction never reverses and the 7-iron's only by about 1 % of its peak. The
 //!   units of `k_ball` (N m/rad) and `c_ball` (ms/rad) cannot be recovered from the thesis: no scaling of them
-//!   meets every comparison (`docs/models-notes.md`).
+//!   meets every comparison (`research/models-notes.md`).
 //!
 //! The `ground` model reuses this ball contact with the same default reading and the same `[continuous]`
 //! section, so with no ground under the ball it is this model with a flexible shaft (tests/ground_teed.rs).

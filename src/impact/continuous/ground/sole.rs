@@ -43,7 +43,7 @@ pub struct SoleContact {
 /// The sole's forces. `arc` is the sole placed in the world, `v_cg` and `w` the head's velocity and angular
 /// velocity, `v_reg` the shear's smoothing speed; `strips` the Gauss rule heel to toe, `along` along the arc;
 /// `mask` multiplies each point's force component by component in the world frame (ones: the seed's model;
-/// `(0, 1, 0)` keeps only the vertical part, which separates what each part does: docs/ground-parts.md).
+/// `(0, 1, 0)` keeps only the vertical part, which separates what each part does: research/ground-parts.md).
 #[allow(clippy::too_many_arguments)]
 pub fn sole_forces(
     arc: &SoleArcWorld,

@@ -68,7 +68,7 @@ pub struct GroundModel {
     pub with_ground: bool,
     /// World-frame multipliers of the ground's force components, ones by default (the seed's model);
     /// `(0, 1, 0)` keeps the vertical part alone, `(1, 0, 1)` the horizontal: what each part does to the strike
-    /// (docs/ground-findings.md).
+    /// (research/ground-findings.md).
     pub force_mask: Vector3,
 }
 

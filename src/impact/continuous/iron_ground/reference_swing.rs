@@ -1,7 +1,7 @@
 //! The one 7-iron swing the seed's findings over the face are measured on (seed section 4.3: "the same swing
 //! kinematics were used for all shots"): 90 mph at the face centre, 4.3° down, square path and face, 25° dynamic
 //! loft (TrackMan's 7-iron averages), the club turning at 27 rad/s (club speed over a 1.5 m swing radius) about
-//! the normal of a 60° swing plane. docs/ground.md, docs/ground-parts.md and the ground tests use it.
+//! the normal of a 60° swing plane. docs/ground.md, research/ground-parts.md and the ground tests use it.
 
 use crate::impact::Delivery;
 use crate::math::{Real, Vector3};

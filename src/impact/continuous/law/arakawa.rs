@@ -36,7 +36,7 @@
 //! - `literal`: eq. 3.23 as printed, signed, along the slip axis at first contact. With Table 3.7's `η` its
 //!   second term is 18 kN (driver) and 78 kN (7-iron) at first contact, several times the normal force; the slip
 //!   reverses within the compression and the force keeps pushing the same way, so the energy rises (12-14 %,
-//!   docs/models.md) and the 7-iron does not converge in the step at 50-55 m/s. Kept for comparison with the
+//!   research/maw-arakawa.md) and the 7-iron does not converge in the step at 50-55 m/s. Kept for comparison with the
 //!   seed's text.
 
 use super::hertz::{non_negative, positive, Begin, ContactKinematics, Hertz, LawError, Tangential};
@@ -79,7 +79,7 @@ pub enum ArakawaReading {
 }
 
 impl ArakawaParams {
-    /// Table 3.7, driver (E as 15.1 x 10^7 Pa: see `docs/models.md`, "Hertz stiffness").
+    /// Table 3.7, driver (E as 15.1 x 10^7 Pa: see `research/maw-arakawa.md`, "Hertz stiffness").
     pub const DRIVER: ArakawaParams = ArakawaParams {
         e_pa: 151e6,
         nu: 0.407,

@@ -48,7 +48,7 @@ pub fn non_negative(field: &'static str, value: Real) -> Result<(), LawError> {
 /// is a small-strain theory: the tangential traction acts at the undeformed radius `R`. With the seed's stiffness
 /// read as a golf ball's (157-163 MPa) the approach reaches about 7 mm, a third of the radius, and an arm of
 /// `R − x/2` (the middle of the overlap) shortens the lever by that much: Figure 3.4's plate then leaves at 1.51
-/// times rolling where the theory's arm gives 1.085 (docs/models.md, "Maw's backspin: the lever arm").
+/// times rolling where the theory's arm gives 1.085 (research/maw-arakawa.md, "Maw's backspin: the lever arm").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactArm {

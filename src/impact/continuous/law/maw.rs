@@ -18,7 +18,7 @@
 //!   whole step's: the approach taken as linear over the step, the share `(x − r_i²/R)/(x − x₀)` of the slip
 //!   since the step's start (`x₀` the approach at the step's start). Without it each entering ring that sticks
 //!   carries an error of the order of the step for the rest of the contact, which made the spin converge only to
-//!   first order in the step (docs/models.md, "Maw's step").
+//!   first order in the step (research/maw-arakawa.md, "Maw's step").
 //!
 //! The ring width is the expected largest contact radius (elastic Hertz estimate from the approach speed)
 //! over the ring count; the contact may grow past it by up to the same again.
@@ -51,7 +51,7 @@ fn default_rings() -> usize {
 }
 
 impl MawParams {
-    /// Table 3.6, driver (E as 15.7 x 10^7 Pa: see `docs/models.md`, "Hertz stiffness").
+    /// Table 3.6, driver (E as 15.7 x 10^7 Pa: see `research/maw-arakawa.md`, "Hertz stiffness").
     pub const DRIVER: MawParams = MawParams {
         e_pa: 157e6,
         nu: 0.407,
