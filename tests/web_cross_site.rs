@@ -221,6 +221,30 @@ async fn with_a_token_the_screen_is_read_only_until_the_token_is_given() {
     assert!(d.stop().success());
 }
 
+#[tokio::test(flavor = "multi_thread")]
+async fn names_added_with_web_host_and_web_hosts_are_answered_and_no_others() {
+    let d = DaemonProcess::start_with("[web]\nhosts = [\"bay1.local\"]\n", &["--web-host", "Screen-2.Local"]);
+    let port = d.web.rsplit(':').next().unwrap().to_string();
+    for (host, status) in [
+        (format!("bay1.local:{port}"), "200"),
+        (format!("screen-2.local:{port}"), "200"),
+        (format!("localhost:{port}"), "200"),
+        (d.web.clone(), "200"),
+        (format!("bay2.local:{port}"), "421"),
+    ] {
+        let answer = get(&d.web, &host, "/", "").await;
+        assert!(answer.starts_with(&format!("HTTP/1.1 {status}")), "{host}: {answer:.120}");
+    }
+    assert!(d.stop().success());
+    // A name without a screen to answer as is a mistake, said at once.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .args(["run", "--web-host", "bay1.local", "--no-multicast-scouting"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--web-host needs --web"), "{out:?}");
+}
+
 fn on_path(exe: &str) -> bool {
     std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(exe).is_file()))
 }

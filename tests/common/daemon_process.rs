@@ -32,6 +32,11 @@ pub struct DaemonProcess {
 impl DaemonProcess {
     /// `impactd run` with rig `bay1` (and `extra` in its configuration) serving `--web` on loopback.
     pub fn start(extra: &str) -> DaemonProcess {
+        DaemonProcess::start_with(extra, &[])
+    }
+
+    /// [`DaemonProcess::start`] with more arguments to `run`.
+    pub fn start_with(extra: &str, args: &[&str]) -> DaemonProcess {
         let dir = tempfile::tempdir().unwrap();
         let config = dir.path().join("impactd.toml");
         std::fs::write(&config, format!("status_period_s = 0.2\n[[rig]]\nname = \"bay1\"\n{extra}")).unwrap();
@@ -42,6 +47,7 @@ impl DaemonProcess {
             .args(["run", "-c"])
             .arg(&config)
             .args(["-l", &zenoh, "--no-multicast-scouting", "--web", &web])
+            .args(args)
             .env("RUST_LOG", "info,zenoh=warn")
             .stdout(Stdio::null())
             .stderr(std::fs::File::create(&log).unwrap())

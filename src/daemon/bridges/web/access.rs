@@ -88,7 +88,7 @@ impl Access {
         let name = normal(name);
         let ok = match name.trim_start_matches('[').trim_end_matches(']').parse::<IpAddr>() {
             Ok(ip) => self.bound.is_unspecified() || ip == self.bound || (self.bound.is_loopback() && ip.is_loopback()),
-            Err(_) => self.names.iter().any(|n| *n == name),
+            Err(_) => self.names.contains(&name),
         };
         if ok {
             return Ok(());
@@ -133,7 +133,7 @@ impl Access {
 
     /// Whether `given` is the token (`true` when none is needed).
     pub fn is_token(&self, given: &str) -> bool {
-        self.token.as_deref().is_none_or(|t| same(given.as_bytes(), t.as_bytes()))
+        self.token.as_deref().map_or(true, |t| same(given.as_bytes(), t.as_bytes()))
     }
 }
 
