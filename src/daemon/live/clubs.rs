@@ -6,13 +6,14 @@
 use std::collections::HashMap;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{sync_channel, Receiver};
-use std::time::{Duration, Instant};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
 
 use super::inputs::Route;
 use super::queue::{Incoming, InputKind};
 use super::Worker;
 use crate::daemon::config::RigConfig;
-use crate::daemon::stats::RateLimiter;
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::wire::{self, keys, ClubSource};
 
@@ -39,6 +40,9 @@ pub(super) async fn start(
     routes: &HashMap<String, Route>,
 ) -> Result<ClubLoader, DaemonError> {
     let (tx, rx) = sync_channel::<Put>(PENDING_PUTS);
+    // The puts' log lines, the subscribers' and the loader's: one a second per kind, floods counted.
+    let log = Arc::new(Mutex::new(PeerLog::new()));
+    let loader_log = log.clone();
     let rigs: HashMap<String, (RigConfig, Route)> = config
         .rigs
         .iter()
@@ -46,17 +50,20 @@ pub(super) async fn start(
         .collect();
     let thread = std::thread::Builder::new()
         .name("impactd-clubs".into())
-        .spawn(move || load(rx, rigs))
+        .spawn(move || load(rx, rigs, &loader_log))
         .map_err(|e| DaemonError::Io { what: "starting the club loader".into(), source: e })?;
     let mut subscribers = Vec::new();
     for rig in &config.rigs {
-        let (tx, name, key) = (tx.clone(), rig.name.clone(), keys::club(&rig.name));
+        let (tx, name, key, log) = (tx.clone(), rig.name.clone(), keys::club(&rig.name), log.clone());
         let subscriber = session
             .declare_subscriber(key.clone())
             .callback(move |sample| {
                 let put = Put { rig: name.clone(), payload: sample.payload().to_bytes().into_owned() };
                 if tx.try_send(put).is_err() {
-                    tracing::warn!("put on {key} refused: {PENDING_PUTS} club puts are already waiting");
+                    let mut log = log.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                    log.warn("club_puts_waiting", || {
+                        format!("put on {key} refused: {PENDING_PUTS} club puts are already waiting")
+                    });
                 }
             })
             .await
@@ -67,9 +74,10 @@ pub(super) async fn start(
 }
 
 /// The loader: each put parsed, loaded and built for its rig, then queued for the rig's worker.
-fn load(rx: Receiver<Put>, rigs: HashMap<String, (RigConfig, Route)>) {
-    let mut limiter = RateLimiter::new(Duration::from_secs(1));
+fn load(rx: Receiver<Put>, rigs: HashMap<String, (RigConfig, Route)>, log: &Mutex<PeerLog>) {
+    let log = || log.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     for put in rx {
+        log().flush();
         let Some((config, (tx, dropped))) = rigs.get(&put.rig) else { continue };
         let key = keys::club(&put.rig);
         let switch = wire::parse_club_put(&put.payload)
@@ -87,13 +95,11 @@ fn load(rx: Receiver<Put>, rigs: HashMap<String, (RigConfig, Route)>) {
                 };
                 if tx.try_send(incoming).is_err() {
                     dropped.fetch_add(1, Ordering::Relaxed);
-                    tracing::warn!("put on {key} refused: the rig's queue is full");
+                    log().warn("club_queue_full", || format!("put on {key} refused: the rig's queue is full"));
                 }
             }
             Err(e) => {
-                if let Some(n) = limiter.allow(&put.rig) {
-                    tracing::warn!("put on {key} refused, the club is unchanged: {e} ({n} more suppressed)");
-                }
+                log().warn("club_refused", || format!("put on {key} refused, the club is unchanged: {e}"));
             }
         }
     }
@@ -111,15 +117,16 @@ impl Worker {
 
     /// Records (and logs) the rig's club from a pipeline's change (a body's club).
     pub(super) fn record_club_change(&mut self, log_time_ns: u64, change: &wire::ClubChange) {
-        tracing::info!(
-            "rig {}: club {} ({}, sha256 {}) from {:?}{}",
-            self.rig,
-            change.club.name,
-            change.club.file,
-            change.club.sha256.get(..12).unwrap_or_default(),
-            change.source,
-            change.body.as_deref().map(|b| format!(" (body {b})")).unwrap_or_default()
-        );
+        self.info("club_change", || {
+            format!(
+                "club {} ({}, sha256 {}) from {:?}{}",
+                change.club.name,
+                change.club.file,
+                change.club.sha256.get(..12).unwrap_or_default(),
+                change.source,
+                change.body.as_deref().map(|b| format!(" (body {b})")).unwrap_or_default()
+            )
+        });
         self.sinks.club_change(log_time_ns, change);
     }
 

@@ -258,7 +258,7 @@ impl Client {
                                 let map = label_map(&model, name, &fitter.set);
                                 if let Err(e) = &map {
                                     if sh.bodies[i].body_found || !st.model_seen {
-                                        tracing::warn!("marker set of `{name}`: {e}");
+                                        sh.log.warn("markers_not_in_model", || format!("marker set of `{name}`: {e}"));
                                     }
                                 }
                                 st.maps[i] = map.ok();
@@ -267,10 +267,11 @@ impl Client {
                             }
                             let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
                             if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
-                                let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
-                                tracing::warn!(
-                                    "rigid body `{name}` is not in the NatNet server's model (it has {names:?})"
-                                );
+                                let names =
+                                    crate::daemon::peer_log::list(model.rigid_bodies.iter().map(|b| b.name.as_str()));
+                                sh.log.warn("body_not_in_model", || {
+                                    format!("rigid body `{name}` is not in the NatNet server's model (it has {names})")
+                                });
                             }
                             st.ids[i] = id;
                             sh.bodies[i].body_found = id.is_some();
