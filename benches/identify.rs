@@ -14,7 +14,7 @@ use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, Synth
 use impactd::offline::identify::{FitModel, ParamSpace, Shot};
 
 fn shots(n: usize) -> (ParamSpace, LoadedClub, Vec<Shot>) {
-    // docs/identify.md's truth.
+    // research/identify-results.md's truth.
     let truth = [8.5e9, 7.0e-3, 0.42, 45.0, 9.0e-3, 2.2e-3, 0.65];
     let space = ParamSpace::new(FitModel::parse("continuous").unwrap(), &[]).unwrap();
     let club = LoadedClub { club: ClubSpec::iron7(), sections: ModelSections::default() };

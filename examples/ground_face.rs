@@ -2,7 +2,7 @@
 //! for each reading of the ball (the one-cycle reading of Table 3.5, the default, and the table as printed), each impact
 //! location with and without ground on firm soil, fat and good strikes on every soil, and the sole tilted toe
 //! down; then the leading edge's height. Usage, from the crate's root: `cargo run --release --example
-//! ground_face`; `scripts/ground-table.py` turns the output into docs/ground.md and docs/ground-findings.md
+//! ground_face`; `scripts/ground-table.py` turns the output into docs/ground.md and research/ground-findings.md
 //! (scripts/make-docs.sh runs both).
 
 #![allow(clippy::unwrap_used)]

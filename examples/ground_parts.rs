@@ -2,8 +2,8 @@
 //! as JSON lines: the swing of examples/ground_face struck 5-20 mm up the face on Table 4.3's firm soil with its
 //! moduli scaled by 1, 4 and 10 (4 is the firm soil with the sinkage read in mm), run with the whole ground
 //! force, its vertical part alone and its horizontal part alone (`GroundModel::force_mask`), and without ground.
-//! Usage, from the crate's root: `cargo run --release --example ground_parts`; `scripts/ground-parts.py` turns
-//! the output into docs/ground-parts.md (scripts/make-docs.sh runs both).
+//! Usage, from the crate's root: `cargo run --release --example ground_parts`; `research/scripts/ground-parts.py` turns
+//! the output into research/ground-parts.md (scripts/make-docs.sh runs both).
 
 #![allow(clippy::unwrap_used)]
 

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Regenerates the numbers of docs/identify.md from the commands' JSON output:
+# Regenerates the numbers of docs/identify.md and research/identify-results.md from the commands' JSON output:
 #   impactd synth                                  -> the synthetic datasets (known parameters, the issue's noise)
-#   impactd compare --json                         -> region compare-iron7 (the seed's Tables 3.2-3.7 layout)
-#   impactd fit --json (under /usr/bin/time -v)    -> regions recovery-*, cv, fit-time, crb
-#   tests/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> region live-latency
-#   scripts/docs-identify-likelihood.sh            -> region likelihood (eq. 3.13 against the likelihood over seeds)
+#   impactd compare --json                         -> docs/identify.md, region compare-iron7 (Tables 3.2-3.7's layout)
+#   impactd fit --json (under /usr/bin/time -v)    -> docs/identify.md, region fit-time; research/identify-results.md,
+#                                                     regions recovery-*, cv, crb, adjusted-seeds, valley
+#   tests/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> docs/identify.md, region live-latency
+#   research/scripts/identify-likelihood.sh        -> research/identify-results.md, region likelihood (eq. 3.13
+#                                                     against the likelihood over seeds)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
 # Usage: scripts/docs-identify.sh   (about 10 minutes on 2 cores at load 8, most of it the two-layer fit with its
 # 5-fold cross-validation; IDENTIFY_OUT=DIR keeps the JSON there and reuses what is already in it)
@@ -22,7 +24,7 @@ else
 fi
 
 # The truths (SI): adjusted and slip on the driver as in tests/identify.rs, the two-layer model on the 7-iron as
-# in tests/identifiability.rs (Table 3.5's 7-iron moved by 10-40 % per parameter).
+# in research/tests/identifiability.rs (Table 3.5's 7-iron moved by 10-40 % per parameter).
 ADJUSTED=(delta_mass=0.0073 ball_cg_shift_x=0.00031 ball_cg_shift_y=-0.00042 ball_cg_shift_z=0.00017)
 SLIP=(e_y=0.045 e_z=-0.03)
 CONTINUOUS=(k_v=8.5e9 d=0.007 mu=0.42 k_ball=45 c_ball=0.009 t_cover=0.0022 v_tr=0.65)
@@ -252,15 +254,17 @@ from docs_regions import replace  # noqa: E402
 
 replace("docs/identify.md", {
     "compare-iron7": compare_table(),
+    "fit-time": time_table(),
+    "live-latency": live_line(),
+})
+replace("research/identify-results.md", {
     "recovery-adjusted": recovery("adjusted"),
     "recovery-slip": recovery("slip"),
     "recovery-continuous": recovery("continuous"),
     "crb": crb_line(),
     "cv": cv_table(),
-    "fit-time": time_table(),
-    "live-latency": live_line(),
     "adjusted-seeds": seeds_table(),
     "valley": valley_line(),
 })
 PY
-bash scripts/docs-identify-likelihood.sh
+bash research/scripts/identify-likelihood.sh

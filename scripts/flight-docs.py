@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""Regenerates the fit's tables in docs/flight.md from `impactd flight-fit --json`.
+"""Regenerates the fit's tables in docs/flight.md (the coefficients) and research/flight-fit.md (the clubs, the
+cross-validation and the trade-off) from `impactd flight-fit --json`.
 
 Usage: scripts/flight-docs.py [FIT.json [TRADEOFF.json]]   (without files it runs `target/release/impactd
 flight-fit --json` and `flight-fit --tradeoff --json`)
 
 Rewrites the text between `<!-- flight-fit:NAME -->` and `<!-- /flight-fit:NAME -->` for NAME in
-`coefficients`, `clubs`, `cv` and `tradeoff`; everything else in docs/flight.md is left as written.
+`coefficients` (docs/flight.md), `clubs`, `cv` and `tradeoff` (research/flight-fit.md); everything else in
+both pages is left as written.
 """
 import json
 import pathlib
@@ -14,7 +16,9 @@ import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-DOC = ROOT / "docs" / "flight.md"
+# Each block and the page it sits in.
+PAGES = {"coefficients": "docs/flight.md", "clubs": "research/flight-fit.md", "cv": "research/flight-fit.md",
+         "tradeoff": "research/flight-fit.md"}
 
 # Field order, meaning and the range allowed (`aero::BOUNDS`), as the module docs give them.
 COEFFICIENTS = [
@@ -126,13 +130,13 @@ def main():
         trade = json.loads(
             subprocess.run([str(exe), "flight-fit", "--tradeoff", "--json"], check=True, capture_output=True).stdout
         )
-    doc = DOC.read_text()
     for name, make in [("coefficients", coefficients), ("clubs", clubs), ("cv", cv), ("tradeoff", lambda _: tradeoff(trade))]:
+        page = ROOT / PAGES[name]
+        doc = page.read_text()
         pattern = re.compile(rf"(<!-- flight-fit:{name} -->\n).*?(\n<!-- /flight-fit:{name} -->)", re.S)
         if not pattern.search(doc):
-            sys.exit(f"docs/flight.md has no <!-- flight-fit:{name} --> block")
-        doc = pattern.sub(lambda m: m.group(1) + make(fit) + m.group(2), doc)
-    DOC.write_text(doc)
+            sys.exit(f"{PAGES[name]} has no <!-- flight-fit:{name} --> block")
+        page.write_text(pattern.sub(lambda m: m.group(1) + make(fit) + m.group(2), doc))
 
 
 if __name__ == "__main__":

@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
-# Regenerates the numeric tables and figures of docs/ from the commands' JSON output, and ARCHITECTURE.md's equation index:
+# Regenerates the numeric tables and figures of docs/ (the manual) and research/ (the findings) from the commands'
+# JSON output, and ARCHITECTURE.md's equation index:
 #   impactd eval extrapolation --json   -> docs/estimation.md, regions extrapolation-*
 #   impactd bench --json --baseline     -> docs/performance.md, region bench (scripts/docs-bench.sh)
-#   impactd predict --club iron7        -> docs/offcentre-iron.md, region offcentre (scripts/offcentre-iron.py)
-#   impactd predict [--flight]          -> docs/models-notes.md, regions gear-driver, gear-iron (scripts/gear-effect.py)
+#   impactd predict --club iron7        -> research/offcentre-iron.md, region offcentre (research/scripts/offcentre-iron.py)
+#   impactd predict [--flight]          -> research/models-notes.md, regions gear-driver, gear-iron (research/scripts/gear-effect.py)
 #   impactd map                         -> docs/map-iron7-ball-speed.svg, docs/map-driver-offline.svg
-#   examples/ground_face (JSON lines)   -> docs/ground.md and docs/ground-findings.md (scripts/ground-table.py)
-#   impactd predict --model ground      -> docs/ground-sensitivity.md (scripts/ground-sensitivity.py)
-#   examples/ground_parts (JSON lines)  -> docs/ground-parts.md (scripts/ground-parts.py)
+#   examples/ground_face (JSON lines)   -> docs/ground.md and research/ground-findings.md (scripts/ground-table.py)
+#   impactd predict --model ground      -> research/ground-sensitivity.md (research/scripts/ground-sensitivity.py)
+#   examples/ground_parts (JSON lines)  -> research/ground-parts.md (research/scripts/ground-parts.py)
 #   scripts/club-data-docs.sh           -> docs/club-data.md, region club-data
-#   scripts/real-shots-docs.sh          -> docs/real-shots.md (compare --by-club on tests/data/trackman/)
-#   scripts/driver-axis.py              -> docs/driver-axis.md (the driver's spin axis, validation report sessions)
-#   scripts/wedge-spin-docs.sh          -> docs/wedge-spin.md (the spin decomposition, the slip model's obliquity law)
-#   scripts/docs-identify.sh            -> docs/identify.md (compare, recovery, fit time, live latency)
+#   research/scripts/real-shots-docs.sh -> research/real-shots.md (compare --by-club on the real TrackMan sessions)
+#   research/scripts/driver-axis.py     -> research/driver-axis.md (the driver's spin axis, validation report sessions)
+#   research/scripts/wedge-spin-docs.sh -> research/wedge-spin.md (the spin decomposition, the slip model's obliquity law)
+#   scripts/docs-identify.sh            -> docs/identify.md (compare, fit time, live latency) and
+#                                          research/identify-results.md (recovery, bounds, cross-validation)
+#   scripts/flight-docs.py              -> docs/flight.md (coefficients) and research/flight-fit.md (the fit's tables)
 #   scripts/docs-hostile.sh            -> docs/hostile-peers.md (the honest rig's latency beside each hostile probe)
 #   scripts/equation-index.py           -> ARCHITECTURE.md, region equations (where each seed equation is cited)
 #   impactd models [--sections]         -> README.md region models, docs/club-files.md region sections
@@ -42,11 +45,11 @@ for club in driver iron7; do
 done
 echo "bench" >&2
 scripts/docs-bench.sh
-echo "ground model over the face: docs/ground.md, docs/ground-findings.md, docs/ground-sensitivity.md, docs/ground-parts.md" >&2
+echo "ground model over the face: docs/ground.md, research/ground-findings.md, research/ground-sensitivity.md, research/ground-parts.md" >&2
 cargo run --release --quiet --example ground_face >"$OUT/ground-face.jsonl"
-python3 scripts/ground-table.py docs/ground.md docs/ground-findings.md <"$OUT/ground-face.jsonl"
-python3 scripts/ground-sensitivity.py "$BIN" >docs/ground-sensitivity.md
-cargo run --release --quiet --example ground_parts | python3 scripts/ground-parts.py docs/ground-parts.md
+python3 scripts/ground-table.py docs/ground.md research/ground-findings.md <"$OUT/ground-face.jsonl"
+python3 research/scripts/ground-sensitivity.py "$BIN" >research/ground-sensitivity.md
+cargo run --release --quiet --example ground_parts | python3 research/scripts/ground-parts.py research/ground-parts.md
 
 python3 - "$OUT" "$SHOTS" <<'PY'
 import json, os, sys
@@ -125,16 +128,18 @@ replace("docs/estimation.md", {
 })
 PY
 echo "off-centre iron table" >&2
-python3 scripts/offcentre-iron.py "$BIN"
+python3 research/scripts/offcentre-iron.py "$BIN"
 echo "off-centre tables of the continuous model" >&2
-python3 scripts/gear-effect.py "$BIN"
+python3 research/scripts/gear-effect.py "$BIN"
 echo "face maps" >&2
 "$BIN" map --club iron7 --metric ball-speed --club-speed-mph 85 --attack-angle-deg=-4.5 -o docs/map-iron7-ball-speed.svg 2>/dev/null
 "$BIN" map --club driver --metric offline --club-speed-mph 100 --club-path-deg=-2 --face-angle-deg 1 -o docs/map-driver-offline.svg 2>/dev/null
 scripts/club-data-docs.sh
-scripts/real-shots-docs.sh
-python3 scripts/driver-axis.py
-scripts/wedge-spin-docs.sh
+echo "flight fit" >&2
+python3 scripts/flight-docs.py
+research/scripts/real-shots-docs.sh
+python3 research/scripts/driver-axis.py
+research/scripts/wedge-spin-docs.sh
 echo "hostile peers" >&2
 scripts/docs-hostile.sh
 

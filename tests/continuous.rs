@@ -156,7 +156,7 @@ fn the_integration_converges() {
 }
 
 /// Against the adjusted impulse-momentum model on centred deliveries at 35-55 m/s: the comparisons that hold
-/// with Table 3.5 as transcribed (docs/models-notes.md lists every number, including those that do not).
+/// with Table 3.5 as transcribed (research/models-notes.md lists every number, including those that do not).
 #[test]
 fn table_reading_agrees_with_the_adjusted_model_where_it_holds() {
     for (club, loft, attack) in clubs() {
@@ -207,7 +207,7 @@ fn iron_tangential_force_reverses() {
 /// Hunt-Crossley damping 4.5 ms/m), built through the registry: every comparison with the adjusted model holds on
 /// both clubs at 35-55 m/s (ball speed within 3 %, launch angle within 1.5 deg, backspin within 20 %), and the
 /// friction reverses on both by at least a tenth of its peak. Table 3.5's own spring does neither on the driver
-/// (docs/models-notes.md, "The continuous model").
+/// (research/models-notes.md, "The continuous model").
 #[test]
 fn one_cycle_ball_agrees_with_the_adjusted_model_and_reverses() {
     for (club, loft, attack) in clubs() {

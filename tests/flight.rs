@@ -138,9 +138,9 @@ fn drag_above_the_crisis_rises_no_more_than_measured() {
 /// The fit to the TrackMan tour averages with the coefficients in `Aero::FITTED`: the largest of carry / 4 %,
 /// apex / 4.5 yd and land angle / 4 deg over the twelve clubs, minimised with the drag and lift held inside the
 /// published envelope (`flight::envelope`; the test above). Every club within 3.31 % of carry, 3.73 yd of apex
-/// and 3.31 deg of land angle (`impactd flight-fit`; `docs/flight.md` lists every club). No ball inside the
+/// and 3.31 deg of land angle (`impactd flight-fit`; `research/flight-fit.md` lists every club). No ball inside the
 /// envelope reaches land angles within 3 deg and carry within 4 % together: `impactd flight-fit --tradeoff`
-/// traces what each costs (docs/flight.md, "Carry against land angle").
+/// traces what each costs (research/flight-fit.md, "Carry against land angle").
 #[test]
 fn every_club_is_near_the_trackman_table() {
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
@@ -240,7 +240,7 @@ fn bounce_and_roll() {
 /// Carry against land angle for one ball inside the published envelope (apex left out): held to land angles
 /// within 2.5 deg the table's carries cost more than 4 % somewhere; let the land angle go to 4 deg and carry
 /// comes within 3.5 %. Measured with `impactd flight-fit --tradeoff`: 2.93 deg with 4.68 %, 3.28 deg with
-/// 3.28 % (docs/flight.md, "Carry against land angle").
+/// 3.28 % (research/flight-fit.md, "Carry against land angle").
 #[test]
 fn land_angle_costs_carry_for_one_ball() {
     use impactd::flight::tradeoff::largest_errors;

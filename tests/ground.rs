@@ -359,7 +359,7 @@ fn registry_builds_the_ground_model() {
 
 /// Seed 4.3, Figure 4.14: fat strikes lose backspin against the same club on a teed ball, "up to 700 rpm" at the
 /// top of the face. Here the direction holds and the size is a fraction of the seed's (302 rpm at v = +20 mm,
-/// docs/ground-findings.md): the loss lies between 0.3 and 1.5 times the seed's 700 rpm.
+/// research/ground-findings.md): the loss lies between 0.3 and 1.5 times the seed's 700 rpm.
 #[test]
 fn fat_strikes_lose_backspin() {
     let (with, eq) = prepared(SoilSpec::firm(), true);
@@ -377,9 +377,9 @@ fn fat_strikes_lose_backspin() {
 
 /// `[sole] toe_down_deg`: the toe digging first puts the ground's force toward the toe, further from the shaft
 /// axis on the heel side, and the toe held back opens the face relative to a level sole; the heel digging first
-/// does the opposite (lever arms about the hosel, `equipment::sole`; measured in docs/ground-findings.md:
+/// does the opposite (lever arms about the hosel, `equipment::sole`; measured in research/ground-findings.md:
 /// -0.23° level, -0.14° toe down 10° at v = +20 mm on firm soil). The face still closes: the seed's fade is not
-/// reached (docs/ground-findings.md).
+/// reached (research/ground-findings.md).
 #[test]
 fn toe_down_sole_turns_the_face_open_relative_to_level() {
     let eq = Equipment::new(ClubSpec::iron7());
@@ -396,7 +396,7 @@ fn toe_down_sole_turns_the_face_open_relative_to_level() {
 
 /// Seed 4.3, Figure 4.14, "up to 700 rpm less" backspin at the top of the face, reproduced with the leading edge
 /// of a measured 7-iron, 20 mm down the face from its centre (`[sole] leading_edge_below_face_centre_m`; the
-/// preset's 12 mm gives about half, docs/ground-findings.md): 600 rpm at v = +20 mm, within 30 % of 700 rpm.
+/// preset's 12 mm gives about half, research/ground-findings.md): 600 rpm at v = +20 mm, within 30 % of 700 rpm.
 #[test]
 fn fat_strikes_lose_the_seeds_backspin_with_a_measured_leading_edge() {
     let eq = Equipment::new(ClubSpec::iron7());

@@ -78,7 +78,7 @@ fn teed_ground_model_is_the_continuous_model_plus_the_shaft() {
         assert!((g0.total_spin_rpm / c.total_spin_rpm - 1.0).abs() < 0.02, "spin: {g0:?} vs {c:?}");
         // The seed's shaft only adds to the head's effective mass (its tip moves with the hosel): never slower,
         // and its effect grows away from the CG (measured +0.4 mph at 8 mm below the centre, +3.0 at the
-        // centre, +6.2 at 5 mm above; docs/models-notes.md).
+        // centre, +6.2 at 5 mm above; research/models-notes.md).
         assert!(g.ball_speed_mph > g0.ball_speed_mph - 0.1, "{g:?} vs {g0:?}");
     }
 }

@@ -9,8 +9,8 @@
 #![cfg(all(feature = "daemon", target_os = "linux"))]
 
 mod common;
-#[path = "common/daemon_process.rs"]
-mod daemon_process;
+#[path = "common/probe_daemon.rs"]
+mod probe_daemon;
 #[path = "common/natnet_server.rs"]
 mod natnet_server;
 #[path = "common/qtm_server.rs"]
@@ -24,7 +24,7 @@ use std::process::Command;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-use daemon_process::{report_latency, DaemonProcess, SimRig, RSS_LIMIT_KB};
+use probe_daemon::{report_latency, DaemonProcess, SimRig, RSS_LIMIT_KB};
 use impactd::kinematics::ClubheadSample;
 use impactd::wire::{keys, ConnectionState, LaunchPrediction, MocapInputStatus, StatusMessage};
 use zenoh::Wait;

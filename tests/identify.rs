@@ -51,8 +51,8 @@ fn assert_held_out_mae_is_the_noise(report: &FitReport) {
 /// lengthens the lever arm of the small tangential impulse, by Δx / R ≈ 0.3 % of the spin for 0.075 mm (about
 /// 7 rpm of 2000), under the 150 rpm noise's reach with 500 shots; it trades against Δm. Over seeds 11-14 the
 /// fitted Δx misses by 0.08, 0.41, 0.33 and 0.02 mm and Δm by 0.19, 0.52, 0.29 and 0.11 g, while Δy and Δz
-/// stay within 0.03 mm (docs/identify.md). Without noise every parameter comes back to 1e-3 (the optimiser is
-/// not the limit).
+/// stay within 0.03 mm (research/identify-results.md). Without noise every parameter comes back to 1e-3 (the optimiser
+/// is not the limit).
 #[test]
 fn adjusted_recovers_delta_mass_within_half_a_gram_and_the_tangential_ball_cg_shift_within_50_um() {
     // Δm = 7.3 g and Δ = (0.31, -0.42, 0.17) mm, inside the 1-12 g and 0.5 mm per axis.
@@ -64,7 +64,7 @@ fn adjusted_recovers_delta_mass_within_half_a_gram_and_the_tangential_ball_cg_sh
         assert!((p[i].fitted - want_mm).abs() < 0.05, "{} {:.4} mm", p[i].name, p[i].fitted);
     }
     // Along the normal: only within the range of 0.5 mm (see above). The fit reports the Cramér-Rao
-    // bound of x' (about 0.1 mm; tests/identifiability.rs) and the larger scatter of eq. 3.13's own estimate;
+    // bound of x' (about 0.1 mm; research/tests/identifiability.rs) and the larger scatter of eq. 3.13's own estimate;
     // the error is within three of the latter.
     assert!((p[1].fitted - 0.31).abs() < 0.5, "{} {:.4} mm", p[1].name, p[1].fitted);
     let crb_mm = p[1].std_error.unwrap();

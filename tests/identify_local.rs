@@ -11,7 +11,7 @@ use impactd::offline::identify::fit::{fit_local, FitOptions, LocalMethod};
 use impactd::offline::identify::synth::{generate, DeliveryRanges, LmNoise, SynthSpec};
 use impactd::offline::identify::{CostScales, FitModel, ParamSpace};
 
-/// On 80 noisy 7-iron shots made with the truth of docs/identify.md, every parameter of the two-layer model
+/// On 80 noisy 7-iron shots made with the truth of research/identify-results.md, every parameter of the two-layer model
 /// started from Table 3.5's 7-iron (the club's default): Levenberg-Marquardt ends at or below Nelder-Mead's
 /// eq. 3.13 with 400 evaluations, in fewer impacts, counting the coarse ones, and both start where they report.
 #[test]

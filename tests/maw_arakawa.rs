@@ -123,7 +123,7 @@ fn momentum_conserved_and_energy_never_increases() {
             }
         }
         // The literal reading on the centred 7-iron at 45 m/s: the ball leaves with more energy than the
-        // system had (docs/models.md: 12-14 %); the rise is > 1 % of the impact's energy.
+        // system had (research/maw-arakawa.md: 12-14 %); the rise is > 1 % of the impact's energy.
         if club.name == "iron7" {
             let state = delivery(45.0, attack, loft).to_state(&eq).unwrap();
             let literal = ArakawaParams { reading: ArakawaReading::Literal, ..ArakawaParams::IRON7 };
@@ -173,7 +173,7 @@ fn reversal_and_contact_time() {
 
 /// Converged: halving the step changes the ball speed < 0.01 % and the spin < 0.1 %; 40 rings instead of 20
 /// change the spin < 1 %. Both models, both clubs, 35-55 m/s (Arakawa's default envelope reading, and the friction
-/// one; the literal one does not converge for the 7-iron at 50-55 m/s, docs/models.md).
+/// one; the literal one does not converge for the 7-iron at 50-55 m/s, research/maw-arakawa.md).
 #[test]
 fn converged_in_step_and_rings() {
     for (club, loft, attack) in clubs() {
@@ -208,7 +208,7 @@ fn converged_in_step_and_rings() {
 
 /// The contact arm: Maw, Barber and Fawcett's small-strain theory puts the traction at the undeformed radius `R`,
 /// and on Figure 3.4's plate (44 m/s, 30 deg, Table 3.6's driver, elastic) that arm leaves the ball at 1.085
-/// times rolling where `R - x/2` gives 1.51 (docs/models.md, "Maw's backspin: the lever arm"). The golf models
+/// times rolling where `R - x/2` gives 1.51 (research/maw-arakawa.md, "Maw's backspin: the lever arm"). The golf models
 /// default to `R`; `contact_arm = "mid_overlap"` restores the shorter arm, which spins the 7-iron more.
 #[test]
 fn the_contact_arm_is_the_theorys_radius_by_default() {

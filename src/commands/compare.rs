@@ -55,7 +55,7 @@ pub struct CompareArgs {
     pub soil: Option<String>,
     /// With --by-club: TrackMan's loft and face read through its spin relation, as the face the seed's ball needs
     /// to leave in TrackMan's direction with TrackMan's spin (the measured launch enters the delivery: launch and
-    /// spin are then no independent test; docs/real-shots.md).
+    /// spin are then no independent test; research/real-shots.md).
     #[arg(long, requires = "by_club")]
     pub spin_relation: bool,
     /// Also each shot's residuals (predicted - measured, per field, in the files' order): a line per shot and

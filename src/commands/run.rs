@@ -49,6 +49,10 @@ pub struct BridgeArgs {
     /// Serve the bay screen (a web page per rig) on this address (default 127.0.0.1:8080; overrides `[web]`).
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = impactd::daemon::bridges::web::DEFAULT_ADDRESS)]
     pub web: Option<String>,
+    /// A host name the bay screen answers as, besides its listen address and localhost (repeatable; adds to
+    /// `[web] hosts`): the name its screens open it by. Any other `Host` is answered 421.
+    #[arg(long = "web-host", value_name = "NAME")]
+    pub web_host: Vec<String>,
 }
 
 impl BridgeArgs {
@@ -62,6 +66,19 @@ impl BridgeArgs {
         }
         if let Some(u) = self.units {
             config.units = u;
+        }
+        if !self.web_host.is_empty() {
+            match (&self.web, config.web.as_mut()) {
+                (_, Some(w)) => w.hosts.extend(self.web_host.iter().cloned()),
+                (Some(listen), None) => {
+                    config.web = Some(impactd::daemon::config::WebConfig {
+                        listen: listen.clone(),
+                        hosts: self.web_host.clone(),
+                        token: None,
+                    })
+                }
+                (None, None) => bail!("--web-host needs --web (or a [web] section in the configuration)"),
+            }
         }
         Ok(())
     }

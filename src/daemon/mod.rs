@@ -10,6 +10,7 @@ pub mod config_flight;
 pub mod config_pose;
 pub mod demo;
 pub mod live;
+pub mod peer_log;
 pub mod recording;
 pub mod replay;
 pub mod sim;

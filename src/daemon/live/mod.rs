@@ -28,10 +28,9 @@ use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, Simulato
 use crate::daemon::bridges::opengolfsim;
 use crate::daemon::bridges::web::{WebServer, WebStatusSource};
 use crate::daemon::live::sinks::{RigPublishers, RigSinks};
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
-use crate::daemon::stats::{
-    Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
-};
+use crate::daemon::stats::{Budget, LatencyWindow, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
@@ -108,7 +107,8 @@ pub async fn run(
     };
     // The screens draw each rig's flights with its flight model (the default where the rig adds no flight).
     let screens = setups.iter().map(|s| (s.name.clone(), s.flight.unwrap_or_default())).collect();
-    let web = WebServer::start_if(options.web.as_deref(), screens, session, options.record.as_deref()).await?;
+    let access = config.web.as_ref().map(|w| w.access()).unwrap_or_default();
+    let web = WebServer::start_if(options.web.as_deref(), &access, screens, session, options.record.as_deref()).await?;
     let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
     let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();
@@ -151,7 +151,7 @@ pub async fn run(
             pipeline: Some(pipeline),
             queue_dropped,
             latency: LatencyWindow::new(1024),
-            limiter: RateLimiter::new(Duration::from_secs(1)),
+            log: PeerLog::new(),
             started: Instant::now(),
             budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
             unknown: unknown.clone(),
@@ -186,7 +186,7 @@ pub async fn run(
     })
     .await?;
     let unknown_cb = unknown.clone();
-    let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
+    let unknown_log = std::sync::Mutex::new(PeerLog::new());
     let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
     let unknown_recorder = handle.clone();
     let routes = senders;
@@ -199,8 +199,8 @@ pub async fn run(
             let Some((tx, dropped)) = route else {
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 // Limited by kind, not by key: a peer choosing a new key for every sample gets one line a second.
-                if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow("unknown_rig")) {
-                    tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
+                if let Ok(mut log) = unknown_log.lock() {
+                    log.warn("unknown_rig", || format!("sample on {key} is for no configured rig"));
                 }
                 // Recorded within the same budget as a rig's rejected payloads.
                 let payload = sample.payload().to_bytes();
@@ -290,7 +290,8 @@ struct Worker {
     pipeline: Option<Pipeline>,
     queue_dropped: Arc<AtomicU64>,
     latency: LatencyWindow,
-    limiter: RateLimiter,
+    /// The rig's peer-driven log lines (bad payloads, labels, exclusions, club changes): one a second per kind.
+    log: PeerLog,
     started: Instant,
     /// The recording budget for this rig's rejected payloads.
     budget: Budget,
@@ -333,6 +334,7 @@ impl Worker {
             }
             if Instant::now() >= next_status {
                 self.publish_status();
+                self.log.flush();
                 next_status += period;
             }
         }
@@ -346,15 +348,15 @@ impl Worker {
         }
     }
 
-    fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
-        if let Some(n) = self.limiter.allow(key) {
-            let rig = &self.rig;
-            if n > 0 {
-                tracing::warn!("rig {rig}: {} ({n} more like it suppressed)", message());
-            } else {
-                tracing::warn!("rig {rig}: {}", message());
-            }
-        }
+    fn warn(&mut self, kind: &'static str, message: impl FnOnce() -> String) {
+        let rig = &self.rig;
+        self.log.warn(kind, || format!("rig {rig}: {}", message()));
+    }
+
+    /// A line about a put from any program (labels, an exclusion, a club): one a second per kind.
+    fn info(&mut self, kind: &'static str, message: impl FnOnce() -> String) {
+        let rig = &self.rig;
+        self.log.info(kind, || format!("rig {rig}: {}", message()));
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {

@@ -45,7 +45,7 @@ impl Selection {
     pub fn keeps(&self, msg: &crate::wire::ClubheadSampleMsg) -> bool {
         (self.rigs.is_empty() || self.rigs.contains(&msg.rig))
             && msg.t_ns >= self.from_ns
-            && self.to_ns.map_or(true, |to| msg.t_ns < to)
+            && self.to_ns.is_none_or(|to| msg.t_ns < to)
     }
 }
 

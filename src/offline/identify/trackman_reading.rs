@@ -27,8 +27,8 @@ use crate::math::Real;
 use crate::wire::{DeliveryInput, Handedness, LaunchFields};
 
 /// TrackMan's measured spin over `2.5 v sin(a) / R` on all 32 measured shots of tests/data/trackman (two players,
-/// 5-iron to driver): 1.136 within 0.002 (tests/tour_iron_spin.rs). A property of TrackMan's software, not of a
-/// model.
+/// 5-iron to driver): 1.136 within 0.002 (research/tests/tour_iron_spin.rs). A property of TrackMan's software, not of
+/// a model.
 pub const TRACKMAN_SPIN_RATIO: Real = 1.136;
 
 /// Iterations at most, and the residual (deg) at which the angles are taken as found.

@@ -204,6 +204,7 @@ impl Shared {
             },
             bodies,
             deliver,
+            log: crate::daemon::peer_log::PeerLog::new(),
         }
     }
 }

@@ -190,7 +190,7 @@ impl Client {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_KEEPALIVE));
                     last_keepalive = now;
                 }
-                if want_model && last_model_request.map_or(true, |t| now - t >= MODEL_REQUEST_EVERY) {
+                if want_model && last_model_request.is_none_or(|t| now - t >= MODEL_REQUEST_EVERY) {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_REQUEST_MODELDEF));
                     last_model_request = Some(now);
                 }
@@ -287,7 +287,7 @@ impl Client {
                                 let map = label_map(&model, name, &fitter.set);
                                 if let Err(e) = &map {
                                     if sh.bodies[i].body_found || !st.model_seen {
-                                        tracing::warn!("marker set of `{name}`: {e}");
+                                        sh.log.warn("markers_not_in_model", || format!("marker set of `{name}`: {e}"));
                                     }
                                 }
                                 st.maps[i] = map.ok();
@@ -296,10 +296,11 @@ impl Client {
                             }
                             let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
                             if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
-                                let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
-                                tracing::warn!(
-                                    "rigid body `{name}` is not in the NatNet server's model (it has {names:?})"
-                                );
+                                let names =
+                                    crate::daemon::peer_log::list(model.rigid_bodies.iter().map(|b| b.name.as_str()));
+                                sh.log.warn("body_not_in_model", || {
+                                    format!("rigid body `{name}` is not in the NatNet server's model (it has {names})")
+                                });
                             }
                             st.ids[i] = id;
                             sh.bodies[i].body_found = id.is_some();

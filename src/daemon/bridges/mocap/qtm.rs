@@ -14,7 +14,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
-use crate::daemon::DaemonError;
+use crate::daemon::{peer_log, DaemonError};
 use crate::kinematics::MarkerFitter;
 use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
 use crate::mocap::qtm_encode;
@@ -185,7 +185,7 @@ impl Session<'_> {
             match self.reader.next(&mut self.stream) {
                 Ok(Got::Packet(kind)) => return Ok((kind, self.reader.packet.len())),
                 Ok(Got::Idle) if Instant::now() > deadline => return Err(End::Silent),
-                Ok(Got::Idle) => {}
+                Ok(Got::Idle) => lock(self.shared).log.flush(),
                 Err(Broken::Closed(why)) => return Err(End::Lost(why)),
                 Err(Broken::Bad(e)) => {
                     lock(self.shared).conn.reject(e.reason());
@@ -203,7 +203,9 @@ impl Session<'_> {
             let text = qtm::text(&self.reader.packet);
             match kind {
                 k if k == want => return Ok(text),
-                qtm::PACKET_ERROR => return Err(End::Lost(format!("QTM refused `{command}`: {text}"))),
+                qtm::PACKET_ERROR => {
+                    return Err(End::Lost(format!("QTM refused `{command}`: {}", peer_log::escaped(&text, 120))))
+                }
                 _ => {}
             }
         }
@@ -230,10 +232,11 @@ impl Session<'_> {
                 self.indices[i] = match f.set.indices_in(&labels) {
                     Ok(found) => Some(found),
                     Err(missing) => {
-                        tracing::warn!(
-                            "marker `{missing}` of `{}` is not among QTM's 3D labels ({labels:?})",
-                            self.bodies[i]
-                        );
+                        let labels = peer_log::list(labels.iter().map(String::as_str));
+                        let body = &self.bodies[i];
+                        lock(self.shared).log.warn("markers_not_in_model", || {
+                            format!("marker `{missing}` of `{body}` is not among QTM's 3D labels ({labels})")
+                        });
                         None
                     }
                 };
@@ -248,7 +251,10 @@ impl Session<'_> {
             }
             let found = names.iter().any(|n| n == name);
             if !found && (sh.bodies[i].body_found || sh.bodies[i].frames == 0) {
-                tracing::warn!("6DOF body `{name}` is not among QTM's bodies ({names:?})");
+                let listed = || peer_log::list(names.iter().map(String::as_str));
+                sh.log.warn("body_not_in_model", || {
+                    format!("6DOF body `{name}` is not among QTM's bodies ({})", listed())
+                });
             }
             sh.bodies[i].body_found = found;
         }
@@ -319,7 +325,10 @@ impl Session<'_> {
                     }
                 }
                 qtm::PACKET_NO_MORE_DATA => return Err(End::Lost("QTM's measurement stopped (no more data)".into())),
-                qtm::PACKET_ERROR => lock(self.shared).conn.last_error = Some(qtm::text(&self.reader.packet)),
+                qtm::PACKET_ERROR => {
+                    let text = peer_log::escaped(&qtm::text(&self.reader.packet), 120);
+                    lock(self.shared).conn.last_error = Some(text);
+                }
                 qtm::PACKET_COMMAND => {}
                 other => lock(self.shared).conn.reject(QtmError::UnknownPacket(other).reason()),
             }

@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::stats::LatencyWindow;
 use crate::mocap::track::BodySample;
 use crate::wire::{ConnectionState, MocapInputStatus};
@@ -50,6 +51,8 @@ pub struct Shared {
     pub conn: Conn,
     pub bodies: Vec<MocapInputStatus>,
     pub deliver: Deliver,
+    /// The lines the server's answers drive (a body not in its model): one a second per kind, names cut.
+    pub log: PeerLog,
 }
 
 /// Locks the counts, whatever a panicking holder left (they are counts: still worth reporting).
