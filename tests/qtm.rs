@@ -197,6 +197,30 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!(bridge_status[0].published, samples.len() as u64);
 }
 
+/// A QTM that goes silent after the handshake (streaming asked for, then nothing, not even an answer to
+/// `QTMVersion`) does not stay "connected": after 3 s the client ends the session, counts it
+/// (`reconnects.quiet`) and connects again; once QTM speaks again the rig predicts its swing.
+#[tokio::test(flavor = "multi_thread")]
+async fn a_qtm_silent_after_the_handshake_is_connected_to_again() {
+    let server = QtmServer::start(&["wand", "club"]);
+    let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
+    latest_input(&statuses, |s| s.connects == 1 && s.state == impactd::wire::ConnectionState::Connected).await;
+    server.mute.store(true, Ordering::Relaxed);
+    let s = latest_input(&statuses, |s| s.reconnects.get("quiet") == Some(&1)).await;
+    assert_ne!(s.state, impactd::wire::ConnectionState::Connected, "{s:?}");
+    assert!(s.last_error.as_deref().is_some_and(|e| e.contains("sent nothing for 3 s")), "{s:?}");
+    server.mute.store(false, Ordering::Relaxed);
+    latest_input(&statuses, |s| s.connects >= 2 && s.state == impactd::wire::ConnectionState::Connected).await;
+    assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await);
+    let samples = swing::samples(1, 720.0, 5);
+    play(&server, &samples);
+    assert!(wait_until(Duration::from_secs(10), || !launches.lock().unwrap().is_empty()).await, "a launch");
+    daemon.stop().await;
+}
+
 /// Bad input from QTM is counted by reason and never stops the rig: a server not there yet (retried), a
 /// refused protocol version, NaN and non-rotation poses, frame numbers jumping and going back, unknown packet
 /// types, data without 6D, a truncated 6D component, a renamed body, a stopped measurement and an oversized

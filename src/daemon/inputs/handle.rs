@@ -29,6 +29,7 @@ impl Shared {
             conn: Conn {
                 state: ConnectionState::Connecting,
                 connects: 0,
+                reconnects: BTreeMap::new(),
                 server_version: None,
                 rejected: BTreeMap::new(),
                 last_error: None,
@@ -36,6 +37,7 @@ impl Shared {
             },
             bodies,
             deliver,
+            log: crate::daemon::peer_log::PeerLog::new(),
         }
     }
 }
@@ -145,6 +147,7 @@ fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
     let mut out = s.bodies.get(i).cloned().unwrap_or_default();
     out.state = s.conn.state;
     out.connects = s.conn.connects;
+    out.reconnects = s.conn.reconnects.clone();
     out.server_version = s.conn.server_version.clone();
     out.last_error = s.conn.last_error.clone();
     for (k, v) in &s.conn.rejected {

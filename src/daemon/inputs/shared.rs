@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::stats::LatencyWindow;
 use crate::mocap::track::BodySample;
 use crate::wire::{ConnectionState, MocapInputStatus};
@@ -24,6 +25,8 @@ pub type Deliver = Box<dyn FnMut(usize, &BodySample, Instant) + Send>;
 pub struct Conn {
     pub state: ConnectionState,
     pub connects: u64,
+    /// Sessions the client ended itself, by reason (`quiet`, `undecodable`).
+    pub reconnects: BTreeMap<String, u64>,
     pub server_version: Option<String>,
     pub rejected: BTreeMap<String, u64>,
     pub last_error: Option<String>,
@@ -34,6 +37,13 @@ impl Conn {
     pub fn reject(&mut self, reason: &str) {
         *self.rejected.entry(reason.to_string()).or_default() += 1;
     }
+
+    /// The client ends the session itself for `reason` and connects again; said in `last_error`.
+    pub fn reconnect(&mut self, reason: &str, why: String) {
+        *self.reconnects.entry(reason.to_string()).or_default() += 1;
+        self.state = ConnectionState::Disconnected;
+        self.last_error = Some(why);
+    }
 }
 
 /// The counts a client keeps; one [`MocapInputStatus`] per body (route).
@@ -41,6 +51,8 @@ pub struct Shared {
     pub conn: Conn,
     pub bodies: Vec<MocapInputStatus>,
     pub deliver: Deliver,
+    /// The lines the server's answers drive (a body not in its model): one a second per kind, names cut.
+    pub log: PeerLog,
 }
 
 /// Locks the counts, whatever a panicking holder left (they are counts: still worth reporting).

@@ -6,6 +6,13 @@
 //! state behind one lock; each datagram is decoded into a reused frame (no allocation per frame once warm).
 //! A route with a marker set is that set fitted to the labelled markers of Motive's asset named like the route's
 //! body (`mocap::natnet::fit`), mapped again with every model definition.
+//!
+//! The server's version decides how every frame is decoded, so it is taken only from a `NAT_SERVERINFO` that
+//! answers the client's own `NAT_CONNECT`, received on the command socket from the command port it was sent to;
+//! any other (a datagram from another port of the server's host, or one nobody asked for) is counted
+//! (`unsolicited_server_info`) and changes nothing, and so is a model definition from elsewhere. A stream of which
+//! [`UNDECODABLE_FRAMES`] frames in a row decode to nothing ends the session: the client connects again, asks for
+//! the version again, and counts it (`reconnects.undecodable`).
 
 pub mod protocol;
 
@@ -29,6 +36,8 @@ pub const QUIET: Duration = Duration::from_secs(3);
 const KEEPALIVE: Duration = Duration::from_secs(1);
 /// At most one model request per this long.
 const MODEL_REQUEST_EVERY: Duration = Duration::from_secs(1);
+/// Frames in a row that fail to decode after which the session is started again (a second at 100 Hz).
+pub const UNDECODABLE_FRAMES: u32 = 100;
 
 pub struct Options {
     pub server: SocketAddr,
@@ -51,6 +60,10 @@ struct State {
     last_rx: Option<Instant>,
     want_model: bool,
     model_seen: bool,
+    /// A `NAT_CONNECT` was sent and its `NAT_SERVERINFO` has not come: the one time a version is taken.
+    awaiting_server_info: bool,
+    /// Frames in a row that did not decode.
+    undecodable_run: u32,
 }
 
 struct Client {
@@ -94,6 +107,8 @@ pub fn start(
             last_rx: None,
             want_model: true,
             model_seen: false,
+            awaiting_server_info: false,
+            undecodable_run: 0,
         }),
         shared,
         stop,
@@ -146,10 +161,9 @@ impl Client {
             };
             if !connected {
                 if self.lock_state().version.take().is_some() {
-                    let mut sh = lock(&self.shared);
-                    sh.conn.state = ConnectionState::Disconnected;
-                    sh.conn.last_error = Some(format!("NatNet server at {} went quiet; connecting again", self.server));
-                    tracing::warn!("NatNet server at {} went quiet; connecting again", self.server);
+                    let why = format!("NatNet server at {} went quiet; connecting again", self.server);
+                    tracing::warn!("{why}");
+                    lock(&self.shared).conn.reconnect("quiet", why);
                     backoff = BACKOFF_FIRST;
                     next_connect = now;
                 }
@@ -165,6 +179,7 @@ impl Client {
                         }
                         lock(&self.shared).conn.last_error = Some(note);
                     }
+                    self.lock_state().awaiting_server_info = true;
                     self.send(&socket, &natnet_encode::connect("impactd", None));
                     attempts += 1;
                     next_connect = now + backoff;
@@ -177,12 +192,12 @@ impl Client {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_KEEPALIVE));
                     last_keepalive = now;
                 }
-                if want_model && last_model_request.map_or(true, |t| now - t >= MODEL_REQUEST_EVERY) {
+                if want_model && last_model_request.is_none_or(|t| now - t >= MODEL_REQUEST_EVERY) {
                     self.send(&socket, &natnet_encode::request(natnet::NAT_REQUEST_MODELDEF));
                     last_model_request = Some(now);
                 }
             }
-            self.receive_one(&socket, &mut buf);
+            self.receive_one(&socket, &mut buf, true);
         }
         self.send(&socket, &natnet_encode::request(natnet::NAT_DISCONNECT));
     }
@@ -190,11 +205,12 @@ impl Client {
     fn receive_loop(&self, socket: &UdpSocket) {
         let mut buf = vec![0u8; natnet::MAX_DATAGRAM_BYTES + 1];
         while !self.stop.load(Ordering::Relaxed) {
-            self.receive_one(socket, &mut buf);
+            self.receive_one(socket, &mut buf, false);
         }
     }
 
-    fn receive_one(&self, socket: &UdpSocket, buf: &mut [u8]) {
+    /// One datagram from `socket`; `command` says it is the command socket (where answers come).
+    fn receive_one(&self, socket: &UdpSocket, buf: &mut [u8], command: bool) {
         match socket.recv_from(buf) {
             Ok((n, from)) => {
                 let received = Instant::now();
@@ -203,7 +219,8 @@ impl Client {
                 } else if n > natnet::MAX_DATAGRAM_BYTES {
                     lock(&self.shared).conn.reject("oversized");
                 } else {
-                    self.on_datagram(&buf[..n], received);
+                    // An answer counts only on the command socket, from the command port it was asked of.
+                    self.on_datagram(&buf[..n], received, command && from == self.server);
                 }
             }
             Err(e) if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {}
@@ -216,7 +233,8 @@ impl Client {
         }
     }
 
-    fn on_datagram(&self, bytes: &[u8], received: Instant) {
+    /// A datagram from the server's host; `answer`: from its command port, on the command socket.
+    fn on_datagram(&self, bytes: &[u8], received: Instant, answer: bool) {
         let mut st = self.lock_state();
         let mut sh = lock(&self.shared);
         let (id, payload) = match natnet::split(bytes) {
@@ -225,8 +243,19 @@ impl Client {
         };
         st.last_rx = Some(received);
         match id {
+            natnet::NAT_SERVERINFO if !(answer && st.awaiting_server_info) => {
+                // Motive answers each connect; a repeat of the version in use (a second connect's answer) is
+                // no news, anything else is not an answer to this client and changes nothing.
+                let same = natnet::decode_server_info(payload).is_ok_and(|i| Some(i.version()) == st.version);
+                if !(answer && same) {
+                    sh.conn.reject("unsolicited_server_info");
+                }
+            }
+            natnet::NAT_MODELDEF if !answer => sh.conn.reject("unsolicited_model_def"),
             natnet::NAT_SERVERINFO => match natnet::decode_server_info(payload) {
                 Ok(info) => {
+                    st.awaiting_server_info = false;
+                    st.undecodable_run = 0;
                     let v = info.version();
                     let [a, b, c, d] = info.app_version;
                     sh.conn.server_version = Some(format!("{} {a}.{b}.{c}.{d}, NatNet {v}", info.app_name));
@@ -260,7 +289,7 @@ impl Client {
                                 let map = label_map(&model, name, &fitter.set);
                                 if let Err(e) = &map {
                                     if sh.bodies[i].body_found || !st.model_seen {
-                                        tracing::warn!("marker set of `{name}`: {e}");
+                                        sh.log.warn("markers_not_in_model", || format!("marker set of `{name}`: {e}"));
                                     }
                                 }
                                 st.maps[i] = map.ok();
@@ -269,10 +298,11 @@ impl Client {
                             }
                             let id = model.rigid_bodies.iter().find(|b| &b.name == name).map(|b| b.id);
                             if id.is_none() && (sh.bodies[i].body_found || !st.model_seen) {
-                                let names: Vec<&str> = model.rigid_bodies.iter().map(|b| b.name.as_str()).collect();
-                                tracing::warn!(
-                                    "rigid body `{name}` is not in the NatNet server's model (it has {names:?})"
-                                );
+                                let names =
+                                    crate::daemon::peer_log::list(model.rigid_bodies.iter().map(|b| b.name.as_str()));
+                                sh.log.warn("body_not_in_model", || {
+                                    format!("rigid body `{name}` is not in the NatNet server's model (it has {names})")
+                                });
                             }
                             st.ids[i] = id;
                             sh.bodies[i].body_found = id.is_some();
@@ -286,8 +316,23 @@ impl Client {
                 let Some(version) = st.version else { return sh.conn.reject("awaiting_server_info") };
                 let st = &mut *st;
                 if let Err(e) = natnet::decode_frame(payload, version, &mut st.frame) {
-                    return sh.conn.reject(e.reason());
+                    sh.conn.reject(e.reason());
+                    st.undecodable_run += 1;
+                    if st.undecodable_run >= UNDECODABLE_FRAMES {
+                        // The version in use (or the server) decodes nothing: start the session again.
+                        st.undecodable_run = 0;
+                        st.version = None;
+                        let why = format!(
+                            "{UNDECODABLE_FRAMES} frames in a row from the NatNet server at {} did not decode as \
+                             NatNet {version} (last: {e}); connecting again",
+                            self.server
+                        );
+                        tracing::warn!("{why}");
+                        sh.conn.reconnect("undecodable", why);
+                    }
+                    return;
                 }
+                st.undecodable_run = 0;
                 if st.frame.models_changed {
                     st.want_model = true;
                 }

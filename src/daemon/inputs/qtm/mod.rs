@@ -2,7 +2,9 @@
 //! is not there), reads the greeting, asks for protocol 1.25, maps body names to 6D indices with
 //! `GetParameters 6D` (again when QTM says the cameras or the measurement changed), then `StreamFrames
 //! AllFrames 6D` (`6D 3D` when a route is a marker set, fitted to the labelled markers) and reads frames until the measurement stops or the connection ends, and then connects again
-//! with back-off.
+//! with back-off. A connection that goes quiet is asked `QTMVersion` after [`PROBE_AFTER`]; one that stays
+//! silent for [`QUIET`] (as NatNet's) is ended and connected again (`reconnects.quiet`), so a QTM that stopped
+//! answering after the handshake does not stay "connected".
 
 pub mod protocol;
 
@@ -14,7 +16,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
-use crate::daemon::DaemonError;
+use crate::daemon::{peer_log, DaemonError};
 use crate::kinematics::MarkerFitter;
 use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
 use crate::mocap::qtm::encode as qtm_encode;
@@ -23,6 +25,11 @@ use crate::wire::ConnectionState;
 
 /// How long a reply to a command may take.
 const REPLY_WAIT: Duration = Duration::from_secs(5);
+
+/// While streaming, a connection silent this long is asked for QTM's version (any packet is a sign of life).
+pub const PROBE_AFTER: Duration = Duration::from_secs(1);
+/// While streaming, a connection silent this long is ended and connected again (NatNet's [`super::natnet::QUIET`]).
+pub const QUIET: Duration = super::natnet::QUIET;
 
 /// Events after which the body list may have changed: ask for the parameters again.
 const EVENTS_REMAP: [u8; 4] = [3, 7, 8, 11];
@@ -47,6 +54,8 @@ pub fn start(
 enum End {
     Stopped,
     Lost(String),
+    /// Nothing came within the wait.
+    Silent,
 }
 
 fn run(
@@ -77,6 +86,7 @@ fn run(
                 match session.run(&mut tracks, &mut backoff) {
                     End::Stopped => return,
                     End::Lost(why) => why,
+                    End::Silent => "QTM did not answer".into(),
                 }
             }
             Err(e) => format!("no QTM real-time server at {server} ({e})"),
@@ -167,19 +177,17 @@ impl Session<'_> {
         self.stream.write_all(&qtm_encode::command(command)).map_err(|e| End::Lost(format!("writing to QTM: {e}")))
     }
 
-    /// The next packet, waiting up to `wait` (None: forever, until stopped).
-    fn next(&mut self, wait: Option<Duration>) -> Result<(u32, usize), End> {
-        let deadline = wait.map(|w| Instant::now() + w);
+    /// The next packet, waiting up to `wait`.
+    fn next(&mut self, wait: Duration) -> Result<(u32, usize), End> {
+        let deadline = Instant::now() + wait;
         loop {
             if self.stop.load(Ordering::Relaxed) {
                 return Err(End::Stopped);
             }
             match self.reader.next(&mut self.stream) {
                 Ok(Got::Packet(kind)) => return Ok((kind, self.reader.packet.len())),
-                Ok(Got::Idle) if deadline.is_some_and(|d| Instant::now() > d) => {
-                    return Err(End::Lost("QTM did not answer".into()))
-                }
-                Ok(Got::Idle) => {}
+                Ok(Got::Idle) if Instant::now() > deadline => return Err(End::Silent),
+                Ok(Got::Idle) => lock(self.shared).log.flush(),
                 Err(Broken::Closed(why)) => return Err(End::Lost(why)),
                 Err(Broken::Bad(e)) => {
                     lock(self.shared).conn.reject(e.reason());
@@ -193,11 +201,13 @@ impl Session<'_> {
     fn ask(&mut self, command: &str, want: u32) -> Result<String, End> {
         self.send(command)?;
         loop {
-            let (kind, _) = self.next(Some(REPLY_WAIT))?;
+            let (kind, _) = self.next(REPLY_WAIT)?;
             let text = qtm::text(&self.reader.packet);
             match kind {
                 k if k == want => return Ok(text),
-                qtm::PACKET_ERROR => return Err(End::Lost(format!("QTM refused `{command}`: {text}"))),
+                qtm::PACKET_ERROR => {
+                    return Err(End::Lost(format!("QTM refused `{command}`: {}", peer_log::escaped(&text, 120))))
+                }
                 _ => {}
             }
         }
@@ -224,10 +234,11 @@ impl Session<'_> {
                 self.indices[i] = match f.set.indices_in(&labels) {
                     Ok(found) => Some(found),
                     Err(missing) => {
-                        tracing::warn!(
-                            "marker `{missing}` of `{}` is not among QTM's 3D labels ({labels:?})",
-                            self.bodies[i]
-                        );
+                        let labels = peer_log::list(labels.iter().map(String::as_str));
+                        let body = &self.bodies[i];
+                        lock(self.shared).log.warn("markers_not_in_model", || {
+                            format!("marker `{missing}` of `{body}` is not among QTM's 3D labels ({labels})")
+                        });
                         None
                     }
                 };
@@ -242,7 +253,10 @@ impl Session<'_> {
             }
             let found = names.iter().any(|n| n == name);
             if !found && (sh.bodies[i].body_found || sh.bodies[i].frames == 0) {
-                tracing::warn!("6DOF body `{name}` is not among QTM's bodies ({names:?})");
+                let listed = || peer_log::list(names.iter().map(String::as_str));
+                sh.log.warn("body_not_in_model", || {
+                    format!("6DOF body `{name}` is not among QTM's bodies ({})", listed())
+                });
             }
             sh.bodies[i].body_found = found;
         }
@@ -259,7 +273,7 @@ impl Session<'_> {
     fn session(&mut self, tracks: &mut [BodyTrack], backoff: &mut Duration) -> Result<(), End> {
         let _ = self.stream.set_nodelay(true);
         self.stream.set_read_timeout(Some(POLL)).map_err(|e| End::Lost(format!("socket: {e}")))?;
-        let (kind, _) = self.next(Some(REPLY_WAIT))?;
+        let (kind, _) = self.next(REPLY_WAIT)?;
         if kind != qtm::PACKET_COMMAND {
             return Err(End::Lost("QTM did not greet".into()));
         }
@@ -288,7 +302,7 @@ impl Session<'_> {
         *backoff = BACKOFF_FIRST;
         let mut frame = Frame6d::default();
         loop {
-            let (kind, _) = self.next(None)?;
+            let kind = self.next_streaming()?;
             let received = Instant::now();
             match kind {
                 qtm::PACKET_DATA => self.on_data(&mut frame, tracks, received),
@@ -313,10 +327,33 @@ impl Session<'_> {
                     }
                 }
                 qtm::PACKET_NO_MORE_DATA => return Err(End::Lost("QTM's measurement stopped (no more data)".into())),
-                qtm::PACKET_ERROR => lock(self.shared).conn.last_error = Some(qtm::text(&self.reader.packet)),
+                qtm::PACKET_ERROR => {
+                    let text = peer_log::escaped(&qtm::text(&self.reader.packet), 120);
+                    lock(self.shared).conn.last_error = Some(text);
+                }
                 qtm::PACKET_COMMAND => {}
                 other => lock(self.shared).conn.reject(QtmError::UnknownPacket(other).reason()),
             }
+        }
+    }
+
+    /// The next packet while streaming: after [`PROBE_AFTER`] of silence QTM is asked for its version (a live
+    /// QTM between measurements answers); after [`QUIET`] the session ends and the client connects again.
+    fn next_streaming(&mut self) -> Result<u32, End> {
+        match self.next(PROBE_AFTER) {
+            Ok((kind, _)) => return Ok(kind),
+            Err(End::Silent) => {}
+            Err(end) => return Err(end),
+        }
+        self.send("QTMVersion")?;
+        match self.next(QUIET.saturating_sub(PROBE_AFTER)) {
+            Ok((kind, _)) => Ok(kind),
+            Err(End::Silent) => {
+                let why = format!("QTM sent nothing for {} s, not even a reply; connecting again", QUIET.as_secs());
+                lock(self.shared).conn.reconnect("quiet", why.clone());
+                Err(End::Lost(why))
+            }
+            Err(end) => Err(end),
         }
     }
 
