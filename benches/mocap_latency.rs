@@ -2,7 +2,9 @@
 //! a synthetic rig's frames at 720 Hz over UDP on 127.0.0.1; for every shot, the time from sending the frame
 //! that reveals the impact to a zenoh subscriber receiving `golf/rig1/launch`. First through the daemon's
 //! `[rig.input]` (budget: p99 <= 0.5 ms), then through `impactd bridge natnet`'s library (one more zenoh hop:
-//! bridge -> daemon). Prints p50/p99/max. `cargo bench --bench mocap_latency [-- SHOTS]`.
+//! bridge -> daemon). Then the same through the daemon's Vicon DataStream input (TCP, the test server of
+//! `tests/common/vicon_server.rs`; budget: p99 <= 0.5 ms). Prints p50/p99/max.
+//! `cargo bench --bench mocap_latency [-- SHOTS]`.
 
 #![allow(clippy::unwrap_used)]
 
@@ -12,14 +14,19 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
 use impactd::daemon::sim::{SimOptions, SimRig};
 use impactd::daemon::{DaemonConfig, RunOptions};
 use impactd::mocap::natnet::{self, Frame, RigidBody, ServerInfo, Version};
-use impactd::mocap::natnet_encode;
+use impactd::mocap::natnet::encode as natnet_encode;
 use impactd::wire::LaunchPrediction;
 use zenoh::Wait;
+
+#[path = "../tests/common/vicon_scene.rs"]
+mod scene;
+#[path = "../tests/common/vicon_server.rs"]
+mod vicon_server;
 
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -97,7 +104,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     let bridge_task = if bridge {
         let session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
         let source =
-            Source::NatNet { host: "127.0.0.1".into(), command_port: port, data_port: 0, multicast_group: None };
+            Source::new("natnet", "127.0.0.1", port).with("data_port", 0).with("unicast", true);
         Some(tokio::spawn(async move {
             run_bridge(&session, source, vec![("club".into(), "rig1".into())], async {
                 let _ = bridge_stopped.await;
@@ -161,6 +168,72 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     out
 }
 
+/// Frame sent by the Vicon test server -> `golf/rig1/launch` received, through the daemon's `[rig.input] vicon`.
+async fn measure_vicon(shots: u64) -> Vec<f64> {
+    let server = vicon_server::ViconServer::start(scene::statics());
+    let text = format!("[[rig]]\nname = \"rig1\"\n[rig.input]\nvicon = \"127.0.0.1:{}\"\nsubject = \"club\"\n", server.port);
+    let (config, setups) = DaemonConfig::parse(&text).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+    let sub_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
+    let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
+    let results: Arc<Mutex<Vec<f64>>> = Default::default();
+    let (s, r) = (sent.clone(), results.clone());
+    let _sub = sub_session
+        .declare_subscriber("golf/rig1/launch")
+        .callback(move |m| {
+            let now = Instant::now();
+            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
+                if let Some(t) = s.lock().unwrap().get(&l.frame) {
+                    r.lock().unwrap().push(now.duration_since(*t).as_secs_f64() * 1e6);
+                }
+            }
+        })
+        .wait()
+        .unwrap();
+    let (stop_daemon, stopped) = tokio::sync::oneshot::channel::<()>();
+    let daemon = tokio::spawn(async move {
+        impactd::daemon::run(config, setups, &daemon_session, RunOptions::default(), async {
+            let _ = stopped.await;
+        })
+        .await
+        .unwrap();
+        daemon_session.close().await.unwrap();
+    });
+    while server.streaming() == 0 {
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    let server = Arc::new(server);
+    let (srv, sent_frames) = (server.clone(), sent.clone());
+    tokio::task::spawn_blocking(move || {
+        let options = SimOptions { shots, interval_s: 0.25, ..SimOptions::default() };
+        let period = Duration::from_secs_f64(1.0 / options.rate_hz);
+        let mut rig = SimRig::new("rig1", &options, 1_000_000_000, 1);
+        let start = Instant::now();
+        let mut k = 0u32;
+        while !rig.done() {
+            let s = rig.next_sample().unwrap().0;
+            let frame = scene::frame_of(&s);
+            let due = start + period * k;
+            if let Some(wait) = due.checked_duration_since(Instant::now()) {
+                std::thread::sleep(wait);
+            }
+            sent_frames.lock().unwrap().insert(s.frame, Instant::now());
+            srv.send_frame(&frame);
+            k += 1;
+        }
+    })
+    .await
+    .unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let _ = stop_daemon.send(());
+    daemon.await.unwrap();
+    sub_session.close().await.unwrap();
+    let out = results.lock().unwrap().clone();
+    out
+}
+
 fn main() {
     let shots: u64 = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(100);
     let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
@@ -172,5 +245,10 @@ fn main() {
             let max = v.iter().cloned().fold(0.0, f64::max);
             println!("{name}: {n} of {shots} shots; datagram sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us");
         }
+        let mut v = measure_vicon(shots).await;
+        let n = v.len();
+        let (p50, p99) = (quantile(&mut v, 0.5), quantile(&mut v, 0.99));
+        let max = v.iter().cloned().fold(0.0, f64::max);
+        println!("daemon [rig.input] vicon: {n} of {shots} shots; frame sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us");
     });
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes ARCHITECTURE.md's section 8: every seed equation cited in src/ (`eq. 3.14`, `eq. 4.3-4.9`, `eqs. 3.16`)
-and the files that cite it. Run from anywhere: python3 scripts/equation-index.py"""
+"""Writes ARCHITECTURE.md's section 8: every seed equation cited in src/ and crates/*/src/ (`eq. 3.14`, `eq. 4.3-4.9`,
+`eqs. 3.16`) and the files that cite it. Run from anywhere: python3 scripts/equation-index.py"""
 import collections
 import os
 import re
@@ -12,7 +12,10 @@ import docs_regions  # noqa: E402
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 cite = re.compile(r"eqs?\.\s?(\d+)\.(\d+)(?:\s?[-\u2013]\s?(?:(\d+)\.)?(\d+))?")
 where = collections.defaultdict(set)
-for dirpath, _, files in os.walk(os.path.join(root, "src")):
+sources = [os.path.join(root, "src")] + sorted(
+    os.path.join(root, "crates", c, "src") for c in os.listdir(os.path.join(root, "crates"))
+)
+for dirpath, _, files in (walked for src in sources for walked in os.walk(src)):
     for name in files:
         if not name.endswith((".rs", ".md")):
             continue

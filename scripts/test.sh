@@ -3,15 +3,18 @@
 #
 # Some integration tests check impactd against independent clients: Python packages from PyPI (see
 # scripts/test-requirements.txt) in a virtual environment under target/pyenv, created once and refreshed when
-# the requirements change, and Debian's headless Chromium with its WebDriver for the web page (installed with
-# apt when missing and this user may install packages). Extra arguments go to `cargo test`.
+# the requirements change; Debian's headless Chromium with its WebDriver for the web page; and Vicon's own
+# DataStream SDK client, built from its source against Debian's boost once and cached under target/vicon-sdk
+# (scripts/vicon-sdk-client.sh). Debian packages are installed with apt when missing and this user may install
+# packages. Extra arguments go to `cargo test`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 venv="$root/target/pyenv"
 req="$root/scripts/test-requirements.txt"
 
-# Debian's Chromium and ChromeDriver, for the browser tests; Debian's venv module where python3 lacks it.
+# Debian's Chromium and ChromeDriver, for the browser tests; cmake and boost for Vicon's SDK client; Debian's
+# venv module where python3 lacks it.
 if [ -f "$root/scripts/test-debian-packages.txt" ]; then
   missing=()
   while read -r pkg; do
@@ -43,4 +46,6 @@ if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/.requirements" 2>/dev/n
 fi
 
 export IMPACTD_PYTHON="$venv/bin/python"
+IMPACTD_VICON_SDK_CLIENT="$(bash "$root/scripts/vicon-sdk-client.sh")"
+export IMPACTD_VICON_SDK_CLIENT
 exec cargo test --release "$@"

@@ -21,6 +21,10 @@
 //! <https://uwspace.uwaterloo.ca/items/90da9fb0-a7f3-4a5f-9002-e292ff1810c9>; "the seed"), chapters 3 and 4; each
 //! model cites its equations, and ARCHITECTURE.md lists where each one lives.
 //!
+//! The physics (equipment, face, impact models, kinematics, flight, the pure pipeline) is the IO-free crate
+//! `golf_physics`, handed on here under the same paths (`impactd::impact`, ...); this crate adds the daemon, the
+//! CLI's commands, the inputs and outputs, and the offline tools.
+//!
 //! The seed's driver with the adjusted impulse-momentum model (its Table 3.1 and 3.3), 113 mph, 13 deg of dynamic
 //! loft and 1.3 deg down, launches the ball at 163.96 mph with 2447 rpm of backspin:
 //!
@@ -52,25 +56,20 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
+// The IO-free physics (crate `golf-physics`), under the paths the daemon, commands, tests and benches name.
+pub use golf_physics::{face, flight, integrate, kinematics, math, pipeline, rng, units};
+
 pub mod capped;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;
-pub mod face;
-pub mod flight;
 pub mod impact;
-pub mod integrate;
 pub mod jsonl;
-pub mod kinematics;
-pub mod math;
 pub mod mocap;
 pub mod offline;
 pub mod output_file;
 pub mod pairing;
-pub mod pipeline;
 pub mod predict;
-pub mod rng;
 pub mod session;
 pub mod stages;
-pub mod units;
 pub mod wire;

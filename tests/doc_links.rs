@@ -115,7 +115,7 @@ const OTHER_REPOSITORIES: &[&str] = &["docs/aerodynamic_model.md"];
 #[test]
 fn every_docs_or_research_path_named_exists() {
     let mut named = Vec::new();
-    for dir in ["src", "tests", "benches", "examples", "scripts", "research", "docs", ".ci"] {
+    for dir in ["src", "crates", "tests", "benches", "examples", "scripts", "research", "docs", ".ci"] {
         named.extend(files(dir, &[".rs", ".md", ".py", ".sh", ".toml"]));
     }
     for file in ["README.md", "ARCHITECTURE.md", "Cargo.toml"] {

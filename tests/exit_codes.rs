@@ -305,3 +305,45 @@ fn a_bad_rig_file_exits_2_naming_the_field_and_its_cause_once() {
         assert_eq!(err.trim_end(), format!("impactd: {says}"), "{rig}");
     }
 }
+
+/// One rule for input lines (docs/commands.md): a line a command cannot read or answer exits 2, for every
+/// command that reads lines. `predict`, `flight` and `replay`, whose lines stand alone, answer the others first;
+/// `compare` and `fit`, whose numbers are over every line, stop at it.
+#[test]
+fn a_malformed_line_exits_2_for_every_command_that_reads_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let deliveries = write("deliveries.jsonl", "{\"club_speed_mph\":100}\nnot json\n");
+    let out = impactd(&["predict", "-i", &deliveries]);
+    let answers = String::from_utf8_lossy(&out.stdout).to_string();
+    assert_eq!(out.status.code(), Some(2), "predict: {}", String::from_utf8_lossy(&out.stderr));
+    let lines: Vec<serde_json::Value> = answers.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert!(lines[0]["ball_speed_mph"].is_number() && lines[1]["line"] == 2, "{answers}");
+
+    let launches = write("launches.jsonl", &format!("{}\n{{\"ball_speed_mph\": \n", answers.lines().next().unwrap()));
+    let out = impactd(&["flight", "-i", &launches]);
+    assert_eq!(out.status.code(), Some(2), "flight: {}", String::from_utf8_lossy(&out.stderr));
+    let first: serde_json::Value =
+        serde_json::from_str(String::from_utf8_lossy(&out.stdout).lines().next().unwrap()).unwrap();
+    assert!(first["carry_yd"].is_number(), "{first}");
+
+    let sample =
+        r#"{"rig":"bay1","frame":1,"t_ns":1000000,"position_m":[0,0,0],"orientation":{"x":0,"y":0,"z":0,"w":1}}"#;
+    let samples = write("samples.jsonl", &format!("{sample}\nnot json\n"));
+    let out = impactd(&["replay", &samples, "--club", "driver"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "replay: {err}");
+    assert!(err.contains("replayed 1 samples") && err.contains("line 2"), "{err}");
+
+    let bad = write("bad.jsonl", "not json\n");
+    let fitted = dir.path().join("fitted.toml");
+    let fitted = fitted.to_str().unwrap();
+    for args in [vec!["compare", bad.as_str()], vec!["fit", "--model", "adjusted", bad.as_str(), "-o", fitted]] {
+        let out = impactd(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}

@@ -1,30 +1,43 @@
-//! The house's boundaries that the compiler does not check (ARCHITECTURE.md section 1, "Layout").
+//! The house's boundaries that the compiler does not check (ARCHITECTURE.md section 1, "Layout", and "Crates").
+//! The compiler keeps the physics crate (`crates/golf-physics`) from naming impactd, and its manifest keeps the IO
+//! crates out of it (checked here too, so a dependency added there is caught); inside each crate these hold:
 //!
 //! The live path (the pipeline, the models, the kinematics, flight, pairing and the daemon's live loop, with the
-//! bridges, the recording and the session numbers it feeds) never names the offline tools (`crate::offline`:
-//! identification, plots, synthetic swings, evaluation), so the code a rig runs on every sample stays small enough
-//! to audit for latency. A file's own `#[cfg(test)]` module may use them (tests draw synthetic swings).
+//! bridges, the recording and the session numbers it feeds) never names the offline tools (impactd's
+//! `crate::offline`: identification, plots, evaluation; the physics crate's synthetic swings, `crate::swing`), so
+//! the code a rig runs on every sample stays small enough to audit for latency. A file's own `#[cfg(test)]`
+//! module may use them (tests draw synthetic swings).
 //!
-//! No module imports one that imports it back: the top-level modules, and inside `daemon` its sub-modules, form
-//! no circle (ARCHITECTURE.md section 1).
+//! No module imports one that imports it back: the top-level modules of each crate, and inside `daemon` its
+//! sub-modules, form no circle (ARCHITECTURE.md section 1).
 
 #![allow(clippy::unwrap_used)]
 
 use std::path::{Path, PathBuf};
 
-const LIVE_PATH: [&str; 11] = [
-    "src/pipeline.rs",
-    "src/impact",
-    "src/kinematics",
-    "src/flight",
-    "src/pairing",
-    "src/integrate.rs",
-    "src/face.rs",
-    "src/daemon/live",
-    "src/daemon/bridges",
-    "src/daemon/recording",
-    "src/session",
+/// The physics crate's sources, from impactd's root.
+const PHYSICS_SRC: &str = "crates/golf-physics/src";
+
+/// The live path: in the physics crate, whose offline tool is `swing`, and in impactd, whose are `offline`.
+const LIVE_PATH: [(&str, &str); 11] = [
+    ("crates/golf-physics/src/pipeline", "swing"),
+    ("crates/golf-physics/src/impact", "swing"),
+    ("crates/golf-physics/src/kinematics", "swing"),
+    ("crates/golf-physics/src/flight", "swing"),
+    ("src/pairing", "offline"),
+    ("crates/golf-physics/src/integrate.rs", "swing"),
+    ("crates/golf-physics/src/face.rs", "swing"),
+    ("src/daemon/live", "offline"),
+    ("src/daemon/bridges", "offline"),
+    ("src/daemon/recording", "offline"),
+    ("src/session", "offline"),
 ];
+
+/// The crates' source folders, from impactd's root: impactd's own and the physics crate's.
+fn crate_sources() -> [PathBuf; 2] {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    [root.join("src"), root.join(PHYSICS_SRC)]
+}
 
 fn rust_files(path: &Path, out: &mut Vec<PathBuf>) {
     if path.is_dir() {
@@ -43,9 +56,17 @@ fn outside_tests(text: &str) -> &str {
     text.find("#[cfg(test)]").map_or(text, |at| &text[..at])
 }
 
-fn names_offline(code: &str) -> Vec<String> {
+/// The lines of `code` that name the module `tools` (`offline` in impactd, `swing` in the physics crate).
+fn names_offline(code: &str, tools: &str) -> Vec<String> {
+    let (path, declared) = (format!("crate::{tools}"), format!("mod {tools}"));
+    let (inside, beside) = (format!("super::{tools}"), format!("{tools}::"));
     code.lines()
-        .filter(|line| line.contains("offline::") || line.contains("mod offline"))
+        .filter(|line| {
+            line.contains(&path)
+                || line.contains(&declared)
+                || line.contains(&inside)
+                || (tools == "offline" && line.contains(&beside))
+        })
         .map(|line| line.trim().to_string())
         .collect()
 }
@@ -54,14 +75,20 @@ fn names_offline(code: &str) -> Vec<String> {
 fn the_live_path_never_names_the_offline_tools() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    for part in LIVE_PATH {
-        rust_files(&root.join(part), &mut files);
+    for (part, tools) in LIVE_PATH {
+        let mut part_files = Vec::new();
+        rust_files(&root.join(part), &mut part_files);
+        assert!(!part_files.is_empty(), "no sources in {part}");
+        files.extend(part_files.into_iter().map(|f| (f, tools)));
     }
     assert!(files.len() > 40, "the live path's files were not found ({} files)", files.len());
     let mut found = Vec::new();
-    for file in &files {
+    // A test module in a file of its own (`#[cfg(test)] mod tests;`) is a test, as a file's own test module is.
+    let is_test_file =
+        |f: &Path| f.file_stem().is_some_and(|s| s == "tests" || s.to_string_lossy().ends_with("_tests"));
+    for (file, tools) in files.iter().filter(|(f, _)| !is_test_file(f)) {
         let text = std::fs::read_to_string(file).unwrap();
-        for line in names_offline(outside_tests(&text)) {
+        for line in names_offline(outside_tests(&text), tools) {
             found.push(format!("{}: {line}", file.strip_prefix(root).unwrap().display()));
         }
     }
@@ -72,8 +99,12 @@ fn the_live_path_never_names_the_offline_tools() {
 fn the_check_sees_a_use_of_the_offline_tools() {
     // The check must be able to fail: a live file that used a synthetic swing would be caught.
     let code = "use crate::offline::swing::Swing;\nfn f() {}\n#[cfg(test)]\nmod tests { use crate::offline::plot; }";
-    assert_eq!(names_offline(outside_tests(code)), vec!["use crate::offline::swing::Swing;".to_string()]);
-    assert!(names_offline("pub offline_m: Real,").is_empty(), "a field named offline_m is not the module");
+    assert_eq!(names_offline(outside_tests(code), "offline"), vec!["use crate::offline::swing::Swing;".to_string()]);
+    assert!(names_offline("pub offline_m: Real,", "offline").is_empty(), "a field named offline_m is not the module");
+    // In the physics crate: its synthetic swings, not a local named `swing` or the `Swing` of a doc.
+    let code =
+        "use crate::swing::{sample, Swing};\nlet swing = 1;\n#[cfg(test)]\nmod tests { use crate::swing::Swing; }";
+    assert_eq!(names_offline(outside_tests(code), "swing"), vec!["use crate::swing::{sample, Swing};".to_string()]);
 }
 
 /// The module path of a file under `src/`: `src/daemon/live/mod.rs` -> `daemon::live`, `src/face.rs` -> `face`.
@@ -210,7 +241,7 @@ fn folder_graphs(src: &Path) -> std::collections::BTreeMap<Vec<String>, Graph> {
         .map(|f| {
             let relative = f.strip_prefix(src).unwrap();
             let text = std::fs::read_to_string(f).unwrap();
-            (module_of(relative), format!("src/{}", relative.display()), outside_tests(&text).to_string())
+            (module_of(relative), format!("{}/{}", src.display(), relative.display()), outside_tests(&text).to_string())
         })
         .collect();
     // Every module path and its prefixes.
@@ -306,29 +337,46 @@ fn describe(graph: &Graph, found: &[Vec<String>]) -> String {
 
 #[test]
 fn no_module_imports_one_that_imports_it_back() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let graphs = folder_graphs(&src);
+    let [impactd, physics] = crate_sources();
+    let (graphs, physics_graphs) = (folder_graphs(&impactd), folder_graphs(&physics));
     let (top, daemon) = (&graphs[&Vec::new()], &graphs[&vec!["daemon".to_string()]]);
-    assert!(top.len() > 15 && top.contains_key("pipeline"), "the top-level graph was not read: {:?}", top.keys());
-    assert!(daemon.len() > 5 && daemon.contains_key("live"), "the daemon's graph was not read: {:?}", daemon.keys());
-    let (top_circles, daemon_circles) = (circles(top), circles(daemon));
+    let physics_top = &physics_graphs[&Vec::new()];
+    assert!(top.len() > 8 && top.contains_key("daemon"), "impactd's top-level graph was not read: {:?}", top.keys());
     assert!(
-        top_circles.is_empty() && daemon_circles.is_empty(),
-        "modules import each other in a circle:\n{}{}",
+        physics_top.len() > 8 && physics_top.contains_key("pipeline"),
+        "the physics crate's top-level graph was not read: {:?}",
+        physics_top.keys()
+    );
+    assert!(daemon.len() > 5 && daemon.contains_key("live"), "the daemon's graph was not read: {:?}", daemon.keys());
+    let (top_circles, daemon_circles, physics_circles) = (circles(top), circles(daemon), circles(physics_top));
+    assert!(
+        top_circles.is_empty() && daemon_circles.is_empty() && physics_circles.is_empty(),
+        "modules import each other in a circle:\n{}{}{}",
         describe(top, &top_circles),
-        describe(daemon, &daemon_circles)
+        describe(daemon, &daemon_circles),
+        describe(physics_top, &physics_circles)
     );
 }
 
 /// The same inside every folder, at every depth (`impact::continuous::law`, `offline::identify`, ...).
 #[test]
 fn no_folder_holds_modules_that_import_each_other() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let graphs = folder_graphs(&src);
+    let [impactd, physics] = crate_sources();
+    let (graphs, physics_graphs) = (folder_graphs(&impactd), folder_graphs(&physics));
     let law = vec!["impact".to_string(), "continuous".to_string(), "law".to_string()];
-    assert!(graphs.len() > 10 && graphs.contains_key(&law), "the folders were not read: {:?}", graphs.keys());
+    let identify = vec!["offline".to_string(), "identify".to_string()];
+    assert!(
+        graphs.len() > 10 && graphs.contains_key(&identify),
+        "impactd's folders were not read: {:?}",
+        graphs.keys()
+    );
+    assert!(
+        physics_graphs.len() > 10 && physics_graphs.contains_key(&law),
+        "the physics crate's folders were not read: {:?}",
+        physics_graphs.keys()
+    );
     let mut text = String::new();
-    for (folder, graph) in &graphs {
+    for (folder, graph) in graphs.iter().chain(&physics_graphs) {
         let found = circles(graph);
         if !found.is_empty() {
             text += &format!(
@@ -378,7 +426,9 @@ fn the_cycle_check_sees_a_circle() {
 fn no_source_file_is_over_450_lines() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    rust_files(&root.join("src"), &mut files);
+    for src in crate_sources() {
+        rust_files(&src, &mut files);
+    }
     assert!(files.len() > 100, "the sources were not found ({} files)", files.len());
     let long: Vec<String> = files
         .iter()
@@ -388,4 +438,43 @@ fn no_source_file_is_over_450_lines() {
         })
         .collect();
     assert!(long.is_empty(), "files over 450 lines:\n{}", long.join("\n"));
+}
+
+/// The crates the physics crate must never depend on: IO, runtimes, transports, the CLI's and the tools'.
+const IO_CRATES: [&str; 9] =
+    ["tokio", "zenoh", "mcap", "clap", "anyhow", "tracing-subscriber", "indicatif", "rayon", "csv"];
+
+/// The IO crates a manifest names among its dependencies of any kind (normal, dev, build; per target too).
+fn io_crates_named(manifest: &str) -> Vec<String> {
+    let value: toml::Table = manifest.parse().unwrap();
+    let mut tables: Vec<&toml::Table> = vec![&value];
+    if let Some(targets) = value.get("target").and_then(|t| t.as_table()) {
+        tables.extend(targets.values().filter_map(|t| t.as_table()));
+    }
+    let mut found = Vec::new();
+    for table in tables {
+        for kind in ["dependencies", "dev-dependencies", "build-dependencies"] {
+            for (name, spec) in table.get(kind).and_then(|d| d.as_table()).into_iter().flatten() {
+                // A renamed dependency (`x = { package = "zenoh" }`) is the crate it names.
+                let package = spec.get("package").and_then(|p| p.as_str()).unwrap_or(name);
+                if IO_CRATES.contains(&package) {
+                    found.push(format!("[{kind}] {name}"));
+                }
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn the_physics_crate_names_none_of_the_io_crates() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/golf-physics/Cargo.toml");
+    let manifest = std::fs::read_to_string(&path).unwrap();
+    assert!(manifest.contains("name = \"golf-physics\"") && manifest.contains("nalgebra"), "{}", path.display());
+    let found = io_crates_named(&manifest);
+    assert!(found.is_empty(), "crates/golf-physics/Cargo.toml depends on IO crates: {found:?}");
+    // The check can fail: a manifest with a runtime among its dependencies, renamed or per target, is caught.
+    let bad = "[dependencies]\nserde = \"1\"\nrt = { package = \"tokio\", version = \"1\" }\n\
+               [target.'cfg(unix)'.dev-dependencies]\nzenoh = \"1\"\n";
+    assert_eq!(io_crates_named(bad), ["[dependencies] rt", "[dev-dependencies] zenoh"]);
 }

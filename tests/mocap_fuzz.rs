@@ -5,9 +5,9 @@
 #![allow(clippy::unwrap_used)]
 
 use impactd::mocap::natnet::{self, Frame, RigidBody, Version, RIGID_BODY_BYTES};
-use impactd::mocap::natnet_markers::LabeledMarker;
+use impactd::mocap::natnet::markers::LabeledMarker;
 use impactd::mocap::qtm::{self, Body6d, Frame6d};
-use impactd::mocap::{natnet_encode, qtm_encode};
+use impactd::mocap::{natnet::encode as natnet_encode, qtm::encode as qtm_encode};
 use proptest::prelude::*;
 
 const VERSIONS: [Version; 5] =
@@ -40,7 +40,7 @@ fn natnet_frame(n: usize, seed: u32) -> Frame {
         mid_exposure_ticks: u64::from(seed) * 27_778,
         data_received_ticks: u64::from(seed) * 27_778 + 10_000,
         transmit_ticks: u64::from(seed) * 27_778 + 20_000,
-        models_changed: seed % 2 == 0,
+        models_changed: seed.is_multiple_of(2),
     }
 }
 
@@ -49,7 +49,7 @@ fn qtm_frame(n: usize, seed: u32) -> Frame6d {
         .map(|i| Body6d {
             position_mm: [i as f32, seed as f32, f32::NAN],
             rotation: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
-            residual_mm: (seed % 2 == 0).then_some(0.3),
+            residual_mm: seed.is_multiple_of(2).then_some(0.3),
         })
         .collect();
     Frame6d {
@@ -59,7 +59,9 @@ fn qtm_frame(n: usize, seed: u32) -> Frame6d {
         drop_rate_2d: 3,
         out_of_sync_rate_2d: 1,
         // Every third seed carries labelled 3D markers too.
-        markers_mm: (0..if seed % 3 == 0 { n + 1 } else { 0 }).map(|i| [i as f32, -(seed as f32), 7.5]).collect(),
+        markers_mm: (0..if seed.is_multiple_of(3) { n + 1 } else { 0 })
+            .map(|i| [i as f32, -(seed as f32), 7.5])
+            .collect(),
     }
 }
 

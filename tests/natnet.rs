@@ -14,7 +14,8 @@ mod swing;
 use std::time::Duration;
 
 use common::{client, client_result, collect, latest_input, rss_kib, spawn_client, start_daemon, wait_for, wait_until};
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::natnet::UNDECODABLE_FRAMES;
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::mocap::natnet::{Frame, RigidBody, Version};
@@ -89,7 +90,7 @@ fn frame_of(s: &ClubheadSample, other_id: i32) -> Frame {
 #[test]
 fn optitracks_python_client_reads_the_test_server() {
     for version in [Version::V3_1, Version::V4_0, Version::V4_1] {
-        let model = impactd::mocap::natnet_encode::model_def(version, &[(7, "wand"), (3, "club")]).unwrap();
+        let model = impactd::mocap::natnet::encode::model_def(version, &[(7, "wand"), (3, "club")]).unwrap();
         let (_, payload) = impactd::mocap::natnet::split(&model).unwrap();
         let ours = impactd::mocap::natnet::decode_model_def(payload, version).unwrap();
         assert!(ours.complete, "{version}: every data set walked");
@@ -193,7 +194,7 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
     let session = client(&daemon.endpoint).await;
     let (bridged, _b) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -239,7 +240,7 @@ async fn natnet_swing_gives_the_launches_of_the_json_swing() {
 #[tokio::test(flavor = "multi_thread")]
 async fn bad_natnet_input_is_counted_by_reason() {
     use impactd::mocap::natnet::ServerInfo;
-    use impactd::mocap::natnet_encode;
+    use impactd::mocap::natnet::encode as natnet_encode;
     let server = NatNetServer::start(Version::V4_1, &[(7, "wand"), (3, "club")]);
     server.state.lock().unwrap().answering = false;
     let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
@@ -291,7 +292,8 @@ async fn bad_natnet_input_is_counted_by_reason() {
     latest_input(&statuses, |s| s.rejected.get("body_not_in_model").is_some_and(|&n| n >= 1)).await;
     server.state.lock().unwrap().bodies[1].1 = "club".into();
 
-    // A server announcing NatNet 5.0: counted, its frames refused, the rig goes on; back to 4.1, frames flow.
+    // A NatNet 5.0 server info nobody asked for (from the server's own command port): counted, and it changes
+    // nothing: the frames after it decode as 4.1.
     let info = |major| ServerInfo {
         app_name: "Motive".into(),
         natnet_version: [major, if major == 4 { 1 } else { 0 }, 0, 0],
@@ -299,15 +301,80 @@ async fn bad_natnet_input_is_counted_by_reason() {
         ..ServerInfo::default()
     };
     server.send_raw(&natnet_encode::server_info(&info(5)));
+    server.send_frame(&changed);
+    latest_input(&statuses, |s| s.body_found).await;
     server.send_frame(&frame(23));
-    latest_input(&statuses, |s| s.rejected.get("unknown_version").is_some_and(|&n| n >= 2)).await;
-    server.send_raw(&natnet_encode::server_info(&info(4)));
+    let s = latest_input(&statuses, |s| s.published >= 8).await;
+    assert_eq!(s.rejected.get("unsolicited_server_info"), Some(&1), "{s:?}");
+    assert_eq!(s.rejected.get("unknown_version"), None, "{s:?}");
+
+    // A stream none of whose frames decode: after UNDECODABLE_FRAMES of them the client connects again, and the
+    // server's answer this time announces NatNet 5.0, which the decoder does not know: counted, its frames
+    // refused, and after as many of them the client connects again; the server answers 4.1 and frames flow.
+    server.state.lock().unwrap().announced = Some([5, 0]);
+    for _ in 0..UNDECODABLE_FRAMES {
+        server.send_raw(&[7, 0, 0, 0]);
+    }
+    let s = latest_input(&statuses, |s| s.rejected.get("unknown_version").is_some()).await;
+    assert_eq!(s.reconnects.get("undecodable"), Some(&1), "{s:?}");
+    assert!(s.last_error.as_deref().is_some_and(|e| e.contains("not supported") || e.contains("5.0")), "{s:?}");
+    server.state.lock().unwrap().announced = None;
+    for _ in 0..UNDECODABLE_FRAMES {
+        server.send_frame(&frame(24));
+    }
+    let s = latest_input(&statuses, |s| s.reconnects.get("undecodable") == Some(&2) && s.connects >= 3).await;
+    assert!(s.rejected.get("unknown_version").is_some_and(|&n| n > UNDECODABLE_FRAMES as u64), "{s:?}");
     server.send_frame(&changed);
     latest_input(&statuses, |s| s.body_found).await;
     server.send_frame(&frame(30));
-    let s = latest_input(&statuses, |s| s.published >= 8).await;
+    let s = latest_input(&statuses, |s| s.published >= 9).await;
     assert_eq!(s.state, impactd::wire::ConnectionState::Connected);
     daemon.stop().await;
+}
+
+/// A spoofed server info (another port of the server's address, announcing NatNet 2.9, in the middle of a
+/// swing) is counted and changes nothing: the rig predicts every shot of the swing, as the JSON swing gives them.
+#[tokio::test(flavor = "multi_thread")]
+async fn a_spoofed_server_info_mid_swing_changes_nothing() {
+    use impactd::mocap::natnet::ServerInfo;
+    use impactd::mocap::natnet_encode;
+    let samples = swing::samples(3, 720.0, 11);
+    let rounded: Vec<ClubheadSample> = samples
+        .iter()
+        .map(|s| {
+            let mut r = *s;
+            r.position_m = s.position_m.map(|v| v as f32 as f64);
+            r.orientation_xyzw = s.orientation_xyzw.map(|v| v as f32 as f64);
+            r
+        })
+        .collect();
+    let want = swing::launches(RIG, &rounded);
+    let server = NatNetServer::start(Version::V4_1, &[(7, "wand"), (3, "club")]);
+    let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
+    latest_input(&statuses, |s| s.connects == 1 && s.body_found).await;
+    let spoof = natnet_encode::server_info(&ServerInfo {
+        app_name: "Motive".into(),
+        natnet_version: [2, 9, 0, 0],
+        clock_hz: Some(CLOCK_HZ),
+        ..ServerInfo::default()
+    });
+    let half = samples.len() / 2;
+    play(&server, &samples[..half]);
+    server.send_from_other_port(&spoof);
+    server.send_raw(&spoof);
+    play(&server, &samples[half..]);
+    assert!(wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= 3).await, "three launches");
+    let s = latest_input(&statuses, |s| s.published == samples.len() as u64).await;
+    let got = launches.lock().unwrap().clone();
+    daemon.stop().await;
+    let keys = |v: &[LaunchPrediction]| v.iter().map(swing::key).collect::<Vec<_>>();
+    assert_eq!(keys(&got), keys(&want), "every shot predicted as without the spoof");
+    assert_eq!(s.rejected.get("unsolicited_server_info"), Some(&2), "{s:?}");
+    assert_eq!((s.connects, s.state), (1, impactd::wire::ConnectionState::Connected), "{s:?}");
+    assert!(s.server_version.as_deref().is_some_and(|v| v.contains("NatNet 4.1")), "{s:?}");
 }
 
 /// `impactd bridge natnet --help` works, and the bridge exits (0) within a few seconds of SIGINT, printing its
@@ -372,7 +439,7 @@ async fn ten_bodies_at_360_hz_through_one_bridge_lose_nothing() {
     }))
     .unwrap();
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let routes: Vec<(String, String)> = names.iter().enumerate().map(|(i, n)| (n.clone(), format!("rig{i}"))).collect();
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
@@ -484,13 +551,13 @@ async fn a_ball_body_sets_the_shots_ball() {
     let session = client(&daemon.endpoint).await;
     let (balls, _b) = collect::<BallSampleMsg>(&session, "mocap/rig1/ball");
     let source =
-        Source::NatNet { host: "127.0.0.1".into(), command_port: server.port, data_port: 0, multicast_group: None };
+        Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
         let routes = vec![("club".to_string(), "rig1".to_string())];
         let balls = vec![("ball".to_string(), "rig1".to_string())];
-        impactd::daemon::bridges::mocap::run_bridge_with_balls(&bridge_session, source, routes, balls, async {
+        impactd::daemon::inputs::run_bridge_with_balls(&bridge_session, source, routes, balls, async {
             let _ = stopped.await;
         })
         .await

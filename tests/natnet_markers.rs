@@ -21,7 +21,7 @@ use impactd::daemon::RunOptions;
 use impactd::kinematics::{ClubheadSample, MarkerSet};
 use impactd::math::{Isometry3, Quaternion, UnitQuaternion};
 use impactd::mocap::natnet::{self, Frame, RigidBody, Version};
-use impactd::mocap::natnet_markers::{LabeledMarker, OCCLUDED, POINT_CLOUD_SOLVED};
+use impactd::mocap::natnet::markers::{LabeledMarker, OCCLUDED, POINT_CLOUD_SOLVED};
 use impactd::wire::{LaunchPrediction, StatusMessage};
 use natnet_server::{NatNetServer, CLOCK_HZ};
 
@@ -214,7 +214,7 @@ fn optitracks_python_client_reads_labelled_markers_and_marker_sets() {
                 .collect();
             assert_eq!(&p, positions);
             // impactd's decoder: the same labelled markers.
-            let bytes = impactd::mocap::natnet_encode::frame(version, f, "Club", positions).unwrap();
+            let bytes = impactd::mocap::natnet::encode::frame(version, f, "Club", positions).unwrap();
             assert_eq!(natnet::decode(&bytes, version, &mut ours), Ok(natnet::Message::Frame));
             assert_eq!(ours.labeled_markers, f.labeled_markers);
         }
@@ -294,18 +294,13 @@ async fn the_bridge_fits_the_marker_set_too() {
     let session = client(&daemon.endpoint).await;
     let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let (published, _p) = collect::<impactd::wire::ClubheadSampleMsg>(&session, "mocap/rig1/clubhead");
-    let source = impactd::daemon::bridges::mocap::Source::NatNet {
-        host: "127.0.0.1".into(),
-        command_port: server.port,
-        data_port: 0,
-        multicast_group: None,
-    };
+    let source = impactd::daemon::inputs::Source::new("natnet", "127.0.0.1", server.port).with("data_port", 0).with("unicast", true);
     let fitter = impactd::kinematics::MarkerFitter::new(set.clone()).with_reject_m(3e-3);
     let bridge_session = client(&daemon.endpoint).await;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
         let routes = vec![("Club".to_string(), "rig1".to_string())];
-        impactd::daemon::bridges::mocap::run_bridge_fitted(
+        impactd::daemon::inputs::run_bridge_fitted(
             &bridge_session,
             source,
             routes,

@@ -15,13 +15,13 @@ use std::sync::atomic::Ordering;
 use std::time::Duration;
 
 use common::{client, client_result, collect, latest_input, spawn_client, start_daemon, wait_for, wait_until};
-use impactd::daemon::bridges::mocap::{run_bridge, Source};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::RunOptions;
 use impactd::kinematics::ClubheadSample;
 use impactd::math::Quaternion;
 use impactd::math::UnitQuaternion;
 use impactd::mocap::qtm::{Body6d, Frame6d};
-use impactd::mocap::{qtm_encode, track};
+use impactd::mocap::{qtm::encode as qtm_encode, track};
 use impactd::wire::{LaunchPrediction, StatusMessage};
 use qtm_server::QtmServer;
 
@@ -164,7 +164,7 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     let session = client(&daemon.endpoint).await;
     let (bridged, _b) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
     let bridge_session = client(&daemon.endpoint).await;
-    let source = Source::Qtm { host: "127.0.0.1".into(), port: server.port };
+    let source = Source::new("qtm", "127.0.0.1", server.port);
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge = tokio::spawn(async move {
         let routes = vec![("club".to_string(), "rig1".to_string())];
@@ -195,6 +195,30 @@ async fn qtm_swing_gives_the_launches_of_the_json_swing() {
     assert_eq!((s.protocol.as_str(), s.body_found, s.connects, s.dropped, s.out_of_order), ("qtm", true, 1, 0, 0));
     assert_eq!((s.frames, s.published), (samples.len() as u64, samples.len() as u64));
     assert_eq!(bridge_status[0].published, samples.len() as u64);
+}
+
+/// A QTM that goes silent after the handshake (streaming asked for, then nothing, not even an answer to
+/// `QTMVersion`) does not stay "connected": after 3 s the client ends the session, counts it
+/// (`reconnects.quiet`) and connects again; once QTM speaks again the rig predicts its swing.
+#[tokio::test(flavor = "multi_thread")]
+async fn a_qtm_silent_after_the_handshake_is_connected_to_again() {
+    let server = QtmServer::start(&["wand", "club"]);
+    let daemon = start_daemon(&input_config(server.port), RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (launches, _l) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig1/status");
+    latest_input(&statuses, |s| s.connects == 1 && s.state == impactd::wire::ConnectionState::Connected).await;
+    server.mute.store(true, Ordering::Relaxed);
+    let s = latest_input(&statuses, |s| s.reconnects.get("quiet") == Some(&1)).await;
+    assert_ne!(s.state, impactd::wire::ConnectionState::Connected, "{s:?}");
+    assert!(s.last_error.as_deref().is_some_and(|e| e.contains("sent nothing for 3 s")), "{s:?}");
+    server.mute.store(false, Ordering::Relaxed);
+    latest_input(&statuses, |s| s.connects >= 2 && s.state == impactd::wire::ConnectionState::Connected).await;
+    assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await);
+    let samples = swing::samples(1, 720.0, 5);
+    play(&server, &samples);
+    assert!(wait_until(Duration::from_secs(10), || !launches.lock().unwrap().is_empty()).await, "a launch");
+    daemon.stop().await;
 }
 
 /// Bad input from QTM is counted by reason and never stops the rig: a server not there yet (retried), a

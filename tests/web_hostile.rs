@@ -29,8 +29,8 @@ async fn request(address: &str, head: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
-fn get(path: &str) -> String {
-    format!("GET {path} HTTP/1.1\r\nHost: bay\r\n\r\n")
+fn get(address: &str, path: &str) -> String {
+    format!("GET {path} HTTP/1.1\r\nHost: {address}\r\n\r\n")
 }
 
 async fn page(address: &str) -> tokio_tungstenite::WebSocketStream<TcpStream> {
@@ -58,15 +58,15 @@ async fn the_bay_screen_refuses_and_counts_what_it_cannot_use_and_serves_the_nex
 
     // The page's files, with their content types and without caching.
     for (path, kind) in [("/", "text/html"), ("/style.css", "text/css"), ("/app.js", "text/javascript")] {
-        let r = request(&web, &get(path)).await;
+        let r = request(&web, &get(&web, path)).await;
         assert!(r.starts_with("HTTP/1.1 200 OK\r\n"), "{path}: {r:.80}");
         assert!(r.contains(&format!("Content-Type: {kind}")), "{path}: {r:.300}");
         assert!(r.contains("Cache-Control: no-store"));
     }
     // Refused, each with its status and counted by kind.
-    assert!(request(&web, &get("/secret")).await.starts_with("HTTP/1.1 404"));
-    assert!(request(&web, "POST / HTTP/1.1\r\nHost: bay\r\n\r\n").await.starts_with("HTTP/1.1 405"));
-    let huge = format!("GET / HTTP/1.1\r\nHost: bay\r\nX-Filler: {}\r\n\r\n", "x".repeat(9000));
+    assert!(request(&web, &get(&web, "/secret")).await.starts_with("HTTP/1.1 404"));
+    assert!(request(&web, &format!("POST / HTTP/1.1\r\nHost: {web}\r\n\r\n")).await.starts_with("HTTP/1.1 405"));
+    let huge = format!("GET / HTTP/1.1\r\nHost: {web}\r\nX-Filler: {}\r\n\r\n", "x".repeat(9000));
     assert!(request(&web, &huge).await.starts_with("HTTP/1.1 431"));
 
     // A page: a malformed control, a control for another rig and an oversized message are refused; the last
@@ -104,7 +104,7 @@ async fn the_bay_screen_refuses_and_counts_what_it_cannot_use_and_serves_the_nex
         idle.push(TcpStream::connect(&web).await.unwrap());
     }
     tokio::time::sleep(Duration::from_millis(100)).await;
-    assert!(request(&web, &get("/")).await.starts_with("HTTP/1.1 200 OK"));
+    assert!(request(&web, &get(&web, "/")).await.starts_with("HTTP/1.1 200 OK"));
 
     let want = ["not_found", "method", "oversized", "malformed", "unknown_rig", "evicted_at_cap"];
     let counted = common::wait_until(Duration::from_secs(5), || {

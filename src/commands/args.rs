@@ -150,10 +150,14 @@ pub fn open_input(path: Option<&Path>) -> Result<Box<dyn BufRead>> {
     })
 }
 
-/// Exit 1 when any line was rejected.
+/// The exit code of bad input: a line a command cannot read or answer (not JSON, not the message it reads, a
+/// field out of range), for every command that reads lines (`predict`, `flight`, `replay`, `compare`, `fit`).
+pub const BAD_INPUT_EXIT: u8 = 2;
+
+/// Exit 2 when any line was rejected (the others were answered).
 pub fn exit_code(tally: impactd::jsonl::Tally) -> ExitCode {
     if tally.rejected > 0 {
-        ExitCode::from(1)
+        ExitCode::from(BAD_INPUT_EXIT)
     } else {
         ExitCode::SUCCESS
     }

@@ -1,137 +1,140 @@
-//! `impactd bridge natnet|qtm`: Motive's or QTM's rigid bodies (or marker sets fitted to their labelled
-//! markers) as clubhead samples on zenoh.
+//! `impactd bridge PROTOCOL`: a motion-capture server's bodies (or marker sets fitted to their labelled markers)
+//! as clubhead samples on zenoh. One subcommand per entry of `daemon::inputs::PROTOCOLS`, each with the same
+//! flags (`--server`, the body flag, `--ball`, `--markers`, zenoh's) and the protocol's own.
 
-use std::net::Ipv4Addr;
 use std::process::ExitCode;
 
-use anyhow::{bail, Context, Result};
-use clap::{Args, Subcommand};
-use impactd::daemon::bridges::mocap::input::marker_fitter;
-use impactd::daemon::bridges::mocap::input::{NATNET_COMMAND_PORT, NATNET_DATA_PORT, NATNET_MULTICAST_GROUP, QTM_PORT};
-use impactd::daemon::bridges::mocap::{run_bridge_fitted, Source};
-use impactd::kinematics::MarkerFitter;
+use anyhow::{anyhow, bail, Context, Result};
+use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Subcommand};
+use impactd::daemon::inputs::config::marker_fitter;
+use impactd::daemon::inputs::protocol::{host_port, protocol};
+use impactd::daemon::inputs::{run_bridge_routes, Protocol, Route, PROTOCOLS};
 
 use super::args::ZenohArgs;
 use super::run::{runtime, shutdown_signal};
 
-#[derive(Debug, Subcommand)]
-pub enum BridgeCommand {
-    /// OptiTrack Motive (NatNet 3.x/4.x): each mapped rigid body's frames on mocap/<RIG>/clubhead.
-    Natnet(NatNetArgs),
-    /// Qualisys QTM (real-time protocol 1.2x, 6D): each mapped body's frames on mocap/<RIG>/clubhead.
-    Qtm(QtmArgs),
+/// The protocol chosen and its flags.
+#[derive(Debug, Clone)]
+pub struct BridgeCommand {
+    pub protocol: &'static str,
+    pub matches: ArgMatches,
 }
 
-#[derive(Debug, Args)]
-pub struct NatNetArgs {
-    /// Motive's address (host name or IPv4).
-    #[arg(long)]
-    pub server: String,
-    /// A rigid body and the rig it feeds, NAME=RIG (repeatable; several rigs share the connection).
-    #[arg(long = "body", value_name = "NAME=RIG", required = true)]
-    pub body: Vec<String>,
-    /// A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): published on
-    /// mocap/<RIG>/ball, it sets each shot's ball position.
-    #[arg(long = "ball", value_name = "NAME=RIG")]
-    pub ball: Vec<String>,
-    /// A body tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --body's): the set fitted to the
-    /// labelled markers each frame (Motive: the markers of its asset NAME; QTM: its 3D labels), so NAME needs no
-    /// rigid body in the capture software.
-    #[arg(long = "markers", value_name = "NAME=SET.toml")]
-    pub markers: Vec<String>,
-    /// Motive's command port.
-    #[arg(long, default_value_t = NATNET_COMMAND_PORT)]
-    pub command_port: u16,
-    /// The data port the bridge binds (frames; 0: any free port, unicast only).
-    #[arg(long, default_value_t = NATNET_DATA_PORT)]
-    pub data_port: u16,
-    /// Unicast: Motive sends frames to this bridge's address (default: multicast, Motive's default).
-    #[arg(long, conflicts_with = "multicast_group")]
-    pub unicast: bool,
-    /// The multicast group Motive streams to.
-    #[arg(long, value_name = "ADDR", default_value_t = NATNET_MULTICAST_GROUP)]
-    pub multicast_group: Ipv4Addr,
-    #[command(flatten)]
-    pub zenoh: ZenohArgs,
+fn subcommand(p: &'static dyn Protocol) -> Command {
+    let key = p.body_key();
+    let mut cmd = Command::new(p.name())
+        .about(p.summary())
+        .arg(
+            Arg::new("server")
+                .long("server")
+                .value_name("HOST[:PORT]")
+                .required(true)
+                .help(format!("The server's address (host name or IPv4; port {} when none).", p.default_port())),
+        )
+        .arg(
+            Arg::new("body")
+                .long(key)
+                .value_name("NAME=RIG")
+                .required(true)
+                .action(ArgAction::Append)
+                .help(p.body_help()),
+        )
+        .arg(Arg::new("ball").long("ball").value_name("NAME=RIG").action(ArgAction::Append).help(
+            "A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): \
+             published on mocap/<RIG>/ball, it sets each shot's ball position.",
+        ))
+        .arg(Arg::new("markers").long("markers").value_name("NAME=SET.toml").action(ArgAction::Append).help(
+            format!(
+                "A {key} tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --{key}'s): the set \
+                 fitted to the server's labelled markers each frame, so NAME needs no rigid body in the \
+                 capture software."
+            ),
+        ));
+    if p.segments() {
+        cmd = cmd.arg(
+            Arg::new("segment")
+                .long("segment")
+                .value_name("NAME")
+                .help(format!("The segment of each --{key} to read (default: the subject's root segment).")),
+        );
+    }
+    // Zenoh's flags last; their group's doc would otherwise be the subcommand's about.
+    ZenohArgs::augment_args(p.bridge_args(cmd)).about(p.summary()).long_about(None)
 }
 
-#[derive(Debug, Args)]
-pub struct QtmArgs {
-    /// QTM's address (host name or IPv4).
-    #[arg(long)]
-    pub server: String,
-    /// QTM's little-endian real-time port.
-    #[arg(long, default_value_t = QTM_PORT)]
-    pub port: u16,
-    /// A 6DOF body and the rig it feeds, NAME=RIG (repeatable; several rigs share the connection).
-    #[arg(long = "body", value_name = "NAME=RIG", required = true)]
-    pub body: Vec<String>,
-    /// A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): published on
-    /// mocap/<RIG>/ball, it sets each shot's ball position.
-    #[arg(long = "ball", value_name = "NAME=RIG")]
-    pub ball: Vec<String>,
-    /// A body tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --body's): the set fitted to the
-    /// labelled markers each frame (Motive: the markers of its asset NAME; QTM: its 3D labels), so NAME needs no
-    /// rigid body in the capture software.
-    #[arg(long = "markers", value_name = "NAME=SET.toml")]
-    pub markers: Vec<String>,
-    #[command(flatten)]
-    pub zenoh: ZenohArgs,
+impl FromArgMatches for BridgeCommand {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        let (name, sub) = m
+            .subcommand()
+            .ok_or_else(|| clap::Error::raw(clap::error::ErrorKind::MissingSubcommand, "a protocol is needed"))?;
+        let p = protocol(name).ok_or_else(|| {
+            clap::Error::raw(clap::error::ErrorKind::InvalidSubcommand, format!("no protocol `{name}`"))
+        })?;
+        Ok(BridgeCommand { protocol: p.name(), matches: sub.clone() })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
 }
 
-fn routes(flag: &str, bodies: &[String]) -> Result<Vec<(String, String)>> {
-    bodies
+impl Subcommand for BridgeCommand {
+    fn augment_subcommands(cmd: Command) -> Command {
+        PROTOCOLS.iter().fold(cmd.subcommand_required(true), |cmd, p| cmd.subcommand(subcommand(*p)))
+    }
+
+    fn augment_subcommands_for_update(cmd: Command) -> Command {
+        Self::augment_subcommands(cmd)
+    }
+
+    fn has_subcommand(name: &str) -> bool {
+        protocol(name).is_some()
+    }
+}
+
+fn values<'a>(m: &'a ArgMatches, id: &str) -> Vec<&'a String> {
+    m.get_many::<String>(id).map(|v| v.collect()).unwrap_or_default()
+}
+
+fn pairs(flag: &str, what: &str, values: &[&String]) -> Result<Vec<(String, String)>> {
+    values
         .iter()
         .map(|b| match b.split_once('=') {
             Some((name, rig)) if !name.is_empty() && !rig.is_empty() => Ok((name.to_string(), rig.to_string())),
-            _ => bail!("{flag} {b}: expected NAME=RIG (the body's name in the capture software, then the rig)"),
+            _ => bail!("{flag} {b}: expected {what}"),
         })
         .collect()
 }
 
-/// Each club route's marker set from `--markers NAME=SET.toml` (None: the body's own pose).
-fn fitters(markers: &[String], routes: &[(String, String)]) -> Result<Vec<Option<MarkerFitter>>> {
-    let mut out = vec![None; routes.len()];
-    for m in markers {
-        let Some((name, path)) = m.split_once('=').filter(|(n, p)| !n.is_empty() && !p.is_empty()) else {
-            bail!("--markers {m}: expected NAME=SET.toml (a --body name, then its marker set file)")
-        };
-        let Some(i) = routes.iter().position(|r| r.0 == name) else {
-            bail!("--markers {m}: `{name}` is not one of the --body names")
-        };
-        out[i] = Some(marker_fitter(path).map_err(|e| anyhow::anyhow!("--markers {m}: {e}"))?);
-    }
-    Ok(out)
-}
-
 pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
-    let (source, routes, balls, markers, zenoh) = match command {
-        BridgeCommand::Natnet(a) => {
-            if !a.unicast && !a.multicast_group.is_multicast() {
-                bail!("--multicast-group {} is not a multicast address", a.multicast_group);
-            }
-            if !a.unicast && a.data_port == 0 {
-                bail!("--data-port 0 is for unicast: multicast frames arrive on Motive's data port");
-            }
-            let source = Source::NatNet {
-                host: a.server.clone(),
-                command_port: a.command_port,
-                data_port: a.data_port,
-                multicast_group: (!a.unicast).then_some(a.multicast_group),
-            };
-            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.markers, &a.zenoh)
-        }
-        BridgeCommand::Qtm(a) => {
-            let source = Source::Qtm { host: a.server.clone(), port: a.port };
-            (source, routes("--body", &a.body)?, routes("--ball", &a.ball)?, &a.markers, &a.zenoh)
-        }
-    };
-    let fitters = fitters(markers, &routes)?;
+    let p = protocol(command.protocol).ok_or_else(|| anyhow!("no protocol {}", command.protocol))?;
+    let m = &command.matches;
+    let key = p.body_key();
+    let flag = format!("--{key}");
+    let server = m.get_one::<String>("server").map(String::as_str).unwrap_or_default();
+    let (host, port) = host_port(server).map_err(|e| anyhow!("--server {e}"))?;
+    let source = p.bridge_source(host, port, m).map_err(|e| anyhow!("{e}"))?;
+    let segment = m.try_get_one::<String>("segment").ok().flatten().cloned();
+    let mut routes: Vec<(Route, String)> = pairs(&flag, "NAME=RIG (the name in the capture software, then the rig)", &values(m, "body"))?
+        .into_iter()
+        .map(|(body, rig)| (Route { body, segment: segment.clone(), fitter: None }, rig))
+        .collect();
+    for (name, path) in pairs("--markers", "NAME=SET.toml (a body name, then its marker set file)", &values(m, "markers"))? {
+        let Some(route) = routes.iter_mut().find(|r| r.0.body == name) else {
+            bail!("--markers {name}={path}: `{name}` is not one of the {flag} names")
+        };
+        route.0.fitter = Some(marker_fitter(&path).map_err(|e| anyhow!("--markers {name}={path}: {e}"))?);
+    }
+    let balls = pairs("--ball", "NAME=RIG (the ball's body, then the rig)", &values(m, "ball"))?
+        .into_iter()
+        .map(|(body, rig)| (Route { body, ..Route::default() }, rig))
+        .collect();
+    let zenoh = ZenohArgs::from_arg_matches(m).context("zenoh's flags")?;
     let rt = runtime()?;
     rt.block_on(async {
         let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
-        let statuses =
-            run_bridge_fitted(&session, source, routes, fitters, balls, shutdown_signal()).await.context("bridge")?;
+        let statuses = run_bridge_routes(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
         let _ = session.close().await;
         for s in statuses {
             eprintln!(

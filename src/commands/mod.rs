@@ -96,7 +96,7 @@ pub enum Command {
     /// The daemon: clubhead samples in on zenoh, predictions out, everything recorded.
     #[cfg(feature = "daemon")]
     Run(run::RunArgs),
-    /// Motion-capture servers (OptiTrack NatNet, Qualisys QTM) to clubhead samples on zenoh.
+    /// Motion-capture servers (OptiTrack NatNet, Qualisys QTM, Vicon DataStream) to clubhead samples on zenoh.
     #[cfg(feature = "daemon")]
     #[command(subcommand)]
     Bridge(bridge::BridgeCommand),

@@ -11,7 +11,10 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::daemon::replay::{self, PauseControl, Publish, ReplayInput, ReplayOptions, ReplayReport};
+use impactd::daemon::replay::{
+    self, PauseControl, Publish, ReplayCapture, ReplayFile, ReplayIndex, ReplayOptions, ReplayReport, ReplaySource,
+    Selection,
+};
 use impactd::pipeline::Event;
 
 use super::args::{model_name, ZenohArgs};
@@ -88,35 +91,28 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         bail!("--duration must be a positive number of seconds");
     }
     let started = Instant::now();
-    let mut input = load(args)?;
-    for d in &input.damage {
+    let input = open(args)?;
+    let index = input.index().into_owned();
+    for d in &index.damage {
         eprintln!("{}: damaged: {d}", args.file.display());
     }
-    for (former, current) in &input.renamed_models {
+    for (former, current) in &index.renamed_models {
         eprintln!("{}: recorded model name {former} is now {current}; compared as {current}", args.file.display());
     }
-    let before = input.recorded_before_uncertainty();
-    if before > 0 {
-        eprintln!(
-            "{}: {before} recorded predictions were made before predictions carried their uncertainty \
-             (LaunchPrediction version 1): the replay's have it, and are compared without it",
-            args.file.display()
-        );
-    }
-    if !input.skipped_lines.is_empty() {
-        for l in input.skipped_lines.iter().take(5) {
+    if !index.skipped_lines.is_empty() {
+        for l in index.skipped_lines.iter().take(5) {
             eprintln!("skipped {l}");
         }
-        eprintln!("{} lines skipped: not clubhead samples", input.skipped);
+        eprintln!("{} lines skipped: not clubhead samples", index.skipped);
     }
-    if input.samples.is_empty() {
+    if index.samples() == 0 {
         bail!(
             "{}: no clubhead samples to replay (an empty, truncated or damaged recording, or not a recording or \
              JSONL file of ClubheadSample messages)",
             args.file.display()
         );
     }
-    let partial = select(&mut input, args)?;
+    let select = selection(&index, args)?;
     let (mut config, mut setups) = replay::resolve_config(&input, args.config.as_deref())?;
     let recorded: Vec<(String, String)> = config.rigs.iter().map(|r| (r.club.clone(), r.model.clone())).collect();
     if args.club.is_some() || args.model.is_some() {
@@ -125,7 +121,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
             rig.model = args.model.clone().unwrap_or_else(|| rig.model.clone());
         }
         setups = config.setups()?;
-    } else if input.config_toml.is_none() && args.config.is_none() {
+    } else if index.config_toml.is_none() && args.config.is_none() {
         let (club, model) = recorded.first().cloned().unwrap_or_default();
         eprintln!(
             "{}: no configuration stored: replaying with club {club} and model {model} (set --club, --model or -c)",
@@ -146,6 +142,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         overwrite: args.overwrite,
         publish: publish.unwrap_or_default(),
         pause: pause.clone(),
+        select,
     };
     let load_s = started.elapsed().as_secs_f64();
     let rt = runtime()?;
@@ -176,18 +173,66 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         if let Some(s) = session {
             let _ = s.close().await;
         }
+        if let Input::Capture(c, rig) = &input {
+            if let Some(counts) = c.counts() {
+                eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts));
+            }
+        }
+        for d in &report.damage {
+            eprintln!("{}: damaged: {d}", args.file.display());
+        }
+        if report.stats.samples == 0 {
+            // Nothing was replayed: a recording of nothing is not left behind.
+            if let Some(out) = &args.output {
+                let _ = std::fs::remove_file(out);
+            }
+            if report.stats.left_out == 0 {
+                bail!("{}: no clubhead sample could be read (damaged)", args.file.display());
+            }
+            bail!("--rig/--start-offset/--duration leave no samples");
+        }
         print_throughput(&report, load_s);
-        Ok(verdict(&report, changed.then(|| describe(&config, &recorded)), partial))
+        let code = verdict(&report, changed.then(|| describe(&config, &recorded)), report.stats.left_out > 0);
+        if index.skipped > 0 {
+            // A line that is not a sample is bad input, as for every command that reads lines (exit 2).
+            eprintln!("{} lines of {} are not clubhead samples (exit 2)", index.skipped, args.file.display());
+            return Ok(ExitCode::from(super::args::BAD_INPUT_EXIT));
+        }
+        Ok(code)
     })
 }
 
+/// A replay's input: a recording or a JSONL file, or a C3D capture (and the rig its samples go to).
+enum Input {
+    File(ReplayFile),
+    Capture(ReplayCapture, String),
+}
+
+impl ReplaySource for Input {
+    fn index(&self) -> std::borrow::Cow<'_, ReplayIndex> {
+        match self {
+            Input::File(f) => f.index(),
+            Input::Capture(c, _) => c.index(),
+        }
+    }
+
+    fn items(&self) -> Result<replay::Items<'_>, impactd::daemon::DaemonError> {
+        match self {
+            Input::File(f) => f.items(),
+            Input::Capture(c, _) => c.items(),
+        }
+    }
+}
+
 /// The replay's input: a C3D capture fitted with --markers, else a recording or JSONL samples.
-fn load(args: &ReplayArgs) -> Result<ReplayInput> {
+fn open(args: &ReplayArgs) -> Result<Input> {
     if !super::info::is_c3d(&args.file)? {
         if args.markers.is_some() {
             bail!("--markers is for C3D captures; {} is not one", args.file.display());
         }
-        return Ok(replay::load(&args.file)?);
+        // The rigs' capture times are needed only to count --start-offset and --duration from.
+        let times = args.start_offset > 0.0 || args.duration.is_some();
+        return Ok(Input::File(ReplayFile::open(&args.file, times)?));
     }
     let Some(markers) = &args.markers else {
         bail!("{} is a C3D capture: --markers SET.toml says which markers are the club", args.file.display());
@@ -201,37 +246,33 @@ fn load(args: &ReplayArgs) -> Result<ReplayInput> {
         }
         (None, None) => "c3d".to_string(),
     };
-    let (input, counts, warnings) = replay::load_capture(&args.file, fitter, &rig, args.fit.ball()?)
+    let capture = ReplayCapture::open(&args.file, fitter, &rig, args.fit.ball()?)
         .with_context(|| format!("{}", args.file.display()))?;
-    for w in &warnings {
+    for w in &capture.warnings {
         eprintln!("{}: warning: {w}", args.file.display());
     }
-    eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts));
-    Ok(input)
+    Ok(Input::Capture(capture, rig))
 }
 
-/// Keeps the samples of the chosen rigs and capture times; whether anything was left out.
-fn select(input: &mut ReplayInput, args: &ReplayArgs) -> Result<bool> {
-    let before = input.samples.len();
+/// The samples of the chosen rigs and capture times (from the earliest sample of those rigs).
+fn selection(index: &ReplayIndex, args: &ReplayArgs) -> Result<Selection> {
     if !args.rig.is_empty() {
-        let mut rigs: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
+        let mut rigs: Vec<&String> = index.rigs.keys().collect();
         rigs.sort_by(|a, b| impactd::daemon::recording::info::natural_cmp(a, b));
-        rigs.dedup();
-        if let Some(missing) = args.rig.iter().find(|r| !rigs.contains(r)) {
-            bail!("--rig {missing}: no samples of that rig (rigs: {})", rigs.join(", "));
-        }
-        input.samples.retain(|s| args.rig.contains(&s.rig));
-    }
-    if let Some(t0) = input.samples.iter().map(|s| s.t_ns).min() {
-        let from = t0.saturating_add((args.start_offset * 1e9) as u64);
-        // No --duration keeps every sample from `from` on, the one at t_ns = u64::MAX too.
-        let to = args.duration.map(|d| from.saturating_add((d * 1e9) as u64));
-        input.samples.retain(|s| s.t_ns >= from && to.map_or(true, |to| s.t_ns < to));
-        if input.samples.is_empty() {
-            bail!("--start-offset/--duration leave no samples");
+        if let Some(missing) = args.rig.iter().find(|r| !index.rigs.contains_key(*r)) {
+            let names: Vec<&str> = rigs.iter().map(|r| r.as_str()).collect();
+            bail!("--rig {missing}: no samples of that rig (rigs: {})", names.join(", "));
         }
     }
-    Ok(input.samples.len() != before)
+    if args.start_offset == 0.0 && args.duration.is_none() {
+        return Ok(Selection { rigs: args.rig.clone(), from_ns: 0, to_ns: None });
+    }
+    let chosen = index.rigs.iter().filter(|(name, _)| args.rig.is_empty() || args.rig.contains(name));
+    let t0 = chosen.map(|(_, span)| span.first_t_ns).min().unwrap_or(0);
+    let from_ns = t0.saturating_add((args.start_offset * 1e9) as u64);
+    // No --duration keeps every sample from `from` on, the one at t_ns = u64::MAX too.
+    let to_ns = args.duration.map(|d| from_ns.saturating_add((d * 1e9) as u64));
+    Ok(Selection { rigs: args.rig.clone(), from_ns, to_ns })
 }
 
 /// The configured rigs' club and model against the recorded ones, for people.

@@ -5,7 +5,10 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::daemon::{DaemonConfig, RunOptions};
+use impactd::daemon::{DaemonConfig, DaemonError, RunOptions};
+
+/// The exit code of a daemon that refused to serve a rig another daemon serves.
+pub const RIG_SERVED_EXIT: u8 = 4;
 
 use super::args::ZenohArgs;
 
@@ -20,6 +23,10 @@ pub struct RunArgs {
     /// Replace an existing recording.
     #[arg(long, alias = "force")]
     pub overwrite: bool,
+    /// Take over rigs another daemon already serves (it stops, closing its recording) instead of refusing to
+    /// start (exit 4).
+    #[arg(long)]
+    pub take_over: bool,
     #[command(flatten)]
     pub bridges: BridgeArgs,
     #[command(flatten)]
@@ -42,6 +49,10 @@ pub struct BridgeArgs {
     /// Serve the bay screen (a web page per rig) on this address (default 127.0.0.1:8080; overrides `[web]`).
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = impactd::daemon::bridges::web::DEFAULT_ADDRESS)]
     pub web: Option<String>,
+    /// A host name the bay screen answers as, besides its listen address and localhost (repeatable; adds to
+    /// `[web] hosts`): the name its screens open it by. Any other `Host` is answered 421.
+    #[arg(long = "web-host", value_name = "NAME")]
+    pub web_host: Vec<String>,
 }
 
 impl BridgeArgs {
@@ -55,6 +66,19 @@ impl BridgeArgs {
         }
         if let Some(u) = self.units {
             config.units = u;
+        }
+        if !self.web_host.is_empty() {
+            match (&self.web, config.web.as_mut()) {
+                (_, Some(w)) => w.hosts.extend(self.web_host.iter().cloned()),
+                (Some(listen), None) => {
+                    config.web = Some(impactd::daemon::config::WebConfig {
+                        listen: listen.clone(),
+                        hosts: self.web_host.clone(),
+                        token: None,
+                    })
+                }
+                (None, None) => bail!("--web-host needs --web (or a [web] section in the configuration)"),
+            }
         }
         Ok(())
     }
@@ -129,11 +153,25 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
                 overwrite: args.overwrite,
                 foxglove: args.bridges.foxglove.clone(),
                 web,
+                take_over: args.take_over,
             },
             shutdown_signal(),
         )
-        .await?;
+        .await;
+        let summary = match summary {
+            Ok(s) => s,
+            Err(e @ (DaemonError::RigServed { .. } | DaemonError::TakeOver { .. })) => {
+                // One daemon per rig: a refusal has its own exit code, so a supervisor can tell it apart.
+                tracing::error!("{e}");
+                let _ = session.close().await;
+                return Ok(ExitCode::from(RIG_SERVED_EXIT));
+            }
+            Err(e) => return Err(e.into()),
+        };
         let _ = session.close().await;
+        if let Some(why) = &summary.taken_over {
+            tracing::warn!("stopped: {why}");
+        }
         for (rig, c) in &summary.rigs {
             tracing::info!("rig {rig}: {} samples, {} shots, {} predictions", c.samples, c.shots, c.predictions);
         }

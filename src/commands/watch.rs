@@ -66,7 +66,7 @@ pub fn run(args: &WatchArgs) -> Result<ExitCode> {
                 continue;
             }
             let mut out = stdout.lock();
-            if shown as usize % HEADER_EVERY == 0 {
+            if (shown as usize).is_multiple_of(HEADER_EVERY) {
                 for line in shot_table::header(args.units) {
                     writeln!(out, "{line}").context("writing the table")?;
                 }

@@ -35,9 +35,10 @@
 //! max_shot_age_s = 5.0          # a shot older than this when the connection comes back is dropped, not sent
 //! # or, instead of open_connect, OpenGolfSim's developer API: opengolfsim = "127.0.0.1:3111"
 //! # (opengolfsim_unit = "metric" (m/s, default) or "imperial" (mph))
-//! [rig.input]                   # read the rig's body straight from Motive (natnet) or QTM (qtm)
-//! natnet = "192.168.1.20"
-//! body = "driver"
+//! [rig.input]                   # read the rig's body straight from Motive, QTM or Vicon
+//! protocol = "natnet"           # natnet | qtm | vicon
+//! server = "192.168.1.20"       # HOST or HOST:PORT
+//! body = "driver"               # Vicon: subject = "driver"
 //! unicast = true
 //! [rig.launch_monitor]          # take measured shots from launch monitor connectors, as a simulator would
 //! open_connect_listen = "127.0.0.1:921"
@@ -45,14 +46,20 @@
 //!
 //! [web]                         # the bay screen (`--web` overrides); a page per rig at http://ADDR/
 //! listen = "127.0.0.1:8080"
+//! hosts = ["bay1.local"]        # names it answers as besides the listen address and localhost (--web-host)
+//! token = "..."                 # its controls' token (beyond loopback one is made at start when unset)
+//!
+//! [clubs]                       # where a put on golf/<rig>/club may name club files (presets always);
+//! dirs = ["/srv/clubs"]         # default: this file's directory and ./clubs; relative to this file; [] for
+//!                               # presets only
 //! ```
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::daemon::bridges::mocap::MocapInputConfig;
+use crate::daemon::inputs::MocapInputConfig;
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
 pub use crate::daemon::config_flight::ConditionsConfig;
 pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};
@@ -75,15 +82,37 @@ pub struct DaemonConfig {
     /// The bay screen (`[web] listen = "127.0.0.1:8080"`), served when given (or with `--web`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub web: Option<WebConfig>,
+    /// `[clubs]`: the directories a put on `golf/<rig>/club` may name club files in.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clubs: Option<crate::daemon::config_club_dirs::ClubsConfig>,
+    /// The directory of the file this configuration was loaded from (absolute), which relative club directories
+    /// are taken from; `None` for a configuration not read from a file.
+    #[serde(skip)]
+    pub config_dir: Option<PathBuf>,
 }
 
-/// `[web]`: where the bay screen is served.
+/// `[web]`: where the bay screen is served, the names it answers as and the token its controls need.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WebConfig {
     /// `HOST:PORT`; loopback by default (a bay's screen is usually on the same machine).
     #[serde(default = "default_web_listen")]
     pub listen: String,
+    /// Host names the screen answers as besides the listen address and `localhost` (`--web-host` adds more):
+    /// the name a screen in the bay opens it by (`bay1.local`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hosts: Vec<String>,
+    /// The token the page's controls need (16-256 letters, digits or `-_.~`); needed on loopback too when set.
+    /// Beyond loopback without one, a token is made at each start and printed. Never recorded.
+    #[serde(default, skip_serializing)]
+    pub token: Option<String>,
+}
+
+impl WebConfig {
+    /// The names and token, for the screen.
+    pub fn access(&self) -> crate::daemon::bridges::web::WebAccess {
+        crate::daemon::bridges::web::WebAccess { hosts: self.hosts.clone(), token: self.token.clone() }
+    }
 }
 
 fn default_web_listen() -> String {
@@ -166,6 +195,8 @@ impl Default for DaemonConfig {
             status_period_s: 1.0,
             units: crate::session::Units::Imperial,
             web: None,
+            clubs: None,
+            config_dir: None,
             rigs: vec![RigConfig {
                 name: "rig1".into(),
                 club: default_club(),
@@ -196,7 +227,10 @@ impl DaemonConfig {
     pub fn load(path: &Path) -> Result<(Self, Vec<RigSetup>), DaemonError> {
         let text = crate::capped::read_to_string(path, MAX_CONFIG_BYTES)
             .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
-        Self::parse(&text)
+        let (mut config, setups) = Self::parse(&text)?;
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        config.config_dir = Some(std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf()));
+        Ok((config, setups))
     }
 
     /// Parses and validates TOML text.
@@ -321,6 +355,14 @@ mod tests {
         assert_eq!(c.web.unwrap().listen, "127.0.0.1:9090");
         let (c, _) = DaemonConfig::parse(&format!("{rig}[web]\n")).unwrap();
         assert_eq!(c.web.unwrap().listen, "127.0.0.1:8080");
+        let (c, _) =
+            DaemonConfig::parse(&format!("{rig}[web]\nhosts = [\"bay1.local\"]\ntoken = \"0123456789abcdef\"\n"))
+                .unwrap();
+        let web = c.web.clone().unwrap();
+        assert_eq!((web.hosts, web.token.as_deref()), (vec!["bay1.local".to_string()], Some("0123456789abcdef")));
+        // The token is never written out (a recording keeps the configuration).
+        let written = toml::to_string(&c).unwrap();
+        assert!(written.contains("bay1.local") && !written.contains("0123456789abcdef"), "{written}");
         let e = DaemonConfig::parse(&format!("{rig}[web]\nlisten_on = \"x\"\n")).unwrap_err().to_string();
         assert!(e.contains("listen_on"), "{e}");
     }

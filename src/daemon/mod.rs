@@ -5,10 +5,13 @@ pub mod bridges;
 pub mod bus;
 pub mod config;
 pub mod config_club;
+pub mod config_club_dirs;
 pub mod config_flight;
 pub mod config_pose;
 pub mod demo;
+pub mod inputs;
 pub mod live;
+pub mod peer_log;
 pub mod recording;
 pub mod replay;
 pub mod sim;
@@ -41,7 +44,7 @@ pub enum DaemonError {
     Markers {
         field: String,
         #[source]
-        source: bridges::mocap::input::MarkerFileError,
+        source: inputs::config::MarkerFileError,
     },
     /// A rig's `[rig.conditions]` that no ball flies in.
     #[error("config field `{field}` {source}")]
@@ -93,6 +96,22 @@ pub enum DaemonError {
         line: usize,
         #[source]
         source: std::io::Error,
+    },
+    /// Another daemon serves the rig (its liveliness token is there): this one refuses to serve it too.
+    #[error(
+        "rig {rig} is already served by {by}: refusing to serve it too (every shot would be predicted twice); \
+         stop that daemon, or start this one with --take-over to hand the rig over"
+    )]
+    RigServed { rig: String, by: String },
+    /// `--take-over` that could not take the rig over.
+    #[error("rig {rig} is served by {by}, and --take-over cannot take it over: {reason}")]
+    TakeOver { rig: String, by: String, reason: &'static str },
+    /// A C3D capture that cannot be read on.
+    #[error("{path}: {source}")]
+    Capture {
+        path: String,
+        #[source]
+        source: recording::c3d::C3dError,
     },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
     BadRigName(String),

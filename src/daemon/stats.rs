@@ -71,8 +71,16 @@ impl RateLimiter {
             }
             None => {
                 if self.last.len() >= RATE_LIMITER_KEYS {
-                    let period = self.period;
-                    self.last.retain(|_, (t, _)| now.duration_since(*t) < period);
+                    // A stale kind's suppressed events are not forgotten: they are said with the next line.
+                    let (period, mut owed) = (self.period, 0);
+                    self.last.retain(|_, (t, n)| {
+                        let keep = now.duration_since(*t) < period;
+                        if !keep {
+                            owed += *n;
+                        }
+                        keep
+                    });
+                    self.untracked += owed;
                 }
                 if self.last.len() >= RATE_LIMITER_KEYS {
                     self.untracked += 1;
@@ -87,6 +95,33 @@ impl RateLimiter {
     /// Kinds tracked now (bounded by [`RATE_LIMITER_KEYS`]).
     pub fn tracked(&self) -> usize {
         self.last.len()
+    }
+
+    /// The summaries a flood that stopped is owed: each kind with events suppressed and none allowed for a whole
+    /// period since, with its count (then reset, and the kind's period started again, so a summary is a line of
+    /// the kind's one a period). Events of kinds not tracked come last, under `None`.
+    pub fn overdue(&mut self) -> Vec<(Option<String>, u64)> {
+        self.take_suppressed(self.period)
+    }
+
+    /// Every count of events suppressed and not yet said, however recent (when the log ends).
+    pub fn owed(&mut self) -> Vec<(Option<String>, u64)> {
+        self.take_suppressed(Duration::ZERO)
+    }
+
+    fn take_suppressed(&mut self, min_age: Duration) -> Vec<(Option<String>, u64)> {
+        let now = Instant::now();
+        let mut out = Vec::new();
+        for (kind, (t, n)) in &mut self.last {
+            if *n > 0 && now.duration_since(*t) >= min_age {
+                out.push((Some(kind.clone()), std::mem::take(n)));
+                *t = now;
+            }
+        }
+        if self.untracked > 0 {
+            out.push((None, std::mem::take(&mut self.untracked)));
+        }
+        out
     }
 }
 
@@ -150,6 +185,23 @@ mod tests {
             short.allow(&format!("k{i}"));
         }
         assert!(short.tracked() <= RATE_LIMITER_KEYS);
+    }
+
+    #[test]
+    fn a_flood_that_stopped_is_owed_its_count_once() {
+        let mut l = RateLimiter::new(Duration::from_millis(30));
+        assert_eq!(l.allow("k"), Some(0));
+        for _ in 0..9 {
+            assert_eq!(l.allow("k"), None);
+        }
+        assert!(l.overdue().is_empty(), "not yet a period since the last line");
+        std::thread::sleep(Duration::from_millis(40));
+        assert_eq!(l.overdue(), vec![(Some("k".to_string()), 9)]);
+        assert!(l.overdue().is_empty(), "said once");
+        // The summary started the kind's period again.
+        assert_eq!(l.allow("k"), None);
+        std::thread::sleep(Duration::from_millis(40));
+        assert_eq!(l.allow("k"), Some(1));
     }
 
     #[test]

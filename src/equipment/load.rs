@@ -21,7 +21,7 @@ pub fn load_club(spec: &str) -> Result<LoadedClub, EquipmentError> {
 pub fn load_club_source(spec: &str) -> Result<(LoadedClub, Vec<u8>), EquipmentError> {
     if spec.ends_with(".toml") || Path::new(spec).exists() {
         let read_err = |source| EquipmentError::Read { path: spec.to_string(), source };
-        let file = std::fs::File::open(spec).map_err(read_err)?;
+        let file = open_club_file(spec)?;
         let mut text = String::new();
         file.take(MAX_CLUB_FILE_BYTES + 1).read_to_string(&mut text).map_err(read_err)?;
         if text.len() as u64 > MAX_CLUB_FILE_BYTES {
@@ -31,6 +31,59 @@ pub fn load_club_source(spec: &str) -> Result<(LoadedClub, Vec<u8>), EquipmentEr
     } else {
         let preset = super::presets::find(spec).ok_or_else(|| EquipmentError::UnknownPreset(spec.to_string()))?;
         Ok((preset.load()?, preset.bytes().to_vec()))
+    }
+}
+
+/// A club file opened for reading: a regular file only, no larger than [`MAX_CLUB_FILE_BYTES`]. A FIFO, a
+/// device, a socket or a directory (`/proc/self/fd/1` when standard output is a pipe) is refused before it is
+/// opened, and the file is opened without blocking and looked at again once open (the path may have been
+/// replaced in between), so opening a club file never waits for a writer.
+fn open_club_file(spec: &str) -> Result<std::fs::File, EquipmentError> {
+    let read_err = |source| EquipmentError::Read { path: spec.to_string(), source };
+    check_regular(spec, &std::fs::metadata(spec).map_err(read_err)?)?;
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(spec).map_err(read_err)?;
+    check_regular(spec, &file.metadata().map_err(read_err)?)?;
+    Ok(file)
+}
+
+/// Refuses what is not a regular file, or one larger than [`MAX_CLUB_FILE_BYTES`].
+fn check_regular(spec: &str, meta: &std::fs::Metadata) -> Result<(), EquipmentError> {
+    if !meta.is_file() {
+        return Err(EquipmentError::NotRegularFile { path: spec.to_string(), kind: file_kind(meta) });
+    }
+    if meta.len() > MAX_CLUB_FILE_BYTES {
+        return Err(EquipmentError::TooLarge { path: spec.to_string(), max_bytes: MAX_CLUB_FILE_BYTES });
+    }
+    Ok(())
+}
+
+/// What a path that is not a regular file is, in words.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
     }
 }
 
@@ -52,5 +105,26 @@ mod tests {
         let (from_file, file_bytes) = load_club_source(path).unwrap();
         assert_eq!((club, sha256_hex(&bytes)), (from_file, sha256_hex(&file_bytes)));
         assert!(load_club_source("putter").unwrap_err().to_string().contains("putter"));
+    }
+
+    /// A FIFO (which would block the reader until a writer came) and a directory are refused at once, naming
+    /// what they are.
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_or_a_directory_is_refused_without_blocking() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("club.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = load_club_source(fifo.to_str().unwrap()).unwrap_err();
+            assert!(matches!(e, EquipmentError::NotRegularFile { kind: "a FIFO", .. }), "{e}");
+            assert!(e.to_string().contains("is a FIFO"), "{e}");
+        }
+        let e = load_club_source(dir.path().to_str().unwrap()).unwrap_err();
+        assert!(matches!(e, EquipmentError::NotRegularFile { kind: "a directory", .. }), "{e}");
+        if std::path::Path::new("/dev/zero").exists() {
+            let e = load_club_source("/dev/zero").unwrap_err();
+            assert!(matches!(e, EquipmentError::NotRegularFile { kind: "a device", .. }), "{e}");
+        }
     }
 }

@@ -1,14 +1,10 @@
 //! Motion-capture systems' real-time protocols as pure byte codecs (no sockets, no IO): OptiTrack NatNet
-//! ([`natnet`]) and Qualisys QTM ([`qtm`]), and the step from one of their frames to a clubhead sample on the
-//! wire ([`track`]). The socket clients that use them are in `daemon::bridges`; keeping the codecs pure lets
-//! them be fuzzed and benchmarked alone.
+//! ([`natnet`]), Qualisys QTM ([`qtm`]) and Vicon DataStream ([`vicon`]), and the step from one of their frames
+//! to a clubhead sample on the wire ([`track`]). The socket clients that use them are in `daemon::bridges`;
+//! keeping the codecs pure lets them be fuzzed and benchmarked alone.
 
 pub mod bytes;
 pub mod natnet;
-pub mod natnet_descriptions;
-pub mod natnet_encode;
-pub mod natnet_fit;
-pub mod natnet_markers;
 pub mod qtm;
-pub mod qtm_encode;
 pub mod track;
+pub mod vicon;

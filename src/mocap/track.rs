@@ -29,6 +29,8 @@ pub struct BodySample {
     pub exposure_t_ns: Option<u64>,
     /// A pose fitted from markers: the fit's RMS residual (m).
     pub fit_residual_m: Option<f64>,
+    /// The motion-capture system's own latency for this frame, as it reports it (us; Vicon's `LatencyInfo`).
+    pub system_latency_us: Option<f64>,
 }
 
 impl BodySample {
@@ -43,6 +45,7 @@ impl BodySample {
             occluded: self.occluded,
             exposure_t_ns: self.exposure_t_ns,
             fit_residual_m: self.fit_residual_m,
+            system_latency_us: self.system_latency_us,
             body: None,
         }
     }
@@ -109,6 +112,7 @@ pub fn natnet_sample(body: &RigidBody, frame: &Frame, clock_hz: Option<u64>) -> 
         occluded: !body.tracking_valid,
         exposure_t_ns,
         fit_residual_m: None,
+        system_latency_us: None,
     };
     let finite = p.iter().chain(q.iter()).all(|v| v.is_finite());
     let norm = q.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -150,6 +154,7 @@ pub fn qtm_fitted_sample(
         occluded: false,
         exposure_t_ns: Some(t_ns),
         fit_residual_m: None,
+        system_latency_us: None,
     };
     match fitter.fit(lab_m) {
         Ok(fit) => {
@@ -177,6 +182,7 @@ pub fn qtm_sample(body: &Body6d, frame: &Frame6d) -> (BodySample, Option<BadPose
         occluded: false,
         exposure_t_ns: Some(t_ns),
         fit_residual_m: None,
+        system_latency_us: None,
     };
     if body.position_mm.iter().any(|v| v.is_nan()) {
         placeholder(&mut s);
@@ -258,6 +264,7 @@ mod tests {
             occluded: false,
             exposure_t_ns: None,
             fit_residual_m: None,
+            system_latency_us: None,
         };
         assert_eq!(t.on_frame(&s(5000), None, &mut st), Sequence::Publish);
         assert_eq!(t.on_frame(&s(5003), None, &mut st), Sequence::Publish);

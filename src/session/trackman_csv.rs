@@ -356,7 +356,7 @@ pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, Skipp
             },
         };
         let text_of = |name: &str| col(name).and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
-        let spin_measured = text_of("Spin Rate Type").map_or(true, |t| t.eq_ignore_ascii_case("measured"));
+        let spin_measured = text_of("Spin Rate Type").is_none_or(|t| t.eq_ignore_ascii_case("measured"));
         let labels = RowLabels {
             club: text_of("Club").map(str::to_string),
             spin_measured,

@@ -43,6 +43,17 @@ pub fn status(rig: &str) -> String {
 pub fn alive(rig: &str) -> String {
     format!("golf/{rig}/impactd/alive")
 }
+/// Liveliness token of one daemon serving a rig (`zid`: its zenoh id), watched by the others so that two daemons
+/// on one rig say so.
+pub fn daemon_token(rig: &str, zid: &str) -> String {
+    format!("golf/{rig}/impactd/daemon/{zid}")
+}
+/// Queryable of the daemon serving a rig: a daemon about to serve it too asks who serves it (payload `{"from":
+/// {"zid", "pid", "version"}, "take_over": bool}`) and is answered `{"from": {...}, "handing_over": bool}`; with
+/// `take_over` the daemon serving it stops.
+pub fn serve(rig: &str) -> String {
+    format!("golf/{rig}/impactd/serve")
+}
 /// Queryable: the daemon's configuration for the rig (JSON, read-only).
 pub fn config(rig: &str) -> String {
     format!("golf/{rig}/impactd/config")

@@ -22,6 +22,11 @@ pub struct MocapInputStatus {
     pub state: ConnectionState,
     /// Sessions with the server so far (a second one means it restarted or the measurement stopped).
     pub connects: u64,
+    /// Times the client ended a session itself and connected again, by reason: `quiet` (nothing from the server
+    /// for 3 s), `undecodable` (NatNet: a run of frames none of which decoded, as after a version announced by
+    /// someone else).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub reconnects: BTreeMap<String, u64>,
     /// The server's name and version, and the protocol version it speaks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub server_version: Option<String>,

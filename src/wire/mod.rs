@@ -3,41 +3,30 @@
 //! message type is a [`MessageType`] (its name, encoding and JSON Schema in `schemas/`, generated from these
 //! types by [`schemas`]).
 //!
-//! This module holds the JSON forms only; it depends on no transport.
+//! The physics' own JSON forms (a delivery and its launch, the impact and launch messages, the club file, labels
+//! and ball they carry) are `golf_physics::wire`'s, handed on here; this module adds the daemon's messages.
+//! It holds the JSON forms only; it depends on no transport.
 
-mod ball;
 mod bay;
 mod bridge;
-mod club;
-mod delivery;
-mod flight;
 pub mod keys;
-mod labels;
 mod measured;
-mod messages;
 mod mocap;
-mod model_name;
 mod sample;
 mod schema;
+mod status;
 
-pub use ball::{BallSampleMsg, BallSource, BallUsed};
 pub use bay::{club_text, ControlError, DisplaySettings, DisplayUnits, ShotExclusion, MAX_CLUB_BYTES};
 pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,
 };
-pub use club::{parse_club_put, ClubChange, ClubPutError, ClubRef, ClubSource, MAX_CLUB_PUT_BYTES};
-pub use delivery::{DeliveryInput, Handedness, OutOfBounds, PredictOutput};
-pub use flight::{FlightInput, FlightInputError, MAX_BALL_SPIN_RPM};
-pub use labels::{LabelsError, ShotLabels, MAX_LABEL_BYTES, MAX_TAGS};
+pub use golf_physics::wire::*;
 pub use measured::{ComparisonMessage, ComparisonStatus, LaunchFields, MeasuredClubData, MeasuredLaunch};
-pub use messages::{
-    ClubheadSampleMsg, ImpactMessage, ImpactStateMsg, LaunchPrediction, QuaternionMsg, RejectedInput, StatusMessage,
-    TruthMessage,
-};
 pub use mocap::MocapInputStatus;
 pub use sample::{parse_sample, InputError};
 pub use schema::{schemas, Message, MessageType};
+pub use status::{RejectedInput, StatusMessage, TruthMessage};
 
 /// The first version of every message type; part of the encoding `application/json;impactd.<Type>/<version>`
 /// (a type's own version: [`MessageType::version`]).

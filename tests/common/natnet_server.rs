@@ -1,6 +1,6 @@
 //! A NatNet server on 127.0.0.1 (UDP unicast only) that answers as Motive does: `NAT_SERVERINFO` to
 //! `NAT_CONNECT`, `NAT_MODELDEF` to `NAT_REQUEST_MODELDEF`, and frames sent from its command port to every
-//! address a connect came from. Its bytes come from `impactd::mocap::natnet_encode`; the tests check them with
+//! address a connect came from. Its bytes come from `impactd::mocap::natnet::encode`; the tests check them with
 //! OptiTrack's own Python client (`natnetsdk`).
 
 #![allow(clippy::unwrap_used)]
@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use impactd::mocap::natnet::{self, Frame, ServerInfo, Version};
-use impactd::mocap::natnet_encode;
+use impactd::mocap::natnet::encode as natnet_encode;
 
 pub struct NatNetServer {
     pub port: u16,
@@ -30,6 +30,8 @@ pub struct ServerState {
     pub clients: Vec<SocketAddr>,
     /// Answer NAT_CONNECT (false: a server that is not there yet).
     pub answering: bool,
+    /// The NatNet version its answer to NAT_CONNECT announces, when not `version` (its frames stay `version`'s).
+    pub announced: Option<[u8; 2]>,
 }
 
 /// Motive's clock: ticks per second of the frame suffix's stamps.
@@ -46,6 +48,7 @@ impl NatNetServer {
             marker_assets: Vec::new(),
             clients: Vec::new(),
             answering: true,
+            announced: None,
         }));
         let stop = Arc::new(AtomicBool::new(false));
         let model_requests = Arc::new(AtomicU64::new(0));
@@ -64,7 +67,10 @@ impl NatNetServer {
                         let info = ServerInfo {
                             app_name: "Motive".into(),
                             app_version: [3, 1, 0, 0],
-                            natnet_version: [st.version.major, st.version.minor, 0, 0],
+                            natnet_version: match st.announced {
+                                Some([major, minor]) => [major, minor, 0, 0],
+                                None => [st.version.major, st.version.minor, 0, 0],
+                            },
                             clock_hz: Some(CLOCK_HZ),
                             data_port: Some(1511),
                             multicast: Some(false),
@@ -101,6 +107,15 @@ impl NatNetServer {
     pub fn send_raw(&self, bytes: &[u8]) {
         for c in self.state.lock().unwrap().clients.clone() {
             self.socket.send_to(bytes, c).unwrap();
+        }
+    }
+
+    /// Sends raw bytes to every client from another port of the server's address (a spoofer on its host).
+    #[allow(dead_code)] // tests/natnet.rs, tests/hostile_rigs.rs
+    pub fn send_from_other_port(&self, bytes: &[u8]) {
+        let other = UdpSocket::bind("127.0.0.1:0").unwrap();
+        for c in self.state.lock().unwrap().clients.clone() {
+            other.send_to(bytes, c).unwrap();
         }
     }
 

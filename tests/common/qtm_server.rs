@@ -1,7 +1,7 @@
 //! A QTM real-time server on 127.0.0.1 (TCP) that answers as QTM does: the greeting, `Version` (1.20-1.25),
 //! `GetParameters 6D|3D|6D 3D` (the XML naming its bodies and marker labels), `StreamFrames AllFrames 6D|6DRes
 //! [3D]` and `StreamFrames Stop`,
-//! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm_encode`; the tests
+//! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm::encode`; the tests
 //! check them with Qualisys' own Python SDK (`qtm-rt`).
 
 #![allow(clippy::unwrap_used)]
@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use impactd::mocap::qtm::{self, Frame6d};
-use impactd::mocap::qtm_encode;
+use impactd::mocap::qtm::encode as qtm_encode;
 
 struct Conn {
     stream: TcpStream,
@@ -31,6 +31,8 @@ pub struct QtmServer {
     pub stream_requests: Arc<AtomicU64>,
     /// Answer `Version` with an error (a QTM that does not speak 1.2x).
     pub refuse_version: Arc<AtomicBool>,
+    /// Say nothing at all, not even the greeting (a QTM gone silent after the handshake).
+    pub mute: Arc<AtomicBool>,
     stop: Arc<AtomicBool>,
 }
 
@@ -40,13 +42,17 @@ struct Ctx {
     conns: Arc<Mutex<Vec<Conn>>>,
     streams: Arc<AtomicU64>,
     refuse: Arc<AtomicBool>,
+    mute: Arc<AtomicBool>,
     stop: Arc<AtomicBool>,
 }
 
 fn handle(mut stream: TcpStream, id: usize, ctx: Ctx) {
-    let Ctx { bodies, labels, conns, streams, refuse, stop } = ctx;
+    let Ctx { bodies, labels, conns, streams, refuse, mute, stop } = ctx;
     stream.set_read_timeout(Some(Duration::from_millis(50))).unwrap();
     let reply = |bytes: Vec<u8>| {
+        if mute.load(Ordering::Relaxed) {
+            return;
+        }
         if let Some(c) = conns.lock().unwrap().get_mut(id) {
             let _ = c.stream.write_all(&bytes);
         }
@@ -131,8 +137,15 @@ impl QtmServer {
         let stream_requests = Arc::new(AtomicU64::new(0));
         let stop = Arc::new(AtomicBool::new(false));
         let refuse_version = Arc::new(AtomicBool::new(false));
-        let (b, c, s, st, rf) =
-            (bodies.clone(), conns.clone(), stream_requests.clone(), stop.clone(), refuse_version.clone());
+        let mute = Arc::new(AtomicBool::new(false));
+        let (b, c, s, st, rf, mu) = (
+            bodies.clone(),
+            conns.clone(),
+            stream_requests.clone(),
+            stop.clone(),
+            refuse_version.clone(),
+            mute.clone(),
+        );
         let l = labels.clone();
         std::thread::spawn(move || {
             while !st.load(Ordering::Relaxed) {
@@ -151,6 +164,7 @@ impl QtmServer {
                             conns: c.clone(),
                             streams: s.clone(),
                             refuse: rf.clone(),
+                            mute: mu.clone(),
                             stop: st.clone(),
                         };
                         std::thread::spawn(move || handle(stream, id, ctx));
@@ -159,7 +173,7 @@ impl QtmServer {
                 }
             }
         });
-        QtmServer { port, bodies, labels, conns, stream_requests, refuse_version, stop }
+        QtmServer { port, bodies, labels, conns, stream_requests, refuse_version, mute, stop }
     }
 
     /// Sends raw bytes to every streaming client.
@@ -172,6 +186,9 @@ impl QtmServer {
     /// Sends a frame as 6D or 6DRes (with its 3D markers when the client asked for 3D), as each streaming
     /// client asked.
     pub fn send_frame(&self, frame: &Frame6d) {
+        if self.mute.load(Ordering::Relaxed) {
+            return;
+        }
         for c in self.conns.lock().unwrap().iter_mut() {
             let Some((residual, with_3d)) = c.streaming else { continue };
             let mut f = frame.clone();

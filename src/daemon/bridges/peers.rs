@@ -1,9 +1,12 @@
-//! The connections of one TCP surface (an Open Connect listener, the Foxglove live view), bounded: at most
-//! `max_connections` open at once, and at the cap the connection idle the longest is closed to admit the
-//! newcomer, so an honest peer that arrives behind a crowd of idle ones is answered at once and the daemon's
-//! descriptors (zenoh's, the mocap inputs') are never starved. A connection that says nothing useful within
-//! the handshake timeout, or then goes quiet for the idle timeout, is closed. Rejections are counted by kind
-//! and logged at most once a second per kind.
+//! The connections of one TCP surface (an Open Connect listener, the Foxglove live view, the bay screen),
+//! bounded: at most `max_connections` open at once. At the cap an unfinished handshake (a connection that has
+//! said nothing useful yet, the one connected longest ago) is closed first to admit the newcomer, else the
+//! connection idle the longest, so an honest peer that arrives behind a crowd of idle ones is answered at once and
+//! the daemon's descriptors (zenoh's, the mocap inputs') are never starved; a surface whose clients retry (the bay
+//! screen's pages) may instead refuse the newcomer when every connection is live ([`Peers::admit_unless_full`]),
+//! so live clients are not pushed out in turn. A connection that says nothing useful within the handshake
+//! timeout, or then goes quiet for the idle timeout, is closed. Rejections are counted by kind and logged at most
+//! once a second per kind ([`PeerLog`]).
 //!
 //! Written here rather than taken from a crate: tower's limits refuse the newcomer at the cap (the opposite of
 //! what keeps an honest connector served) and would bring an HTTP service stack for two raw TCP loops.
@@ -15,7 +18,7 @@ use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
 
-use crate::daemon::stats::RateLimiter;
+use crate::daemon::peer_log::PeerLog;
 
 /// The bounds of one surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,6 +36,8 @@ pub mod kind {
     pub const EVICTED: &str = "evicted_at_cap";
     pub const HANDSHAKE_TIMEOUT: &str = "handshake_timeout";
     pub const IDLE_TIMEOUT: &str = "idle_timeout";
+    /// Refused at the cap, every connection there live (the bay screen).
+    pub const REFUSED: &str = "refused_at_cap";
 }
 
 /// One open connection's shared state.
@@ -48,7 +53,7 @@ struct Inner {
     next_id: u64,
     open: HashMap<u64, Arc<PeerState>>,
     rejected: BTreeMap<String, u64>,
-    limiter: RateLimiter,
+    log: PeerLog,
 }
 
 /// The connections of one surface and their rejection counts.
@@ -98,7 +103,7 @@ impl Peers {
                 next_id: 0,
                 open: HashMap::new(),
                 rejected: BTreeMap::new(),
-                limiter: RateLimiter::new(Duration::from_secs(1)),
+                log: PeerLog::new(),
             })),
         }
     }
@@ -111,58 +116,107 @@ impl Peers {
         u64::try_from(self.started.elapsed().as_millis()).unwrap_or(u64::MAX)
     }
 
-    /// Admits a connection, closing the longest-idle one first when the surface is at its cap.
+    /// Admits a connection; at the cap it closes an unfinished handshake first (the one connected longest
+    /// ago), else the connection idle the longest.
     pub fn admit(&self, peer: &str) -> PeerSlot {
-        let state = Arc::new(PeerState {
-            last_active_ms: AtomicU64::new(self.now_ms()),
-            greeted: AtomicBool::new(false),
-            closed: Notify::new(),
-        });
-        let mut evicted = false;
+        // Never refused: every open connection has been idle for at least zero.
+        self.admit_within(peer, Duration::ZERO).unwrap_or_else(|| self.slot(0, self.state()))
+    }
+
+    /// Admits a connection; at the cap it closes an unfinished handshake first, else a connection idle for
+    /// `stale` or more, else it refuses the newcomer (`None`, counted as `refused_at_cap`): a crowd of live
+    /// connections is never thinned for one more (the bay screen's pages, which back off when refused).
+    pub fn admit_unless_full(&self, peer: &str, stale: Duration) -> Option<PeerSlot> {
+        self.admit_within(peer, stale)
+    }
+
+    fn admit_within(&self, peer: &str, stale: Duration) -> Option<PeerSlot> {
+        let now_ms = self.now_ms();
+        let stale_ms = u64::try_from(stale.as_millis()).unwrap_or(u64::MAX);
+        let state = self.state();
+        let mut evicted = None;
         let id = match self.inner.lock() {
             Ok(mut inner) => {
                 while inner.open.len() >= self.limits.max_connections.max(1) {
-                    let oldest = inner
+                    let active = |s: &PeerState| s.last_active_ms.load(Ordering::Relaxed);
+                    let unfinished = inner
                         .open
                         .iter()
-                        .min_by_key(|(id, s)| (s.last_active_ms.load(Ordering::Relaxed), **id))
-                        .map(|(id, _)| *id);
-                    let Some(oldest) = oldest else { break };
-                    if let Some(s) = inner.open.remove(&oldest) {
+                        .filter(|(_, s)| !s.greeted.load(Ordering::Relaxed))
+                        .min_by_key(|(id, s)| (active(s), **id))
+                        .map(|(id, _)| (*id, "an unfinished handshake"));
+                    let idle = || {
+                        inner
+                            .open
+                            .iter()
+                            .filter(|(_, s)| now_ms.saturating_sub(active(s)) >= stale_ms)
+                            .min_by_key(|(id, s)| (active(s), **id))
+                            .map(|(id, _)| (*id, "the longest idle"))
+                    };
+                    let Some((victim, which)) = unfinished.or_else(idle) else { break };
+                    if let Some(s) = inner.open.remove(&victim) {
                         // A stored permit: the connection sees it even if it is not waiting right now.
                         s.closed.notify_one();
-                        evicted = true;
+                        evicted = Some(which);
                     }
                 }
-                inner.next_id += 1;
-                let id = inner.next_id;
-                inner.open.insert(id, state.clone());
-                id
+                if inner.open.len() >= self.limits.max_connections.max(1) {
+                    None
+                } else {
+                    inner.next_id += 1;
+                    let id = inner.next_id;
+                    inner.open.insert(id, state.clone());
+                    Some(id)
+                }
             }
-            Err(_) => 0,
+            Err(_) => Some(0),
         };
-        if evicted {
+        let max = self.limits.max_connections;
+        if let Some(which) = evicted {
             self.reject(Cut::Evicted.kind(), || {
-                format!(
-                    "at the cap of {} connections: the longest idle was closed for {peer}",
-                    self.limits.max_connections
-                )
+                format!("at the cap of {max} connections: {which} was closed for {peer}")
             });
         }
+        let Some(id) = id else {
+            self.reject(kind::REFUSED, || {
+                format!("at the cap of {max} live connections: {peer} refused (it may retry)")
+            });
+            return None;
+        };
+        Some(self.slot(id, state))
+    }
+
+    fn state(&self) -> Arc<PeerState> {
+        Arc::new(PeerState {
+            last_active_ms: AtomicU64::new(self.now_ms()),
+            greeted: AtomicBool::new(false),
+            closed: Notify::new(),
+        })
+    }
+
+    fn slot(&self, id: u64, state: Arc<PeerState>) -> PeerSlot {
         PeerSlot { id, state, peers: self.clone(), connected: Instant::now() }
     }
 
     /// Counts a rejection of this kind and logs it, at most once a second per kind.
-    pub fn reject(&self, kind: &str, message: impl FnOnce() -> String) {
+    pub fn reject(&self, kind: &'static str, message: impl FnOnce() -> String) {
         let Ok(mut inner) = self.inner.lock() else { return };
         *inner.rejected.entry(kind.to_string()).or_default() += 1;
-        if let Some(n) = inner.limiter.allow(kind) {
-            let what = &self.what;
-            if n > 0 {
-                tracing::warn!("{what}: {} ({n} more {kind} since the last)", message());
-            } else {
-                tracing::warn!("{what}: {}", message());
-            }
+        let what = &self.what;
+        inner.log.warn(kind, || format!("{what}: {}", message()));
+    }
+
+    /// Logs a connection's news (a page connected), at most once a second per kind.
+    pub fn info(&self, kind: &'static str, message: impl FnOnce() -> String) {
+        let Ok(mut inner) = self.inner.lock() else { return };
+        let what = &self.what;
+        inner.log.info(kind, || format!("{what}: {}", message()));
+    }
+
+    /// Says what the log suppressed of floods that stopped (called every second by a surface with a clock).
+    pub fn flush_log(&self) {
+        if let Ok(mut inner) = self.inner.lock() {
+            inner.log.flush();
         }
     }
 
@@ -251,6 +305,31 @@ mod tests {
         drop(b);
         assert_eq!(peers.open(), 2);
         drop((a, c));
+        assert_eq!(peers.open(), 0);
+    }
+
+    #[tokio::test]
+    async fn at_the_cap_an_unfinished_handshake_goes_first_and_live_connections_may_refuse_the_newcomer() {
+        let peers = Peers::new("test", limits(2));
+        let live = peers.admit("live");
+        live.touch();
+        tokio::time::sleep(Duration::from_millis(5)).await;
+        // Connected later (so idle for less), but it has said nothing yet: it goes first.
+        let head = peers.admit("slow head");
+        let next = peers.admit("next");
+        assert_eq!(head.cut().await, Cut::Evicted);
+        next.touch();
+        // Both live: a newcomer is refused rather than one of them closed...
+        assert!(peers.admit_unless_full("third", Duration::from_secs(30)).is_none());
+        assert_eq!(peers.rejected().get(kind::REFUSED), Some(&1));
+        assert_eq!(peers.open(), 2);
+        // ...unless one has been idle for the stale time.
+        tokio::time::sleep(Duration::from_millis(10)).await;
+        live.touch();
+        let fourth = peers.admit_unless_full("fourth", Duration::from_millis(5)).expect("a stale one makes room");
+        assert_eq!(next.cut().await, Cut::Evicted);
+        assert_eq!(peers.rejected().get(kind::EVICTED), Some(&2));
+        drop((live, head, next, fourth));
         assert_eq!(peers.open(), 0);
     }
 

@@ -1,4 +1,4 @@
-//! `[rig.input]`: NatNet and QTM clients feeding the rigs' queues directly. Rigs reading the same server share
+//! `[rig.input]`: motion-capture clients (NatNet, QTM, Vicon) feeding the rigs' queues directly. Rigs reading the same server share
 //! one client (one body each). Each sample is serialised as the `ClubheadSampleMsg` a bridge would publish and
 //! queued exactly as a zenoh sample is, so the worker parses, records and runs the same bytes either way. A rig's
 //! `ball_body` is read the same way and queued as the rig's tracked ball (`mocap/<rig>/ball`).
@@ -9,17 +9,16 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
 use super::{Incoming, InputKind};
-use crate::daemon::bridges::mocap::input::marker_fitter;
-use crate::daemon::bridges::mocap::{InputHandle, Source, StatusSource};
+use crate::daemon::inputs::config::marker_fitter;
+use crate::daemon::inputs::{InputHandle, Route as InputRoute, Source, StatusSource};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
-use crate::kinematics::MarkerFitter;
 use crate::wire::MessageType;
 
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
 
-/// A server, its routes `(body, rig)`, and what each route feeds (the club's samples or the rig's ball).
-type Group = (Source, Vec<(String, String)>, Vec<InputKind>, Vec<Option<MarkerFitter>>);
+/// A server, its routes (each with its rig), and what each route feeds (the club's samples or the rig's ball).
+type Group = (Source, Vec<(InputRoute, String)>, Vec<InputKind>);
 
 /// Where a client's route delivers: the rig, its queue, sample or ball, and the body's name when the rig's
 /// bodies choose its club (`[rig.clubs]`).
@@ -44,35 +43,35 @@ pub(super) fn start(
             })?),
             None => None,
         };
-        let mut routes = vec![((input.body.clone(), rig.name.clone()), InputKind::Sample, fitter)];
+        let club = InputRoute { body: input.body.clone(), segment: input.segment.clone(), fitter };
+        let mut routes = vec![(club, InputKind::Sample)];
         // With `[rig.clubs]`, every club's body too: each sample then names its body.
         let clubs = rig.clubs.keys().filter(|b| **b != input.body);
-        routes.extend(clubs.map(|b| ((b.clone(), rig.name.clone()), InputKind::Sample, None)));
+        routes.extend(clubs.map(|b| (InputRoute { body: b.clone(), ..InputRoute::default() }, InputKind::Sample)));
         if let Some(ball) = &input.ball_body {
-            routes.push(((ball.clone(), rig.name.clone()), InputKind::Ball, None));
+            routes.push((InputRoute { body: ball.clone(), ..InputRoute::default() }, InputKind::Ball));
         }
         let at = match groups.iter().position(|g| g.0 == source) {
             Some(at) => at,
             None => {
-                groups.push((source, Vec::new(), Vec::new(), Vec::new()));
+                groups.push((source, Vec::new(), Vec::new()));
                 groups.len() - 1
             }
         };
-        for (route, kind, fitter) in routes {
-            groups[at].1.push(route);
+        for (route, kind) in routes {
+            groups[at].1.push((route, rig.name.clone()));
             groups[at].2.push(kind);
-            groups[at].3.push(fitter);
         }
     }
     let mut handles = Vec::new();
     let mut sources = HashMap::new();
-    for (source, group, kinds, fitters) in groups {
+    for (source, group, kinds) in groups {
         let named = |rig: &str| config.rigs.iter().any(|r| r.name == rig && !r.clubs.is_empty());
         let targets: Vec<Target> = group
             .iter()
             .zip(&kinds)
-            .map(|((body, rig), kind)| {
-                (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind, named(rig).then(|| body.clone()))
+            .map(|((route, rig), kind)| {
+                (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind, named(rig).then(|| route.body.clone()))
             })
             .collect();
         let (sample_encoding, ball_encoding) =
@@ -99,10 +98,11 @@ pub(super) fn start(
                 dropped.fetch_add(1, Ordering::Relaxed);
             }
         });
-        tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), group);
-        let handle = InputHandle::start_fitted(source, group.clone(), fitters, deliver)?;
+        let rigs: Vec<(String, String)> = group.iter().map(|(r, rig)| (r.body.clone(), rig.clone())).collect();
+        tracing::info!("reading {} at {} for {:?}", source.protocol(), source.address(), rigs);
+        let handle = InputHandle::start_routes(source, group, deliver)?;
         // A rig's status shows its first body's input (`[rig.input] body`).
-        for (i, ((_, rig), kind)) in group.iter().zip(&kinds).enumerate() {
+        for (i, ((_, rig), kind)) in rigs.iter().zip(&kinds).enumerate() {
             if *kind == InputKind::Sample {
                 sources.entry(rig.clone()).or_insert_with(|| handle.status_source(i));
             }

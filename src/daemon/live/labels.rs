@@ -1,6 +1,7 @@
 //! A rig worker's session labels: each put on `golf/<rig>/session` joins the rig's queue behind the samples
 //! before it, is recorded, and labels the shots after it (a bad put is logged and changes nothing). A put on
-//! `golf/<rig>/exclude` is recorded, so `impactd session` leaves the shot out.
+//! `golf/<rig>/exclude` is recorded, so `impactd session` leaves the shot out. Each is logged at most once a
+//! second per kind: a flood of puts, from a page or a program, is counted in the kind's next line.
 
 use super::{Incoming, Worker};
 use crate::wire::{keys, ShotExclusion, ShotLabels};
@@ -16,7 +17,7 @@ impl Worker {
             }
         };
         self.sinks.labels(incoming.log_time_ns, &labels);
-        tracing::info!("rig {}: shots labelled {}", self.rig, serde_json::to_string(&labels).unwrap_or_default());
+        self.info("labels", || format!("shots labelled {}", serde_json::to_string(&labels).unwrap_or_default()));
         if let Some(p) = self.pipeline.as_mut() {
             p.set_labels(labels);
         }
@@ -28,7 +29,7 @@ impl Worker {
             Ok(x) => {
                 self.sinks.exclusion(incoming.log_time_ns, &x);
                 let what = if x.excluded { "left out of" } else { "taken back into" };
-                tracing::info!("rig {}: shot {} {what} the session", self.rig, x.shot);
+                self.info("exclusion", || format!("shot {} {what} the session", x.shot));
             }
             Err(e) => {
                 let key = keys::exclude(&self.rig);

@@ -23,23 +23,22 @@ use std::sync::mpsc::{sync_channel, RecvTimeoutError, SyncSender};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use zenoh::Wait;
-
 use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use crate::daemon::bridges::opengolfsim;
 use crate::daemon::bridges::web::{WebServer, WebStatusSource};
 use crate::daemon::live::sinks::{RigPublishers, RigSinks};
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
-use crate::daemon::stats::{
-    Budget, LatencyWindow, RateLimiter, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S,
-};
+use crate::daemon::stats::{Budget, LatencyWindow, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
 use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
 use crate::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
 
 mod ball;
+pub mod claim;
+pub mod club_put;
 mod clubs;
 mod inputs;
 mod labels;
@@ -65,6 +64,8 @@ pub struct RunOptions {
     pub foxglove: Option<String>,
     /// Serve the bay screen on this `HOST:PORT`.
     pub web: Option<String>,
+    /// Take over rigs another daemon serves (it stops) instead of refusing to start ([`claim`]).
+    pub take_over: bool,
 }
 
 /// What a run did, per rig.
@@ -76,6 +77,8 @@ pub struct RunSummary {
     /// Each rig's Open Connect client and listener at the end, for rigs that have them.
     pub simulators: BTreeMap<String, SimulatorStatus>,
     pub launch_monitors: BTreeMap<String, LaunchMonitorStatus>,
+    /// Why the daemon stopped when another took its rig over (`--take-over`).
+    pub taken_over: Option<String>,
 }
 
 /// Runs the daemon on `session` until `shutdown` completes.
@@ -86,6 +89,9 @@ pub async fn run(
     options: RunOptions,
     shutdown: impl Future<Output = ()>,
 ) -> Result<RunSummary, DaemonError> {
+    // Before anything is created (a recording, a port): another daemon serving one of the rigs stops the start.
+    let rig_names: Vec<String> = config.rigs.iter().map(|r| r.name.clone()).collect();
+    claim::claim(session, &rig_names, options.take_over).await?;
     let recorder = options
         .record
         .as_deref()
@@ -101,36 +107,19 @@ pub async fn run(
     };
     // The screens draw each rig's flights with its flight model (the default where the rig adds no flight).
     let screens = setups.iter().map(|s| (s.name.clone(), s.flight.unwrap_or_default())).collect();
-    let web = WebServer::start_if(options.web.as_deref(), screens, session, options.record.as_deref()).await?;
+    let access = config.web.as_ref().map(|w| w.access()).unwrap_or_default();
+    let web = WebServer::start_if(options.web.as_deref(), &access, screens, session, options.record.as_deref()).await?;
     let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
     let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();
     let status_period = Duration::from_secs_f64(config.status_period_s);
     let mut senders: HashMap<String, (SyncSender<Incoming>, Arc<AtomicU64>)> = HashMap::new();
     let mut workers = Vec::new();
-    let mut tokens = Vec::new();
-    let mut queryables = Vec::new();
     let mut measured_subscribers = Vec::new();
     let mut input_slots: HashMap<String, InputSlot> = HashMap::new();
     for (setup, rig_config) in setups.into_iter().zip(&config.rigs) {
         let name = setup.name.clone();
         let publishers = RigPublishers::declare(session, &name).await?;
-        tokens.push(session.liveliness().declare_token(keys::alive(&name)).await.map_err(DaemonError::zenoh)?);
-        let config_json = serde_json::to_vec(rig_config).unwrap_or_default();
-        let config_key = keys::config(&name);
-        queryables.push(
-            session
-                .declare_queryable(config_key.clone())
-                .callback(move |query| {
-                    if let Err(e) =
-                        query.reply(config_key.clone(), config_json.clone()).encoding("application/json").wait()
-                    {
-                        tracing::warn!("config query: {e}");
-                    }
-                })
-                .await
-                .map_err(DaemonError::zenoh)?,
-        );
         let (simulator, listener) = open_connect::start_rig(
             &rig_config.name,
             rig_config.simulator.as_ref(),
@@ -162,7 +151,7 @@ pub async fn run(
             pipeline: Some(pipeline),
             queue_dropped,
             latency: LatencyWindow::new(1024),
-            limiter: RateLimiter::new(Duration::from_secs(1)),
+            log: PeerLog::new(),
             started: Instant::now(),
             budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
             unknown: unknown.clone(),
@@ -191,8 +180,13 @@ pub async fn run(
             }
         }
     }
+    let (taken_tx, mut taken_rx) = tokio::sync::mpsc::channel::<String>(1);
+    let claims = claim::declare(session, &config.rigs, move |why| {
+        let _ = taken_tx.try_send(why);
+    })
+    .await?;
     let unknown_cb = unknown.clone();
-    let limiter = std::sync::Mutex::new(RateLimiter::new(Duration::from_secs(1)));
+    let unknown_log = std::sync::Mutex::new(PeerLog::new());
     let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
     let unknown_recorder = handle.clone();
     let routes = senders;
@@ -205,8 +199,8 @@ pub async fn run(
             let Some((tx, dropped)) = route else {
                 unknown_cb.fetch_add(1, Ordering::Relaxed);
                 // Limited by kind, not by key: a peer choosing a new key for every sample gets one line a second.
-                if let Some(n) = limiter.lock().ok().and_then(|mut l| l.allow("unknown_rig")) {
-                    tracing::warn!("sample on {key} is for no configured rig ({n} more suppressed)");
+                if let Ok(mut log) = unknown_log.lock() {
+                    log.warn("unknown_rig", || format!("sample on {key} is for no configured rig"));
                 }
                 // Recorded within the same budget as a rig's rejected payloads.
                 let payload = sample.payload().to_bytes();
@@ -242,19 +236,24 @@ pub async fn run(
         })
         .await
         .map_err(DaemonError::zenoh)?;
-    shutdown.await;
+    let taken_over = tokio::select! {
+        _ = shutdown => None,
+        why = taken_rx.recv() => why,
+    };
     tracing::info!("shutting down");
     for input in inputs {
         input.stop();
     }
     subscriber.undeclare().await.map_err(DaemonError::zenoh)?;
+    // The loader stops within its poll whatever a put's load is doing (a load given up on runs out on its own
+    // thread, which holds none of the rigs' queues).
+    club_loader.stop.store(true, Ordering::Relaxed);
     for s in measured_subscribers.into_iter().chain(club_loader.subscribers) {
         s.undeclare().await.map_err(DaemonError::zenoh)?;
     }
     let _ = club_loader.thread.join();
-    drop(queryables);
-    drop(tokens);
-    let mut summary = RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), ..Default::default() };
+    let mut summary =
+        RunSummary { unknown_rig_samples: unknown.load(Ordering::Relaxed), taken_over, ..Default::default() };
     for w in workers {
         if let Ok(end) = w.join() {
             if let Some(task) = end.simulator_task {
@@ -278,6 +277,9 @@ pub async fn run(
     if let Some(r) = recorder {
         summary.recorder = Some(r.finish()?);
     }
+    // Last: a daemon taking the rigs over starts once these are gone, when every port is released and the
+    // recording closed.
+    drop(claims);
     Ok(summary)
 }
 
@@ -288,7 +290,8 @@ struct Worker {
     pipeline: Option<Pipeline>,
     queue_dropped: Arc<AtomicU64>,
     latency: LatencyWindow,
-    limiter: RateLimiter,
+    /// The rig's peer-driven log lines (bad payloads, labels, exclusions, club changes): one a second per kind.
+    log: PeerLog,
     started: Instant,
     /// The recording budget for this rig's rejected payloads.
     budget: Budget,
@@ -307,7 +310,7 @@ struct Worker {
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
-type InputSlot = Arc<std::sync::Mutex<Option<crate::daemon::bridges::mocap::StatusSource>>>;
+type InputSlot = Arc<std::sync::Mutex<Option<crate::daemon::inputs::StatusSource>>>;
 
 /// What a rig's worker leaves behind.
 struct WorkerEnd {
@@ -331,6 +334,7 @@ impl Worker {
             }
             if Instant::now() >= next_status {
                 self.publish_status();
+                self.log.flush();
                 next_status += period;
             }
         }
@@ -344,15 +348,15 @@ impl Worker {
         }
     }
 
-    fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
-        if let Some(n) = self.limiter.allow(key) {
-            let rig = &self.rig;
-            if n > 0 {
-                tracing::warn!("rig {rig}: {} ({n} more like it suppressed)", message());
-            } else {
-                tracing::warn!("rig {rig}: {}", message());
-            }
-        }
+    fn warn(&mut self, kind: &'static str, message: impl FnOnce() -> String) {
+        let rig = &self.rig;
+        self.log.warn(kind, || format!("rig {rig}: {}", message()));
+    }
+
+    /// A line about a put from any program (labels, an exclusion, a club): one a second per kind.
+    fn info(&mut self, kind: &'static str, message: impl FnOnce() -> String) {
+        let rig = &self.rig;
+        self.log.info(kind, || format!("rig {rig}: {}", message()));
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {

@@ -23,22 +23,43 @@ pub fn read_opened(
     mut opened: Opened,
     path: &Path,
     on_damage: OnDamage,
-    mut visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
+    visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
 ) -> Result<Scan, DaemonError> {
     if on_damage == OnDamage::Stop && !opened.is_mcap() {
         return Err(DaemonError::NotMcap { path: path.display().to_string() });
     }
+    Ok(match &mut opened {
+        Opened::File(f) => read_source(f, on_damage, visit),
+        Opened::Bytes(b) => read_source(&mut b.as_slice(), on_damage, visit),
+    })
+}
+
+/// [`read_messages`] of a recording in memory (a pipe read whole, shared by several passes).
+pub fn read_slice(
+    bytes: &[u8],
+    path: &Path,
+    on_damage: OnDamage,
+    visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
+) -> Result<Scan, DaemonError> {
+    if on_damage == OnDamage::Stop && !super::source::is_mcap(bytes) {
+        return Err(DaemonError::NotMcap { path: path.display().to_string() });
+    }
+    Ok(read_source(&mut &bytes[..], on_damage, visit))
+}
+
+fn read_source<S: super::source::Source>(
+    source: &mut S,
+    on_damage: OnDamage,
+    mut visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
+) -> Scan {
     let mut late = Vec::new();
     let mut on_message = |s: &Scan, m: RawMessage| match s.channels.get(&m.channel_id) {
         Some(c) => visit(s, Some(c), m),
         None => late.push(m),
     };
-    let scan = match &mut opened {
-        Opened::File(f) => scan_source(f, on_damage, &mut on_message),
-        Opened::Bytes(b) => scan_source(&mut b.as_slice(), on_damage, &mut on_message),
-    };
+    let scan = scan_source(source, on_damage, &mut on_message);
     for m in late {
         visit(&scan, scan.channels.get(&m.channel_id), m);
     }
-    Ok(scan)
+    scan
 }

@@ -57,12 +57,34 @@ pub struct Recorder {
     error: Arc<OnceLock<String>>,
     join: Option<std::thread::JoinHandle<Result<RecorderSummary, DaemonError>>>,
     pub path: PathBuf,
+    /// A sender waits for room in a full queue rather than drop (a replay, which has time; the daemon never
+    /// waits).
+    wait: bool,
 }
 
 impl Recorder {
     /// Creates the file and starts the writer; `session` becomes the `session` metadata record. An existing
     /// file is replaced only with `overwrite`.
     pub fn create(path: &Path, session: BTreeMap<String, String>, overwrite: bool) -> Result<Recorder, DaemonError> {
+        Self::create_with(path, session, overwrite, false)
+    }
+
+    /// As [`create`](Self::create), with senders that wait for the writer when its queue is full, so nothing
+    /// is dropped (a replay writing as fast as it reads: its memory stays the queue's).
+    pub fn create_waiting(
+        path: &Path,
+        session: BTreeMap<String, String>,
+        overwrite: bool,
+    ) -> Result<Recorder, DaemonError> {
+        Self::create_with(path, session, overwrite, true)
+    }
+
+    fn create_with(
+        path: &Path,
+        session: BTreeMap<String, String>,
+        overwrite: bool,
+        wait: bool,
+    ) -> Result<Recorder, DaemonError> {
         let file = crate::output_file::create_output(path, overwrite)?;
         let (tx, rx) = sync_channel::<Record>(QUEUE_CAPACITY);
         let dropped = Arc::new(AtomicU64::new(0));
@@ -92,13 +114,18 @@ impl Recorder {
                 Ok(summary)
             })
             .map_err(|e| DaemonError::Io { what: "starting the recorder".into(), source: e })?;
-        Ok(Recorder { tx: Some(tx), dropped, error, join: Some(join), path: path.to_path_buf() })
+        Ok(Recorder { tx: Some(tx), dropped, error, join: Some(join), path: path.to_path_buf(), wait })
     }
 
-    /// Queues a record without blocking; a full queue drops it and counts the drop.
+    /// Queues a record without blocking (waiting, for a [`create_waiting`](Self::create_waiting) recorder); a
+    /// full queue drops it and counts the drop.
     pub fn send(&self, record: Record) {
         if let Some(tx) = &self.tx {
-            if let Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) = tx.try_send(record) {
+            if self.wait {
+                if tx.send(record).is_err() {
+                    self.dropped.fetch_add(1, Ordering::Relaxed);
+                }
+            } else if let Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) = tx.try_send(record) {
                 self.dropped.fetch_add(1, Ordering::Relaxed);
             }
         }
@@ -111,7 +138,13 @@ impl Recorder {
 
     /// A handle that can send from other threads.
     pub fn handle(&self) -> RecorderHandle {
-        RecorderHandle { tx: self.tx.clone(), dropped: self.dropped.clone(), error: self.error.clone(), live: None }
+        RecorderHandle {
+            tx: self.tx.clone(),
+            dropped: self.dropped.clone(),
+            error: self.error.clone(),
+            live: None,
+            wait: self.wait,
+        }
     }
 
     /// Writes the summary and closes the file.
@@ -132,6 +165,7 @@ pub struct RecorderHandle {
     dropped: Arc<AtomicU64>,
     error: Arc<OnceLock<String>>,
     live: Option<Arc<dyn RecordTap>>,
+    wait: bool,
 }
 
 /// Another taker of what is recorded (the Foxglove live view): it takes a record without waiting.
@@ -142,7 +176,13 @@ pub trait RecordTap: Send + Sync {
 impl RecorderHandle {
     /// A handle that records nothing.
     pub fn none() -> Self {
-        RecorderHandle { tx: None, dropped: Arc::new(AtomicU64::new(0)), error: Arc::new(OnceLock::new()), live: None }
+        RecorderHandle {
+            tx: None,
+            dropped: Arc::new(AtomicU64::new(0)),
+            error: Arc::new(OnceLock::new()),
+            live: None,
+            wait: false,
+        }
     }
 
     /// This handle, also feeding the live view.
@@ -159,7 +199,8 @@ impl RecorderHandle {
             }
         }
         if let Some(tx) = &self.tx {
-            if tx.try_send(record).is_err() {
+            let sent = if self.wait { tx.send(record).is_ok() } else { tx.try_send(record).is_ok() };
+            if !sent {
                 self.dropped.fetch_add(1, Ordering::Relaxed);
             }
         }

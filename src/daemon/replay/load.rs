@@ -1,11 +1,14 @@
-//! Reading the inputs of a replay: an MCAP recording (samples, recorded predictions, configuration) or a JSONL
-//! file of samples.
+//! A replay's input held in memory: an MCAP recording (samples, recorded predictions, configuration) or a JSONL
+//! file of samples, read whole.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
 
+use super::file::ReplayFile;
+use super::items::{Item, Items, ReplayIndex, ReplaySource};
 use crate::daemon::DaemonError;
-use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
+use crate::wire::ClubheadSampleMsg;
 
 /// The inputs of a replay.
 #[derive(Debug, Default)]
@@ -39,186 +42,98 @@ pub struct ReplayInput {
     /// What could not be read (empty: the whole file was read): a replay over a damaged file reproduces
     /// nothing byte for byte.
     pub damage: Vec<String>,
-    /// JSONL lines skipped because they are not samples (the first [`KEPT_SKIPPED_LINES`] of them).
+    /// JSONL lines skipped because they are not samples (the first [`super::items::KEPT_SKIPPED_LINES`] of them).
     pub skipped_lines: Vec<String>,
     /// JSONL lines skipped, all of them.
     pub skipped: usize,
 }
 
-impl ReplayInput {
-    /// Recorded predictions made before predictions carried their uncertainty (`LaunchPrediction` version 1).
-    pub fn recorded_before_uncertainty(&self) -> usize {
-        self.recorded_launches.iter().filter(|b| before_uncertainty(b)).count()
-    }
-
-    /// The bytes a produced prediction is compared by with the recorded one at `index`: as published, or, where
-    /// that was recorded before predictions carried their uncertainty, as published without it (the rest byte for
-    /// byte as before).
-    pub fn comparable(&self, index: usize, l: &LaunchPrediction, bytes: Vec<u8>) -> Vec<u8> {
-        if !self.recorded_launches.get(index).is_some_and(|b| before_uncertainty(b)) {
-            return bytes;
-        }
-        let mut without = l.clone();
-        without.delivery.uncertainty = None;
-        without.launch.uncertainty = None;
-        serde_json::to_vec(&without).unwrap_or(bytes)
-    }
-}
-
-/// Whether recorded prediction bytes carry no uncertainty (made before version 2 of `LaunchPrediction`).
-fn before_uncertainty(data: &[u8]) -> bool {
-    !contains(data, b"\"uncertainty\":")
-}
-
-/// Skipped lines whose reason is kept.
-pub const KEPT_SKIPPED_LINES: usize = 100;
-
 pub use crate::daemon::recording::source::is_mcap;
 
-/// Reads an MCAP recording or a JSONL file of `ClubheadSample`s. A JSONL file is read a line at a time, each
-/// at most [`crate::jsonl::MAX_LINE_BYTES`], so `/dev/zero` or a huge file that is not JSONL is an error, not a
-/// whole-file read.
+/// Reads an MCAP recording or a JSONL file of `ClubheadSample`s into memory (what tests and tools that look at
+/// every sample use; `impactd replay` streams the file instead, [`super::ReplayFile`]). It reads the file as a
+/// replay does, so the two agree on every message.
 pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
-    use std::io::{BufRead, Read};
-    let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
-    let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
-    if !is_mcap(file.fill_buf().map_err(io)?) {
-        let mut input = ReplayInput::default();
-        let mut line = Vec::new();
-        for n in 1.. {
-            match crate::jsonl::read_line(&mut file, &mut line, crate::jsonl::MAX_LINE_BYTES) {
-                Ok(true) => {}
-                Ok(false) => break,
-                Err(e) => {
-                    return Err(DaemonError::BadSampleLine { path: path.display().to_string(), line: n, source: e })
-                }
-            }
-            let reason = match std::str::from_utf8(&line) {
-                Err(e) => format!("not UTF-8 ({e})"),
-                Ok(text) if text.trim().is_empty() => continue,
-                Ok(text) => match serde_json::from_str::<ClubheadSampleMsg>(text) {
-                    Ok(msg) => {
-                        input.log_time_ns.push(msg.t_ns);
-                        input.samples.push(msg);
-                        continue;
-                    }
-                    Err(e) => match crate::wire::BallSampleMsg::parse(text.as_bytes()) {
-                        // A ball line (`impactd import --ball-marker`): taken before the next sample.
-                        Ok(ball) => {
-                            input.balls.push((input.samples.len(), ball, text.as_bytes().to_vec()));
-                            continue;
-                        }
-                        Err(_) => crate::capped::quote(&e.to_string()).into_owned(),
-                    },
-                },
-            };
-            input.skipped += 1;
-            if input.skipped_lines.len() < KEPT_SKIPPED_LINES {
-                input.skipped_lines.push(format!("{} line {n}: {reason}", path.display()));
-            }
-        }
-        return Ok(input);
-    }
-    // A regular file is read a record at a time; a pipe that starts with the magic is read into memory (capped).
-    use crate::daemon::recording::source::{Opened, MAX_STREAMED_RECORDING_BYTES};
-    let opened = if file.get_ref().metadata().map_err(io)?.is_file() {
-        drop(file);
-        Opened::open(path)?
-    } else {
-        let mut bytes = Vec::new();
-        file.take(MAX_STREAMED_RECORDING_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
-        if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-            return Err(DaemonError::StreamTooLarge {
-                path: path.display().to_string(),
-                limit_bytes: MAX_STREAMED_RECORDING_BYTES,
-            });
-        }
-        Opened::Bytes(bytes)
+    let mut recorded_launches = Vec::new();
+    let file = ReplayFile::open_with(path, false, |data| recorded_launches.push(data.to_vec()))?;
+    let index = file.index().into_owned();
+    let mut input = ReplayInput {
+        recorded_launches,
+        renamed_models: index.renamed_models,
+        recorded_latency_us: index.recorded_latency_us,
+        config_toml: index.config_toml,
+        damage: index.damage,
+        skipped_lines: index.skipped_lines,
+        skipped: index.skipped,
+        ..ReplayInput::default()
     };
-    let mut input = ReplayInput::default();
-    let mut damage = Vec::new();
-    let on_damage = crate::daemon::recording::reader::OnDamage::Stop;
-    let scan = crate::daemon::recording::stream::read_opened(opened, path, on_damage, |_, channel, message| {
-        let Some(channel) = channel else { return };
-        let topic = channel.topic.trim_start_matches('/');
-        if keys::rig_of_clubhead(topic).is_some() {
-            match serde_json::from_slice::<ClubheadSampleMsg>(&message.data) {
-                Ok(msg) => {
-                    input.log_time_ns.push(message.log_time);
-                    input.samples.push(msg);
-                }
-                Err(e) => {
-                    damage.push(format!("a recorded sample at log time {} does not parse: {e}", message.log_time))
-                }
+    for item in file.items()? {
+        let at = input.samples.len();
+        match item? {
+            Item::Sample { msg, log_time_ns } => {
+                input.log_time_ns.push(log_time_ns.unwrap_or(msg.t_ns));
+                input.samples.push(msg);
             }
-        } else if keys::rig_of_ball(topic).is_some() {
-            match crate::wire::BallSampleMsg::parse(&message.data) {
-                Ok(b) => input.balls.push((input.samples.len(), b, message.data)),
-                Err(e) => {
-                    damage.push(format!("a recorded ball sample at log time {} does not parse: {e}", message.log_time))
-                }
-            }
-        } else if let Some(rig) = keys::rig_of_truth(topic) {
-            match serde_json::from_slice::<crate::wire::TruthMessage>(&message.data) {
-                Ok(t) => input.truths.push((input.samples.len(), rig.to_string(), t.t_impact_ns, message.data)),
-                Err(e) => damage.push(format!("a recorded truth at log time {} does not parse: {e}", message.log_time)),
-            }
-        } else if let Some(rig) = keys::rig_of_session(topic) {
-            match crate::wire::ShotLabels::parse(&message.data) {
-                Ok(l) => input.labels.push((input.samples.len(), rig.to_string(), l)),
-                Err(e) => damage.push(format!("recorded labels at log time {} do not parse: {e}", message.log_time)),
-            }
-        } else if let Some(rig) = keys::rig_of_club(topic) {
-            match serde_json::from_slice::<crate::wire::ClubChange>(&message.data) {
-                Ok(c) if c.source == crate::wire::ClubSource::Put => {
-                    input.club_puts.push((input.samples.len(), rig.to_string(), c))
-                }
-                Ok(_) => {}
-                Err(e) => input
-                    .damage
-                    .push(format!("a recorded club change at log time {} does not parse: {e}", message.log_time)),
-            }
-        } else if keys::rig_of_launch(topic).is_some() {
-            let mut data = message.data;
-            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&data) {
-                if let Some(renamed) = under_current_name(&data, &l.model) {
-                    data = renamed.0;
-                    if !input.renamed_models.contains(&renamed.1) {
-                        input.renamed_models.push(renamed.1);
-                    }
-                }
-                input.recorded_latency_us.insert((l.rig.clone(), l.shot, l.model.clone()), l.latency_us);
-            }
-            input.recorded_launches.push(data);
+            Item::Ball { ball, payload } => input.balls.push((at, ball, payload)),
+            Item::Labels { rig, labels } => input.labels.push((at, rig, labels)),
+            Item::ClubPut { rig, change } => input.club_puts.push((at, rig, change)),
+            Item::Truth { rig, t_impact_ns, payload } => input.truths.push((at, rig, t_impact_ns, payload)),
+            Item::Unreadable(why) => input.damage.push(why),
         }
-    })?;
-    input.damage = scan.problems();
-    input.damage.extend(damage);
-    input.config_toml =
-        scan.metadata.iter().find(|(n, _)| n == "session").and_then(|(_, m)| m.get("config_toml").cloned());
+    }
     Ok(input)
 }
 
-/// A recorded prediction published under a former name of its model (`model`, as read, is the current name), as
-/// it is published today: the same bytes with the name replaced, and `(former, current)`. `None` when it carries
-/// the current name. The bytes are compared as they were written, so the name is replaced in them, not
-/// re-serialized.
-fn under_current_name(data: &[u8], model: &str) -> Option<(Vec<u8>, (String, String))> {
-    let current = format!("\"model\":\"{model}\"");
-    if contains(data, current.as_bytes()) {
-        return None;
+impl ReplaySource for ReplayInput {
+    fn index(&self) -> Cow<'_, ReplayIndex> {
+        let mut index = ReplayIndex {
+            recorded_launches: self.recorded_launches.iter().map(|b| super::items::digest(b)).collect(),
+            renamed_models: self.renamed_models.clone(),
+            recorded_latency_us: self.recorded_latency_us.clone(),
+            config_toml: self.config_toml.clone(),
+            damage: self.damage.clone(),
+            skipped_lines: self.skipped_lines.clone(),
+            skipped: self.skipped,
+            ..ReplayIndex::default()
+        };
+        for (i, msg) in self.samples.iter().enumerate() {
+            index.add_sample(&msg.rig, msg.t_ns, self.log_time_ns.get(i).copied());
+        }
+        Cow::Owned(index)
     }
-    crate::impact::registry::FORMER_NAMES.iter().filter(|(_, c)| *c == model).find_map(|(former, _)| {
-        let field = format!("\"model\":\"{former}\"");
-        let at = data.windows(field.len()).position(|w| w == field.as_bytes())?;
-        let mut out = Vec::with_capacity(data.len());
-        out.extend_from_slice(&data[..at]);
-        out.extend_from_slice(current.as_bytes());
-        out.extend_from_slice(&data[at + field.len()..]);
-        Some((out, (former.to_string(), model.to_string())))
-    })
-}
 
-fn contains(data: &[u8], needle: &[u8]) -> bool {
-    data.windows(needle.len()).any(|w| w == needle)
+    /// The samples in order, each after the balls, labels, club puts and truths recorded before it, and the
+    /// truths after the last one.
+    fn items(&self) -> Result<Items<'_>, DaemonError> {
+        let mut balls = self.balls.iter().peekable();
+        let mut labels = self.labels.iter().peekable();
+        let mut puts = self.club_puts.iter().peekable();
+        let mut truths = self.truths.iter().peekable();
+        let mut queue = std::collections::VecDeque::new();
+        let mut i = 0;
+        Ok(Box::new(std::iter::from_fn(move || loop {
+            if let Some(item) = queue.pop_front() {
+                return Some(Ok(item));
+            }
+            if i > self.samples.len() {
+                return None;
+            }
+            while let Some((_, ball, payload)) = balls.next_if(|(at, ..)| *at <= i) {
+                queue.push_back(Item::Ball { ball: ball.clone(), payload: payload.clone() });
+            }
+            while let Some((_, rig, l)) = labels.next_if(|(at, ..)| *at <= i) {
+                queue.push_back(Item::Labels { rig: rig.clone(), labels: l.clone() });
+            }
+            while let Some((_, rig, change)) = puts.next_if(|(at, ..)| *at <= i) {
+                queue.push_back(Item::ClubPut { rig: rig.clone(), change: change.clone() });
+            }
+            while let Some((_, rig, t_impact_ns, payload)) = truths.next_if(|(at, ..)| *at <= i) {
+                queue.push_back(Item::Truth { rig: rig.clone(), t_impact_ns: *t_impact_ns, payload: payload.clone() });
+            }
+            if let Some(msg) = self.samples.get(i) {
+                queue.push_back(Item::Sample { msg: msg.clone(), log_time_ns: self.log_time_ns.get(i).copied() });
+            }
+            i += 1;
+        })))
+    }
 }

@@ -3,27 +3,40 @@
 //! Replay feeds the recorded clubhead samples, in file order (each rig's arrival order), through the same pure
 //! pipeline as the daemon, so it reproduces the recorded predictions byte for byte. `latency_us` is a live
 //! measurement: a replay carries the value recorded for the same rig and shot (0 for samples from JSONL).
+//!
+//! The input streams ([`ReplaySource`]: a recording or JSONL file, [`ReplayFile`]; a C3D capture,
+//! [`ReplayCapture`]): it is indexed once, then read an item at a time as it replays, and a replay's recording
+//! is written as it goes, so a replay's memory does not grow with its input. [`load`] reads a file whole instead,
+//! for tools and tests that look at every sample ([`ReplayInput`], itself a source).
 
 use std::collections::HashMap;
 
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
 mod capture;
+mod file;
+mod items;
 mod load;
+mod parse;
 mod pause;
 mod session;
 mod verdict;
 
-pub use capture::load_capture;
+pub use capture::{BallMarker, ReplayCapture};
+pub use file::ReplayFile;
+pub use items::{Item, Items, ReplayIndex, ReplaySource, RigSpan, MAX_INDEXED_RIGS};
 pub use load::{is_mcap, load, ReplayInput};
 pub use pause::PauseControl;
-pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport};
+pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport, Selection};
 pub use verdict::Verdict;
 
 /// What a replay did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ReplayStats {
+    /// Samples replayed (unknown rigs' too).
     pub samples: u64,
+    /// Samples left out by the selection (`--rig`, `--start-offset`, `--duration`).
+    pub left_out: u64,
     pub unknown_rig: u64,
     pub predictions: u64,
     pub failed: u64,

@@ -5,7 +5,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::{recorded_latency, ReplayInput, ReplayStats};
+use super::items::{Item, ReplaySource};
+use super::ReplayStats;
 use crate::daemon::config::RigConfig;
 use crate::daemon::live::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use crate::daemon::recording::writer::session_metadata;
@@ -27,6 +28,25 @@ pub struct ReplayOptions {
     pub publish: Publish,
     /// A switch that pauses the replay before its next sample (`impactd replay --pause`).
     pub pause: Option<std::sync::Arc<super::PauseControl>>,
+    /// The samples replayed (default: all).
+    pub select: Selection,
+}
+
+/// The samples a replay takes: of these rigs (none named: all), captured within `[from_ns, to_ns)`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Selection {
+    pub rigs: Vec<String>,
+    pub from_ns: u64,
+    pub to_ns: Option<u64>,
+}
+
+impl Selection {
+    /// Whether the sample is replayed.
+    pub fn keeps(&self, msg: &crate::wire::ClubheadSampleMsg) -> bool {
+        (self.rigs.is_empty() || self.rigs.contains(&msg.rig))
+            && msg.t_ns >= self.from_ns
+            && self.to_ns.is_none_or(|to| msg.t_ns < to)
+    }
 }
 
 /// What a replay with a zenoh session publishes.
@@ -55,6 +75,8 @@ pub struct ReplayReport {
     pub reproduced: usize,
     /// Part of the recording could not be read: nothing is claimed reproduced.
     pub damaged: bool,
+    /// What the replay found it could not read (beside the index's `damage`).
+    pub damage: Vec<String>,
 }
 
 impl ReplayReport {
@@ -66,8 +88,12 @@ impl ReplayReport {
 
 /// The configuration of a replay: the file at `path`, else the one stored in the recording, else the default
 /// with one rig per rig name found in the samples.
-pub fn resolve_config(input: &ReplayInput, path: Option<&Path>) -> Result<(DaemonConfig, Vec<RigSetup>), DaemonError> {
-    match (path, &input.config_toml) {
+pub fn resolve_config(
+    input: &impl ReplaySource,
+    path: Option<&Path>,
+) -> Result<(DaemonConfig, Vec<RigSetup>), DaemonError> {
+    let index = input.index();
+    match (path, &index.config_toml) {
         (Some(p), _) => DaemonConfig::load(p),
         (None, Some(text)) => DaemonConfig::parse(text).map_err(|e| match e {
             DaemonError::ConfigSyntax { source, .. } => {
@@ -77,9 +103,16 @@ pub fn resolve_config(input: &ReplayInput, path: Option<&Path>) -> Result<(Daemo
         }),
         (None, None) => {
             let mut config = DaemonConfig::default();
-            let mut names: Vec<String> = input.samples.iter().map(|s| s.rig.clone()).collect();
-            names.sort();
-            names.dedup();
+            if index.other_rig_samples > 0 {
+                return Err(DaemonError::Config {
+                    field: "rig".into(),
+                    reason: format!(
+                        "the samples name more than {} rigs: give the ones to replay in a configuration (-c)",
+                        super::items::MAX_INDEXED_RIGS
+                    ),
+                });
+            }
+            let names: Vec<String> = index.rigs.keys().cloned().collect();
             if !names.is_empty() {
                 let template = config.rigs[0].clone();
                 config.rigs = names.into_iter().map(|name| RigConfig { name, ..template.clone() }).collect();
@@ -97,6 +130,8 @@ struct ReplayRig {
     latency: LatencyWindow,
     first_t_ns: Option<u64>,
     next_status_ns: u64,
+    /// The capture and receive time of its last sample.
+    last: Option<(u64, u64)>,
 }
 
 /// A recorded put's club, loaded again from the same preset or file: switched and recorded when its SHA-256 is
@@ -145,10 +180,11 @@ impl ReplayRig {
 /// Replays `input` through the pipelines of `setups` as the daemon would run them: every rig writes through the
 /// daemon's sinks ([`RigSinks`]), so with a `session` the replay publishes impacts, launches and status on the
 /// daemon's keys, and with `options.output` it records what `impactd run` records (samples, impacts, launches,
-/// status, Foxglove poses and scenes). Status goes out once per `status_period_s` of capture time and once at the
-/// end. `on_event` sees every event (launches with their latency filled in, and their bytes).
+/// status, Foxglove poses and scenes) as it goes. Status goes out once per `status_period_s` of capture time and
+/// once at the end. `on_event` sees every event (launches with their latency filled in, and their bytes). The
+/// input is read an item at a time: what the replay holds does not grow with it.
 pub async fn run(
-    input: &ReplayInput,
+    input: &impl ReplaySource,
     config: &DaemonConfig,
     setups: Vec<RigSetup>,
     session: Option<&zenoh::Session>,
@@ -160,10 +196,12 @@ pub async fn run(
             return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
         }
     }
+    let index = input.index();
+    let items = input.items()?;
     let recorder = options
         .output
         .as_deref()
-        .map(|p| Recorder::create(p, session_metadata(config), options.overwrite))
+        .map(|p| Recorder::create_waiting(p, session_metadata(config), options.overwrite))
         .transpose()?;
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
@@ -175,11 +213,18 @@ pub async fn run(
             _ => None,
         };
         let sinks = RigSinks::new(&pipeline, publishers, handle.clone());
-        let first = input.log_time_ns.first().copied().unwrap_or_else(wall_ns);
+        let first = index.first_log_time_ns.unwrap_or_else(wall_ns);
         sinks.club_change(first, &pipeline.club_change(crate::wire::ClubSource::Config, None));
         rigs.insert(
             name,
-            ReplayRig { pipeline, sinks, latency: LatencyWindow::new(1024), first_t_ns: None, next_status_ns: 0 },
+            ReplayRig {
+                pipeline,
+                sinks,
+                latency: LatencyWindow::new(1024),
+                first_t_ns: None,
+                next_status_ns: 0,
+                last: None,
+            },
         );
     }
     let mut sample_publishers = BTreeMap::new();
@@ -202,35 +247,33 @@ pub async fn run(
     }
     let period_ns = (config.status_period_s * 1e9) as u64;
     let (start, mut first_t, mut paused) = (Instant::now(), None, Duration::ZERO);
-    let (mut stats, mut produced, mut events) = (ReplayStats::default(), Vec::new(), Vec::with_capacity(8));
-    let mut labels = input.labels.iter().peekable();
-    let mut truths = input.truths.iter().peekable();
-    let mut club_puts = input.club_puts.iter().peekable();
-    let mut balls = input.balls.iter().peekable();
-    for (i, msg) in input.samples.iter().enumerate() {
-        while let Some((_, ball, payload)) = balls.next_if(|(at, ..)| *at <= i) {
-            if let Some(rig) = rigs.get_mut(&ball.rig) {
-                rig.sinks.ball(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), ball.t_ns, payload.clone());
-                let _ = rig.pipeline.on_ball((!ball.occluded).then_some(ball.position_m));
+    let (mut stats, mut events) = (ReplayStats::default(), Vec::with_capacity(8));
+    let (mut produced, mut reproduced) = (0usize, 0usize);
+    let mut pending = Pending::default();
+    let mut last_log_time_ns = None;
+    let mut damage = Vec::new();
+    for item in items {
+        let (msg, log_time_ns) = match item? {
+            Item::Sample { msg, log_time_ns } => (msg, log_time_ns),
+            Item::Unreadable(why) => {
+                damage.push(why);
+                continue;
             }
-        }
-        while let Some((_, name, l)) = labels.next_if(|(at, _, _)| *at <= i) {
-            if let Some(rig) = rigs.get_mut(name) {
-                rig.sinks.labels(input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns), l);
-                rig.pipeline.set_labels(l.clone());
+            side => {
+                pending.push(side);
+                if pending.len() > MAX_PENDING {
+                    // A run of records with no sample between them: taken now, rather than held.
+                    pending.apply(&mut rigs, config, last_log_time_ns);
+                }
+                continue;
             }
-        }
-        while let Some((_, name, change)) = club_puts.next_if(|(at, ..)| *at <= i) {
-            if let (Some(rig), Some(rig_config)) = (rigs.get_mut(name), config.rigs.iter().find(|r| &r.name == name)) {
-                let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
-                replay_club_put(rig, rig_config, change, log_time_ns);
-            }
-        }
-        while let Some((_, name, t_impact_ns, payload)) = truths.next_if(|(at, ..)| *at <= i) {
-            if let Some(rig) = rigs.get(name) {
-                let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
-                rig.sinks.truth(log_time_ns, *t_impact_ns, payload.clone());
-            }
+        };
+        // What was recorded before this sample is taken at its receive time, as the session took it.
+        pending.apply(&mut rigs, config, log_time_ns);
+        last_log_time_ns = log_time_ns;
+        if !options.select.keeps(&msg) {
+            stats.left_out += 1;
+            continue;
         }
         stats.samples += 1;
         let Some(rig) = rigs.get_mut(&msg.rig) else {
@@ -251,26 +294,28 @@ pub async fn run(
             }
         }
         if let Some(publisher) = sample_publishers.get(&msg.rig) {
-            publisher.put(serde_json::to_vec(msg).unwrap_or_default()).await.map_err(DaemonError::zenoh)?;
+            publisher.put(serde_json::to_vec(&msg).unwrap_or_default()).await.map_err(DaemonError::zenoh)?;
         }
         // The recording's own receive time: a replay's recording has the session's timing, not the replay's.
-        let log_time_ns = input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns);
+        let log_time_ns = log_time_ns.unwrap_or_else(wall_ns);
         let sample = msg.to_sample();
         if handle.enabled() {
-            rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(msg).unwrap_or_default());
+            rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(&msg).unwrap_or_default());
         }
         events.clear();
         rig.pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |e| events.push(e));
         for e in events.iter_mut() {
             match e {
                 Event::Launch(l) => {
-                    l.latency_us = recorded_latency(input, l);
+                    l.latency_us = index.recorded_latency(l);
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
                     let bytes = rig.sinks.launch(l, log_time_ns);
-                    let compared = input.comparable(produced.len(), l, bytes.clone());
                     on_event(e, &bytes);
-                    produced.push(compared);
+                    if index.recorded_launches.get(produced) == Some(&super::items::digest(&bytes)) {
+                        reproduced += 1;
+                    }
+                    produced += 1;
                 }
                 Event::Impact(m) => {
                     rig.sinks.impact(m, log_time_ns);
@@ -301,17 +346,16 @@ pub async fn run(
             rig.publish_status(msg.t_ns, log_time_ns);
             rig.next_status_ns = rig.next_status_ns.saturating_add(period_ns);
         }
+        rig.last = Some((msg.t_ns, log_time_ns));
     }
-    // Truths recorded after the last sample.
-    for (_, name, t_impact_ns, payload) in truths {
-        if let Some(rig) = rigs.get(name) {
-            rig.sinks.truth(input.log_time_ns.last().copied().unwrap_or_else(wall_ns), *t_impact_ns, payload.clone());
+    // Truths recorded after the last sample (balls, labels and club puts after it change nothing).
+    for (name, t_impact_ns, payload) in pending.truths.drain(..) {
+        if let Some(rig) = rigs.get(&name) {
+            rig.sinks.truth(last_log_time_ns.unwrap_or_else(wall_ns), t_impact_ns, payload);
         }
     }
     for rig in rigs.values() {
-        let last = input.samples.iter().enumerate().rev().find(|(_, m)| m.rig == rig.pipeline.setup.name);
-        let (t_ns, log_time_ns) =
-            last.map_or((0, wall_ns()), |(i, m)| (m.t_ns, input.log_time_ns.get(i).copied().unwrap_or_else(wall_ns)));
+        let (t_ns, log_time_ns) = rig.last.unwrap_or_else(|| (0, wall_ns()));
         rig.publish_status(t_ns, log_time_ns);
     }
     // The writer finishes once every sink's handle is gone.
@@ -320,13 +364,69 @@ pub async fn run(
     if let Some(r) = recorder {
         r.finish()?;
     }
-    let reproduced = produced.iter().zip(&input.recorded_launches).filter(|(a, b)| a == b).count();
     Ok(ReplayReport {
         stats,
         elapsed_s: start.elapsed().saturating_sub(paused).as_secs_f64(),
-        produced: produced.len(),
-        recorded: input.recorded_launches.len(),
+        produced,
+        recorded: index.recorded_launches.len(),
         reproduced,
-        damaged: !input.damage.is_empty(),
+        damaged: !index.damage.is_empty() || !damage.is_empty(),
+        damage,
     })
+}
+
+/// Records a replay read between two samples but has not taken yet: each kind in the order it was read.
+#[derive(Default)]
+struct Pending {
+    balls: Vec<(crate::wire::BallSampleMsg, Vec<u8>)>,
+    labels: Vec<(String, crate::wire::ShotLabels)>,
+    club_puts: Vec<(String, crate::wire::ClubChange)>,
+    truths: Vec<(String, u64, Vec<u8>)>,
+}
+
+/// The most records held between two samples before they are taken.
+const MAX_PENDING: usize = 4096;
+
+impl Pending {
+    fn len(&self) -> usize {
+        self.balls.len() + self.labels.len() + self.club_puts.len() + self.truths.len()
+    }
+
+    fn push(&mut self, item: Item) {
+        match item {
+            Item::Ball { ball, payload } => self.balls.push((ball, payload)),
+            Item::Labels { rig, labels } => self.labels.push((rig, labels)),
+            Item::ClubPut { rig, change } => self.club_puts.push((rig, change)),
+            Item::Truth { rig, t_impact_ns, payload } => self.truths.push((rig, t_impact_ns, payload)),
+            Item::Sample { .. } | Item::Unreadable(_) => {}
+        }
+    }
+
+    /// Takes what is pending, stamped `log_time_ns` (now, when none): the balls, then the labels, the club puts
+    /// and the truths.
+    fn apply(&mut self, rigs: &mut BTreeMap<String, ReplayRig>, config: &DaemonConfig, log_time_ns: Option<u64>) {
+        let at = || log_time_ns.unwrap_or_else(wall_ns);
+        for (ball, payload) in self.balls.drain(..) {
+            if let Some(rig) = rigs.get_mut(&ball.rig) {
+                rig.sinks.ball(at(), ball.t_ns, payload);
+                let _ = rig.pipeline.on_ball((!ball.occluded).then_some(ball.position_m));
+            }
+        }
+        for (name, l) in self.labels.drain(..) {
+            if let Some(rig) = rigs.get_mut(&name) {
+                rig.sinks.labels(at(), &l);
+                rig.pipeline.set_labels(l);
+            }
+        }
+        for (name, change) in self.club_puts.drain(..) {
+            if let (Some(rig), Some(rig_config)) = (rigs.get_mut(&name), config.rigs.iter().find(|r| r.name == name)) {
+                replay_club_put(rig, rig_config, &change, at());
+            }
+        }
+        for (name, t_impact_ns, payload) in self.truths.drain(..) {
+            if let Some(rig) = rigs.get(&name) {
+                rig.sinks.truth(at(), t_impact_ns, payload);
+            }
+        }
+    }
 }

@@ -52,12 +52,10 @@ pub use params::{FitModel, ParamDef, ParamSpace};
 pub enum IdentifyError {
     #[error("line {line}: {reason}")]
     Line { line: usize, reason: String },
-    #[error("no parameter set for model `{name}` (fit: {fittable})")]
-    UnknownModel { name: String, fittable: String },
+    #[error(transparent)]
+    FitModel(#[from] crate::impact::FitModelError),
     #[error("model `{model}` has no parameter `{name}` (it has: {known})")]
     UnknownParam { model: String, name: String, known: String },
-    #[error("model `{0}` has no parameters to identify")]
-    NothingToFit(String),
     #[error("no shots to {0}")]
     NoShots(&'static str),
     #[error("{0} folds need at least as many shots")]

@@ -9,37 +9,10 @@
 //! The optimisers work in the unit cube: a parameter maps linearly (or logarithmically, for those spanning
 //! decades) from `[0, 1]` onto its bounds.
 
-use std::sync::Arc;
-
 use super::IdentifyError;
-use crate::equipment::{BallSpec, LoadedClub};
+use crate::equipment::LoadedClub;
 pub use crate::impact::identifiable::{BuildFn, FitModel, ParamDef, COARSE_STEP_FACTOR};
-use crate::impact::registry::{self, BuildOptions};
-use crate::impact::{ImpactError, ImpactModel};
 use crate::math::Real;
-
-impl FitModel {
-    /// The identifiable parameters of the registry's model `name`.
-    pub fn parse(name: &str) -> Result<&'static FitModel, IdentifyError> {
-        match registry::entry(name) {
-            Some(e) => e.fit.as_ref().ok_or_else(|| IdentifyError::NothingToFit(name.to_string())),
-            None => Err(IdentifyError::UnknownModel {
-                name: name.to_string(),
-                fittable: registry::fit_models().map(|m| m.name).collect::<Vec<_>>().join(", "),
-            }),
-        }
-    }
-
-    /// The model with its parameters from `club`'s sections, through the registry.
-    pub fn build(&self, club: &LoadedClub, ball: &BallSpec) -> Result<Arc<dyn ImpactModel>, ImpactError> {
-        registry::build_one(self.name, club, &BuildOptions { ball: *ball, ..Default::default() })
-    }
-
-    /// The club's section for this model, or its defaults.
-    pub fn section_of(&self, club: &LoadedClub) -> toml::Table {
-        club.sections.get(self.section).cloned().unwrap_or_else(|| (self.defaults)(&club.club))
-    }
-}
 
 /// A model and the parameters chosen for identification.
 #[derive(Debug, Clone)]
@@ -102,7 +75,8 @@ impl ParamSpace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::equipment::{ClubSpec, ModelSections};
+    use crate::equipment::{BallSpec, ClubSpec, ModelSections};
+    use crate::impact::{registry, FitModelError};
 
     fn preset(club: ClubSpec) -> LoadedClub {
         LoadedClub { club, sections: ModelSections::default() }
@@ -129,7 +103,7 @@ mod tests {
         assert_eq!(adjusted.get(&preset(ClubSpec::driver())), vec![0.00254, 0.0, -0.482e-3, -0.068e-3]);
         let err = ParamSpace::new(FitModel::parse("slip").unwrap(), &["e_x".into()]).unwrap_err();
         assert!(err.to_string().contains("e_y, e_z"), "{err}");
-        assert!(matches!(FitModel::parse("standard"), Err(IdentifyError::NothingToFit(_))));
-        assert!(matches!(FitModel::parse("nope"), Err(IdentifyError::UnknownModel { .. })));
+        assert!(matches!(FitModel::parse("standard"), Err(FitModelError::NothingToFit(_))));
+        assert!(matches!(FitModel::parse("nope"), Err(FitModelError::UnknownModel { .. })));
     }
 }

@@ -308,7 +308,7 @@ impl Shared {
     }
 
     /// Counts the rejection by kind (logged at most once a second per kind) and answers it.
-    fn reject(&self, peer: &str, reason: &str, message: String) -> (Option<Reply>, bool) {
+    fn reject(&self, peer: &str, reason: &'static str, message: String) -> (Option<Reply>, bool) {
         self.peers.reject(reason, || format!("client {peer}: {message}"));
         self.refresh();
         (Some(Reply::new(FAILURE, message)), false)

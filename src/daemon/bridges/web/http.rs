@@ -8,7 +8,7 @@
 
 use std::time::Duration;
 
-use tokio::io::AsyncWriteExt;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
 /// The largest request head read (a browser's is under 2 KiB).
@@ -20,11 +20,24 @@ const MAX_HEADERS: usize = 48;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Request {
     /// A WebSocket upgrade of `/ws`: tungstenite takes the connection as it is.
-    Upgrade,
+    Upgrade(Head),
     /// A GET of a path (the query string removed).
-    Get { path: String },
+    Get(Head),
     /// Anything else: answered with this status.
     Refused { status: u16, kind: &'static str },
+}
+
+/// The parts of a request head the screen looks at (each bounded by the head's size).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Head {
+    /// The path, without its query string.
+    pub path: String,
+    pub host: Option<String>,
+    pub origin: Option<String>,
+    /// `token=` in the query string.
+    pub query_token: Option<String>,
+    /// The token cookie ([`super::access::TOKEN_COOKIE`]).
+    pub cookie_token: Option<String>,
 }
 
 /// Why a request head could not be read.
@@ -49,16 +62,36 @@ pub fn classify(head: &[u8]) -> Request {
     if req.method != Some("GET") {
         return Request::Refused { status: 405, kind: "method" };
     }
-    let path = req.path.unwrap_or("/");
-    let path = path.split(['?', '#']).next().unwrap_or("/").to_string();
-    let upgrade = req.headers.iter().any(|h| {
-        h.name.eq_ignore_ascii_case("upgrade")
-            && std::str::from_utf8(h.value).is_ok_and(|v| v.eq_ignore_ascii_case("websocket"))
-    });
+    let target = req.path.unwrap_or("/");
+    let target = target.split('#').next().unwrap_or("/");
+    let (path, query) = target.split_once('?').unwrap_or((target, ""));
+    let value = |name: &str| {
+        req.headers.iter().find(|h| h.name.eq_ignore_ascii_case(name)).and_then(|h| std::str::from_utf8(h.value).ok())
+    };
+    let cookie_token = req
+        .headers
+        .iter()
+        .filter(|h| h.name.eq_ignore_ascii_case("cookie"))
+        .filter_map(|h| std::str::from_utf8(h.value).ok())
+        .flat_map(|v| v.split(';'))
+        .find_map(|c| c.trim().strip_prefix(super::access::TOKEN_COOKIE)?.strip_prefix('='))
+        .map(String::from);
+    let head = Head {
+        path: path.to_string(),
+        host: value("host").map(String::from),
+        origin: value("origin").map(String::from),
+        query_token: query.split('&').find_map(|p| p.strip_prefix("token=")).map(String::from),
+        cookie_token,
+    };
+    let upgrade = value("upgrade").is_some_and(|v| v.eq_ignore_ascii_case("websocket"));
     if upgrade {
-        return if path == "/ws" { Request::Upgrade } else { Request::Refused { status: 404, kind: "not_found" } };
+        return if head.path == "/ws" {
+            Request::Upgrade(head)
+        } else {
+            Request::Refused { status: 404, kind: "not_found" }
+        };
     }
-    Request::Get { path }
+    Request::Get(head)
 }
 
 /// Waits for a whole request head without consuming it.
@@ -66,7 +99,8 @@ pub fn classify(head: &[u8]) -> Request {
 /// `peek` returns at once while any byte is waiting, so an incomplete head is peeked again after a short sleep
 /// (a browser sends its head in one segment: the first peek almost always has it). The caller bounds the wait
 /// with the handshake timeout.
-pub async fn peek_head(stream: &TcpStream) -> Result<Request, HeadError> {
+/// Returns the request and the head's length.
+pub async fn peek_head(stream: &TcpStream) -> Result<(Request, usize), HeadError> {
     let mut buf = vec![0u8; MAX_REQUEST_HEAD_BYTES];
     loop {
         let n = stream.peek(&mut buf).await?;
@@ -74,7 +108,7 @@ pub async fn peek_head(stream: &TcpStream) -> Result<Request, HeadError> {
             return Err(HeadError::Closed);
         }
         if let Some(end) = buf[..n].windows(4).position(|w| w == b"\r\n\r\n") {
-            return Ok(classify(&buf[..end + 4]));
+            return Ok((classify(&buf[..end + 4]), end + 4));
         }
         if n == buf.len() {
             return Err(HeadError::TooLarge);
@@ -104,10 +138,14 @@ impl Response {
     fn reason(&self) -> &'static str {
         match self.status {
             200 => "OK",
+            303 => "See Other",
             400 => "Bad Request",
+            403 => "Forbidden",
             404 => "Not Found",
             405 => "Method Not Allowed",
+            421 => "Misdirected Request",
             431 => "Request Header Fields Too Large",
+            503 => "Service Unavailable",
             _ => "Error",
         }
     }
@@ -134,8 +172,23 @@ impl Response {
 }
 
 /// Sends `response` and closes the connection (the unread request is dropped with it).
-pub async fn answer(mut stream: TcpStream, response: Response, timeout: Duration) {
+pub async fn answer(stream: TcpStream, response: Response, timeout: Duration) {
+    answer_after(stream, 0, response, timeout).await;
+}
+
+/// Reads the `head` bytes peeked (so the close that follows is a clean one, not a reset that could lose the
+/// answer), then sends `response` and closes the connection.
+pub async fn answer_after(mut stream: TcpStream, head: usize, response: Response, timeout: Duration) {
     let write = async {
+        let mut left = head;
+        let mut buf = [0u8; 1024];
+        while left > 0 {
+            let n = stream.read(&mut buf[..left.min(1024)]).await?;
+            if n == 0 {
+                break;
+            }
+            left -= n;
+        }
         stream.write_all(&response.bytes()).await?;
         stream.shutdown().await
     };
@@ -148,10 +201,19 @@ mod tests {
 
     #[test]
     fn requests_are_told_apart() {
-        let get = b"GET /app.js?v=1 HTTP/1.1\r\nHost: x\r\n\r\n";
-        assert_eq!(classify(get), Request::Get { path: "/app.js".into() });
-        let ws = b"GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: WebSocket\r\nConnection: Upgrade\r\n\r\n";
-        assert_eq!(classify(ws), Request::Upgrade);
+        let get = b"GET /app.js?v=1&token=abc HTTP/1.1\r\nHost: x\r\nCookie: a=b; impactd_token=t1\r\n\r\n";
+        let head = Head {
+            path: "/app.js".into(),
+            host: Some("x".into()),
+            query_token: Some("abc".into()),
+            cookie_token: Some("t1".into()),
+            ..Default::default()
+        };
+        assert_eq!(classify(get), Request::Get(head));
+        let ws =
+            b"GET /ws HTTP/1.1\r\nHost: x\r\nOrigin: http://x\r\nUpgrade: WebSocket\r\nConnection: Upgrade\r\n\r\n";
+        let Request::Upgrade(head) = classify(ws) else { panic!("not an upgrade") };
+        assert_eq!((head.host.as_deref(), head.origin.as_deref()), (Some("x"), Some("http://x")));
         let ws_elsewhere = b"GET /other HTTP/1.1\r\nUpgrade: websocket\r\n\r\n";
         assert_eq!(classify(ws_elsewhere), Request::Refused { status: 404, kind: "not_found" });
         assert_eq!(classify(b"POST / HTTP/1.1\r\n\r\n"), Request::Refused { status: 405, kind: "method" });

@@ -24,6 +24,8 @@ pub struct Page {
     pub peers: Peers,
     pub bay: Arc<Bay>,
     pub session: zenoh::Session,
+    /// Whether its controls are taken (the token was given, or none is needed); read-only otherwise.
+    pub controls: bool,
 }
 
 /// The WebSocket's bounds: a page's message at most [`MAX_CLIENT_MESSAGE_BYTES`], no write buffering.
@@ -55,11 +57,13 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
     let mut rx = page.bay.out.subscribe();
     let hello = serde_json::json!({
         "type": "hello", "rigs": page.bay.rigs, "version": env!("CARGO_PKG_VERSION"),
-        "started_ns": crate::daemon::wall_ns(),
+        "started_ns": crate::daemon::wall_ns(), "controls": page.controls,
     });
     if !send(&mut ws, &hello.to_string()).await || !send_snapshots(&mut ws, &page.bay).await {
         return;
     }
+    // What a page takes counts as its activity, as its pongs do: a page that reads is live.
+    page.slot.touch();
     let mut ping = tokio::time::interval(PING_PERIOD);
     let mut closing = page.bay.closing.subscribe();
     loop {
@@ -103,12 +107,14 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
                     if !send(&mut ws, &text).await {
                         break;
                     }
+                    page.slot.touch();
                 }
                 Err(broadcast::error::RecvError::Lagged(n)) => {
                     tracing::debug!("bay screen: {peer} fell {n} messages behind (more than {PAGE_LAG}): resent");
                     if !send_snapshots(&mut ws, &page.bay).await {
                         break;
                     }
+                    page.slot.touch();
                 }
                 Err(broadcast::error::RecvError::Closed) => break,
             },
@@ -119,6 +125,11 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
 /// A page's control: refused with its kind counted, or put on zenoh.
 async fn on_control(page: &Page, text: &str) {
     let peer = page.peer;
+    if !page.controls {
+        return page.peers.reject("unauthorized", || {
+            format!("{peer}: control refused: this page has no token (open the address printed at start)")
+        });
+    }
     let control = match Control::parse(text, &page.bay.rigs) {
         Ok(c) => c,
         Err(e) => return page.peers.reject(e.kind(), || format!("{peer}: control refused: {e}")),
@@ -130,6 +141,6 @@ async fn on_control(page: &Page, text: &str) {
         Err(e) => return page.peers.reject(e.kind(), || format!("{peer}: control refused: {e}")),
     };
     if let Err(e) = page.session.put(key.clone(), payload).await {
-        tracing::warn!("bay screen: put on {key}: {e}");
+        page.peers.reject("put_failed", || format!("put on {key}: {e}"));
     }
 }

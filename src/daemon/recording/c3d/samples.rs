@@ -125,6 +125,7 @@ impl<R: Read + Seek> CaptureSamples<R> {
             occluded,
             fit_residual_m: residual,
             exposure_t_ns: None,
+            system_latency_us: None,
             body: None,
         }))
     }

@@ -1,10 +1,15 @@
-// The bay screen's connection and state: one WebSocket to the daemon (`/ws`), reconnected with back-off after
-// a restart; every rig's shots (the last MAX_SHOTS), flights and comparisons kept bounded so a page left open
-// for a day does not grow; the controls sent as messages the daemon turns into zenoh puts.
+// The bay screen's connection and state: one WebSocket to the daemon (`/ws`), reconnected after a restart or a
+// refusal (the daemon at its cap of pages) with a growing, randomised delay, so refused screens come back one
+// by one and never push a live one out; every rig's shots (the last MAX_SHOTS), flights and comparisons kept
+// bounded so a page left open for a day does not grow; the controls sent as messages the daemon turns into
+// zenoh puts, or, on a read-only page (beyond loopback, opened without the token), not offered.
 "use strict";
 const MAX_SHOTS = 1000, MAX_FLIGHTS = 12, MAX_COMPARISONS = 50, MAX_LATENCIES = 1000;
+const BACKOFF_FIRST_MS = 250, BACKOFF_LAST_MS = 15000;
 const bay = {
   rigs: [], rig: null, view: "shot", data: {}, connected: false, sort: { key: "shot", up: false }, filter: "", by: "club",
+  // Whether the daemon takes this page's controls; connections tried after the first.
+  controls: true, reconnects: 0,
   // Launch published (the daemon's clock when the launch reached the screen's subscriber) to numbers drawn
   // (the first animation frame after the page text changed), per shot, ms.
   latencies: [],
@@ -22,6 +27,8 @@ const trim = (a, n) => { if (a.length > n) a.splice(0, a.length - n); };
 
 function onMessage(m) {
   if (m.type === "hello") {
+    backoffMs = BACKOFF_FIRST_MS;
+    setControls(m.controls !== false);
     bay.rigs = m.rigs;
     const fromHash = decodeURIComponent(location.hash.slice(1));
     if (!bay.rig || !bay.rigs.includes(bay.rig)) bay.rig = bay.rigs.includes(fromHash) ? fromHash : bay.rigs[0];
@@ -100,21 +107,34 @@ function drawLabels(r) {
   $("labels-now").textContent = [l.player, ...(l.tags || [])].filter(Boolean).join(" · ");
 }
 
-let socket = null, backoffMs = 250;
+// A read-only page (the daemon listens beyond loopback and this screen was opened without its token): the
+// controls are shown disabled, with what to do.
+function setControls(on) {
+  bay.controls = on;
+  for (const el of document.querySelectorAll("#controls input, #controls select, #controls button")) el.disabled = !on;
+  $("read-only").hidden = on;
+  document.body.classList.toggle("read-only", !on);
+}
+
+let socket = null, backoffMs = BACKOFF_FIRST_MS;
 function connect() {
   const ws = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws`);
   socket = ws;
-  ws.onopen = () => { backoffMs = 250; bay.connected = true; status("live", true); };
+  ws.onopen = () => { bay.connected = true; status("live", true); };
   ws.onmessage = (e) => { try { onMessage(JSON.parse(e.data)); } catch (err) { console.error(err); } };
   ws.onclose = () => {
+    // Closed, or refused before it opened (the daemon stopped, or serving all the pages it takes): each try
+    // waits twice as long as the last (to 15 s), a random half of it either way so screens spread out.
     bay.connected = false;
+    bay.reconnects += 1;
     status("reconnecting…", false);
-    setTimeout(connect, backoffMs);
-    backoffMs = Math.min(backoffMs * 2, 4000);
+    setTimeout(connect, backoffMs * (0.5 + Math.random()));
+    backoffMs = Math.min(backoffMs * 2, BACKOFF_LAST_MS);
   };
 }
 function status(text, up) { const c = $("connection"); c.textContent = text; c.className = up ? "up" : "down"; }
 function send(control) {
+  if (!bay.controls) return;
   if (socket && socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify({ rig: bay.rig, ...control }));
 }
 

@@ -1,0 +1,166 @@
+//! Impact models: from the clubhead's state at first contact to the ball's launch.
+//!
+//! An [`ImpactState`] is the club at the instant it first touches a ball at rest (world frame, ARCHITECTURE.md
+//! section 2). An [`ImpactModel`] turns it into a [`Launch`]: the ball's velocity and spin and the club's motion
+//! after impact. [`Delivery`] is the TrackMan-style description users type and read; it converts to and from an
+//! impact state. [`LaunchMetrics`] are the TrackMan launch numbers.
+
+pub mod club_sections;
+pub mod continuous;
+pub mod delivered_loft;
+mod delivery;
+mod fit_model;
+pub mod identifiable;
+pub mod impulse;
+mod launch;
+pub mod registry;
+pub mod report;
+pub mod sanity;
+pub mod tour;
+pub mod uncertainty;
+
+pub use continuous::ContinuousModel;
+pub use delivery::{Delivery, DeliveryMetrics, SwingArc};
+pub use fit_model::FitModelError;
+pub use impulse::{ImpulseModel, ImpulseVariant};
+pub use launch::LaunchMetrics;
+pub use report::{Course, Fields, ModelRun, Report, RunOptions, Trace};
+pub use sanity::LaunchWarning;
+
+use crate::equipment::{BallSpec, ClubSpec, EquipmentError};
+use crate::face::{impact_frame, FaceContact, FaceError};
+use crate::math::{Isometry3, Matrix3, Real, Vector3};
+
+/// Errors of the impact layer (not `Clone`: a part's error keeps its cause, an IO error among them).
+#[derive(Debug, thiserror::Error)]
+pub enum ImpactError {
+    #[error("impact location ({h_mm:.1} mm, {v_mm:.1} mm) is off the face")]
+    OffFace { h_mm: Real, v_mm: Real },
+    #[error(transparent)]
+    Face(#[from] FaceError),
+    #[error("field `{field}` must be finite")]
+    NotFinite { field: &'static str },
+    #[error("club speed {speed_mps:.2} m/s is outside 1-100 m/s")]
+    SpeedOutOfRange { speed_mps: Real },
+    #[error("field `dynamic_lie_deg`: {lie_deg:.1} deg is no lie the face's loft and angle allow")]
+    LieUnreachable { lie_deg: Real },
+    #[error("the club is not moving toward the ball at the contact point")]
+    NotApproaching,
+    #[error("the contact solve is singular")]
+    Singular,
+    #[error("{model} did not converge: {reason}")]
+    NotConverged { model: &'static str, reason: String },
+    #[error("model parameter `{field}` {reason}")]
+    InvalidParameter { field: String, reason: String },
+    /// A part a model stands on (the soil, sole or shaft of its club-file sections) that the equipment refuses.
+    #[error("model parameter `[{section}]` {source}")]
+    Part {
+        section: &'static str,
+        #[source]
+        source: EquipmentError,
+    },
+    /// A soil named for the turf model (`--soil`, a rig's `soil`) that is no preset and no soil file.
+    #[error("model parameter `[soil]` {source}; or {} for the ball on a tee", continuous::iron_ground::sections::TEED)]
+    Soil {
+        #[source]
+        source: EquipmentError,
+    },
+    #[error("unknown model '{name}' (expected {expected})")]
+    UnknownModel { name: String, expected: String },
+    #[error("the club file's section [{section}] belongs to no model (known sections: {known})")]
+    UnknownSection { section: String, known: String },
+}
+
+/// The club and the ball a model needs (physical data only; a model carries its own parameters).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equipment {
+    pub club: ClubSpec,
+    pub ball: BallSpec,
+}
+
+impl Equipment {
+    /// A club with the seed's ball.
+    pub fn new(club: ClubSpec) -> Self {
+        Equipment { club, ball: BallSpec::SEED }
+    }
+}
+
+/// The clubhead at first contact with a ball at rest, in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactState {
+    /// Pose of the club frame (origin at the CG) in the world.
+    pub world_from_club: Isometry3,
+    /// Velocity of the club's CG (m/s, world).
+    pub cg_velocity_mps: Vector3,
+    /// Angular velocity of the head (rad/s, world).
+    pub angular_velocity_radps: Vector3,
+    /// Impact location on the face: toward the toe (m).
+    pub impact_h_m: Real,
+    /// Impact location on the face: up the face (m).
+    pub impact_v_m: Real,
+}
+
+/// The contact geometry and velocities shared by every model, computed once from a state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// Rotation world_from_club.
+    pub world_from_club: Matrix3,
+    /// Club CG -> contact point (m, world).
+    pub r_club_m: Vector3,
+    /// The impact frame in the world: its columns are x' (normal toward the ball), y' (up the face) and z'
+    /// (toe), so `v_world = world_from_impact * v_impact`.
+    pub world_from_impact: Matrix3,
+    /// Velocity of the club's material point at the contact (m/s, world), seed eq. 3.7.
+    pub contact_velocity_mps: Vector3,
+    /// Contact point and normal in the club frame.
+    pub contact_club: FaceContact,
+}
+
+impl ImpactState {
+    /// The contact geometry of this state on `club`.
+    pub fn contact(&self, club: &ClubSpec) -> Result<ContactGeometry, ImpactError> {
+        if !club.on_face(self.impact_h_m, self.impact_v_m) {
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
+        }
+        let contact_club = club.face.contact(self.impact_h_m, self.impact_v_m)?;
+        let rot = *self.world_from_club.rotation.to_rotation_matrix().matrix();
+        let r_club_m = rot * contact_club.point_m;
+        let normal = rot * contact_club.normal;
+        let toe = rot.column(2).into_owned();
+        let world_from_impact = impact_frame(&normal, &toe);
+        let contact_velocity_mps = self.cg_velocity_mps + self.angular_velocity_radps.cross(&r_club_m);
+        Ok(ContactGeometry { world_from_club: rot, r_club_m, world_from_impact, contact_velocity_mps, contact_club })
+    }
+}
+
+/// What a model predicts: the ball's launch and the club just after impact (world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Launch {
+    pub ball_velocity_mps: Vector3,
+    pub ball_spin_radps: Vector3,
+    pub club_velocity_mps: Vector3,
+    pub club_angular_velocity_radps: Vector3,
+    /// Impulse on the ball (N s, world).
+    pub impulse_ns: Vector3,
+}
+
+/// A model of the club-ball collision. Choosing a model is configuration: every model implements this, with one
+/// method that runs it ([`run`](ImpactModel::run)); what it gives beyond the launch is read by name
+/// ([`report`]), so nothing outside a model knows its type.
+pub trait ImpactModel: Send + Sync + std::fmt::Debug {
+    /// The name it publishes under: its name in the registry (`adjusted`), the one users type.
+    fn name(&self) -> &'static str;
+    /// Runs the collision from the state at first contact: the launch, the model's report and, when asked, the
+    /// contact's course.
+    fn run(&self, state: &ImpactState, equipment: &Equipment, options: &RunOptions) -> Result<ModelRun, ImpactError>;
+    /// The launch alone (a run without a course).
+    fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
+        Ok(self.run(state, equipment, &RunOptions::default())?.launch)
+    }
+    /// Whether a run is cheap enough (about a microsecond) for the launch's uncertainty to linearise this model
+    /// itself (twelve runs, `uncertainty::LaunchJacobian`); the launches of the others take an impulse-momentum
+    /// model's Jacobian.
+    fn linearises_itself(&self) -> bool {
+        false
+    }
+}

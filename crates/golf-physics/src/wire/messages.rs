@@ -1,0 +1,203 @@
+//! The messages of the pipeline: clubhead samples in; impacts and predictions out.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::PredictOutput;
+use crate::kinematics::{ClubheadSample, Quality};
+
+/// A unit quaternion `{x, y, z, w}` (Vicon and Foxglove order). Only the object form is read: an array is
+/// refused with a reason, since rigs disagree on its order (`[x, y, z, w]` or `[w, x, y, z]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct QuaternionMsg {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub w: f64,
+}
+
+impl<'de> Deserialize<'de> for QuaternionMsg {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Fields {
+            x: f64,
+            y: f64,
+            z: f64,
+            w: f64,
+        }
+        struct Object;
+        impl<'de> serde::de::Visitor<'de> for Object {
+            type Value = QuaternionMsg;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a quaternion object {x, y, z, w}")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<QuaternionMsg, A::Error> {
+                let q = Fields::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(QuaternionMsg { x: q.x, y: q.y, z: q.z, w: q.w })
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<QuaternionMsg, A::Error> {
+                Err(serde::de::Error::custom(
+                    "an orientation must be an object {x, y, z, w}: an array's order ([x, y, z, w] or \
+                     [w, x, y, z]) is ambiguous",
+                ))
+            }
+        }
+        d.deserialize_any(Object)
+    }
+}
+
+impl From<crate::math::UnitQuaternion> for QuaternionMsg {
+    fn from(q: crate::math::UnitQuaternion) -> Self {
+        QuaternionMsg { x: q.i, y: q.j, z: q.k, w: q.w }
+    }
+}
+
+/// One motion-capture frame of the tracked body, lab frame, on `mocap/<rig>/clubhead`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ClubheadSampleMsg {
+    pub rig: String,
+    pub frame: u64,
+    /// Capture time on the rig's clock (ns).
+    pub t_ns: u64,
+    pub position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    #[serde(default)]
+    pub occluded: bool,
+    /// The cameras' mid-exposure instant on the capture host's clock (ns), when the motion-capture system
+    /// sends it (NatNet's `CameraMidExposureTimestamp`; QTM's timestamp is itself the capture time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exposure_t_ns: Option<u64>,
+    /// The RMS distance of the markers from their fitted places when the pose was fitted from markers (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fit_residual_m: Option<f64>,
+    /// The motion-capture system's own latency for this frame, from capture to sending it, as the system reports
+    /// it (us; Vicon: the sum of its `LatencyInfo` samples).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub system_latency_us: Option<f64>,
+    /// The tracked body (rigid body, 6DOF body or marker set) the pose is of, when the rig tracks several clubs:
+    /// `[rig.clubs]` maps each body to its club, so another body coming into view switches the club.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+}
+
+impl ClubheadSampleMsg {
+    pub fn to_sample(&self) -> ClubheadSample {
+        let q = &self.orientation;
+        ClubheadSample {
+            frame: self.frame,
+            t_ns: self.t_ns,
+            position_m: crate::math::Vector3::from(self.position_m),
+            orientation_xyzw: [q.x, q.y, q.z, q.w],
+            occluded: self.occluded,
+        }
+    }
+
+    pub fn from_sample(rig: &str, s: &ClubheadSample) -> Self {
+        let [x, y, z, w] = s.orientation_xyzw;
+        ClubheadSampleMsg {
+            rig: rig.to_string(),
+            frame: s.frame,
+            t_ns: s.t_ns,
+            position_m: [s.position_m.x, s.position_m.y, s.position_m.z],
+            orientation: QuaternionMsg { x, y, z, w },
+            occluded: s.occluded,
+            exposure_t_ns: None,
+            fit_residual_m: None,
+            system_latency_us: None,
+            body: None,
+        }
+    }
+}
+
+/// The estimated club state at impact (world frame), in an [`ImpactMessage`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactStateMsg {
+    pub cg_position_m: [f64; 3],
+    pub orientation: QuaternionMsg,
+    pub cg_velocity_mps: [f64; 3],
+    pub angular_velocity_radps: [f64; 3],
+    pub impact_h_mm: f64,
+    pub impact_v_mm: f64,
+}
+
+impl From<&crate::impact::ImpactState> for ImpactStateMsg {
+    fn from(s: &crate::impact::ImpactState) -> Self {
+        let p = s.world_from_club.translation.vector;
+        let (v, w) = (s.cg_velocity_mps, s.angular_velocity_radps);
+        ImpactStateMsg {
+            cg_position_m: [p.x, p.y, p.z],
+            orientation: s.world_from_club.rotation.into(),
+            cg_velocity_mps: [v.x, v.y, v.z],
+            angular_velocity_radps: [w.x, w.y, w.z],
+            impact_h_mm: s.impact_h_m * 1e3,
+            impact_v_mm: s.impact_v_m * 1e3,
+        }
+    }
+}
+
+/// The impact as estimated from the frames, on `golf/<rig>/impact`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImpactMessage {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    /// The club file the models used: preset or path, and its SHA-256 (absent in recordings made before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_file: Option<super::ClubRef>,
+    pub estimator: String,
+    pub state: ImpactStateMsg,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub quality: Quality,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
+    /// The ball position this impact used (world frame) and where it came from (absent in recordings made
+    /// before it was reported: the rig's fixed `ball_position_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball: Option<super::BallUsed>,
+}
+
+/// A predicted launch, on `golf/<rig>/launch`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct LaunchPrediction {
+    pub rig: String,
+    pub shot: u64,
+    /// The frame that revealed the impact.
+    pub frame: u64,
+    pub t_impact_ns: u64,
+    pub club: String,
+    /// The club file the model used: preset or path, and its SHA-256 (absent in recordings made before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub club_file: Option<super::ClubRef>,
+    #[serde(deserialize_with = "super::model_name::one")]
+    pub model: String,
+    pub estimator: String,
+    pub delivery: crate::impact::DeliveryMetrics,
+    pub launch: PredictOutput,
+    pub frames_used: usize,
+    /// The estimate's quality score in (0, 1] (see `Quality`).
+    pub quality: f64,
+    /// Time from receiving the revealing frame to publishing this prediction (us), measured live; a replay
+    /// carries the recorded value.
+    pub latency_us: f64,
+    /// Carry, apex, landing and offline of this launch (absent when the rig's `flight = false`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flight: Option<crate::flight::Trajectory>,
+    /// The model's own numbers, each an object under its key: the ground model's `ground` (how the club met the
+    /// turf, seed chapter 4); none for the other models.
+    #[serde(default, flatten, skip_serializing_if = "crate::impact::report::WireReports::is_empty")]
+    pub reports: crate::impact::report::WireReports,
+    /// The shot's labels (player, club, tags, note) when it has any.
+    #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
+    pub labels: super::ShotLabels,
+    /// The ball position this impact used (world frame) and where it came from (absent in recordings made
+    /// before it was reported: the rig's fixed `ball_position_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball: Option<super::BallUsed>,
+}
