@@ -8,13 +8,14 @@
 //! two that started at the same moment (or whose networks joined later) say so.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 use zenoh::Wait;
 
 use crate::daemon::config::RigConfig;
+use crate::daemon::peer_log::PeerLog;
 use crate::daemon::DaemonError;
 use crate::wire::keys;
 
@@ -134,6 +135,9 @@ pub async fn declare(
     let me = DaemonId::of(session);
     let taken = Arc::new(taken);
     let stopping = Arc::new(AtomicBool::new(false));
+    // What peers make this daemon say (asking for its rigs, declaring themselves on them): one line a second per
+    // kind, each cut, whatever a peer sends.
+    let log = Arc::new(Mutex::new(PeerLog::new()));
     let mut claims = Claims { _queryables: Vec::new(), _tokens: Vec::new(), _watches: Vec::new() };
     for rig_config in rigs {
         let rig = &rig_config.name;
@@ -150,7 +154,8 @@ pub async fn declare(
             .await
             .map_err(DaemonError::zenoh)?;
         claims._queryables.push(config);
-        let (me_q, rig_q, taken, stopping) = (me.clone(), rig.clone(), taken.clone(), stopping.clone());
+        let (me_q, rig_q, taken, stopping, log_q) =
+            (me.clone(), rig.clone(), taken.clone(), stopping.clone(), log.clone());
         let key = keys::serve(rig);
         let queryable = session
             .declare_queryable(key.clone())
@@ -166,14 +171,16 @@ pub async fn declare(
                 let handing_over = request.take_over;
                 let answer = serde_json::to_vec(&ServeAnswer { from: me_q.clone(), handing_over }).unwrap_or_default();
                 if let Err(e) = query.reply(key.clone(), answer).wait() {
-                    tracing::warn!("rig {rig_q}: answering {}: {e}", request.from);
+                    peer(&log_q).warn("serve_answer_failed", || format!("rig {rig_q}: answering {}: {e}", request.from));
                 }
                 if !handing_over {
-                    tracing::warn!(
-                        "rig {rig_q}: {} asked to serve it too and was refused: this daemon serves it (`impactd run \
-                         --take-over` hands it over)",
-                        request.from
-                    );
+                    peer(&log_q).warn("serve_refused", || {
+                        format!(
+                            "rig {rig_q}: {} asked to serve it too and was refused: this daemon serves it (`impactd \
+                             run --take-over` hands it over)",
+                            request.from
+                        )
+                    });
                 } else if !stopping.swap(true, Ordering::Relaxed) {
                     tracing::warn!("rig {rig_q}: {} takes it over (--take-over); this daemon stops", request.from);
                     taken(format!("rig {rig_q} taken over by {}", request.from));
@@ -184,17 +191,19 @@ pub async fn declare(
         claims._queryables.push(queryable);
         let own = keys::daemon_token(rig, &me.zid);
         claims._tokens.push(session.liveliness().declare_token(own.clone()).await.map_err(DaemonError::zenoh)?);
-        let rig_w = rig.clone();
+        let (rig_w, log_w) = (rig.clone(), log.clone());
         let watch = session
             .liveliness()
             .declare_subscriber(keys::daemon_token(rig, "*"))
             .callback(move |sample| {
                 if sample.kind() == zenoh::sample::SampleKind::Put && sample.key_expr().as_str() != own {
                     let other = sample.key_expr().as_str().rsplit('/').next().unwrap_or_default().to_string();
-                    tracing::warn!(
-                        "rig {rig_w}: another daemon (zenoh id {other}) serves it too: every shot is predicted twice \
-                         until one of them stops"
-                    );
+                    peer(&log_w).warn("another_daemon", || {
+                        format!(
+                            "rig {rig_w}: another daemon (zenoh id {other}) serves it too: every shot is predicted \
+                             twice until one of them stops"
+                        )
+                    });
                 }
             })
             .await
@@ -202,4 +211,9 @@ pub async fn declare(
         claims._watches.push(watch);
     }
     Ok(claims)
+}
+
+/// The claims' peer log, whatever a panicking holder left.
+fn peer(log: &Mutex<PeerLog>) -> MutexGuard<'_, PeerLog> {
+    log.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }

@@ -1,7 +1,8 @@
 //! The Vicon DataStream client: one thread, one TCP connection at a time (port 801). It connects (with back-off
 //! while the server is not there), reads the server's `ObjectEnums`, asks for the types a rigid subject and its
 //! labelled markers need (those the server offers), streams in ServerPush, pings once a second, and reads
-//! frames until the connection ends; then connects again with back-off. Each route is a subject's segment (its
+//! frames until the connection ends or goes silent for [`QUIET`] (as NatNet's and QTM's: counted as
+//! `reconnects.quiet`); then connects again with back-off. Each route is a subject's segment (its
 //! root unless `segment` names one) or a marker set fitted to the subject's labelled markers, resolved again
 //! whenever the subjects change.
 
@@ -16,7 +17,7 @@ use std::time::{Duration, Instant};
 
 use super::protocol::Route;
 use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
-use crate::daemon::DaemonError;
+use crate::daemon::{peer_log, DaemonError};
 use crate::math::Vector3;
 use crate::mocap::track::{BodyTrack, Sequence};
 use crate::mocap::vicon::sample::{fitted_sample, resolve_markers, resolve_segment, segment_sample, RouteIds};
@@ -27,6 +28,9 @@ use crate::wire::ConnectionState;
 const GREETING_WAIT: Duration = Duration::from_secs(5);
 /// How often the client pings.
 const PING_EVERY: Duration = Duration::from_secs(1);
+/// While streaming, a connection silent this long (no frame, no answer to the pings) is ended and connected
+/// again (NatNet's [`super::natnet::QUIET`]).
+pub const QUIET: Duration = super::natnet::QUIET;
 
 /// Starts the client thread for `routes`.
 pub fn start(
@@ -183,7 +187,7 @@ impl Session<'_> {
             self.stream.peer_addr().map(|a| a.to_string()).unwrap_or_default()
         );
         *backoff = BACKOFF_FIRST;
-        let (mut ping, mut last_ping) = (0u64, Instant::now());
+        let (mut ping, mut last_ping, mut last_packet) = (0u64, Instant::now(), Instant::now());
         loop {
             if last_ping.elapsed() >= PING_EVERY {
                 ping += 1;
@@ -191,9 +195,16 @@ impl Session<'_> {
                 self.send(&encode::pings(&[ping]))?;
             }
             if !self.next()? {
+                if last_packet.elapsed() >= QUIET {
+                    let why = format!("the Vicon server sent nothing for {} s; connecting again", QUIET.as_secs());
+                    lock(self.shared).conn.reconnect("quiet", why.clone());
+                    return Err(End::Lost(why));
+                }
+                lock(self.shared).log.flush();
                 continue;
             }
             let received = Instant::now();
+            last_packet = received;
             match self.decoder.decode(&self.packet) {
                 Ok(sum) => {
                     if sum.statics {
@@ -223,8 +234,8 @@ impl Session<'_> {
             let found = ids.is_ok();
             if let Err(e) = &ids {
                 if sh.bodies[i].body_found || sh.bodies[i].frames == 0 {
-                    let names: Vec<&str> = frame.statics.subjects.iter().map(|s| s.name.as_str()).collect();
-                    tracing::warn!("{e} (subjects: {names:?})");
+                    let names = peer_log::list(frame.statics.subjects.iter().map(|s| s.name.as_str()));
+                    sh.log.warn("subject_not_in_model", || format!("{e} (subjects: {names})"));
                 }
             }
             sh.bodies[i].body_found = found;
