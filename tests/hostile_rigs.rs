@@ -155,7 +155,7 @@ fn play_natnet(server: &natnet_server::NatNetServer, samples: &[ClubheadSample],
 async fn natnet_spoofed_version_and_undecodable_stream_leave_every_rig_predicting() {
     use impactd::daemon::inputs::natnet::UNDECODABLE_FRAMES;
     use impactd::mocap::natnet::{ServerInfo, Version};
-    use impactd::mocap::natnet_encode;
+    use impactd::mocap::natnet::encode as natnet_encode;
     let server = natnet_server::NatNetServer::start(Version::V4_1, &[(3, "club")]);
     let dir = tempfile::tempdir().unwrap();
     let config = format!(

@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use daemon_process::{assert_lines_bounded, events_told, lines_and_suppressed, peak_rss_while, report_latency};
 use daemon_process::{DaemonProcess, Rig, RSS_LIMIT_KB};
 use futures_util::{SinkExt, StreamExt};
-use impactd::mocap::qtm_encode;
+use impactd::mocap::qtm::encode as qtm_encode;
 use qtm_server::QtmServer;
 use tokio_tungstenite::tungstenite::Message;
 

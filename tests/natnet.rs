@@ -337,7 +337,7 @@ async fn bad_natnet_input_is_counted_by_reason() {
 #[tokio::test(flavor = "multi_thread")]
 async fn a_spoofed_server_info_mid_swing_changes_nothing() {
     use impactd::mocap::natnet::ServerInfo;
-    use impactd::mocap::natnet_encode;
+    use impactd::mocap::natnet::encode as natnet_encode;
     let samples = swing::samples(3, 720.0, 11);
     let rounded: Vec<ClubheadSample> = samples
         .iter()

@@ -99,6 +99,14 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     for (former, current) in &index.renamed_models {
         eprintln!("{}: recorded model name {former} is now {current}; compared as {current}", args.file.display());
     }
+    let before = index.before_uncertainty();
+    if before > 0 {
+        eprintln!(
+            "{}: {before} recorded predictions were made before predictions carried their uncertainty \
+             (LaunchPrediction version 1): the replay's have it, and are compared without it",
+            args.file.display()
+        );
+    }
     if !index.skipped_lines.is_empty() {
         for l in index.skipped_lines.iter().take(5) {
             eprintln!("skipped {l}");

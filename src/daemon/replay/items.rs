@@ -54,6 +54,9 @@ pub struct ReplayIndex {
     pub first_log_time_ns: Option<u64>,
     /// The SHA-256 of each recorded prediction's bytes (under the current model names), in order.
     pub recorded_launches: Vec<[u8; 32]>,
+    /// Per recorded prediction, whether it was made before predictions carried their uncertainty
+    /// (`LaunchPrediction` version 1): it is compared with the replay's without it.
+    pub recorded_before_uncertainty: Vec<bool>,
     /// Former model names the recorded predictions carried, each with the name it is compared under
     /// (`impact::registry::FORMER_NAMES`): `(former, current)`, each pair once.
     pub renamed_models: Vec<(String, String)>,
@@ -96,9 +99,28 @@ impl ReplayIndex {
     /// Notes a recorded prediction's bytes (already under the current model name) and its latency.
     pub fn add_launch(&mut self, data: &[u8], key: Option<((String, u64, String), f64)>) {
         self.recorded_launches.push(digest(data));
+        self.recorded_before_uncertainty.push(!contains(data, b"\"uncertainty\":"));
         if let Some((key, latency_us)) = key {
             self.recorded_latency_us.insert(key, latency_us);
         }
+    }
+
+    /// Recorded predictions made before predictions carried their uncertainty.
+    pub fn before_uncertainty(&self) -> usize {
+        self.recorded_before_uncertainty.iter().filter(|b| **b).count()
+    }
+
+    /// Whether the replay's prediction `l`, published as `bytes`, is the recorded prediction at `index`: byte for
+    /// byte, or, where that was recorded before predictions carried their uncertainty, byte for byte without it.
+    pub fn reproduces(&self, index: usize, l: &crate::wire::LaunchPrediction, bytes: &[u8]) -> bool {
+        let Some(recorded) = self.recorded_launches.get(index) else { return false };
+        if !self.recorded_before_uncertainty.get(index).copied().unwrap_or(false) {
+            return *recorded == digest(bytes);
+        }
+        let mut without = l.clone();
+        without.delivery.uncertainty = None;
+        without.launch.uncertainty = None;
+        serde_json::to_vec(&without).is_ok_and(|b| *recorded == digest(&b))
     }
 
     /// Notes a JSONL line skipped for `reason` (`where_` names the file and line).
@@ -127,4 +149,9 @@ pub type Items<'a> = Box<dyn Iterator<Item = Result<Item, DaemonError>> + Send +
 pub trait ReplaySource {
     fn index(&self) -> std::borrow::Cow<'_, ReplayIndex>;
     fn items(&self) -> Result<Items<'_>, DaemonError>;
+}
+
+/// Whether `needle` occurs in `data`.
+fn contains(data: &[u8], needle: &[u8]) -> bool {
+    data.windows(needle.len()).any(|w| w == needle)
 }

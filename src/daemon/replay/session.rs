@@ -312,7 +312,7 @@ pub async fn run(
                     rig.latency.push(l.latency_us);
                     let bytes = rig.sinks.launch(l, log_time_ns);
                     on_event(e, &bytes);
-                    if index.recorded_launches.get(produced) == Some(&super::items::digest(&bytes)) {
+                    if index.reproduces(produced, l, &bytes) {
                         reproduced += 1;
                     }
                     produced += 1;
