@@ -45,7 +45,10 @@ fn bench(c: &mut Criterion) {
         c.bench_function(&format!("natnet {version} frame, 10 rigid bodies, decoded to samples"), |b| {
             b.iter(|| {
                 natnet::decode(black_box(&bytes), version, &mut out).unwrap();
-                out.rigid_bodies.iter().map(|r| track::natnet_sample(r, &out, Some(10_000_000)).0.t_ns).sum::<u64>()
+                out.rigid_bodies
+                    .iter()
+                    .map(|r| impactd::mocap::natnet::sample::natnet_sample(r, &out, Some(10_000_000)).0.t_ns)
+                    .sum::<u64>()
             })
         });
     }
@@ -78,7 +81,7 @@ fn bench(c: &mut Criterion) {
     vicon_frames(c);
 }
 
-/// Ten subjects, as `tests/vicon_fuzz.rs` builds them.
+/// Ten subjects, as `tests/inputs/vicon_fuzz.rs` builds them.
 fn vicon_scene() -> (vicon::StaticObjects, vicon::DynamicObjects) {
     use vicon::items::MarkerDef;
     let subjects = (1..=10)

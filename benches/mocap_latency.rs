@@ -14,12 +14,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
+use impactd::daemon::inputs::{run_bridge, Source};
 use impactd::daemon::sim::{SimOptions, SimRig};
 use impactd::daemon::{DaemonConfig, RunOptions};
-use impactd::mocap::natnet::{self, Frame, RigidBody, ServerInfo, Version};
 use impactd::mocap::natnet::encode as natnet_encode;
+use impactd::mocap::natnet::{self, Frame, RigidBody, ServerInfo, Version};
 use impactd::wire::LaunchPrediction;
 use zenoh::Wait;
 
@@ -103,8 +103,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     let (stop_bridge, bridge_stopped) = tokio::sync::oneshot::channel::<()>();
     let bridge_task = if bridge {
         let session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
-        let source =
-            Source::new("natnet", "127.0.0.1", port).with("data_port", 0).with("unicast", true);
+        let source = Source::new("natnet", "127.0.0.1", port).with("data_port", 0).with("unicast", true);
         Some(tokio::spawn(async move {
             run_bridge(&session, source, vec![("club".into(), "rig1".into())], async {
                 let _ = bridge_stopped.await;
@@ -171,7 +170,8 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
 /// Frame sent by the Vicon test server -> `golf/rig1/launch` received, through the daemon's `[rig.input] vicon`.
 async fn measure_vicon(shots: u64) -> Vec<f64> {
     let server = vicon_server::ViconServer::start(scene::statics());
-    let text = format!("[[rig]]\nname = \"rig1\"\n[rig.input]\nvicon = \"127.0.0.1:{}\"\nsubject = \"club\"\n", server.port);
+    let text =
+        format!("[[rig]]\nname = \"rig1\"\n[rig.input]\nvicon = \"127.0.0.1:{}\"\nsubject = \"club\"\n", server.port);
     let (config, setups) = DaemonConfig::parse(&text).unwrap();
     let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
     let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();

@@ -36,7 +36,7 @@ fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, h_mm: Real, v_mm: R
         "dynamic_loft_change_deg": r.dynamic_loft_change_deg, "divot_depth_mm": r.divot_depth_mm,
         "divot_length_mm": r.divot_length_mm, "peak_ground_force_n": r.peak_ground_force_n,
         "ground_contact_ms": r.ground_contact_ms, "ball_contact_us": r.ball_contact_us,
-        "impulse_before_ball_ns": { "back": -r.ground_impulse_before_ball_ns.x, "up": r.ground_impulse_before_ball_ns.y },
+        "impulse_before_ball_n_s": { "back": -r.ground_impulse_before_ball_n_s.x, "up": r.ground_impulse_before_ball_n_s.y },
     })
 }
 

@@ -29,13 +29,13 @@ fn shot(p: &PreparedGround, eq: &Equipment, flight: &Flight, v_mm: Real) -> serd
         .filter(|q| q.ground_vertical_n.hypot(q.ground_horizontal_n) > 0.05 * peak && q.ground_vertical_n > 0.0)
         .map(|q| q.ground_horizontal_n / q.ground_vertical_n)
         .fold(0.0, Real::max);
-    let j = r.ground_impulse_before_ball_ns;
+    let j = r.ground_impulse_before_ball_n_s;
     json!({
         "ball_speed_mph": l.ball_speed_mph, "backspin_rpm": l.backspin_rpm, "sidespin_rpm": l.sidespin_rpm,
         "launch_direction_deg": l.launch_direction_deg, "carry_yd": t.carry_yd, "offline_yd": t.offline_yd,
         "club_speed_loss_mph": r.club_speed_loss_mph, "face_angle_change_deg": r.face_angle_change_deg,
         "dynamic_loft_change_deg": r.dynamic_loft_change_deg,
-        "impulse_before_ball_ns": { "back": -j.x, "up": j.y, "toward_toe": j.z },
+        "impulse_before_ball_n_s": { "back": -j.x, "up": j.y, "toward_toe": j.z },
         "max_horizontal_over_vertical": max_ratio,
         "ground_contact_before_ball_ms": r.ground_contact_before_ball_ms,
     })

@@ -4,7 +4,7 @@
 #   impactd compare --json                         -> docs/identify.md, region compare-iron7 (Tables 3.2-3.7's layout)
 #   impactd fit --json (under /usr/bin/time -v)    -> docs/identify.md, region fit-time; research/identify-results.md,
 #                                                     regions recovery-*, cv, crb, adjusted-seeds, valley
-#   tests/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> docs/identify.md, region live-latency
+#   tests/daemon/live_comparison.rs (IMPACTD_LIVE_LATENCY_JSON) -> docs/identify.md, region live-latency
 #   research/scripts/identify-likelihood.sh        -> research/identify-results.md, region likelihood (eq. 3.13
 #                                                     against the likelihood over seeds)
 # Each table sits between `<!-- generated: NAME -->` and `<!-- end -->`; the text around it is left alone.
@@ -23,7 +23,7 @@ else
     trap 'rm -rf "$OUT"' EXIT
 fi
 
-# The truths (SI): adjusted and slip on the driver as in tests/identify.rs, the two-layer model on the 7-iron as
+# The truths (SI): adjusted and slip on the driver as in tests/cli/identify.rs, the two-layer model on the 7-iron as
 # in research/tests/identifiability.rs (Table 3.5's 7-iron moved by 10-40 % per parameter).
 ADJUSTED=(delta_mass=0.0073 ball_cg_shift_x=0.00031 ball_cg_shift_y=-0.00042 ball_cg_shift_z=0.00017)
 SLIP=(e_y=0.045 e_z=-0.03)
@@ -85,8 +85,8 @@ for seed in 11 12 13 14; do
 done
 once compare-iron7.json "$BIN" compare "$OUT/iron7.jsonl" --club iron7 --models standard,adjusted,slip,continuous --json
 if [ ! -s "$OUT/live.json" ]; then
-    echo "live latency (tests/live_comparison.rs)" >&2
-    IMPACTD_LIVE_LATENCY_JSON="$OUT/live.json" cargo test --release --quiet --test live_comparison >&2
+    echo "live latency (tests/daemon/live_comparison.rs)" >&2
+    IMPACTD_LIVE_LATENCY_JSON="$OUT/live.json" cargo test --release --quiet --test daemon live_comparison:: >&2
 fi
 
 python3 - "$OUT" "${ADJUSTED[*]}" "${SLIP[*]}" "${CONTINUOUS[*]}" <<'PY'
@@ -214,7 +214,7 @@ def live_line():
             ("the rig worker's receipt -> publish (`latency_us`)", r["worker_ms"])]
     lines = ["| interval | p50 | p99 | max |", "|---|---|---|---|"]
     lines += [f"| {name} | {q(v, 0.5):.3f} ms | {q(v, 0.99):.3f} ms | {q(v, 1.0):.3f} ms |" for name, v in rows]
-    return lines + ["", f"`tests/live_comparison.rs`, {r['shots']} shots (IMPACTD_LIVE_LATENCY_JSON)."]
+    return lines + ["", f"`tests/daemon/live_comparison.rs`, {r['shots']} shots (IMPACTD_LIVE_LATENCY_JSON)."]
 
 
 def crb_line():

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rewrites docs/bay-screen.md's regions from measurements: `browser` from the browser test's numbers
-# (target/web-page/measured.json, written by `bash scripts/test.sh --test web_page`, which this runs), `pages`
+# (target/web-page/measured.json, written by `bash scripts/test.sh --test web web_page::`, which this runs), `pages`
 # from `cargo bench --bench web_pages -- --json` (sample -> launch latency and the rig worker's CPU time with 0
 # and 20 pages open, interleaved blocks, bootstrap intervals) and `instructions` from
 # scripts/web-pages-callgrind.sh (the rig worker's instructions per sample under callgrind, 0 and 20 pages) and
@@ -11,7 +11,7 @@
 # target/web-page/measured.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ "${NO_TEST:-0}" = 1 ] || bash scripts/test.sh --test web_page
+[ "${NO_TEST:-0}" = 1 ] || bash scripts/test.sh --test web web_page::
 OUT="$(mktemp)"
 CG="$(mktemp)"
 trap 'rm -f "$OUT" "$CG"' EXIT

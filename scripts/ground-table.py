@@ -191,7 +191,7 @@ w("")
 t = measured[names[0]][1]
 top_v = max(v for (h, v) in at if h == 0.0)
 ng_top, ng_below = at[(0.0, top_v)]["no_ground"], at[(0.0, top_v - 5.0)]["no_ground"]
-j = t["impulse_before_ball_ns"]
+j = t["impulse_before_ball_n_s"]
 # The impulse the seed's extra 5 mph of ball speed takes: ball speed changes with club speed by the teed strike's
 # smash factor at the seed's "top" (v = +5 mm here, 90 mph of club speed), so 5 mph of ball speed is 5 / smash
 # mph of head speed, which the head's 264 g (Table 3.1) alone takes this impulse to lose; the shaft's moving

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes the model registry into the docs: the README's model list (`impactd models`) and docs/club-files.md's
-# club-file sections (`impactd models --sections`). tests/registry_docs.rs fails when they drift.
+# club-file sections (`impactd models --sections`). tests/cli/registry_docs.rs fails when they drift.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN="${BIN:-target/release/impactd}"

@@ -4,7 +4,7 @@
 written in [m/s] (the reader converts), impact location converted m -> mm by a decimal shift. A stroke missing
 any club or ball value has its club speed left empty (the reader skips it); clubs with no preset (5-wood,
 5-hybrid) are left out; `Spin Rate Type` is `Estimated` where `ReducedAccuracy` names the spin rate or axis.
-An independent reading of the layout: `tests/trackman_report.rs` checks that `impactd compare` gives the same
+An independent reading of the layout: `tests/cli/trackman_report.rs` checks that `impactd compare` gives the same
 numbers on a report and on this script's CSV of it.
 
 Usage: scripts/trackman-report-to-csv.py REPORT.json OUT.csv"""

@@ -1,5 +1,5 @@
 # A page on another origin in a real browser (Debian's Chromium, headless, driven by chromedriver through
-# selenium), for tests/web_cross_site.rs. Arguments: DAEMON_PORT EVIL_PORT. `evil.example` resolves to 127.0.0.1
+# selenium), for tests/web/web_cross_site.rs. Arguments: DAEMON_PORT EVIL_PORT. `evil.example` resolves to 127.0.0.1
 # (a host-resolver rule); this script serves the other site's page on EVIL_PORT. The page tries to open the bay
 # screen's WebSocket by every name (127.0.0.1, localhost, evil.example: the rebound name) and send the probe's
 # controls (club `sw`, exclude shot 1, player "pwned"), and to read the session CSV; then the browser opens the

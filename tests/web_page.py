@@ -1,5 +1,5 @@
 # The bay screen in a real browser (Debian's Chromium, headless, driven by chromedriver through selenium), for
-# tests/web_page.rs. Arguments: URL RIG SHOTS OUT_DIR. Lines on stdout: READY {...} once the page is up, DONE
+# tests/web/web_page.rs. Arguments: URL RIG SHOTS OUT_DIR. Lines on stdout: READY {...} once the page is up, DONE
 # {...} after the checks, then (after RESTARTED on stdin) RECONNECTED {...}. Exit 2 without a browser.
 import json, os, shutil, sys, time
 

@@ -60,7 +60,7 @@ for sc in scales:
     for part in ("whole", "vertical", "horizontal"):
         for v in vs:
             s = parts[(sc, part, v)]
-            j = s["impulse_before_ball_ns"]
+            j = s["impulse_before_ball_n_s"]
             w(f"| firm x{sc:g} | {part} | {v:+.0f} | {z(j['back']):.3f} / {z(j['up']):.3f} | "
               f"{d(s, 'ball_speed_mph', v):+.2f} | {d(s, 'backspin_rpm', v):+.0f} | {d(s, 'sidespin_rpm', v):+.0f} | "
               f"{d(s, 'carry_yd', v):+.1f} | {d(s, 'offline_yd', v):+.1f} | {s['face_angle_change_deg']:+.2f} | "
@@ -81,7 +81,7 @@ worst = {}
 for sc in scales:
     for v in [x for x in vs if x >= 15]:
         sv, sh, sw = parts[(sc, "vertical", v)], parts[(sc, "horizontal", v)], parts[(sc, "whole", v)]
-        jv, jh = sv["impulse_before_ball_ns"]["up"], sh["impulse_before_ball_ns"]["back"]
+        jv, jh = sv["impulse_before_ball_n_s"]["up"], sh["impulse_before_ball_n_s"]["back"]
         cells = []
         for name, key, sign, unit in FINDINGS:
             rv, rh = d(sv, key, v) / jv, d(sh, key, v) / jh
@@ -92,7 +92,7 @@ for sc in scales:
             elif sign * rh > 0:
                 need = "any"
             cells.append(f"{rv:+.1f} / {rh:+.1f} {unit}, {need}")
-        jw = sw["impulse_before_ball_ns"]
+        jw = sw["impulse_before_ball_n_s"]
         w(f"| firm x{sc:g} | {v:+.0f} | " + " | ".join(cells) +
           f" | {jw['back'] / jw['up']:.2f}; {sw['max_horizontal_over_vertical']:.2f} |")
 w("")
@@ -130,7 +130,7 @@ resid = max(abs(d(parts[(sc, "whole", v)], "sidespin_rpm", v) - d(parts[(sc, "ve
 # grows, which is why a ratio read at x1's tiny impulses does not carry to larger ones.
 top = max(vs)
 per_ns = [(sc, d(parts[(sc, "horizontal", top)], "sidespin_rpm", top)
-           / max(parts[(sc, "horizontal", top)]["impulse_before_ball_ns"]["back"], 1e-9)) for sc in scales]
+           / max(parts[(sc, "horizontal", top)]["impulse_before_ball_n_s"]["back"], 1e-9)) for sc in scales]
 w("- **So, a bound and the model's result (not a proof): the seed's fade, right, extra ball-speed loss and shorter")
 w("  carry are beyond these equations for this club and geometry.** The bound: where the two parts pull opposite")
 w("  ways, the horizontal part would outweigh the vertical one on ball speed, carry and offline only beyond impulse")

@@ -33,16 +33,16 @@ fn masks_keep_what_they_name() {
     let (plain, _) = run(&GroundModel::new(SoilSpec::firm()).prepare(&eq).unwrap(), &eq, 15.0, 0);
     let (ones, _) = run(&prepared(&eq, 1.0, Some(Vector3::repeat(1.0))), &eq, 15.0, 0);
     assert_eq!(plain.launch.ball_velocity_mps, ones.launch.ball_velocity_mps);
-    assert_eq!(plain.ground_impulse_ns, ones.ground_impulse_ns);
+    assert_eq!(plain.ground_impulse_n_s, ones.ground_impulse_n_s);
     let (v, _) = run(&prepared(&eq, 1.0, Some(Vector3::new(0.0, 1.0, 0.0))), &eq, 15.0, 0);
     let (h, _) = run(&prepared(&eq, 1.0, Some(Vector3::new(1.0, 0.0, 1.0))), &eq, 15.0, 0);
-    let jv = v.ground_impulse_before_ball_ns;
-    let jh = h.ground_impulse_before_ball_ns;
+    let jv = v.ground_impulse_before_ball_n_s;
+    let jh = h.ground_impulse_before_ball_n_s;
     assert!(jv.y > 0.05 && jv.x == 0.0 && jv.z == 0.0, "{jv:?}");
     assert!(jh.x < -0.02 && jh.y == 0.0, "{jh:?}");
     // The whole force's impulse before the ball lies between and near the parts' (the parts move the head
     // differently, so the sinkage differs a little).
-    let jw = plain.ground_impulse_before_ball_ns;
+    let jw = plain.ground_impulse_before_ball_n_s;
     assert!((jw.y / jv.y - 1.0).abs() < 0.1 && (jw.x / jh.x - 1.0).abs() < 0.1, "{jw:?} {jv:?} {jh:?}");
 }
 
@@ -63,7 +63,7 @@ fn the_ground_force_leans_no_more_than_phi_plus_the_leading_edge() {
             .filter(|q| q.ground_vertical_n.hypot(q.ground_horizontal_n) > 0.05 * peak)
             .map(|q| (q.ground_horizontal_n - 1.5) / q.ground_vertical_n)
             .fold(0.0, Real::max);
-        let j = r.ground_impulse_before_ball_ns;
+        let j = r.ground_impulse_before_ball_n_s;
         println!("x{scale}: steepest lean {lean:.3} (bound {bound:.3}), impulse ratio {:.3}", -j.x / j.y);
         assert!(lean > 0.3 && lean <= bound, "x{scale}: {lean}");
         assert!(-j.x / j.y < bound, "x{scale}: {j:?}");

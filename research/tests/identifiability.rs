@@ -53,7 +53,7 @@ fn crb(space: &ParamSpace, club: &LoadedClub, shots: &[Shot], truth: &[f64]) -> 
 /// so no unbiased estimator recovers x' to 0.05 mm; eq. 3.13's least-absolute fit scatters about 1.25 times the
 /// bound, 0.12 mm, and 0.5 mm is about four of its standard deviations. The tangential shifts (y', z', 0.005 mm)
 /// and Δm (0.17 g) are bounded well inside their targets (0.05 mm, 0.5 g). The same shots and truth as
-/// `tests/identify.rs`'s adjusted recovery (seed 11).
+/// `tests/cli/identify.rs`'s adjusted recovery (seed 11).
 #[test]
 fn the_cramer_rao_bound_of_the_ball_cg_shift_along_the_normal() {
     let truth = [7.3e-3, 0.31e-3, -0.42e-3, 0.17e-3];

@@ -136,7 +136,7 @@ fn dem_curves_reverse_further_than_the_continuum() {
     }
 }
 
-/// The table in research/maw-arakawa.md: `cargo test --release --no-default-features --test maw_published table --
+/// The table in research/maw-arakawa.md: `cargo test --release --no-default-features --test research maw_published::table --
 /// --nocapture`.
 #[test]
 fn table() {

@@ -7,7 +7,8 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Subcommand};
 use impactd::daemon::inputs::config::marker_fitter;
-use impactd::daemon::inputs::protocol::{host_port, protocol};
+use impactd::daemon::inputs::protocol::host_port;
+use impactd::daemon::inputs::registry::protocol;
 use impactd::daemon::inputs::{run_bridge_routes, Protocol, Route, PROTOCOLS};
 
 use super::args::ZenohArgs;
@@ -43,13 +44,11 @@ fn subcommand(p: &'static dyn Protocol) -> Command {
             "A body whose origin is a ball's centre and the rig whose ball it is, NAME=RIG (repeatable): \
              published on mocap/<RIG>/ball, it sets each shot's ball position.",
         ))
-        .arg(Arg::new("markers").long("markers").value_name("NAME=SET.toml").action(ArgAction::Append).help(
-            format!(
-                "A {key} tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --{key}'s): the set \
+        .arg(Arg::new("markers").long("markers").value_name("NAME=SET.toml").action(ArgAction::Append).help(format!(
+            "A {key} tracked as a marker set, NAME=SET.toml (repeatable; NAME one of --{key}'s): the set \
                  fitted to the server's labelled markers each frame, so NAME needs no rigid body in the \
                  capture software."
-            ),
-        ));
+        )));
     if p.segments() {
         cmd = cmd.arg(
             Arg::new("segment")
@@ -116,11 +115,14 @@ pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
     let (host, port) = host_port(server).map_err(|e| anyhow!("--server {e}"))?;
     let source = p.bridge_source(host, port, m).map_err(|e| anyhow!("{e}"))?;
     let segment = m.try_get_one::<String>("segment").ok().flatten().cloned();
-    let mut routes: Vec<(Route, String)> = pairs(&flag, "NAME=RIG (the name in the capture software, then the rig)", &values(m, "body"))?
-        .into_iter()
-        .map(|(body, rig)| (Route { body, segment: segment.clone(), fitter: None }, rig))
-        .collect();
-    for (name, path) in pairs("--markers", "NAME=SET.toml (a body name, then its marker set file)", &values(m, "markers"))? {
+    let mut routes: Vec<(Route, String)> =
+        pairs(&flag, "NAME=RIG (the name in the capture software, then the rig)", &values(m, "body"))?
+            .into_iter()
+            .map(|(body, rig)| (Route { body, segment: segment.clone(), fitter: None }, rig))
+            .collect();
+    for (name, path) in
+        pairs("--markers", "NAME=SET.toml (a body name, then its marker set file)", &values(m, "markers"))?
+    {
         let Some(route) = routes.iter_mut().find(|r| r.0.body == name) else {
             bail!("--markers {name}={path}: `{name}` is not one of the {flag} names")
         };

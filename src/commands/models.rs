@@ -1,5 +1,5 @@
 //! `impactd models`: the model registry, as the README and docs/club-files.md show it (generated from here by
-//! scripts/registry-docs.sh, and checked against it by tests/registry_docs.rs).
+//! scripts/registry-docs.sh, and checked against it by tests/cli/registry_docs.rs).
 
 use std::process::ExitCode;
 

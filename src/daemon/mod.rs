@@ -8,6 +8,7 @@ pub mod config_club;
 pub mod config_club_dirs;
 pub mod config_flight;
 pub mod config_pose;
+pub mod config_web;
 pub mod demo;
 pub mod inputs;
 pub mod live;

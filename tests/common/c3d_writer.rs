@@ -31,6 +31,6 @@ for row in data["frames"]:
 with open(sys.argv[2], "wb") as h:
     w.write(h)
 "#;
-    let out = crate::common::python().arg("-c").arg(script).arg(&json).arg(path).output().unwrap();
+    let out = super::common::python().arg("-c").arg(script).arg(&json).arg(path).output().unwrap();
     assert!(out.status.success(), "c3d writer: {}", String::from_utf8_lossy(&out.stderr));
 }

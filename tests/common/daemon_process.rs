@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use impactd::daemon::bus::free_loopback_port;
 use impactd::wire::{keys, LaunchPrediction, StatusMessage};
 
-use crate::common::Collected;
+use super::common::Collected;
 
 /// Each hostile case's bound on the daemon's resident set.
 pub const RSS_LIMIT_KB: u64 = 150 * 1024;
@@ -142,10 +142,10 @@ pub struct Rig {
 
 impl Rig {
     pub async fn start(d: &DaemonProcess, shots: u64) -> Rig {
-        let session = crate::common::client(&d.zenoh).await;
-        let (launches, s1) = crate::common::collect::<LaunchPrediction>(&session, &keys::launch("bay1"));
-        let (statuses, s2) = crate::common::collect::<StatusMessage>(&session, &keys::status("bay1"));
-        crate::common::wait_until(Duration::from_secs(10), || !statuses.lock().unwrap().is_empty()).await;
+        let session = super::common::client(&d.zenoh).await;
+        let (launches, s1) = super::common::collect::<LaunchPrediction>(&session, &keys::launch("bay1"));
+        let (statuses, s2) = super::common::collect::<StatusMessage>(&session, &keys::status("bay1"));
+        super::common::wait_until(Duration::from_secs(10), || !statuses.lock().unwrap().is_empty()).await;
         let sim = Command::new(env!("CARGO_BIN_EXE_impactd"))
             .args(["sim", "--rig", "bay1", "--shots", &shots.to_string(), "--interval", "0.2"])
             .args(["-e", &d.zenoh, "--no-multicast-scouting"])
@@ -165,7 +165,7 @@ impl Rig {
         let (status, rig) = sim.await.unwrap();
         assert!(status.success(), "sim: {status}");
         let launches = rig.launches.clone();
-        crate::common::wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= shots).await;
+        super::common::wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= shots).await;
         let got: Vec<f64> = rig.launches.lock().unwrap().iter().map(|l| l.latency_us).collect();
         assert_eq!(got.len(), shots, "every honest shot is predicted while the hostile peer runs");
         rig.session.close().await.unwrap();

@@ -3,15 +3,15 @@
 //! address a connect came from. Its bytes come from `impactd::mocap::natnet::encode`; the tests check them with
 //! OptiTrack's own Python client (`natnetsdk`).
 
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, dead_code)]
 
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use impactd::mocap::natnet::{self, Frame, ServerInfo, Version};
 use impactd::mocap::natnet::encode as natnet_encode;
+use impactd::mocap::natnet::{self, Frame, ServerInfo, Version};
 
 pub struct NatNetServer {
     pub port: u16,
@@ -111,7 +111,7 @@ impl NatNetServer {
     }
 
     /// Sends raw bytes to every client from another port of the server's address (a spoofer on its host).
-    #[allow(dead_code)] // tests/natnet.rs, tests/hostile_rigs.rs
+    #[allow(dead_code)] // tests/inputs/natnet.rs, tests/inputs/hostile_rigs.rs
     pub fn send_from_other_port(&self, bytes: &[u8]) {
         let other = UdpSocket::bind("127.0.0.1:0").unwrap();
         for c in self.state.lock().unwrap().clients.clone() {
@@ -128,7 +128,7 @@ impl NatNetServer {
     }
 
     /// Sends a frame with its labeled markers, and `markers` as the marker set `set_name`'s positions.
-    #[allow(dead_code)] // tests/natnet_markers.rs
+    #[allow(dead_code)] // tests/inputs/natnet_markers.rs
     pub fn send_marker_frame(&self, frame: &Frame, set_name: &str, markers: &[[f32; 3]]) {
         let version = self.state.lock().unwrap().version;
         self.send_raw(&natnet_encode::frame(version, frame, set_name, markers).unwrap());

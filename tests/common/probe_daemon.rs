@@ -128,8 +128,8 @@ impl Drop for DaemonProcess {
 pub struct SimRig {
     sim: Option<Child>,
     pub session: zenoh::Session,
-    pub launches: crate::common::Collected<LaunchPrediction>,
-    pub statuses: crate::common::Collected<StatusMessage>,
+    pub launches: super::common::Collected<LaunchPrediction>,
+    pub statuses: super::common::Collected<StatusMessage>,
     _subs: Vec<zenoh::pubsub::Subscriber<()>>,
 }
 
@@ -138,15 +138,15 @@ impl SimRig {
     pub async fn listen(endpoints: &[&str], rig: &str) -> SimRig {
         let args = impactd::daemon::bus::ZenohArgs::loopback(vec![], endpoints.iter().map(|e| e.to_string()).collect());
         let session = args.open().await.unwrap();
-        let (launches, s1) = crate::common::collect::<LaunchPrediction>(&session, &keys::launch(rig));
-        let (statuses, s2) = crate::common::collect::<StatusMessage>(&session, &keys::status(rig));
+        let (launches, s1) = super::common::collect::<LaunchPrediction>(&session, &keys::launch(rig));
+        let (statuses, s2) = super::common::collect::<StatusMessage>(&session, &keys::status(rig));
         SimRig { sim: None, session, launches, statuses, _subs: vec![s1, s2] }
     }
 
     /// Waits (up to 20 s: a hang guard) for the rig's status, so the daemon serves it.
     pub async fn wait_served(&self) {
         let statuses = self.statuses.clone();
-        let served = crate::common::wait_until(Duration::from_secs(20), || !statuses.lock().unwrap().is_empty()).await;
+        let served = super::common::wait_until(Duration::from_secs(20), || !statuses.lock().unwrap().is_empty()).await;
         assert!(served, "the daemon never published the rig's status");
     }
 
@@ -180,7 +180,7 @@ impl SimRig {
             assert!(status.success(), "sim: {status}");
         }
         let launches = self.launches.clone();
-        crate::common::wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= shots).await;
+        super::common::wait_until(Duration::from_secs(10), || launches.lock().unwrap().len() >= shots).await;
         // A moment for a doubled prediction, were there one, to arrive too.
         tokio::time::sleep(Duration::from_millis(300)).await;
         self.launches.lock().unwrap().iter().map(|l| l.latency_us).collect()

@@ -4,7 +4,7 @@
 //! then data packets to every streaming client. Its bytes come from `impactd::mocap::qtm::encode`; the tests
 //! check them with Qualisys' own Python SDK (`qtm-rt`).
 
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, dead_code)]
 
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
@@ -12,8 +12,8 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use impactd::mocap::qtm::{self, Frame6d};
 use impactd::mocap::qtm::encode as qtm_encode;
+use impactd::mocap::qtm::{self, Frame6d};
 
 struct Conn {
     stream: TcpStream,

@@ -20,7 +20,8 @@ use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{host_port, names, protocol, Protocol, Source};
+use super::protocol::{host_port, Protocol, Source};
+use super::registry::{names, protocol};
 use crate::daemon::DaemonError;
 
 /// The keys every protocol's `[rig.input]` has (beside its body key).
@@ -69,14 +70,19 @@ fn note_deprecated(key: &'static str, server: &str) {
 impl MocapInputConfig {
     /// The protocol, or why the name is not one.
     pub fn protocol(&self) -> Result<&'static dyn Protocol, (String, String)> {
-        protocol(&self.protocol)
-            .ok_or_else(|| ("protocol".into(), format!("`{}` is not a protocol impactd reads ({})", self.protocol, names())))
+        protocol(&self.protocol).ok_or_else(|| {
+            ("protocol".into(), format!("`{}` is not a protocol impactd reads ({})", self.protocol, names()))
+        })
     }
 
     /// Reads a `[rig.input]` table; what is wrong is kept for [`MocapInputConfig::source`] to say.
     pub fn from_table(t: toml::Table) -> Self {
         let raw = t.clone();
-        Self::read(t).unwrap_or_else(|invalid| MocapInputConfig { options: raw, invalid: Some(invalid), ..Self::default() })
+        Self::read(t).unwrap_or_else(|invalid| MocapInputConfig {
+            options: raw,
+            invalid: Some(invalid),
+            ..Self::default()
+        })
     }
 
     fn read(mut t: toml::Table) -> Result<Self, (String, String)> {
@@ -111,7 +117,7 @@ impl MocapInputConfig {
             (None, [a, b, ..]) => return e(a.name(), format!("and `{}` exclude each other", b.name())),
             (None, []) => return e("protocol", format!("must name the server's protocol ({})", names())),
         };
-        let key = super::protocol::protocol(&protocol).map_or("body", |p| p.body_key());
+        let key = super::registry::protocol(&protocol).map_or("body", |p| p.body_key());
         let Some(body) = text(&mut t, key)? else { return e(key, "must name the tracked body".into()) };
         Ok(MocapInputConfig {
             protocol,

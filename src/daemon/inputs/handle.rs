@@ -7,7 +7,8 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
 use super::config::resolve;
-use super::protocol::{protocol, Protocol, Route, Source, Start};
+use super::protocol::{Protocol, Route, Source, Start};
+use super::registry::protocol;
 use super::shared::{lock, Conn, Deliver, Shared};
 use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
@@ -158,4 +159,3 @@ fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
     out.exposure_to_transmit_p99_us = (p99 > 0.0).then_some(p99);
     out
 }
-

@@ -10,11 +10,13 @@ pub mod natnet;
 pub mod protocol;
 pub mod publish;
 pub mod qtm;
+pub mod registry;
 pub mod shared;
 pub mod vicon;
 
 pub use config::MocapInputConfig;
 pub use handle::{InputHandle, StatusSource};
-pub use protocol::{Protocol, Route, Source, PROTOCOLS};
+pub use protocol::{Protocol, Route, Source};
 pub use publish::{run_bridge, run_bridge_fitted, run_bridge_routes, run_bridge_with_balls};
+pub use registry::PROTOCOLS;
 pub use shared::Deliver;

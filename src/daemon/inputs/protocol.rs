@@ -1,5 +1,5 @@
 //! The seam every motion-capture protocol implements: its name in `[rig.input] protocol` and `impactd bridge`,
-//! its own `[rig.input]` keys and bridge flags, and how its client starts. [`PROTOCOLS`] lists them; a new
+//! its own `[rig.input]` keys and bridge flags, and how its client starts. [`super::registry::PROTOCOLS`] lists them; a new
 //! protocol is its folder (codec in `crate::mocap`, client here) and one entry there.
 
 use std::net::SocketAddr;
@@ -96,23 +96,9 @@ pub trait Protocol: Sync {
     fn start(&self, start: Start) -> Result<Vec<JoinHandle<()>>, DaemonError>;
 }
 
-/// Every protocol impactd reads.
-pub static PROTOCOLS: &[&dyn Protocol] =
-    &[&super::natnet::protocol::NatNet, &super::qtm::protocol::Qtm, &super::vicon::protocol::Vicon];
-
-/// The protocol named `name`.
-pub fn protocol(name: &str) -> Option<&'static dyn Protocol> {
-    protocol_in(PROTOCOLS, name)
-}
-
-/// The protocol named `name` in a list of entries like [`PROTOCOLS`] (a test's own, with a toy protocol).
+/// The protocol named `name` in a list of entries like [`super::registry::PROTOCOLS`] (a test's own, with a toy protocol).
 pub fn protocol_in(list: &[&'static dyn Protocol], name: &str) -> Option<&'static dyn Protocol> {
     list.iter().copied().find(|p| p.name() == name)
-}
-
-/// Every protocol's name, for messages.
-pub fn names() -> String {
-    PROTOCOLS.iter().map(|p| p.name()).collect::<Vec<_>>().join(", ")
 }
 
 /// `HOST[:PORT]` split (a trailing `:digits` is the port).

@@ -16,6 +16,8 @@ pub const POLL: Duration = Duration::from_millis(100);
 /// Reconnection back-off: from the first to the last, doubling.
 pub const BACKOFF_FIRST: Duration = Duration::from_millis(250);
 pub const BACKOFF_LAST: Duration = Duration::from_secs(4);
+/// A connected server silent this long is connected to again (every protocol's client).
+pub const QUIET: Duration = Duration::from_secs(3);
 
 /// Hands a body's sample on (to a rig's queue, or to zenoh); `route` indexes the client's bodies.
 pub type Deliver = Box<dyn FnMut(usize, &BodySample, Instant) + Send>;

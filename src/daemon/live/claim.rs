@@ -171,7 +171,8 @@ pub async fn declare(
                 let handing_over = request.take_over;
                 let answer = serde_json::to_vec(&ServeAnswer { from: me_q.clone(), handing_over }).unwrap_or_default();
                 if let Err(e) = query.reply(key.clone(), answer).wait() {
-                    peer(&log_q).warn("serve_answer_failed", || format!("rig {rig_q}: answering {}: {e}", request.from));
+                    peer(&log_q)
+                        .warn("serve_answer_failed", || format!("rig {rig_q}: answering {}: {e}", request.from));
                 }
                 if !handing_over {
                     peer(&log_q).warn("serve_refused", || {

@@ -49,7 +49,7 @@ pub(super) async fn start(
     routes: &HashMap<String, Route>,
 ) -> Result<ClubLoader, DaemonError> {
     let (tx, rx) = sync_channel::<Put>(PENDING_PUTS);
-    let dirs = config.club_dirs()?;
+    let dirs = crate::daemon::config_club_dirs::club_dirs(config.clubs.as_ref(), config.config_dir.as_deref())?;
     tracing::info!(
         "club puts name a preset or a club file under: {}",
         if dirs.is_empty() {

@@ -87,7 +87,6 @@ pub fn load(path: &Path) -> Result<ReplayInput, DaemonError> {
 impl ReplaySource for ReplayInput {
     fn index(&self) -> Cow<'_, ReplayIndex> {
         let mut index = ReplayIndex {
-            recorded_launches: self.recorded_launches.iter().map(|b| super::items::digest(b)).collect(),
             renamed_models: self.renamed_models.clone(),
             recorded_latency_us: self.recorded_latency_us.clone(),
             config_toml: self.config_toml.clone(),
@@ -96,6 +95,9 @@ impl ReplaySource for ReplayInput {
             skipped: self.skipped,
             ..ReplayIndex::default()
         };
+        for b in &self.recorded_launches {
+            index.add_launch(b, None);
+        }
         for (i, msg) in self.samples.iter().enumerate() {
             index.add_sample(&msg.rig, msg.t_ns, self.log_time_ns.get(i).copied());
         }

@@ -311,10 +311,10 @@ pub async fn run(
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
                     let bytes = rig.sinks.launch(l, log_time_ns);
-                    on_event(e, &bytes);
                     if index.reproduces(produced, l, &bytes) {
                         reproduced += 1;
                     }
+                    on_event(e, &bytes);
                     produced += 1;
                 }
                 Event::Impact(m) => {

@@ -2,10 +2,8 @@
 //! side the test servers and benchmarks use. The layouts are those `natnet.rs` reads; OptiTrack's Python
 //! client (`natnetsdk`) checks them in the tests.
 
+use super::{Frame, ServerInfo, Version, NAT_CONNECT, NAT_FRAMEOFDATA, NAT_MODELDEF, NAT_SERVERINFO, RIGID_BODY_BYTES};
 use crate::mocap::bytes::Writer;
-use super::{
-    Frame, ServerInfo, Version, NAT_CONNECT, NAT_FRAMEOFDATA, NAT_MODELDEF, NAT_SERVERINFO, RIGID_BODY_BYTES,
-};
 
 /// Header + payload; `None` when the payload is over the `u16` count NatNet can describe.
 fn packet(id: u16, payload: &[u8]) -> Option<Vec<u8>> {

@@ -15,8 +15,9 @@
 use crate::kinematics::{MarkerFitter, MarkerSet};
 use crate::math::Vector3;
 
+use super::sample::natnet_sample;
 use super::{Frame, ModelDef, RigidBody};
-use crate::mocap::track::{natnet_sample, BodySample};
+use crate::mocap::track::BodySample;
 
 /// Where each marker of a set is among Motive's labelled markers.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -104,8 +105,8 @@ pub fn natnet_fitted_sample(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mocap::natnet::{MarkerSetDef, RigidBodyDef};
     use crate::mocap::natnet::markers::{LabeledMarker, OCCLUDED, POINT_CLOUD_SOLVED};
+    use crate::mocap::natnet::{MarkerSetDef, RigidBodyDef};
 
     fn set() -> MarkerSet {
         MarkerSet::from_toml(

@@ -28,10 +28,11 @@ pub mod descriptions;
 pub mod encode;
 pub mod fit;
 pub mod markers;
+pub mod sample;
 
-use super::bytes::{Reader, Truncated};
 use self::descriptions::DescriptionError;
 use self::markers::{LabeledMarker, LABELED_MARKER_BYTES};
+use super::bytes::{Reader, Truncated};
 
 pub const NAT_CONNECT: u16 = 0;
 pub const NAT_SERVERINFO: u16 = 1;

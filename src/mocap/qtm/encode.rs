@@ -1,11 +1,11 @@
 //! QTM real-time packets as QTM (the server) or a client writes them: the commands the bridge sends, and the
 //! server side the test servers and benchmarks use. Qualisys' Python SDK (`qtm-rt`) checks them in the tests.
 
-use crate::mocap::bytes::Writer;
 use super::{
     Body6d, Frame6d, COMPONENT_3D, COMPONENT_6D, COMPONENT_6D_RES, HEADER_BYTES, PACKET_COMMAND, PACKET_DATA,
     PACKET_ERROR, PACKET_EVENT, PACKET_NO_MORE_DATA, PACKET_XML,
 };
+use crate::mocap::bytes::Writer;
 
 fn packet(kind: u32, body: &[u8]) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER_BYTES + body.len());

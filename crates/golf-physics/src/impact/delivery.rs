@@ -160,7 +160,7 @@ pub struct DeliveryMetrics {
     /// docs/estimation.md): on every impact a rig estimates from frames; absent for a delivery typed in, an
     /// estimator that leaves no residual (`linear2`) and recordings made before it was published.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub uncertainty: Option<super::uncertainty::DeliveryUncertainty>,
+    pub uncertainty: Option<super::sigmas::DeliveryUncertainty>,
 }
 
 /// TrackMan's club data of the path (docs/club-data.md): the plane of the face centre's path over the last

@@ -16,6 +16,7 @@ mod launch;
 pub mod registry;
 pub mod report;
 pub mod sanity;
+pub mod sigmas;
 pub mod tour;
 pub mod uncertainty;
 
@@ -141,7 +142,7 @@ pub struct Launch {
     pub club_velocity_mps: Vector3,
     pub club_angular_velocity_radps: Vector3,
     /// Impulse on the ball (N s, world).
-    pub impulse_ns: Vector3,
+    pub impulse_n_s: Vector3,
 }
 
 /// A model of the club-ball collision. Choosing a model is configuration: every model implements this, with one

@@ -24,28 +24,7 @@ pub struct DeliveryCovariance {
     pub cov: SMatrix<DELIVERY_PARAMETERS, DELIVERY_PARAMETERS>,
 }
 
-/// One-sigma standard deviations of a delivery's numbers, under the delivery's own field names.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
-pub struct DeliveryUncertainty {
-    pub club_speed_mph: Real,
-    pub attack_angle_deg: Real,
-    pub club_path_deg: Real,
-    pub face_angle_deg: Real,
-    pub dynamic_loft_deg: Real,
-    pub face_to_path_deg: Real,
-    pub impact_h_mm: Real,
-    pub impact_v_mm: Real,
-}
-
-/// One-sigma standard deviations of a launch's numbers, under the launch's own field names.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
-pub struct LaunchUncertainty {
-    pub ball_speed_mph: Real,
-    pub launch_angle_deg: Real,
-    pub launch_direction_deg: Real,
-    pub total_spin_rpm: Real,
-    pub spin_axis_deg: Real,
-}
+pub use super::sigmas::{DeliveryUncertainty, LaunchUncertainty};
 
 impl DeliveryCovariance {
     /// The standard deviations of the delivery's numbers.
@@ -178,9 +157,11 @@ pub fn linearised<'a>(
     if model.linearises_itself() {
         return std::sync::Arc::clone(model);
     }
-    models.iter().find(|m| m.linearises_itself()).map(std::sync::Arc::clone).unwrap_or_else(|| {
-        std::sync::Arc::new(super::ImpulseModel::new(super::ImpulseVariant::Adjusted))
-    })
+    models
+        .iter()
+        .find(|m| m.linearises_itself())
+        .map(std::sync::Arc::clone)
+        .unwrap_or_else(|| std::sync::Arc::new(super::ImpulseModel::new(super::ImpulseVariant::Adjusted)))
 }
 
 #[cfg(test)]

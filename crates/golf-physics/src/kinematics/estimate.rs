@@ -12,7 +12,8 @@
 //!   the wrist uncocks, it may not).
 
 use super::arc::ArcFit;
-use super::fit::{PathSpeedFit, PoseFit, PoseSeries, TimedPose};
+use super::fit::{PoseFit, PoseSeries, TimedPose};
+use super::path_speed::PathSpeedFit;
 use super::sample::ClubPose;
 use crate::face::Face;
 use crate::impact::ImpactState;

@@ -8,8 +8,7 @@
 use super::so3;
 use crate::math::{Real, UnitQuaternion, Vector3};
 
-/// The highest polynomial degree supported.
-pub const MAX_DEGREE: usize = 5;
+pub use super::normal_factor::{NormalFactor, MAX_DEGREE};
 
 /// One pose at a time relative to the fit's reference (s).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,97 +45,10 @@ pub struct PoseAt {
     pub angular_velocity_radps: Vector3,
 }
 
-/// The Cholesky factor `L` of a polynomial fit's normal matrix (`AᵀA = L Lᵀ`, `A` the powers of the normalised
-/// times), kept with the fit so that its coefficients' covariance `σ² (AᵀA)⁻¹` (white noise of variance `σ²` per
-/// axis) gives the covariance of the fitted value and slope anywhere, extrapolated too
-/// (`kinematics::uncertainty`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NormalFactor {
-    l: [[Real; MAX_DEGREE + 1]; MAX_DEGREE + 1],
-    /// Coefficients (degree + 1).
-    coefficients: usize,
-    /// Frames fitted.
-    frames: usize,
-}
-
-impl NormalFactor {
-    const EMPTY: NormalFactor = NormalFactor { l: [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1], coefficients: 0, frames: 0 };
-
-    /// The residual's degrees of freedom per axis (frames minus coefficients).
-    pub fn dof(&self) -> usize {
-        self.frames.saturating_sub(self.coefficients)
-    }
-
-    /// Frames fitted.
-    pub fn frames(&self) -> usize {
-        self.frames
-    }
-
-    /// Per unit noise variance: the variance of the fitted value at `tau`, its covariance with the slope (per unit
-    /// of `tau`) and the slope's variance, `[φᵀMφ, φᵀMφ', φ'ᵀMφ']` with `M = (AᵀA)⁻¹`, `φ = (1, τ, τ², ...)`.
-    pub fn value_slope(&self, tau: Real) -> [Real; 3] {
-        let m = self.coefficients;
-        let mut phi = [0.0; MAX_DEGREE + 1];
-        let mut dphi = [0.0; MAX_DEGREE + 1];
-        let mut tk = 1.0;
-        for k in 0..m {
-            phi[k] = tk;
-            if k + 1 < m {
-                dphi[k + 1] = (k + 1) as Real * tk;
-            }
-            tk *= tau;
-        }
-        // Forward substitution: L a = φ, L b = φ', so φᵀMφ = a·a.
-        let (mut a, mut b) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
-        for i in 0..m {
-            let (mut sa, mut sb) = (phi[i], dphi[i]);
-            for k in 0..i {
-                sa -= self.l[i][k] * a[k];
-                sb -= self.l[i][k] * b[k];
-            }
-            a[i] = sa / self.l[i][i];
-            b[i] = sb / self.l[i][i];
-        }
-        let dot = |x: &[Real], y: &[Real]| x.iter().zip(y).take(m).map(|(p, q)| p * q).sum::<Real>();
-        [dot(&a, &a), dot(&a, &b), dot(&b, &b)]
-    }
-
-    /// The least-squares coefficients of `values` at `tau` (the times this factor was made from) by the factor:
-    /// `Lᵀ c = L⁻¹ Aᵀ y`.
-    fn solve(&self, tau: &[Real], values: &[Vector3]) -> [Vector3; MAX_DEGREE + 1] {
-        let m = self.coefficients;
-        let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
-        for (&t, y) in tau.iter().zip(values) {
-            let mut tk = 1.0;
-            for a in aty.iter_mut().take(m) {
-                *a += tk * y;
-                tk *= t;
-            }
-        }
-        let mut z = [Vector3::zeros(); MAX_DEGREE + 1];
-        for i in 0..m {
-            let mut s = aty[i];
-            for k in 0..i {
-                s -= self.l[i][k] * z[k];
-            }
-            z[i] = s / self.l[i][i];
-        }
-        let mut c = [Vector3::zeros(); MAX_DEGREE + 1];
-        for i in (0..m).rev() {
-            let mut s = z[i];
-            for k in i + 1..m {
-                s -= self.l[k][i] * c[k];
-            }
-            c[i] = s / self.l[i][i];
-        }
-        c
-    }
-}
-
 /// Fits `values` (one per frame) at normalised times `tau` with a polynomial of `degree` by least squares
 /// (normal equations; the times are scaled to [-1, 0] so they stay well conditioned for degree <= 5). Returns the
 /// RMS residual; `factor` receives the normal matrix's Cholesky factor.
-fn poly_fit(
+pub(super) fn poly_fit(
     tau: &[Real],
     values: &[Vector3],
     degree: usize,
@@ -235,7 +147,7 @@ fn eval(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> Vector3 {
 }
 
 #[inline]
-fn eval_derivative(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> Vector3 {
+pub(super) fn eval_derivative(c: &[Vector3; MAX_DEGREE + 1], degree: usize, tau: Real) -> Vector3 {
     if degree == 0 {
         return Vector3::zeros();
     }
@@ -447,96 +359,6 @@ impl PoseFit {
     fn noise(factor: &NormalFactor, residual_rms: Real) -> (Real, usize) {
         let dof = 3 * factor.dof();
         let ss = residual_rms * residual_rms * factor.frames() as Real;
-        (if dof > 0 { ss / dof as Real } else { 0.0 }, dof)
-    }
-}
-
-/// The speed along a path from its chords: the cumulative chord length `s_k = Σ |p_i − p_{i−1}|` of the frames
-/// (oldest first) is fitted with a polynomial in time and differentiated. The speed of a clubhead near impact
-/// changes slowly while its direction turns fast (100-200 g of centripetal acceleration), so a low degree fits
-/// `s(t)` over a long span where a Cartesian fit needs a high degree to follow the curvature; the long span and
-/// low degree average the noise along the path. A chord is shorter than its arc by `Δφ²/24` for a turn of `Δφ`
-/// (5e-5 at 720 Hz on a 1.5 m arc, 7e-4 at 240 Hz), so each chord is lengthened by that factor, with `Δφ` the
-/// mean turning angle between it and its neighbours; the noise across the path lengthens a chord by about
-/// `σ²/|Δp|` (1e-5 at 720 Hz), far below the noise averaged away.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PathSpeedFit {
-    t_ref_s: Real,
-    scale_s: Real,
-    coeffs: [Vector3; MAX_DEGREE + 1],
-    degree: usize,
-    /// RMS residual of the arc-length fit (m).
-    pub residual_rms_m: Real,
-    /// The fit's normal factor, for its covariance.
-    pub factor: NormalFactor,
-}
-
-impl PathSpeedFit {
-    /// Fits `degree` to the chords of `poses` (oldest first, at least `degree + 2` of them).
-    pub fn fit(poses: &[TimedPose], degree: usize) -> Option<PathSpeedFit> {
-        let n = poses.len();
-        if n < degree + 2 || n > 64 || degree > MAX_DEGREE {
-            return None;
-        }
-        let t_ref_s = poses[n - 1].t_s;
-        let scale_s = (t_ref_s - poses[0].t_s).max(1e-6);
-        let mut tau = [0.0; 64];
-        let mut s = [Vector3::zeros(); 64];
-        // chords[i] from frame i to i + 1, its length, and turns[i] between chords i and i + 1 (at frame i + 1).
-        let mut chords = [Vector3::zeros(); 64];
-        let mut lengths = [0.0; 64];
-        let mut turns = [0.0; 64];
-        for i in 0..n - 1 {
-            chords[i] = poses[i + 1].position_m - poses[i].position_m;
-            lengths[i] = chords[i].norm();
-        }
-        for i in 0..n.saturating_sub(2) {
-            let norms = lengths[i] * lengths[i + 1];
-            let (sin, cos) = (chords[i].cross(&chords[i + 1]).norm() / norms, chords[i].dot(&chords[i + 1]) / norms);
-            // A few degrees between frames: asin by its series (to 2e-6 relative below 0.3).
-            turns[i] = if cos > 0.0 && sin < 0.3 {
-                let s2 = sin * sin;
-                sin * (1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * 15.0 / 336.0)))
-            } else {
-                sin.atan2(cos)
-            };
-        }
-        let mut length = 0.0;
-        for i in 0..n {
-            if i > 0 {
-                // Chord i − 1 joins frames i − 1 and i; its turning angle is the mean of the turns at its ends.
-                let dphi = match (i > 1, i + 1 < n) {
-                    (true, true) => 0.5 * (turns[i - 2] + turns[i - 1]),
-                    (true, false) => turns[i - 2],
-                    (false, true) => turns[i - 1],
-                    (false, false) => 0.0,
-                };
-                length += lengths[i - 1] * (1.0 + dphi * dphi / 24.0);
-            }
-            tau[i] = (poses[i].t_s - t_ref_s) / scale_s;
-            s[i] = Vector3::new(length, 0.0, 0.0);
-        }
-        let mut coeffs = [Vector3::zeros(); MAX_DEGREE + 1];
-        let mut factor = NormalFactor::EMPTY;
-        let residual_rms_m = poly_fit(&tau[..n], &s[..n], degree, &mut coeffs, &mut factor)?;
-        Some(PathSpeedFit { t_ref_s, scale_s, coeffs, degree, residual_rms_m, factor })
-    }
-
-    /// Speed along the path (m/s) at `t_s`.
-    pub fn speed_mps(&self, t_s: Real) -> Real {
-        eval_derivative(&self.coeffs, self.degree, (t_s - self.t_ref_s) / self.scale_s).x / self.scale_s
-    }
-
-    /// The speed's variance per unit noise variance along the path at `t_s` (1/s²).
-    pub fn speed_form(&self, t_s: Real) -> Real {
-        self.factor.value_slope((t_s - self.t_ref_s) / self.scale_s)[2] / (self.scale_s * self.scale_s)
-    }
-
-    /// The noise variance along the path from the fit's residual (m²; white, the chords' shared first endpoint
-    /// being the constant coefficient's) and its degrees of freedom.
-    pub fn noise(&self) -> (Real, usize) {
-        let dof = self.factor.dof();
-        let ss = self.residual_rms_m.powi(2) * self.factor.frames() as Real;
         (if dof > 0 { ss / dof as Real } else { 0.0 }, dof)
     }
 }

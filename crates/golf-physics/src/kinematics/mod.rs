@@ -11,6 +11,8 @@ pub mod estimate;
 pub mod fit;
 pub mod marker_fit;
 pub mod marker_set;
+pub mod normal_factor;
+pub mod path_speed;
 pub mod sample;
 pub mod so3;
 mod spec;

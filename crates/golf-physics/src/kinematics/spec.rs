@@ -33,7 +33,7 @@ pub struct EstimatorSpec {
     pub window_ms: Option<Real>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation_window_ms: Option<Real>,
-    /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`](super::fit::PathSpeedFit)) and the
+    /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`](super::path_speed::PathSpeedFit)) and the
     /// velocity's direction from the position fit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_speed: Option<PathSpeedSpec>,
@@ -70,7 +70,7 @@ impl EstimatorSpec {
 
     /// Least squares over the last 44 ms of the face centre's path (degree up to 5), the
     /// last 39 ms of the orientation (degree up to 3) and, for the club speed, the last 40 ms of the path length
-    /// (cubic, [`PathSpeedFit`](super::fit::PathSpeedFit)). The spans were chosen with
+    /// (cubic, [`PathSpeedFit`](super::path_speed::PathSpeedFit)). The spans were chosen with
     /// `impactd eval extrapolation` at 240, 720 and 1000 Hz (README).
     pub fn poly() -> Self {
         EstimatorSpec {

@@ -365,7 +365,8 @@ impl Pipeline {
                         let j = if m.linearises_itself() {
                             jacobian(m.as_ref())
                         } else {
-                            *shared_jacobian.get_or_insert_with(|| jacobian(linearised(&m, &self.setup.models).as_ref()))
+                            *shared_jacobian
+                                .get_or_insert_with(|| jacobian(linearised(&m, &self.setup.models).as_ref()))
                         };
                         j.map(|j| j.uncertainty(&u.delivery))
                     });

@@ -15,7 +15,7 @@
 //! size, a `DeviceID`'s length and the devices remembered for repeats. Rejections are counted by kind in the
 //! status and logged at most once a second per kind.
 //! Received bytes are acknowledged at once (`TCP_QUICKACK`), so a connector's shot split over several writes
-//! is not held back 40 ms by Nagle's algorithm waiting on a delayed ACK (`tests/live_comparison.rs`).
+//! is not held back 40 ms by Nagle's algorithm waiting on a delayed ACK (`tests/daemon/live_comparison.rs`).
 
 use std::collections::HashMap;
 use std::net::SocketAddr;

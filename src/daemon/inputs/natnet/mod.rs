@@ -25,14 +25,15 @@ use std::time::{Duration, Instant};
 use super::shared::{lock, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::DaemonError;
 use crate::kinematics::MarkerFitter;
-use crate::mocap::natnet::{self, Frame, Version};
 use crate::mocap::natnet::encode as natnet_encode;
 use crate::mocap::natnet::fit::{label_map, natnet_fitted_sample, LabelMap};
-use crate::mocap::track::{natnet_sample, BodyTrack, Sequence};
+use crate::mocap::natnet::sample::natnet_sample;
+use crate::mocap::natnet::{self, Frame, Version};
+use crate::mocap::track::{BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 
 /// A connected server silent this long is connected to again.
-pub const QUIET: Duration = Duration::from_secs(3);
+pub use super::shared::QUIET;
 const KEEPALIVE: Duration = Duration::from_secs(1);
 /// At most one model request per this long.
 const MODEL_REQUEST_EVERY: Duration = Duration::from_secs(1);

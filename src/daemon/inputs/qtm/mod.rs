@@ -18,8 +18,8 @@ use std::time::{Duration, Instant};
 use super::shared::{lock, sleep_unless_stopped, Shared, BACKOFF_FIRST, BACKOFF_LAST, POLL};
 use crate::daemon::{peer_log, DaemonError};
 use crate::kinematics::MarkerFitter;
-use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
 use crate::mocap::qtm::encode as qtm_encode;
+use crate::mocap::qtm::{self, Frame6d, QtmError, HEADER_BYTES};
 use crate::mocap::track::{self, qtm_sample, BodyTrack, Sequence};
 use crate::wire::ConnectionState;
 
@@ -28,8 +28,8 @@ const REPLY_WAIT: Duration = Duration::from_secs(5);
 
 /// While streaming, a connection silent this long is asked for QTM's version (any packet is a sign of life).
 pub const PROBE_AFTER: Duration = Duration::from_secs(1);
-/// While streaming, a connection silent this long is ended and connected again (NatNet's [`super::natnet::QUIET`]).
-pub const QUIET: Duration = super::natnet::QUIET;
+/// While streaming, a connection silent this long is ended and connected again (NatNet's [`super::shared::QUIET`]).
+pub const QUIET: Duration = super::shared::QUIET;
 
 /// Events after which the body list may have changed: ask for the parameters again.
 const EVENTS_REMAP: [u8; 4] = [3, 7, 8, 11];

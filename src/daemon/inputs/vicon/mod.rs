@@ -29,8 +29,8 @@ const GREETING_WAIT: Duration = Duration::from_secs(5);
 /// How often the client pings.
 const PING_EVERY: Duration = Duration::from_secs(1);
 /// While streaming, a connection silent this long (no frame, no answer to the pings) is ended and connected
-/// again (NatNet's [`super::natnet::QUIET`]).
-pub const QUIET: Duration = super::natnet::QUIET;
+/// again (NatNet's [`super::shared::QUIET`]).
+pub const QUIET: Duration = super::shared::QUIET;
 
 /// Starts the client thread for `routes`.
 pub fn start(

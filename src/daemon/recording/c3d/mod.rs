@@ -14,7 +14,7 @@
 //! loses the file. This reader holds one frame at a time (a 2 GB file streams through in constant memory), keeps
 //! the frames before a truncation, and reads exactly what `import` needs: labels, units, rate and the residual
 //! words. It handles the three processor formats (Intel, DEC, SGI/MIPS) and integer and float data; it is tested
-//! on c3d.org's sample files of every vendor (`tests/c3d_files.rs`).
+//! on c3d.org's sample files of every vendor (`tests/inputs/c3d_files.rs`).
 
 mod numbers;
 pub mod params;

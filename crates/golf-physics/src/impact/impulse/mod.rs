@@ -162,7 +162,7 @@ pub struct ContactProblem {
 /// Velocities after the collision and the impulse on the ball.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactSolution {
-    pub impulse_ns: Vector3,
+    pub impulse_n_s: Vector3,
     pub club_velocity_mps: Vector3,
     pub club_angular_velocity_radps: Vector3,
     pub ball_velocity_mps: Vector3,
@@ -219,7 +219,7 @@ pub fn solve(p: &ContactProblem) -> Result<ContactSolution, ImpactError> {
         impulse = impulse_for(&Vector3::new(lo, p.restitution.y, p.restitution.z)).ok_or(ImpactError::Singular)?;
     }
     Ok(ContactSolution {
-        impulse_ns: impulse,
+        impulse_n_s: impulse,
         club_velocity_mps: p.club_velocity_mps - impulse / p.club_mass_kg,
         club_angular_velocity_radps: p.club_angular_velocity_radps - p.club_inertia_inv * p.r_club_m.cross(&impulse),
         ball_velocity_mps: p.ball_velocity_mps + impulse / p.ball_mass_kg,
@@ -290,7 +290,7 @@ impl ImpactModel for ImpulseModel {
             ball_spin_radps: s.ball_angular_velocity_radps,
             club_velocity_mps: s.club_velocity_mps,
             club_angular_velocity_radps: s.club_angular_velocity_radps,
-            impulse_ns: s.impulse_ns,
+            impulse_n_s: s.impulse_n_s,
         })
     }
 }

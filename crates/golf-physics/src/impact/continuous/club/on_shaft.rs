@@ -39,15 +39,15 @@ pub struct ShaftClub<'a> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShaftClubState {
     pub shaft: ModalState,
-    pub j_ball_ns: Vector3,
-    pub j_ground_ns: Vector3,
-    pub j_grip_ns: Vector3,
+    pub j_ball_n_s: Vector3,
+    pub j_ground_n_s: Vector3,
+    pub j_grip_n_s: Vector3,
 }
 
 impl Default for ShaftClubState {
     fn default() -> Self {
         let zero = Vector3::zeros();
-        ShaftClubState { shaft: ModalState::default(), j_ball_ns: zero, j_ground_ns: zero, j_grip_ns: zero }
+        ShaftClubState { shaft: ModalState::default(), j_ball_n_s: zero, j_ground_n_s: zero, j_grip_n_s: zero }
     }
 }
 
@@ -80,7 +80,7 @@ impl ShaftClub<'_> {
     }
 
     /// The club's linear momentum (N s, world) in state `s` at `t_s`.
-    pub fn momentum_ns(&self, s: &ShaftClubState, t_s: Real) -> Vector3 {
+    pub fn momentum_n_s(&self, s: &ShaftClubState, t_s: Real) -> Vector3 {
         let rigid = self.motion(s, t_s).rigid;
         self.rigid_momentum_and_force(&rigid).0 + self.elastic_frame * self.modal.momentum(&s.shaft)
     }
@@ -185,9 +185,9 @@ impl SteppedClub for ShaftClub<'_> {
         );
         ShaftClubState {
             shaft,
-            j_ball_ns: s.j_ball_ns + c(r1.f_ball_n, r2.f_ball_n, r3.f_ball_n, r4.f_ball_n),
-            j_ground_ns: s.j_ground_ns + c(r1.f_ground_n, r2.f_ground_n, r3.f_ground_n, r4.f_ground_n),
-            j_grip_ns: s.j_grip_ns
+            j_ball_n_s: s.j_ball_n_s + c(r1.f_ball_n, r2.f_ball_n, r3.f_ball_n, r4.f_ball_n),
+            j_ground_n_s: s.j_ground_n_s + c(r1.f_ground_n, r2.f_ground_n, r3.f_ground_n, r4.f_ground_n),
+            j_grip_n_s: s.j_grip_n_s
                 + (c(r1.f_grip_rigid_n, r2.f_grip_rigid_n, r3.f_grip_rigid_n, r4.f_grip_rigid_n)
                     + self.elastic_frame * clamp),
         }

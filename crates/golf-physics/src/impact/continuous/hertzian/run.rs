@@ -105,7 +105,7 @@ pub(super) fn run<T: Tangential>(
             ball_spin_radps: asm.ball.spin(&s.ball),
             club_velocity_mps: head.velocity_mps,
             club_angular_velocity_radps: head.angular_velocity_radps,
-            impulse_ns: m_b_kg * v_b,
+            impulse_n_s: m_b_kg * v_b,
         },
         contact_time_s: t_s,
         peak_normal_force_n: policy.peak_normal_n,

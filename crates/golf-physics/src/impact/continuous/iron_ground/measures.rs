@@ -36,7 +36,7 @@ pub(super) struct Measures {
     pub speed_loss_mps: Real,
     pub face_change_deg: Real,
     pub loft_change_deg: Real,
-    pub ground_impulse_before_ball_ns: Vector3,
+    pub ground_impulse_before_ball_n_s: Vector3,
     last: Option<GroundSample>,
 }
 

@@ -74,8 +74,8 @@ pub struct GroundModel {
 
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
-    /// 48 elements, tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
-    /// ball speed < 2e-5 and spin < 6e-4, tests/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
+    /// 48 elements, tests/physics/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
+    /// ball speed < 2e-5 and spin < 6e-4, tests/physics/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
     /// in speed and 7e-6 in spin, divot length within 0.35 %, contact time and peak force within 0.15 %; classical
     /// Runge-Kutta on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 15 us in
     /// the ball's contact (against 3.75 us: spin within 2.5e-5).
@@ -189,13 +189,13 @@ pub struct GroundResult {
     pub ball_contact_us: Real,
     /// The club's linear momentum at the start and end, and the impulses of the ball, ground and grip on it
     /// (N s, world).
-    pub club_momentum_start_ns: Vector3,
-    pub club_momentum_end_ns: Vector3,
-    pub ball_impulse_ns: Vector3,
+    pub club_momentum_start_n_s: Vector3,
+    pub club_momentum_end_n_s: Vector3,
+    pub ball_impulse_n_s: Vector3,
     /// The ground's impulse on the club before the ball's first contact (N s, world).
-    pub ground_impulse_before_ball_ns: Vector3,
-    pub ground_impulse_ns: Vector3,
-    pub grip_impulse_ns: Vector3,
+    pub ground_impulse_before_ball_n_s: Vector3,
+    pub ground_impulse_n_s: Vector3,
+    pub grip_impulse_n_s: Vector3,
     pub steps: usize,
     pub trace: Vec<GroundTracePoint>,
 }

@@ -106,7 +106,7 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
             if !out.ball_touched {
                 out.ball_touched = true;
                 out.t_ball_s = t_s;
-                out.ground_impulse_before_ball_ns = s.club.j_ground_ns;
+                out.ground_impulse_before_ball_n_s = s.club.j_ground_n_s;
                 let fc = self.club.face.center_m;
                 let v_fc =
                     |b: &Head| (b.velocity_mps + b.angular_velocity_radps.cross(&(b.world_from_club * fc))).norm();
@@ -126,7 +126,7 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
                 ball_spin_radps: b.spin(&s.ball),
                 club_velocity_mps: head.velocity_mps,
                 club_angular_velocity_radps: head.angular_velocity_radps,
-                impulse_ns: b.mass_kg * s.ball.velocity_mps,
+                impulse_n_s: b.mass_kg * s.ball.velocity_mps,
             });
             out.t_separation_s = t_s;
         }

@@ -67,7 +67,7 @@ pub(super) fn simulate(
     let asm: StrikeSystem = Assembly { law, ball, club: shaft_club, ground, surface };
     let ball_centre = super::placement::ball_centre_m(state, club, &p.equipment.ball)?;
     let s0 = State { club: ShaftClubState::default(), ball: asm.ball.at_rest(ball_centre) };
-    let momentum_start = asm.club.momentum_ns(&s0.club, t0);
+    let momentum_start = asm.club.momentum_n_s(&s0.club, t0);
     let mut policy = StrikeSteps {
         model,
         club,
@@ -100,12 +100,12 @@ pub(super) fn simulate(
         peak_ground_force_n: out.peak_ground_n,
         ground_contact_ms: out.ground_time_s * 1e3,
         ball_contact_us: out.ball_time_s * 1e6,
-        club_momentum_start_ns: momentum_start,
-        club_momentum_end_ns: asm.club.momentum_ns(&s.club, t_s),
-        ball_impulse_ns: s.club.j_ball_ns,
-        ground_impulse_before_ball_ns: out.ground_impulse_before_ball_ns,
-        ground_impulse_ns: s.club.j_ground_ns,
-        grip_impulse_ns: s.club.j_grip_ns,
+        club_momentum_start_n_s: momentum_start,
+        club_momentum_end_n_s: asm.club.momentum_n_s(&s.club, t_s),
+        ball_impulse_n_s: s.club.j_ball_n_s,
+        ground_impulse_before_ball_n_s: out.ground_impulse_before_ball_n_s,
+        ground_impulse_n_s: s.club.j_ground_n_s,
+        grip_impulse_n_s: s.club.j_grip_n_s,
         steps,
         trace,
     })

@@ -114,7 +114,7 @@ impl<S> StiffnessStep<S> {
                 ball_spin_radps: asm.ball.spin(&s.ball),
                 club_velocity_mps: head.velocity_mps,
                 club_angular_velocity_radps: head.angular_velocity_radps,
-                impulse_ns: asm.ball.mass_kg() * v_b,
+                impulse_n_s: asm.ball.mass_kg() * v_b,
             },
             contact_time_s: self.contact_time_s,
             peak_normal_force_n: self.peak_normal_force_n,

@@ -1,0 +1,15 @@
+//! The research's findings, asserted: one test binary, a module per finding (research/README.md).
+
+mod driver_axis;
+mod driver_centre_sidespin;
+mod flight_published;
+mod gear_effect;
+mod ground_parts;
+mod identifiability;
+mod identify_likelihood;
+mod maw_published;
+mod offcentre_iron;
+mod players_matched;
+mod real_shots;
+mod tour_iron_spin;
+mod wedge_spin;

@@ -1,0 +1,8 @@
+//! Integration tests of the bay screen: the page in Chromium, its WebSocket, its access rules and limits: one test binary, a module per file.
+
+mod web_cross_site;
+mod web_demo;
+mod web_hostile;
+mod web_page;
+mod web_page_cap;
+mod web_stalled_page;
