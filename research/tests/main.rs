@@ -1,5 +1,9 @@
 //! The research's findings, asserted: one test binary, a module per finding (research/README.md).
 
+// The predictions the real-shot findings share.
+#[path = "../../tests/predict/mod.rs"]
+mod predict;
+
 mod driver_axis;
 mod driver_centre_sidespin;
 mod flight_published;

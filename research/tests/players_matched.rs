@@ -10,8 +10,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../../tests/predict/mod.rs"]
-mod predict;
+use crate::predict;
 
 use impactd::pairing::DatasetLine;
 

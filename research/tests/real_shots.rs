@@ -7,8 +7,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../../tests/predict/mod.rs"]
-mod predict;
+use crate::predict;
 
 use std::process::Command;
 

@@ -1,5 +1,7 @@
 //! Integration tests of the offline commands and the tree itself: identification, pairing, the CLI, exit codes, schemas, docs, layout: one test binary, a module per file.
 
+#![allow(clippy::unwrap_used)]
+
 mod cli;
 mod doc_links;
 mod examples_realistic;

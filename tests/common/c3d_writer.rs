@@ -1,6 +1,8 @@
 //! C3D files written by an independent writer: PyPI `c3d` (pinned in scripts/test-requirements.txt), float
 //! data in millimetres, Intel format; labels of different lengths come out padded with trailing spaces.
 
+#![allow(clippy::unwrap_used, dead_code)]
+
 use std::path::Path;
 
 use impactd::math::Vector3;

@@ -1,6 +1,7 @@
 //! A synthetic swing as clubhead samples (the `sim` command's rig), and the launches the pipeline predicts
 //! from them: the reference the native inputs are compared with.
 
+#![allow(dead_code)]
 #![allow(clippy::unwrap_used)]
 
 use impactd::daemon::sim::{SimOptions, SimRig};

@@ -7,8 +7,7 @@
 //! handshake; and connects a third time, reading until the demo ends. The demo must predict every shot, end with
 //! exit 0, and its log must hold no ERROR line.
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 const CLIENT: &str = r#"
 import asyncio, json, sys, time

@@ -7,8 +7,7 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use impactd::daemon::bus::free_loopback_port;
 use impactd::daemon::demo::{demo, DemoOptions};

@@ -6,8 +6,7 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(all(feature = "daemon", target_os = "linux"))]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::io::{Read, Write};
 use std::net::TcpStream;

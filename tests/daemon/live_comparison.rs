@@ -12,8 +12,7 @@
 //! this test's zenoh subscriber (the same wall clock), and from the connector's last `write` of the shot to
 //! that subscriber (a monotonic clock; this one also covers the loopback TCP hop).
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

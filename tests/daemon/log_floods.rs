@@ -9,13 +9,9 @@
 //! newline cannot start a line. The daemon's RSS stays under 150 MB and every honest shot is predicted; the
 //! honest rig's latency is printed for docs/hostile-peers.md, never asserted.
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/daemon_process.rs"]
-mod daemon_process;
-#[path = "../common/qtm_server.rs"]
-#[allow(dead_code)]
-mod qtm_server;
+use crate::common;
+use crate::daemon_process;
+use crate::qtm_server;
 
 use std::time::{Duration, Instant};
 

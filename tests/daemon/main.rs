@@ -1,5 +1,17 @@
 //! Integration tests of the daemon on loopback: recording, clubs, comparisons, launch monitors, simulators, watch, hostile peers: one test binary, a module per file.
 
+#![allow(clippy::unwrap_used)]
+
+// What the files share, once for the binary.
+#[cfg(feature = "daemon")]
+#[path = "../common/mod.rs"]
+mod common;
+#[cfg(feature = "daemon")]
+#[path = "../common/daemon_process.rs"]
+mod daemon_process;
+#[path = "../common/qtm_server.rs"]
+mod qtm_server;
+
 mod club_switch;
 mod daemon;
 mod daemon_hostile;

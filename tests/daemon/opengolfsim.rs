@@ -8,8 +8,7 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;

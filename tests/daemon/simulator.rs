@@ -7,8 +7,7 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};

@@ -6,8 +6,7 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader};

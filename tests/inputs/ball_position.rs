@@ -5,11 +5,8 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/swing.rs"]
-#[allow(dead_code)]
-mod swing;
+use crate::common;
+use crate::swing;
 
 use std::time::Duration;
 

@@ -6,8 +6,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 /// Peak resident set allowed: the binary, one 4 KiB frame and buffers; a reader that loaded the file would
 /// hold 2 GiB.

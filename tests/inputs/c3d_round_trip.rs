@@ -6,10 +6,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/c3d_writer.rs"]
-mod c3d_writer;
-#[path = "../common/mod.rs"]
-mod common;
+use crate::c3d_writer;
 
 use std::process::Command;
 

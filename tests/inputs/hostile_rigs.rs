@@ -8,17 +8,11 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(all(feature = "daemon", target_os = "linux"))]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/natnet_server.rs"]
-mod natnet_server;
-#[path = "../common/probe_daemon.rs"]
-mod probe_daemon;
-#[path = "../common/qtm_server.rs"]
-mod qtm_server;
-#[path = "../common/swing.rs"]
-#[allow(dead_code)]
-mod swing;
+use crate::common;
+use crate::natnet_server;
+use crate::probe_daemon;
+use crate::qtm_server;
+use crate::swing;
 
 use std::path::Path;
 use std::process::Command;

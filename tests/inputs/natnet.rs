@@ -5,12 +5,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/natnet_server.rs"]
-mod natnet_server;
-#[path = "../common/swing.rs"]
-mod swing;
+use crate::common;
+use crate::natnet_server;
+use crate::swing;
 
 use std::time::Duration;
 
@@ -315,7 +312,7 @@ async fn bad_natnet_input_is_counted_by_reason() {
     for _ in 0..UNDECODABLE_FRAMES {
         server.send_raw(&[7, 0, 0, 0]);
     }
-    let s = latest_input(&statuses, |s| s.rejected.get("unknown_version").is_some()).await;
+    let s = latest_input(&statuses, |s| s.rejected.contains_key("unknown_version")).await;
     assert_eq!(s.reconnects.get("undecodable"), Some(&1), "{s:?}");
     assert!(s.last_error.as_deref().is_some_and(|e| e.contains("not supported") || e.contains("5.0")), "{s:?}");
     server.state.lock().unwrap().announced = None;

@@ -5,10 +5,8 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/natnet_server.rs"]
-mod natnet_server;
+use crate::common;
+use crate::natnet_server;
 
 use std::time::Duration;
 

@@ -6,14 +6,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[allow(dead_code)]
-#[path = "../common/natnet_server.rs"]
-mod natnet_server;
-#[allow(dead_code)]
-#[path = "../common/swing.rs"]
-mod swing;
+use crate::common;
+use crate::natnet_server;
+use crate::swing;
 
 use std::time::Duration;
 

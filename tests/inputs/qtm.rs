@@ -5,12 +5,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/qtm_server.rs"]
-mod qtm_server;
-#[path = "../common/swing.rs"]
-mod swing;
+use crate::common;
+use crate::qtm_server;
+use crate::swing;
 
 use std::sync::atomic::Ordering;
 use std::time::Duration;

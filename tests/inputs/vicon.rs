@@ -4,12 +4,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/vicon_scene.rs"]
-mod scene;
-#[path = "../common/vicon_server.rs"]
-mod vicon_server;
+use crate::common;
+use crate::scene;
+use crate::vicon_server;
 
 use std::io::{Read, Write};
 use std::time::{Duration, Instant};
@@ -132,7 +129,7 @@ fn sdk_reads(mode: &str) {
     for got in &lines {
         assert_eq!(got["mode"], mode);
         let i = check_frame(got);
-        assert!(last.map_or(true, |l| i > l), "frame numbers increase");
+        assert!(last.is_none_or(|l| i > l), "frame numbers increase");
         last = Some(i);
         occluded += usize::from(i % 7 == 3);
         marker_gaps += usize::from(i % 5 == 1 && scene::unchanged(i).is_empty());

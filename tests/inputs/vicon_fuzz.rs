@@ -29,7 +29,7 @@ fn scene(n: usize, seed: u32) -> (StaticObjects, DynamicObjects) {
         timecode: Some(Timecode { frames: (seed % 30) as u8, subframes_per_frame: 1, ..Timecode::default() }),
         latency: vec![LatencySample { name: "Data Collection".into(), latency_s: f64::from(seed) * 1e-9 }],
         segments: (0..n as u32)
-            .filter(|s| (s + seed) % 4 != 0)
+            .filter(|s| !(s + seed).is_multiple_of(4))
             .map(|s| SegmentPose {
                 subject_id: s + 1,
                 segment_id: 1,

@@ -5,14 +5,10 @@
 
 #![allow(clippy::unwrap_used)]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/vicon_scene.rs"]
-mod scene;
-#[path = "../common/swing.rs"]
-mod swing;
-#[path = "../common/vicon_server.rs"]
-mod vicon_server;
+use crate::common;
+use crate::scene;
+use crate::swing;
+use crate::vicon_server;
 
 use std::time::Duration;
 

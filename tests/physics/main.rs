@@ -1,5 +1,7 @@
 //! Integration tests of the physics through the impactd library: the models, the flight, the ground, the kinematics, the presets: one test binary, a module per file.
 
+#![allow(clippy::unwrap_used)]
+
 mod club_data;
 mod club_presets;
 mod continuous;

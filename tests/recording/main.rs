@@ -1,5 +1,15 @@
 //! Integration tests of recordings and replay: damage, size, pause, republish, streaming: one test binary, a module per file.
 
+#![allow(clippy::unwrap_used)]
+
+// What the files share, once for the binary.
+#[cfg(feature = "daemon")]
+#[path = "../common/mod.rs"]
+mod common;
+#[cfg(feature = "daemon")]
+#[path = "../common/swing.rs"]
+mod swing;
+
 mod damaged_recordings;
 mod large_recordings;
 mod replay_pause;

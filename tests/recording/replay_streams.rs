@@ -6,11 +6,8 @@
 #![allow(clippy::unwrap_used)]
 #![cfg(all(feature = "daemon", target_os = "linux"))]
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/swing.rs"]
-#[allow(dead_code)]
-mod swing;
+use crate::common;
+use crate::swing;
 
 use std::io::Write;
 use std::path::Path;

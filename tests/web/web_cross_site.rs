@@ -9,10 +9,8 @@
 //! the page's own origin still controls. Each case's daemon RSS stays under 150 MB and every honest shot is
 //! predicted; the honest rig's latency is printed for docs/hostile-peers.md, never asserted.
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/daemon_process.rs"]
-mod daemon_process;
+use crate::common;
+use crate::daemon_process;
 
 use std::io::{BufRead, BufReader};
 use std::time::{Duration, Instant};

@@ -6,8 +6,7 @@
 //! (Python's `websockets`, independent of the daemon's tungstenite) gets a snapshot holding the demo's shots;
 //! SIGINT (Ctrl-C) then stops it cleanly with the recording written.
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::time::{Duration, Instant};

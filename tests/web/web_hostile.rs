@@ -7,8 +7,7 @@
 //! connection cap the longest-idle connection is closed for a newcomer, who is served; the page's files come
 //! with their content types; and a well-formed control from a page is the put a program would make.
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -20,8 +20,7 @@
 //! for docs/bay-screen.md, never asserted (a wall-clock bound cannot hold on a shared machine; the goals are
 //! benches/web_pages.rs's).
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;

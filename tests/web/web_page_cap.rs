@@ -10,10 +10,7 @@
 //! under 150 MB and every honest shot is predicted; the honest rig's latency is printed for
 //! docs/hostile-peers.md, never asserted.
 
-#[path = "../common/mod.rs"]
-mod common;
-#[path = "../common/daemon_process.rs"]
-mod daemon_process;
+use crate::daemon_process;
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;

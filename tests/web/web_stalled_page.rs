@@ -8,8 +8,7 @@
 //! stays full for the daemon's 5 s write limit (the rig's status counts one connection less), the reading page
 //! sees the last shot, and a page that joins afterwards is sent the last 1000 shots only (its bound).
 
-#[path = "../common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;

@@ -63,6 +63,8 @@ impl NormalFactor {
 
     /// The least-squares coefficients of `values` at `tau` (the times this factor was made from) by the factor:
     /// `Lᵀ c = L⁻¹ Aᵀ y`.
+    // Triangular solves read clearest indexed, as written in the algebra.
+    #[allow(clippy::needless_range_loop)]
     pub(super) fn solve(&self, tau: &[Real], values: &[Vector3]) -> [Vector3; MAX_DEGREE + 1] {
         let m = self.coefficients;
         let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];

@@ -103,7 +103,7 @@ fn circle_bias(fit: &super::fit::PoseFit, frames: &[Real], t: Real, accel: Vecto
 /// percentile (Paulson's normal approximation of the cube root of F, within 0.01 of the table from 10 degrees of
 /// freedom up).
 fn exceeds_f95((a, d1): (Real, usize), (b, d2): (Real, usize)) -> bool {
-    if d1 == 0 || d2 == 0 || !(b > 0.0) {
+    if d1 == 0 || d2 == 0 || b.is_nan() || b <= 0.0 {
         return false;
     }
     let (g1, g2) = (2.0 / (9.0 * d1 as Real), 2.0 / (9.0 * d2 as Real));
@@ -232,7 +232,7 @@ pub fn estimate_uncertainty(
     let g_f = Vector3::new(grad[(0, 0)], grad[(0, 1)], grad[(0, 2)]);
     let g_phi = Vector3::new(grad[(0, 3)], grad[(0, 4)], grad[(0, 5)]);
     let closing = g_f.dot(&v) + g_phi.dot(&w);
-    if !(closing < -1e-3) {
+    if closing.is_nan() || closing >= -1e-3 {
         return None;
     }
     // δt* = T x, and the state at the moved contact E x = x + ẋ δt*.

@@ -86,8 +86,10 @@ impl RigSetup {
     }
 }
 
-/// What one sample produced.
+/// What one sample produced. A launch is the large variant; an event is made at most a few times per shot and
+/// handed on by reference, so it is not boxed.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 pub enum Event {
     /// The track refused the sample.
     Rejected {
