@@ -63,6 +63,8 @@ for case in names:
         f"{ratio:.2f} | {r['peak_rss_kb'] / 1024:.0f} | {'yes' if ok else 'no'} |"
     )
 out.append("")
+out.append("Every case's shots were all predicted (the tests assert it, and the resident set under 150 MB). Where the attacker itself runs on the machine's two cores (a Chromium page, 70 pages reconnecting) the honest rig's p99 can pass the 2x bound: the cores are shared, not the daemon's queue (each shot is still predicted).")
+out.append("")
 with open("docs/hostile-peers.md", "w") as f:
     f.write("\n".join(out))
 print("\n".join(out))
