@@ -1,5 +1,5 @@
 //! The seam every motion-capture protocol implements: its name in `[rig.input] protocol` and `impactd bridge`,
-//! its own `[rig.input]` keys and bridge flags, and how its client starts. [`super::registry::PROTOCOLS`] lists them; a new
+//! its own `[rig.input]` keys and bridge flags, and how its client starts. `PROTOCOLS` (registry.rs) lists them; a new
 //! protocol is its folder (codec in `crate::mocap`, client here) and one entry there.
 
 use std::net::SocketAddr;
@@ -96,7 +96,7 @@ pub trait Protocol: Sync {
     fn start(&self, start: Start) -> Result<Vec<JoinHandle<()>>, DaemonError>;
 }
 
-/// The protocol named `name` in a list of entries like [`super::registry::PROTOCOLS`] (a test's own, with a toy protocol).
+/// The protocol named `name` in a list of entries like `PROTOCOLS` (registry.rs) (a test's own, with a toy protocol).
 pub fn protocol_in(list: &[&'static dyn Protocol], name: &str) -> Option<&'static dyn Protocol> {
     list.iter().copied().find(|p| p.name() == name)
 }
