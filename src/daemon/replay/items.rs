@@ -151,7 +151,7 @@ pub trait ReplaySource {
     fn items(&self) -> Result<Items<'_>, DaemonError>;
 }
 
-/// Whether `needle` occurs in `data`.
-fn contains(data: &[u8], needle: &[u8]) -> bool {
+/// Whether `needle` occurs in `data` (a recorded message's bytes, searched as written).
+pub(super) fn contains(data: &[u8], needle: &[u8]) -> bool {
     data.windows(needle.len()).any(|w| w == needle)
 }

@@ -2,7 +2,7 @@
 //! interest, or the reason it cannot be read. The index pass and the replay itself read through these same two
 //! functions, so they agree on every message.
 
-use super::items::Item;
+use super::items::{contains, Item};
 use crate::wire::{keys, ClubheadSampleMsg, LaunchPrediction};
 
 /// Which pass reads a recorded message.
@@ -134,8 +134,4 @@ fn under_current_name(data: &[u8], model: &str) -> Option<(Vec<u8>, (String, Str
         out.extend_from_slice(&data[at + field.len()..]);
         Some((out, (former.to_string(), model.to_string())))
     })
-}
-
-fn contains(data: &[u8], needle: &[u8]) -> bool {
-    data.windows(needle.len()).any(|w| w == needle)
 }
