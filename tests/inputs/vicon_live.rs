@@ -1,7 +1,7 @@
 //! Vicon DataStream into the daemon: `[rig.input] vicon` and `impactd bridge vicon`, fed a synthetic swing
 //! through the test server (which Vicon's own SDK checks in tests/inputs/vicon.rs), give the launches of the same swing
 //! sent as JSON; a marker-fitted club likewise; a server restart mid-session reconnects; the bridge binary's help
-//! and SIGINT.
+//! and SIGINT; two rigs on one server share its connection.
 
 #![allow(clippy::unwrap_used)]
 
@@ -374,4 +374,59 @@ async fn ten_subjects_at_720_hz_through_one_bridge_lose_nothing() {
     assert!(statuses.iter().all(|s| s.rejected.is_empty() && s.dropped == 0 && s.out_of_order == 0), "{statuses:?}");
     let (first, last) = (rss[1.min(rss.len() - 1)], *rss.last().unwrap());
     assert!(last < first + 4096, "RSS grew from {first} to {last} KiB");
+}
+
+/// Two rigs served by one Vicon server (`[rig.input] vicon` naming the same address, a subject each) share one
+/// connection: the server sees one client, and each rig predicts its own subject's swing exactly as the JSON
+/// samples the Vicon wire makes of it.
+#[tokio::test(flavor = "multi_thread")]
+async fn two_rigs_on_one_vicon_server_share_one_connection_and_both_predict() {
+    const CLUB2: u32 = 3;
+    let samples = swing::samples(3, 720.0, 17);
+    let mut statics = scene::statics();
+    let mut second = statics.subjects[0].clone();
+    second.subject_id = CLUB2;
+    second.name = "club2".into();
+    second.segments[0].name = "club2".into();
+    statics.subjects.push(second);
+    let frames: Vec<DynamicObjects> = samples
+        .iter()
+        .map(|s| {
+            let mut d = scene::frame_of(s);
+            let club = d.segments.iter().find(|p| p.subject_id == scene::CLUB).cloned();
+            if let Some(mut p) = club {
+                p.subject_id = CLUB2;
+                d.segments.push(p);
+            }
+            d
+        })
+        .collect();
+    let wire = swing::launches(RIG, &wire_samples(&frames, None));
+    assert_eq!(wire.len(), 3);
+
+    let server = ViconServer::start(statics);
+    let port = server.port;
+    let rig = |name: &str, subject: &str| {
+        format!("[[rig]]\nname = \"{name}\"\n[rig.input]\nvicon = \"127.0.0.1:{port}\"\nsubject = \"{subject}\"\n")
+    };
+    let config = format!("status_period_s = 0.2\n{}{}", rig("rig1", "club"), rig("rig2", "club2"));
+    let daemon = start_daemon(&config, RunOptions::default()).await;
+    let session = client(&daemon.endpoint).await;
+    let (first, _a) = collect::<LaunchPrediction>(&session, "golf/rig1/launch");
+    let (other, _b) = collect::<LaunchPrediction>(&session, "golf/rig2/launch");
+    let (statuses, _s) = collect::<StatusMessage>(&session, "golf/rig2/status");
+    assert!(wait_until(Duration::from_secs(10), || server.streaming() > 0).await);
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert_eq!((server.clients(), server.streaming()), (1, 1), "one connection serves both rigs");
+    play(&server, &frames);
+    let both = || first.lock().unwrap().len() >= 3 && other.lock().unwrap().len() >= 3;
+    assert!(wait_until(Duration::from_secs(10), both).await, "both rigs predict");
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    assert_eq!(server.clients(), 1, "still one connection");
+    let status = statuses.lock().unwrap().last().cloned().unwrap().input.unwrap();
+    daemon.stop().await;
+    assert_eq!(keys(&first.lock().unwrap()), keys(&wire), "rig1 = the JSON swing through Vicon's wire");
+    assert_eq!(keys(&other.lock().unwrap()), keys(&wire), "rig2 = the same swing on its own subject");
+    assert_eq!((status.body.as_str(), status.body_found, status.connects), ("club2", true, 1));
+    assert_eq!(status.frames, frames.len() as u64);
 }
