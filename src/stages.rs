@@ -147,6 +147,39 @@ pub fn extrapolation_stages() -> Vec<Stage> {
     out
 }
 
+/// How sure a shot is, once per impact: `uncertainty/<club>`, the delivery's covariance from the `arc` estimate's
+/// fits (`kinematics::uncertainty`) and the launch's through the adjusted model's Jacobian
+/// (`impact::uncertainty`), on the extrapolation stages' shots: what a launch's uncertainty adds to the live path.
+pub fn uncertainty_stages() -> Vec<Stage> {
+    use crate::impact::uncertainty::LaunchJacobian;
+    use crate::impact::{DeliveryMetrics, ImpulseModel, ImpulseVariant};
+    use crate::kinematics::uncertainty::{estimate_uncertainty, CalibrationSigma};
+    let mut out = Vec::new();
+    for club in [ClubSpec::driver(), ClubSpec::iron7()] {
+        let (ball, radius) = (Vector3::zeros(), crate::equipment::BallSpec::SEED.radius_m);
+        let scene = Scene { face: &club.face, ball_position_m: ball, ball_radius_m: radius, max_extrapolation_s: 0.01 };
+        let estimates: Vec<_> = pre_impact_spread(&club)
+            .into_iter()
+            .filter_map(|(poses, reveal)| estimate(&EstimatorSpec::arc(), &poses, reveal, &scene).ok())
+            .collect();
+        let (equipment, model) = (Equipment::new(club.clone()), ImpulseModel::new(ImpulseVariant::Adjusted));
+        let name = format!("uncertainty/{}", club.name);
+        out.push(Stage {
+            name,
+            run: Box::new(move |i| {
+                let e = &estimates[i % estimates.len()];
+                let scene =
+                    Scene { face: &club.face, ball_position_m: ball, ball_radius_m: radius, max_extrapolation_s: 0.01 };
+                let Some(u) = estimate_uncertainty(e, &scene, &club, &CalibrationSigma::default()) else { return 0.0 };
+                let d = DeliveryMetrics::from_state(&e.state, &club);
+                LaunchJacobian::of(&model, &equipment, &d.to_delivery(), d.dynamic_lie_deg.to_radians())
+                    .map_or(0.0, |j| j.uncertainty(&u.delivery).ball_speed_mph)
+            }),
+        });
+    }
+    out
+}
+
 /// TrackMan's club data of the path, once per impact: `club_data/<club>`, one swing arc (the plane and low point
 /// of the `arc` estimate's arc, or of a fit of its own where the estimate has none) per operation on the
 /// extrapolation stages' shots.
@@ -244,6 +277,7 @@ pub fn all_stages() -> Vec<Stage> {
     stages.extend(ground_stages());
     stages.extend(extrapolation_stages());
     stages.extend(club_data_stages());
+    stages.extend(uncertainty_stages());
     stages.extend(flight_stages());
     stages.extend(pipeline_stages());
     stages

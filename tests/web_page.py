@@ -81,6 +81,7 @@ try:
     comparison = js("return [...document.querySelectorAll('#cmp-rows tr')].map(r => [...r.cells].map(c => c.textContent))")
     comparison_shot = driver.find_element(By.ID, "cmp-shot").text
     unit = driver.find_element(By.ID, "u-ball_speed").text
+    shot_sigma = driver.find_element(By.ID, "s-ball_speed").text
     driver.save_screenshot(os.path.join(out_dir, "shot-view.png"))
 
     # The club control: the page puts the text on golf/<rig>/club.
@@ -99,7 +100,9 @@ try:
     driver.find_element(By.CSS_SELECTOR, "#views button[data-view=session]").click()
     read_table = "return [...document.querySelectorAll('#shots tbody tr')].map(r => [...r.cells].map(c => c.textContent))"
     rows = wait("the shot table", lambda: js(read_table))
-    table = {r[0]: r[2] for r in rows}
+    # A cell is its value, then its one sigma where the shot carries one (`162.8 ± 2.1`).
+    table = {r[0]: r[2].split(" ± ")[0] for r in rows}
+    table_sigma = {r[0]: r[2].split(" ± ")[1] if " ± " in r[2] else None for r in rows}
     retry(lambda: driver.find_element(By.CSS_SELECTOR, "#shots button[data-exclude='2']").click())
     wait("shot 2 excluded", lambda: "excluded" in driver.find_element(By.CSS_SELECTOR, "#shots tr[data-shot='2']").get_attribute("class"))
     summary_shots = retry(lambda: driver.find_element(By.CSS_SELECTOR, "#summary tbody tr td:nth-child(2)").text)
@@ -116,7 +119,7 @@ try:
     # Sorting by ball speed (descending, then ascending on a second click).
     sort_header = lambda: driver.find_element(By.CSS_SELECTOR, "#shots th[data-sort=ball_speed]").click()
     retry(sort_header)
-    down = [float(r[2]) for r in js(read_table)]
+    down = [float(r[2].split(" ± ")[0]) for r in js(read_table)]
     driver.save_screenshot(os.path.join(out_dir, "session-view.png"))
     driver.find_element(By.ID, "csv").click()
     csv_path = os.path.join(downloads, f"{rig}-session.csv")
@@ -132,7 +135,7 @@ try:
     wait("imperial units", lambda: driver.find_element(By.ID, "u-ball_speed").text == "mph")
 
     emit("DONE", {
-        "seen": seen, "unit": unit, "comparison": comparison, "comparison_shot": comparison_shot, "table": table, "summary_shots": summary_shots, "by": by, "club_before": club_before, "rig_club": rig_club, "sorted_down": down,
+        "seen": seen, "unit": unit, "comparison": comparison, "comparison_shot": comparison_shot, "table": table, "table_sigma": table_sigma, "shot_sigma": shot_sigma, "summary_shots": summary_shots, "by": by, "club_before": club_before, "rig_club": rig_club, "sorted_down": down,
         "csv": csv_path, "metric_speed": metric_speed, "latencies_ms": js("return bay.latencies"),
     })
 

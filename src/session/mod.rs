@@ -4,6 +4,7 @@
 
 pub mod metrics;
 pub mod shot_table;
+pub mod sigma;
 pub mod stats;
 pub mod trackman_csv;
 pub mod trackman_report;

@@ -1,11 +1,13 @@
 //! One shot a line, as `impactd watch` prints them while they land: TrackMan's metrics a fitter reads at the
 //! bay (club speed, attack, path, face, face to path, dynamic loft, ball speed, smash, launch, direction, spin,
 //! spin axis, carry, total, side, apex, land angle) in either unit system, under a two-line header (names, then
-//! units). A metric the shot does not have (no flight) shows as `-`.
+//! units). A metric the shot does not have (no flight) shows as `-`; a metric with an uncertainty shows its one
+//! sigma beside it (`162.8±2.1`), blank where the shot carries none.
 
 use crate::wire::LaunchPrediction;
 
 use super::metrics::{index, Units, METRICS};
+use super::sigma::{has_sigma, sigma};
 
 /// The columns: the metric's base key, its short title, its width and its decimals.
 const COLUMNS: [(&str, &str, usize, usize); 17] = [
@@ -31,11 +33,24 @@ const COLUMNS: [(&str, &str, usize, usize); 17] = [
 /// Width of the shot's name column (`rig#shot club player`).
 const NAME: usize = 22;
 
+/// Width a one-sigma uncertainty adds to its column (`±2.1`, `±480`).
+const SIGMA: usize = 5;
+
+/// A column's width with its uncertainty's.
+fn width_of(base: &str, width: usize) -> usize {
+    if has_sigma(base) {
+        width + SIGMA
+    } else {
+        width
+    }
+}
+
 /// The two header lines: titles, then units.
 pub fn header(units: Units) -> [String; 2] {
     let mut titles = format!("{:<NAME$}", "shot");
     let mut unit_line = format!("{:<NAME$}", "");
     for (base, title, width, _) in COLUMNS {
+        let width = width_of(base, width);
         let unit = index(base).map(|i| METRICS[i].quantity.unit(units).0).unwrap_or("");
         titles += &format!(" {title:>width$}");
         unit_line += &format!(" {:>width$}", if unit.is_empty() { "" } else { unit });
@@ -52,14 +67,18 @@ pub fn row(p: &LaunchPrediction, units: Units) -> String {
     let name: String = name.chars().take(NAME).collect();
     let mut line = format!("{name:<NAME$}");
     for (base, _, width, decimals) in COLUMNS {
-        let value = index(base).and_then(|i| {
-            let m = &METRICS[i];
-            (m.value)(p).filter(|v| v.is_finite()).map(|v| v * m.quantity.unit(units).1)
-        });
-        match value {
-            Some(v) => line += &format!(" {v:>width$.decimals$}"),
-            None => line += &format!(" {:>width$}", "-"),
-        }
+        let scale = index(base).map_or(1.0, |i| METRICS[i].quantity.unit(units).1);
+        let value = index(base).and_then(|i| (METRICS[i].value)(p).filter(|v| v.is_finite())).map(|v| v * scale);
+        let cell = match value {
+            Some(v) => format!("{v:.decimals$}"),
+            None => "-".into(),
+        };
+        let cell = match (value, sigma(p, base)) {
+            (Some(_), Some(s)) => format!("{cell}±{:.decimals$}", s * scale),
+            _ if has_sigma(base) => format!("{cell}{:SIGMA$}", ""),
+            _ => cell,
+        };
+        line += &format!(" {cell:>w$}", w = width_of(base, width));
     }
     line
 }

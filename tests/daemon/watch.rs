@@ -88,8 +88,20 @@ async fn each_shot_is_shown_once_with_its_launch_numbers() {
         let shot: u64 = fields[0].trim_start_matches("bay1#").parse().unwrap();
         let (published_at, l) = &published[&shot];
         // Club speed and ball speed in m/s, spin in rpm, carry in m, as the prediction has them.
-        let numbers: Vec<f64> = fields[2..].iter().map(|f| f.parse().unwrap()).collect();
+        // A metric with an uncertainty shows its one sigma beside it: `62.4±0.1`.
+        let cells: Vec<(f64, Option<f64>)> = fields[2..]
+            .iter()
+            .map(|f| match f.split_once('±') {
+                Some((v, s)) => (v.parse().unwrap(), Some(s.parse().unwrap())),
+                None => (f.parse().unwrap(), None),
+            })
+            .collect();
+        let numbers: Vec<f64> = cells.iter().map(|c| c.0).collect();
         assert_eq!(numbers.len(), 17, "{line}");
+        let (d, u) = (l.delivery.uncertainty.unwrap(), l.launch.uncertainty.unwrap());
+        assert!((cells[0].1.unwrap() - d.club_speed_mph * 0.44704).abs() <= 0.051, "club speed's sigma: {line}");
+        assert!((cells[10].1.unwrap() - u.total_spin_rpm).abs() <= 0.51, "spin's sigma: {line}");
+        assert_eq!(cells.iter().filter(|c| c.1.is_some()).count(), 11, "every metric with a sigma shows it: {line}");
         assert!((numbers[0] - l.delivery.club_speed_mps).abs() <= 0.051, "{line}");
         assert!((numbers[6] - l.launch.launch.ball_speed_mps).abs() <= 0.051, "{line}");
         assert!((numbers[10] - l.launch.launch.total_spin_rpm).abs() <= 0.51, "{line}");

@@ -156,8 +156,13 @@ async fn the_bay_screen_shows_each_shot_switches_clubs_excludes_mishits_and_down
         assert!(seen.contains(&want), "shot view never showed {want:?}: {seen:?}");
         // And the session table has the same number.
         assert_eq!(done["table"][p.shot.to_string()], want.1, "table row of shot {}", p.shot);
+        // With its one sigma beside it.
+        let sigma = format!("{:.1}", p.launch.uncertainty.unwrap().ball_speed_mph);
+        assert_eq!(done["table_sigma"][p.shot.to_string()], sigma.as_str(), "sigma in the row of shot {}", p.shot);
     }
     let last = published.last().unwrap();
+    let sigma = format!("± {:.1}", last.launch.uncertainty.unwrap().ball_speed_mph);
+    assert_eq!(done["shot_sigma"], sigma.as_str(), "the last shot's ball speed shows its sigma");
     let metric = format!("{:.1}", last.launch.launch.ball_speed_mps);
     assert_eq!(done["metric_speed"], metric.as_str(), "metric ball speed of the last shot");
     // Measured beside predicted: the last shot's comparison, with its residuals.

@@ -93,6 +93,9 @@ pub struct ImpactEstimate {
 pub struct EstimateFits {
     pub pose: PoseFit,
     pub speed: Option<PathSpeedFit>,
+    /// The path-length fit one degree higher over the same frames, where they allow it: the club speed's bias
+    /// (`kinematics::uncertainty`).
+    pub speed_check: Option<PathSpeedFit>,
     /// The fitted frames' times from the revealing frame, oldest first (s; the first `frames`).
     pub frame_t_s: [Real; 64],
     pub frames: usize,
@@ -269,7 +272,7 @@ pub fn estimate(
         at.position_m = a.position(t);
         at.velocity_mps = a.velocity(t);
     }
-    let mut speed_fit = None;
+    let (mut speed_fit, mut speed_check) = (None, None);
     if let Some(ps) = spec.path_speed.filter(|_| spec.window_ms.is_some()) {
         let n_s = {
             let span_ns = (ps.window_ms * 1e6) as u64;
@@ -280,6 +283,9 @@ pub fn estimate(
         if let Some(speed) = PathSpeedFit::fit(&poses[need - n_s..need], degree) {
             at.velocity_mps = at.velocity_mps.normalize() * speed.speed_mps(t);
             speed_fit = Some(speed);
+            if n_s >= degree + 4 {
+                speed_check = PathSpeedFit::fit(&poses[need - n_s..need], degree + 1);
+            }
         }
     }
     let world_from_club = club_pose(at.position_m, at.orientation);
@@ -305,6 +311,7 @@ pub fn estimate(
         fits: EstimateFits {
             pose: fit,
             speed: speed_fit,
+            speed_check,
             frame_t_s: std::array::from_fn(|i| if i < need { poses[i].t_s } else { 0.0 }),
             frames: need,
             dropped_arc,

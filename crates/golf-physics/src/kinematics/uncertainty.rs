@@ -9,7 +9,11 @@
 //! - the face centre's path: the arc's parameters `σ² (JᵀJ)⁻¹` (`ArcFit::position_velocity_covariance`), or the
 //!   polynomial's `σ² (AᵀA)⁻¹` per axis evaluated at `t*` (value and slope, extrapolated);
 //! - the club speed, where the path-length fit gives it: the velocity's direction from the path, its magnitude
-//!   with the path-length fit's variance;
+//!   with the path-length fit's variance and its bias: a low degree over a long span follows the speed's change
+//!   only so far, so the fit one degree higher over the same frames measures what the lower one misses: their
+//!   difference `d` at `t*` adds `d²` to the speed's variance;
+//! - the arc's bias, where the arc fits: its departure from the polynomial path at `t*`, less the share of it the
+//!   polynomial's larger noise explains;
 //! - the orientation: the rotation vector's polynomial the same way (`R = R_ref Exp(θ)`, so a change `δθ` turns
 //!   the head by `R J_r(θ) δθ`, within a few per cent of `δθ` for the few degrees it turns past the newest frame);
 //! - the calibration, where the rig's calibration reports its residuals: a constant error of the face centre's
@@ -63,6 +67,23 @@ fn isotropic(c: [Real; 3]) -> SMatrix<6, 6> {
         m[(3 + i, 3 + i)] = c[2];
     }
     m
+}
+
+/// The arc's bias where it fits: an arc is the head's path only so far (the wrists uncock, the radius changes),
+/// so its departure `d` from the polynomial path at the contact holds what it misses and the noise by which the
+/// polynomial's covariance exceeds the arc's. In position and in velocity apart, `d dᵀ` shrunk by the share that
+/// excess explains: `max(0, 1 − tr(Σ_poly − Σ_arc) / |d|²) d dᵀ`.
+fn arc_bias(s_arc: &SMatrix<6, 6>, s_poly: &SMatrix<6, 6>, dp: &Vector3, dv: &Vector3) -> SMatrix<6, 6> {
+    let excess = |k: usize| (0..3).map(|i| s_poly[(k + i, k + i)] - s_arc[(k + i, k + i)]).sum::<Real>();
+    let shrink = |d: &Vector3, k: usize| {
+        let d2 = d.norm_squared();
+        if d2 > 0.0 {
+            *d * (1.0 - excess(k) / d2).max(0.0).sqrt()
+        } else {
+            *d
+        }
+    };
+    outer(&shrink(dp, 0), &shrink(dv, 3))
 }
 
 /// `b bᵀ` of a bias in position and velocity, as a 6x6 block.
@@ -169,7 +190,17 @@ pub fn estimate_uncertainty(
         (fit.at(t + ACCEL_STEP_S).velocity_mps - fit.at(t - ACCEL_STEP_S).velocity_mps) / (2.0 * ACCEL_STEP_S);
     let (mut s_fv, velocity_fit, accel) = match (&estimate.arc, arc_fits) {
         (Some(a), Some(_)) => (
-            a.position_velocity_covariance(t)? * position_var,
+            {
+                let s_arc = a.position_velocity_covariance(t)? * position_var;
+                let s_poly = isotropic(fit.position_form(t).map(|c| c * position_var));
+                s_arc
+                    + arc_bias(
+                        &s_arc,
+                        &s_poly,
+                        &(a.position(t) - poly_at.position_m),
+                        &(a.velocity(t) - poly_at.velocity_mps),
+                    )
+            },
             a.velocity(t),
             (a.velocity(t + ACCEL_STEP_S) - a.velocity(t - ACCEL_STEP_S)) / (2.0 * ACCEL_STEP_S),
         ),
@@ -194,7 +225,7 @@ pub fn estimate_uncertainty(
         let mut t6 = SMatrix::<6, 6>::identity();
         t6.fixed_view_mut::<3, 3>(3, 3).copy_from(&(across * k));
         s_fv = t6 * s_fv * t6.transpose();
-        let along = v_hat * v_hat.transpose() * (speed.speed_form(t) * position_var);
+        let along = v_hat * v_hat.transpose() * (speed.speed_form(t) * position_var + speed_bias_var(estimate, t));
         let vv = s_fv.fixed_view::<3, 3>(3, 3) + along;
         s_fv.fixed_view_mut::<3, 3>(3, 3).copy_from(&vv);
     }
@@ -283,4 +314,13 @@ pub fn estimate_uncertainty(
         delivery: DeliveryCovariance { cov },
         t_impact_sigma_s: t_var.max(0.0).sqrt(),
     })
+}
+
+/// The path-length fit's bias at `t` (m²/s²): the square of what the fit one degree higher over the same frames
+/// finds at `t`. That difference also holds the noise the higher degree adds; it is kept, not subtracted, since
+/// one difference is a one-degree-of-freedom estimate of the bias and subtracting its expected noise leaves the
+/// shots whose bias came out low by chance uncovered (`impactd eval extrapolation` measures the coverage).
+fn speed_bias_var(estimate: &ImpactEstimate, t: Real) -> Real {
+    let (Some(lo), Some(hi)) = (&estimate.fits.speed, &estimate.fits.speed_check) else { return 0.0 };
+    (hi.speed_mps(t) - lo.speed_mps(t)).powi(2)
 }

@@ -64,6 +64,20 @@ fn metrics(p: &LaunchPrediction) -> Map<String, Value> {
     m
 }
 
+/// The one-sigma uncertainty of every metric that has one on the shot, under the metrics' keys in both unit
+/// systems (`ball_speed_mph`, `ball_speed_mps`); empty for a shot that carries none.
+fn sigmas(p: &LaunchPrediction) -> Map<String, Value> {
+    let mut m = Map::new();
+    for metric in &METRICS {
+        let Some(s) = crate::session::sigma::sigma(p, metric.base) else { continue };
+        for units in [Units::Imperial, Units::Metric] {
+            let (_, factor) = metric.quantity.unit(units);
+            m.insert(metric.quantity.key(metric.base, units), num(s * factor));
+        }
+    }
+    m
+}
+
 /// The flight drawn on the screen, flown by `flight`: `[x, y, z]` in metres, world frame (x to the target, y up,
 /// z right).
 pub fn flight_line(p: &LaunchPrediction, flight: &crate::flight::Flight) -> Value {
@@ -84,7 +98,7 @@ pub fn shot_json(p: &LaunchPrediction, published_ns: u64, flight: Option<&Value>
         "club": crate::session::club_of(p), "club_file": p.club, "model": p.model, "labels": p.labels,
         "warnings": warnings, "quality": num(p.quality), "latency_us": num(p.latency_us),
         "impact_h_mm": num(p.delivery.impact_h_mm), "impact_v_mm": num(p.delivery.impact_v_mm),
-        "m": metrics(p), "flight": flight,
+        "m": metrics(p), "u": sigmas(p), "flight": flight,
     })
 }
 

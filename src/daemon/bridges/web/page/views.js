@@ -34,6 +34,11 @@ const Views = (() => {
   const unit = (base, units) => UNITS[units][QUANTITY[base]][1];
   const fmt = (v, base, units) => (v === null || v === undefined || !Number.isFinite(v)) ? "–" : v.toFixed(UNITS[units][QUANTITY[base]][2]);
   const value = (shot, base, units) => shot.m[key(base, units)];
+  // A metric's one-sigma uncertainty on the shot (`± 2.1`), empty where it carries none.
+  const sigma = (shot, base, units) => {
+    const s = shot && shot.u ? shot.u[key(base, units)] : undefined;
+    return Number.isFinite(s) ? `± ${fmt(s, base, units)}` : "";
+  };
   const $ = (id) => document.getElementById(id);
 
   function tiles(container, bases) {
@@ -41,7 +46,7 @@ const Views = (() => {
     for (const b of bases) {
       const t = document.createElement("div");
       t.className = "tile";
-      t.innerHTML = `<span class="name">${NAMES[b]}</span><span class="value" id="v-${b}">–</span><span class="unit" id="u-${b}"></span>`;
+      t.innerHTML = `<span class="name">${NAMES[b]}</span><span class="value" id="v-${b}">–</span> <span class="sigma" id="s-${b}"></span> <span class="unit" id="u-${b}"></span>`;
       container.appendChild(t);
     }
   }
@@ -56,6 +61,7 @@ const Views = (() => {
     const s = rig.shots[rig.shots.length - 1];
     for (const b of ["ball_speed", ...BALL, ...CLUB]) {
       $(`v-${b}`).textContent = s ? fmt(value(s, b, units), b, units) : "–";
+      $(`s-${b}`).textContent = sigma(s, b, units);
       $(`u-${b}`).textContent = unit(b, units);
     }
     $("shot-number").textContent = s ? s.shot : "–";
@@ -131,7 +137,7 @@ const Views = (() => {
     table.tBodies[0].innerHTML = rows.map((s) => {
       const out = rig.excluded.has(s.shot);
       return `<tr data-shot="${s.shot}" class="${out ? "excluded" : ""}"><td>${s.shot}</td><td>${escape(s.club)}</td>${TABLE.map((b) =>
-        `<td>${fmt(value(s, b, units), b, units)}</td>`).join("")}<td><button type="button" data-exclude="${s.shot}">${out ? "Include" : "Exclude"}</button></td></tr>`;
+        `<td>${fmt(value(s, b, units), b, units)}${sigma(s, b, units) ? `<span class="sigma"> ${sigma(s, b, units)}</span>` : ""}</td>`).join("")}<td><button type="button" data-exclude="${s.shot}">${out ? "Include" : "Exclude"}</button></td></tr>`;
     }).join("");
 
     const groups = names.filter((g) => !filter || g === filter).map((name) => ({
