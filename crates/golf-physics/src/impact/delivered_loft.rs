@@ -63,7 +63,7 @@ impl DeliveredLoft {
 }
 
 /// The derived points, in static-loft order (a preset that fails to derive is left out; every embedded one
-/// derives, `tests/physics/tour_deliveries.rs`).
+/// derives, `crates/golf-physics/tests/tour_deliveries.rs`).
 pub fn curve() -> &'static [DeliveredLoft] {
     static CURVE: OnceLock<Vec<DeliveredLoft>> = OnceLock::new();
     CURVE.get_or_init(|| {

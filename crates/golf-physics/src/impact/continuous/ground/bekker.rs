@@ -61,8 +61,6 @@ pub struct SoilGround {
     pub strips: GaussRule,
     pub along_arc: GaussRule,
     pub along_edge: GaussRule,
-    /// World-frame multipliers of every force component (ones: the seed's model); see [`super::sole_forces`].
-    pub force_mask: Vector3,
 }
 
 impl SoilGround {
@@ -81,7 +79,6 @@ impl SoilGround {
             strips: GaussRule::new(3),
             along_arc: GaussRule::new(5),
             along_edge: GaussRule::new(3),
-            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -107,7 +104,6 @@ impl SoilGround {
             self.slip_regularisation_mps,
             &self.strips,
             &self.along_arc,
-            &self.force_mask,
         );
         if sole.max_sinkage_m <= 0.0 {
             return GroundForces { sole, face: FacePressure::default(), phase: GroundPhase::Clear };
@@ -122,7 +118,6 @@ impl SoilGround {
             w,
             self.slip_regularisation_mps,
             &self.along_edge,
-            &self.force_mask,
         );
         let phase = if face.leading_edge_depth_m > 0.0 { GroundPhase::Divot } else { GroundPhase::Compression };
         GroundForces { sole, face, phase }

@@ -8,8 +8,8 @@ pub mod sole;
 mod sole_arc;
 
 pub use bekker::{GroundForces, GroundPhase, SoilGround};
-pub use face_pressure::{face_forces, FacePressure};
-pub use sole::{sole_forces, SoleContact};
+pub use face_pressure::{face_forces, face_point_forces, FacePressure};
+pub use sole::{sole_forces, sole_point_forces, SoleContact};
 pub use sole_arc::{GaussRule, SoleArcWorld, MAX_GAUSS};
 
 use super::club::Head;

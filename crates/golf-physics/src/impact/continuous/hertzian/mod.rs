@@ -88,14 +88,14 @@ pub struct HertzModel {
 
 impl HertzModel {
     /// Maw's rings with a 2 µs step: halving it moves ball speed < 2e-7 and spin < 2e-5 (both clubs, 35-55 m/s,
-    /// centred and off-centre; tests/physics/maw_arakawa.rs asserts 1e-4 and 1e-3). The rings reached within a step feel
+    /// centred and off-centre; crates/golf-physics/tests/maw_arakawa.rs asserts 1e-4 and 1e-3). The rings reached within a step feel
     /// the slip since they entered ([`MawRings`]), which makes the spin converge faster than first order.
     pub fn maw() -> Self {
         HertzModel { law: HertzLaw::Maw(None), step_s: 2e-6, max_contact_s: 3e-3 }
     }
 
     /// Arakawa's law with a 1 µs step: halving it moves ball speed < 4e-6 and spin < 3e-4 (both clubs,
-    /// 35-55 m/s, tests/physics/maw_arakawa.rs).
+    /// 35-55 m/s, crates/golf-physics/tests/maw_arakawa.rs).
     pub fn arakawa() -> Self {
         HertzModel { law: HertzLaw::Arakawa(None), step_s: 1e-6, ..Self::maw() }
     }

@@ -31,7 +31,7 @@ use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::SoleSpec;
 use crate::equipment::EquipmentError;
-use crate::impact::continuous::ground::{GroundPhase, SoilGround};
+use crate::impact::continuous::ground::{GroundForces, GroundPhase, SampledGround, SoilGround};
 use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::modal::ModalClub;
 use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
@@ -66,16 +66,12 @@ pub struct GroundModel {
     pub follow_s: Real,
     /// `false`: the same club on a teed ball, no ground (`[soil] preset = "none"`, `--soil none`).
     pub with_ground: bool,
-    /// World-frame multipliers of the ground's force components, ones by default (the seed's model);
-    /// `(0, 1, 0)` keeps the vertical part alone, `(1, 0, 1)` the horizontal: what each part does to the strike
-    /// (research/ground-findings.md).
-    pub force_mask: Vector3,
 }
 
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
-    /// 48 elements, tests/physics/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
-    /// ball speed < 2e-5 and spin < 6e-4, tests/physics/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
+    /// 48 elements, crates/golf-physics/tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
+    /// ball speed < 2e-5 and spin < 6e-4, crates/golf-physics/tests/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
     /// in speed and 7e-6 in spin, divot length within 0.35 %, contact time and peak force within 0.15 %; classical
     /// Runge-Kutta on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 15 us in
     /// the ball's contact (against 3.75 us: spin within 2.5e-5).
@@ -92,7 +88,6 @@ impl GroundModel {
             ground_hold_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
-            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -212,7 +207,7 @@ impl ImpactModel for PreparedGround {
 
     /// The launch alone stops when the ball leaves (the same launch as [`run`](ImpactModel::run), sooner).
     fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
-        run::simulate(self, state, 0, 0.0).map(|r| r.launch)
+        run::simulate(self, state, 0, 0.0, |ground| ground).map(|r| r.launch)
     }
 }
 
@@ -220,21 +215,31 @@ impl PreparedGround {
     /// Runs one shot, following the ground contact after the ball leaves for up to `follow_s`, recording a
     /// trace point every `trace_every` ball steps of time, at every step where the steps are longer (0: none). [`ImpactModel::predict`] stops when the ball leaves.
     pub fn simulate(&self, state: &ImpactState, trace_every: usize) -> Result<GroundResult, ImpactError> {
-        run::simulate(self, state, trace_every, self.model.follow_s)
+        run::simulate(self, state, trace_every, self.model.follow_s, |ground| ground)
+    }
+
+    /// [`Self::simulate`] with the ground's forces computed by `with(ground)` instead of the soil under the ball
+    /// (`ground`, already lowered out of reach without ground): for reading what a part of the ground's force
+    /// does alone (research/ground-parts.md). The sole's first touch is still found on `ground`.
+    pub fn simulate_with<G: SampledGround<Forces = GroundForces>>(
+        &self,
+        state: &ImpactState,
+        trace_every: usize,
+        with: impl FnOnce(SoilGround) -> G,
+    ) -> Result<GroundResult, ImpactError> {
+        run::simulate(self, state, trace_every, self.model.follow_s, with)
     }
 
     /// The ground under the ball of `state` (for the placement and strike).
     pub fn ground_for(&self, state: &ImpactState) -> Result<SoilGround, ImpactError> {
         let ball = &self.equipment.ball;
         let centre = placement::ball_centre_m(state, &self.equipment.club, ball)?;
-        let mut ground = SoilGround::new(
+        Ok(SoilGround::new(
             self.model.soil.clone(),
             self.model.sole,
             &self.equipment.club,
             placement::ground_y_m(&centre, ball),
-        );
-        ground.force_mask = self.model.force_mask;
-        Ok(ground)
+        ))
     }
 }
 

@@ -3,7 +3,7 @@
 //! With the mass-normalised modes `Φ` of the clamped club ([`FlexibleClub::modes`]) the free DOFs are
 //! `q = Φ η` and each modal coordinate obeys `η̈ᵢ + 2ζωᵢ η̇ᵢ + ωᵢ² ηᵢ = Φ_tipᵢᵀ f_tip`, `f_tip` the force and moment
 //! the head's contacts put on the tip node (shaft frame). Modes above `max_frequency_hz` are dropped; the
-//! response converges as the cut-off and the mesh are raised (tests/physics/shaft.rs).
+//! response converges as the cut-off and the mesh are raised (crates/golf-physics/tests/shaft.rs).
 
 use crate::math::{DMatrix, SMatrix, SVector};
 
