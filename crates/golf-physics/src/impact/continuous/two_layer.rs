@@ -57,8 +57,11 @@ pub struct TwoLayerParams {
 /// The ball's contact with the face as [`TwoLayerParams::contact`] builds it: an assembly's law, ball and surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLayerContact {
+    /// The volumetric contact law (eq. 3.14-3.15).
     pub law: Volumetric,
+    /// The two-layer ball.
     pub ball: TwoLayerBall,
+    /// The face.
     pub surface: FaceSurface,
 }
 

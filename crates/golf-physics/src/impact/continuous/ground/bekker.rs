@@ -19,6 +19,7 @@ use super::sole_arc::{GaussRule, SoleArcWorld};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum GroundPhase {
+    /// The sole above the surface: no ground force.
     Clear,
     /// Only the sole below the surface.
     Compression,
@@ -29,8 +30,11 @@ pub enum GroundPhase {
 /// Every ground force at one instant (world frame; moments about the head's CG).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GroundForces {
+    /// The sole's pressure and shear (eq. 4.3-4.9).
     pub sole: SoleContact,
+    /// The face's passive earth pressure (eq. 4.10-4.13; zero until the divot phase).
     pub face: FacePressure,
+    /// The contact phase.
     pub phase: GroundPhase,
 }
 
@@ -49,17 +53,25 @@ impl GroundForces {
 /// The ground under an iron: soil, the sole's geometry and the surface's height.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SoilGround {
+    /// The soil's Bekker moduli and exponent, density and friction angle (Table 4.3).
     pub soil: SoilSpec,
+    /// The sole's geometry: lie, width, length, bounce, radius (Table 4.1 values for the seed's 7-iron).
     pub sole: SoleSpec,
+    /// The sole's cylinder in the club frame.
     pub arc: SoleArc,
     /// Outward face normal and up-the-face direction, club frame.
     pub face_normal: Vector3,
+    /// See `face_normal`.
     pub up_face: Vector3,
+    /// The playing surface's height `y_ground` (m, world).
     pub ground_y_m: Real,
     /// Shear smoothing speed (m/s).
     pub slip_regularisation_mps: Real,
+    /// The sole's Gauss rule heel to toe.
     pub strips: GaussRule,
+    /// The sole's Gauss rule along its arc.
     pub along_arc: GaussRule,
+    /// The face's Gauss rule along the leading edge.
     pub along_edge: GaussRule,
 }
 

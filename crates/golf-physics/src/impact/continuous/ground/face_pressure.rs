@@ -20,7 +20,9 @@ use crate::math::{Real, Vector3};
 /// The face's passive earth pressure at one instant (world frame, about the CG).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FacePressure {
+    /// Resultant of eq. 4.13's pressure (N, world; horizontal).
     pub force_n: Vector3,
+    /// Its moment about the head's CG (N m, world).
     pub torque_nm: Vector3,
     /// The leading edge's deepest point below the surface (m; negative when above).
     pub leading_edge_depth_m: Real,

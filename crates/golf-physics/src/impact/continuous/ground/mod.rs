@@ -18,7 +18,9 @@ use crate::math::Vector3;
 /// A force the ground puts on the head, with its moment about the head's CG (world frame).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct GroundWrench {
+    /// The resultant force (N, world).
     pub force_n: Vector3,
+    /// Its moment about the head's CG (N m, world).
     pub torque_nm: Vector3,
 }
 

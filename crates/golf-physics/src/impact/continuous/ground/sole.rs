@@ -33,6 +33,7 @@ use crate::math::{Real, Vector3};
 pub struct SoleContact {
     /// Resultant of the pressure (eq. 4.4-4.5) and of the shear (eq. 4.8-4.9), N.
     pub pressure_n: Vector3,
+    /// See `pressure_n`.
     pub shear_n: Vector3,
     /// Moment of both about the head's CG (N m).
     pub torque_nm: Vector3,

@@ -47,10 +47,13 @@ pub use report::GROUND_REPORT;
 /// The model's settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundModel {
+    /// The soil under the ball (Table 4.3's presets or a soil file).
     pub soil: SoilSpec,
     /// The club's sole and shaft (typical 7-iron values and Tables 4.1-4.2 by default).
     pub sole: SoleSpec,
+    /// See `sole`.
     pub shaft: ShaftSpec,
+    /// The shaft's finite elements and the grip's clamp.
     pub mesh: ShaftMesh,
     /// Shaft modes above this are dropped (Hz); infinite keeps them all.
     pub max_mode_hz: Real,
@@ -59,6 +62,7 @@ pub struct GroundModel {
     pub params: Option<TwoLayerParams>,
     /// Steps during the ball's contact and while only the ground acts (s).
     pub ball_step_s: Real,
+    /// See `ball_step_s`.
     pub ground_step_s: Real,
     /// During the ball's contact the ground's forces are evaluated once every `ground_hold_s` and held (s).
     pub ground_hold_s: Real,
@@ -136,8 +140,11 @@ fn shaft_cg_fraction(shaft: &ShaftSpec) -> Real {
 /// The model with its club assembled.
 #[derive(Debug, Clone)]
 pub struct PreparedGround {
+    /// The settings.
     pub model: GroundModel,
+    /// The club and ball it was assembled for.
     pub equipment: Equipment,
+    /// The flexible club's modes (eq. 4.1-4.2).
     pub modal: ModalClub,
     /// The undeformed shaft's CG in the club frame (m).
     pub shaft_cg_m: Vector3,
@@ -150,21 +157,32 @@ pub struct PreparedGround {
 pub struct GroundTracePoint {
     /// Time from the ball's first contact on the undisturbed swing (ms).
     pub t_ms: Real,
+    /// The sole's force on the head, vertical (N, up +).
     pub sole_vertical_n: Real,
+    /// The sole's force on the head, horizontal magnitude (N).
     pub sole_horizontal_n: Real,
+    /// The face's earth pressure on the head, horizontal magnitude (N).
     pub face_horizontal_n: Real,
+    /// The whole ground force, vertical (N, up +).
     pub ground_vertical_n: Real,
+    /// The whole ground force, horizontal magnitude (N).
     pub ground_horizontal_n: Real,
+    /// The ball's normal force on the face (N; 0 before and after contact).
     pub ball_normal_n: Real,
+    /// Face angle (deg, open +).
     pub face_angle_deg: Real,
+    /// Dynamic loft (deg).
     pub dynamic_loft_deg: Real,
+    /// The contact phase.
     pub phase: GroundPhase,
 }
 
 /// What a run gives.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundResult {
+    /// The ball and the club as the ball leaves.
     pub launch: Launch,
+    /// Thin, good, fat or teed.
     pub strike: Strike,
     /// From the sole's first touch to the ball's first contact (ms; negative when the ball came first, `None`
     /// without ground contact).
@@ -172,26 +190,37 @@ pub struct GroundResult {
     /// At the ball's first contact, against the undisturbed swing: face-centre speed lost (mph), face angle
     /// (open +) and dynamic loft changes (deg).
     pub club_speed_loss_mph: Real,
+    /// See `club_speed_loss_mph`.
     pub face_angle_change_deg: Real,
+    /// See `club_speed_loss_mph`.
     pub dynamic_loft_change_deg: Real,
     /// Deepest sinkage of the sole (mm) and the head's horizontal travel with the leading edge below the
     /// surface (mm).
     pub divot_depth_mm: Real,
+    /// See `divot_depth_mm`.
     pub divot_length_mm: Real,
+    /// The largest ground force on the head (N).
     pub peak_ground_force_n: Real,
     /// Total time in contact with the ground (ms) and with the ball (us).
     pub ground_contact_ms: Real,
+    /// See `ground_contact_ms`.
     pub ball_contact_us: Real,
     /// The club's linear momentum at the start and end, and the impulses of the ball, ground and grip on it
     /// (N s, world).
     pub club_momentum_start_n_s: Vector3,
+    /// See `club_momentum_start_n_s`.
     pub club_momentum_end_n_s: Vector3,
+    /// See `club_momentum_start_n_s`.
     pub ball_impulse_n_s: Vector3,
     /// The ground's impulse on the club before the ball's first contact (N s, world).
     pub ground_impulse_before_ball_n_s: Vector3,
+    /// The ground's impulse on the club over the whole run (N s, world).
     pub ground_impulse_n_s: Vector3,
+    /// The grip's impulse on the club over the whole run (N s, world).
     pub grip_impulse_n_s: Vector3,
+    /// Steps taken.
     pub steps: usize,
+    /// The run's course, when asked for.
     pub trace: Vec<GroundTracePoint>,
 }
 
