@@ -16,8 +16,7 @@ pub mod stats;
 pub use config::DaemonConfig;
 // The configuration's parts under their paths before they became `config/`'s files.
 pub use config::{
-    club as config_club, club_dirs as config_club_dirs, flight as config_flight, pose as config_pose,
-    web as config_web,
+    club as config_club, club_dirs as config_club_dirs, flight as config_flight, pose as config_pose, web as config_web,
 };
 pub use live::{run, RunOptions, RunSummary};
 

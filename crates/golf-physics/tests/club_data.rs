@@ -8,9 +8,9 @@ use golf_physics::equipment::ClubSpec;
 use golf_physics::impact::{Delivery, DeliveryMetrics, Equipment, SwingArc};
 use golf_physics::kinematics::Calibration;
 use golf_physics::math::Vector3;
-use golf_physics::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 use golf_physics::pipeline::{Event, Pipeline, RigSetup};
 use golf_physics::rng::Rng;
+use golf_physics::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 
 /// One shot: the truth and what the pipeline measured.
 struct Shot {

@@ -10,8 +10,8 @@
 
 #![allow(clippy::unwrap_used)]
 
-use golf_physics::equipment::presets::PRESETS;
 use crate::load_club;
+use golf_physics::equipment::presets::PRESETS;
 use golf_physics::equipment::{BallSpec, LoadedClub};
 use golf_physics::impact::registry::{self, BuildOptions, MODELS};
 use golf_physics::impact::{Delivery, Equipment, LaunchMetrics};
@@ -223,7 +223,8 @@ fn momentum_is_conserved_with_every_preset() {
         let state = d.to_state(&eq).unwrap();
         for model in ["standard", "adjusted", "slip", "continuous", "maw", "arakawa"] {
             let (_, l) = launch(model, &club, &d);
-            let tuning = golf_physics::impact::impulse::ImpulseTuning::from_sections(&club.club, &club.sections).unwrap();
+            let tuning =
+                golf_physics::impact::impulse::ImpulseTuning::from_sections(&club.club, &club.sections).unwrap();
             let m_c = club.club.mass_kg + if model == "adjusted" { tuning.adjusted_delta_mass_kg } else { 0.0 };
             let before = m_c * state.cg_velocity_mps;
             let after = m_c * l.club_velocity_mps + ball.mass_kg * l.ball_velocity_mps;

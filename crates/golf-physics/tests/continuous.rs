@@ -52,8 +52,14 @@ fn readings_of_table_3_5() {
         let loaded = ClubFile::parse(text).unwrap();
         TwoLayerParams::from_sections(&loaded.sections, &loaded.club, &BallSpec::SEED).unwrap()
     };
-    assert_eq!(params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/driver-one-cycle.toml"))), Some(TwoLayerParams::ONE_CYCLE_DRIVER));
-    assert_eq!(params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/iron7-one-cycle.toml"))), Some(TwoLayerParams::ONE_CYCLE_IRON7));
+    assert_eq!(
+        params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/driver-one-cycle.toml"))),
+        Some(TwoLayerParams::ONE_CYCLE_DRIVER)
+    );
+    assert_eq!(
+        params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/iron7-one-cycle.toml"))),
+        Some(TwoLayerParams::ONE_CYCLE_IRON7)
+    );
     let (driver, iron) = (ClubSpec::driver(), ClubSpec::iron7());
     assert_eq!(TwoLayerParams::preset(&driver, TwoLayerReading::default()), TwoLayerParams::ONE_CYCLE_DRIVER);
     // Table 3.5: k_ball 13.5 / 34.1 N m/rad, c_ball 2.53 / 13.2 ms/rad, d 6.42 / 9.26 ms/m.

@@ -231,7 +231,8 @@ fn bounce_and_roll() {
     let wedge = fly(0.5, 102.0, 24.2, 9304.0);
     assert!(wedge.roll_yd.abs() <= 3.0, "wedge roll {:.1} yd", wedge.roll_yd);
     // The sampled path runs on past the landing to rest, on the ground.
-    let path = Flight::default().fly(&golf_physics::flight::LaunchState::from_metrics(70.0, 12.0, 0.0, 2500.0, 0.0), 0.05);
+    let path =
+        Flight::default().fly(&golf_physics::flight::LaunchState::from_metrics(70.0, 12.0, 0.0, 2500.0, 0.0), 0.05);
     let last_point = path.points.last().unwrap();
     assert!((last_point[1].hypot(last_point[3]) - path.total_m).abs() < 1e-6 && last_point[2] == 0.0);
     assert!(path.points.iter().all(|p| p[2] >= 0.0));

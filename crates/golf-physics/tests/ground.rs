@@ -155,7 +155,9 @@ fn soils_order_when_deep() {
 // ---------------------------------------------------------------------------------------------------------
 // The assembled model (seed section 4.3) on one swing over the face.
 
-use golf_physics::impact::continuous::iron_ground::{reference_swing, GroundModel, GroundResult, PreparedGround, Strike};
+use golf_physics::impact::continuous::iron_ground::{
+    reference_swing, GroundModel, GroundResult, PreparedGround, Strike,
+};
 use golf_physics::impact::continuous::shaft::ShaftMesh;
 use golf_physics::impact::{Equipment, LaunchMetrics};
 

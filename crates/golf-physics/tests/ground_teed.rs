@@ -53,9 +53,13 @@ fn teed_ground_model_is_the_continuous_model_plus_the_shaft() {
     let continuous = build_one("continuous", &club, &BuildOptions::default()).unwrap();
     // The registry's ground model, default ball, `--soil none`.
     let mut teed_club = club.clone();
-    teed_club
-        .sections
-        .insert("soil", golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| Err(std::io::ErrorKind::NotFound.into())).unwrap());
+    teed_club.sections.insert(
+        "soil",
+        golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| {
+            Err(std::io::ErrorKind::NotFound.into())
+        })
+        .unwrap(),
+    );
     let seed_shaft = build_one("ground", &teed_club, &BuildOptions::default()).unwrap();
     let no_shaft = teed(&eq, 1e-3, 5e-5);
     for (h, v) in [(0.0, -8.0), (0.0, 0.0), (0.0, 5.0), (10.0, -4.0)] {
@@ -116,7 +120,13 @@ fn both_models_take_the_same_reading_of_table_3_5() {
     table.insert("reading".into(), toml::Value::String("table".into()));
     club.sections.insert("continuous", table);
     let continuous = build_one("continuous", &club, &BuildOptions::default()).unwrap();
-    club.sections.insert("soil", golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| Err(std::io::ErrorKind::NotFound.into())).unwrap());
+    club.sections.insert(
+        "soil",
+        golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| {
+            Err(std::io::ErrorKind::NotFound.into())
+        })
+        .unwrap(),
+    );
     let ground = build_one("ground", &club, &BuildOptions::default()).unwrap();
     let (c, g) = (metrics(continuous.as_ref(), &eq, 0.0, -8.0), metrics(ground.as_ref(), &eq, 0.0, -8.0));
     println!(

@@ -5,7 +5,9 @@
 
 use golf_physics::equipment::ClubSpec;
 use golf_physics::impact::impulse::{solve, ContactProblem, ImpulseTuning};
-use golf_physics::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
+use golf_physics::impact::{
+    Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics,
+};
 use golf_physics::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Matrix3, Vector3};
 use golf_physics::rng::Rng;
 use golf_physics::wire::{DeliveryInput, Handedness, PredictOutput};

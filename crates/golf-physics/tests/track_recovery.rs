@@ -7,9 +7,9 @@
 use golf_physics::equipment::ClubSpec;
 use golf_physics::impact::Equipment;
 use golf_physics::kinematics::{Calibration, ClubheadSample};
-use golf_physics::swing::{sample, Sampling, Swing, SwingSpec};
 use golf_physics::pipeline::{Event, Pipeline, RigSetup};
 use golf_physics::rng::Rng;
+use golf_physics::swing::{sample, Sampling, Swing, SwingSpec};
 
 const YEAR_NS: u64 = 365 * 24 * 3600 * 1_000_000_000;
 

@@ -73,13 +73,13 @@ pub use club_dirs::ClubsConfig;
 pub use web::WebConfig;
 
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
-pub use flight::ConditionsConfig;
-pub use pose::{BodyClub, MountedClub, PoseConfig};
 use crate::daemon::inputs::MocapInputConfig;
 use crate::daemon::DaemonError;
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::Vector3;
 use crate::pipeline::RigSetup;
+pub use flight::ConditionsConfig;
+pub use pose::{BodyClub, MountedClub, PoseConfig};
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -108,15 +108,8 @@ impl SoilGround {
     /// [`Self::forces`] with the pose as a rotation matrix and the CG's position.
     pub fn forces_at(&self, world_from_club: &Rotation3, cg_m: &Vector3, v_cg: &Vector3, w: &Vector3) -> GroundForces {
         let placed = SoleArcWorld::at(&self.arc, world_from_club, cg_m, self.ground_y_m);
-        let sole = sole_forces(
-            &placed,
-            &self.soil,
-            v_cg,
-            w,
-            self.slip_regularisation_mps,
-            &self.strips,
-            &self.along_arc,
-        );
+        let sole =
+            sole_forces(&placed, &self.soil, v_cg, w, self.slip_regularisation_mps, &self.strips, &self.along_arc);
         if sole.max_sinkage_m <= 0.0 {
             return GroundForces { sole, face: FacePressure::default(), phase: GroundPhase::Clear };
         }

@@ -42,11 +42,10 @@ pub fn face_forces(
     rule: &GaussRule,
 ) -> FacePressure {
     let (mut force_n, mut torque_nm) = (Vector3::zeros(), Vector3::zeros());
-    let leading_edge_depth_m =
-        face_point_forces(arc, face_normal, up_face, soil, v_cg, w, v_reg_mps, rule, |r, f| {
-            force_n += f;
-            torque_nm += r.cross(&f);
-        });
+    let leading_edge_depth_m = face_point_forces(arc, face_normal, up_face, soil, v_cg, w, v_reg_mps, rule, |r, f| {
+        force_n += f;
+        torque_nm += r.cross(&f);
+    });
     FacePressure { force_n, torque_nm, leading_edge_depth_m }
 }
 

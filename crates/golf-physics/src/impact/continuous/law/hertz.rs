@@ -20,6 +20,7 @@ use crate::math::{Real, Vector3};
 /// A contact-law parameter is out of its range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LawError {
+    /// A parameter outside its range.
     #[error("`{field}` must be {expected}, got {value}")]
     OutOfRange {
         /// The parameter.
