@@ -1,5 +1,6 @@
 //! What the vertical and horizontal parts of the ground's force each do to a fat strike (research/ground-parts.md):
-//! the lean of the force is bounded by eq. 4.4-4.9 in closed form, and each part turns the ball its own way.
+//! the lean of the force is bounded by eq. 4.4-4.9 in closed form, and each part turns the ball its own way. A
+//! part acts alone through `PartOfGround` (research/tests/ground_part.rs), the model's force laws point by point.
 
 #![allow(clippy::unwrap_used)]
 
@@ -9,31 +10,45 @@ use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, Gro
 use impactd::impact::{Equipment, LaunchMetrics};
 use impactd::math::{Real, Vector3};
 
-/// Firm soil (Table 4.3) with both moduli scaled; `mask` the force components kept, `None` for no ground.
-fn prepared(eq: &Equipment, scale: Real, mask: Option<Vector3>) -> PreparedGround {
+use crate::ground_part::PartOfGround;
+
+/// Firm soil (Table 4.3) with both moduli scaled; `keep` the world components of the ground's force kept, `None`
+/// for no ground.
+fn prepared(eq: &Equipment, scale: Real, keep: Option<Vector3>) -> (PreparedGround, Option<Vector3>) {
     let mut m = GroundModel::new(SoilSpec::firm().with_moduli_scaled(scale));
-    match mask {
-        Some(mask) => m.force_mask = mask,
-        None => m.with_ground = false,
-    }
-    m.prepare(eq).unwrap()
+    m.with_ground = keep.is_some();
+    (m.prepare(eq).unwrap(), keep)
 }
 
-fn run(p: &PreparedGround, eq: &Equipment, v_mm: Real, trace_every: usize) -> (GroundResult, LaunchMetrics) {
-    let r = p.simulate(&reference_swing(0.0, v_mm).to_state(eq).unwrap(), trace_every).unwrap();
+/// The strike `v_mm` up the face, with only the kept part of the ground's force acting (the model itself without
+/// `keep`).
+fn run(
+    (p, keep): &(PreparedGround, Option<Vector3>),
+    eq: &Equipment,
+    v_mm: Real,
+    trace_every: usize,
+) -> (GroundResult, LaunchMetrics) {
+    let state = reference_swing(0.0, v_mm).to_state(eq).unwrap();
+    let r = match keep {
+        Some(keep) => p.simulate_with(&state, trace_every, |ground| PartOfGround { ground, keep: *keep }),
+        None => p.simulate(&state, trace_every),
+    }
+    .unwrap();
     let l = LaunchMetrics::from_ball(&r.launch.ball_velocity_mps, &r.launch.ball_spin_radps);
     (r, l)
 }
 
-/// A mask of ones is the seed's model, bit for bit; the vertical part alone has no horizontal impulse and the
-/// horizontal part alone no vertical one.
+/// Keeping every component is the seed's model, bit for bit; the vertical part alone has no horizontal impulse
+/// and the horizontal part alone no vertical one.
 #[test]
-fn masks_keep_what_they_name() {
+fn parts_keep_what_they_name() {
     let eq = Equipment::new(ClubSpec::iron7());
-    let (plain, _) = run(&GroundModel::new(SoilSpec::firm()).prepare(&eq).unwrap(), &eq, 15.0, 0);
+    let (plain, _) = run(&(GroundModel::new(SoilSpec::firm()).prepare(&eq).unwrap(), None), &eq, 15.0, 0);
     let (ones, _) = run(&prepared(&eq, 1.0, Some(Vector3::repeat(1.0))), &eq, 15.0, 0);
     assert_eq!(plain.launch.ball_velocity_mps, ones.launch.ball_velocity_mps);
     assert_eq!(plain.ground_impulse_n_s, ones.ground_impulse_n_s);
+    assert_eq!(plain.launch.ball_spin_radps, ones.launch.ball_spin_radps);
+    assert_eq!(plain.divot_length_mm, ones.divot_length_mm);
     let (v, _) = run(&prepared(&eq, 1.0, Some(Vector3::new(0.0, 1.0, 0.0))), &eq, 15.0, 0);
     let (h, _) = run(&prepared(&eq, 1.0, Some(Vector3::new(1.0, 0.0, 1.0))), &eq, 15.0, 0);
     let jv = v.ground_impulse_before_ball_n_s;

@@ -8,6 +8,7 @@ mod driver_axis;
 mod driver_centre_sidespin;
 mod flight_published;
 mod gear_effect;
+mod ground_part;
 mod ground_parts;
 mod identifiability;
 mod identify_likelihood;

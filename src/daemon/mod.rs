@@ -4,11 +4,6 @@
 pub mod bridges;
 pub mod bus;
 pub mod config;
-pub mod config_club;
-pub mod config_club_dirs;
-pub mod config_flight;
-pub mod config_pose;
-pub mod config_web;
 pub mod demo;
 pub mod inputs;
 pub mod live;
@@ -19,6 +14,10 @@ pub mod sim;
 pub mod stats;
 
 pub use config::DaemonConfig;
+// The configuration's parts under their paths before they became `config/`'s files.
+pub use config::{
+    club as config_club, club_dirs as config_club_dirs, flight as config_flight, pose as config_pose, web as config_web,
+};
 pub use live::{run, RunOptions, RunSummary};
 
 /// Errors of the daemon layer.
@@ -38,7 +37,7 @@ pub enum DaemonError {
     RigClub {
         field: String,
         #[source]
-        source: config_club::RigClubError,
+        source: config::club::RigClubError,
     },
     /// A rig's `input.markers` file that cannot be read or holds no marker set.
     #[error("config field `{field}` {source}")]
@@ -52,7 +51,7 @@ pub enum DaemonError {
     Conditions {
         field: String,
         #[source]
-        source: config_flight::ConditionsConfigError,
+        source: config::flight::ConditionsConfigError,
     },
     /// A rig's `[rig.labels]` that no put on `golf/<rig>/session` could carry.
     #[error("config field `{field}` {source}")]

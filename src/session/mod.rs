@@ -6,9 +6,10 @@ pub mod metrics;
 pub mod shot_table;
 pub mod sigma;
 pub mod stats;
-pub mod trackman_csv;
-pub mod trackman_report;
-pub mod trackman_rows;
+pub mod trackman;
+
+// TrackMan's readers and writer under their paths before they became `trackman/`'s files.
+pub use trackman::{csv as trackman_csv, report as trackman_report, rows as trackman_rows};
 
 pub use metrics::{Metric, Quantity, Units, METRICS};
 pub use stats::{summarize, Gap, GroupBy, GroupSummary, MetricStats, Outlier, SessionSummary, ShotId};

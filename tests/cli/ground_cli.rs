@@ -24,7 +24,7 @@ fn impactd(args: &[&str], stdin: &str) -> Output {
     child.wait_with_output().unwrap()
 }
 
-/// The seed's swing over the face (section 4.3, as in tests/physics/ground.rs): 90 mph, 4.3° down, 25° dynamic loft,
+/// The seed's swing over the face (section 4.3, as in crates/golf-physics/tests/ground.rs): 90 mph, 4.3° down, 25° dynamic loft,
 /// 27 rad/s about the normal of a 60° swing plane, struck `v_mm` up the face.
 fn line(v_mm: f64) -> String {
     let p = 60f64.to_radians();

@@ -143,7 +143,7 @@ async fn end_to_end_two_rigs_record_and_replay() {
         assert!((p.sidespin_rpm - q.sidespin_rpm).abs() < 200.0, "{} shot {} sidespin", l.rig, l.shot);
         assert!((t.t_impact_ns as f64 - l.t_impact_ns as f64).abs() < 50_000.0);
         assert!(l.latency_us > 0.0);
-        // Club data against the truth (docs/club-data.md): about five times tests/physics/club_data.rs's RMS errors.
+        // Club data against the truth (docs/club-data.md): about five times crates/golf-physics/tests/club_data.rs's RMS errors.
         let (pa, ta, pd, td) = (l.delivery.swing_arc.unwrap(), t.delivery.swing_arc.unwrap(), &l.delivery, &t.delivery);
         let near = |a: f64, b: f64, tol: f64| assert!((a - b).abs() < tol, "{} shot {}: {a} vs {b}", l.rig, l.shot);
         near(pa.swing_direction_deg, ta.swing_direction_deg, 0.1);

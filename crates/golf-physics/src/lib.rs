@@ -58,13 +58,11 @@
 
 pub mod equipment;
 pub mod face;
-// Not every public field and variant of these four has its own doc yet (the types and functions say what their
-// fields are, several to one comment); the lint holds for the rest of the crate.
-#[allow(missing_docs)]
 pub mod flight;
-#[allow(missing_docs)]
 pub mod impact;
 pub mod integrate;
+// Not every public field and variant of the kinematics has its own doc yet (its types and functions say what
+// their fields are, several to one comment); the lint holds for the rest of the crate.
 #[allow(missing_docs)]
 pub mod kinematics;
 pub mod math;
@@ -72,5 +70,4 @@ pub mod pipeline;
 pub mod rng;
 pub mod swing;
 pub mod units;
-#[allow(missing_docs)]
 pub mod wire;

@@ -164,16 +164,23 @@ pub fn reynolds(airspeed_mps: Real, diameter_m: Real, density_kg_m3: Real, visco
 /// One point of the coefficient grid `impactd flight --coefficients` prints.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct CoefficientPoint {
+    /// Airspeed (m/s).
     pub speed_mps: Real,
+    /// Reynolds number `Re = ρ |u| d / μ`.
     pub reynolds: Real,
+    /// Spin ratio `S = r |ω| / |u|`.
     pub spin_ratio: Real,
+    /// The spin (rpm) that gives `spin_ratio` at this airspeed.
     pub spin_rpm: Real,
+    /// Drag coefficient `C_D(Re, S)`.
     pub c_d: Real,
+    /// Lift coefficient `C_L(Re, S)`.
     pub c_l: Real,
 }
 
 /// Airspeeds (m/s) and spin ratios of the printed grid.
 pub const GRID_SPEEDS_MPS: [Real; 8] = [20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0];
+/// Spin ratios of the printed grid.
 pub const GRID_SPIN_RATIOS: [Real; 8] = [0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5];
 
 /// `aero`'s coefficients over [`GRID_SPEEDS_MPS`] × [`GRID_SPIN_RATIOS`] for a ball of radius `radius_m` in

@@ -5,15 +5,18 @@ use crate::math::{Real, Vector3};
 /// Conditions of a shot.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Conditions {
+    /// Air temperature (°C).
     pub temperature_c: Real,
     /// Station pressure (hPa); `None`: the standard atmosphere at `altitude_m`.
     pub pressure_hpa: Option<Real>,
     /// Relative humidity, 0-1.
     pub humidity: Real,
+    /// Altitude above sea level (m); sets the pressure when `pressure_hpa` is `None`.
     pub altitude_m: Real,
     /// Wind speed (m/s) and the direction it blows toward (deg from the target line, right +): 0 is a tailwind,
     /// 180 a headwind, 90 blows left to right.
     pub wind_mps: Real,
+    /// See `wind_mps`.
     pub wind_dir_deg: Real,
 }
 
@@ -34,8 +37,18 @@ impl Default for Conditions {
 /// A condition out of its range, named.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ConditionsError {
+    /// `field` is `value`, outside `min..=max`.
     #[error("`{field}` must be within {min} and {max}, got {value}")]
-    OutOfRange { field: &'static str, value: Real, min: Real, max: Real },
+    OutOfRange {
+        /// The field's name in the configuration (`temperature_c`, `humidity`, ...).
+        field: &'static str,
+        /// What it was.
+        value: Real,
+        /// Its smallest and largest allowed values.
+        min: Real,
+        /// See `min`.
+        max: Real,
+    },
 }
 
 impl Conditions {

@@ -8,12 +8,19 @@ use crate::math::Real;
 /// One club of the table against the model.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ClubError {
+    /// The club's name in the table.
     pub club: String,
+    /// Measured carry (yd).
     pub carry_yd: Real,
+    /// Predicted − measured carry (yd).
     pub carry_error_yd: Real,
+    /// Measured apex (yd).
     pub apex_yd: Real,
+    /// Predicted − measured apex (yd).
     pub apex_error_yd: Real,
+    /// Measured land angle (deg).
     pub land_angle_deg: Real,
+    /// Predicted − measured land angle (deg).
     pub land_angle_error_deg: Real,
 }
 
@@ -60,21 +67,30 @@ pub fn club_errors(aero: &super::Aero, rows: &[TourAverage]) -> Vec<ClubError> {
 /// One left-out club: what the table says and what the fit without it predicts.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Holdout {
+    /// The club left out.
     pub club: String,
+    /// Its measured carry (yd).
     pub carry_yd: Real,
+    /// Its carry predicted by the fit to the other clubs (yd).
     pub predicted_carry_yd: Real,
     /// `100 (predicted − measured) / measured`.
     pub carry_error_pct: Real,
+    /// Predicted − measured apex (yd).
     pub apex_error_yd: Real,
+    /// Predicted − measured land angle (deg).
     pub land_angle_error_deg: Real,
 }
 
 /// The cross-validation: every club left out once, and the largest errors.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct CrossValidation {
+    /// Every club, left out once, in the table's order.
     pub holdouts: Vec<Holdout>,
+    /// Largest carry error over the holdouts (% of the measured carry, absolute).
     pub max_carry_error_pct: Real,
+    /// Largest apex error (yd, absolute).
     pub max_apex_error_yd: Real,
+    /// Largest land-angle error (deg, absolute).
     pub max_land_angle_error_deg: Real,
 }
 

@@ -2,7 +2,7 @@
 //! rpm the drag and lift stay between the lower and the higher of Bearman and Harvey's wind tunnel and Lyu et
 //! al.'s free flight at the same airspeed and spin, widened by the ball-to-ball spread Lyu et al. report (0.05
 //! above Re 10⁵, 0.10 below); above the drag crisis the drag at a fixed spin ratio (0.12, 0.15, 0.18) rises from
-//! 40 to 88.1 m/s no more than Bearman and Harvey's does. `tests/physics/flight.rs` asserts the same of `Aero::FITTED`;
+//! 40 to 88.1 m/s no more than Bearman and Harvey's does. `crates/golf-physics/tests/flight.rs` asserts the same of `Aero::FITTED`;
 //! [`violations`] measures how far a set of coefficients is outside (0 inside), so a fit can be kept inside.
 
 use super::aero::reynolds;

@@ -14,12 +14,19 @@ use crate::units::mph_to_mps;
 /// One row of the TrackMan table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TourAverage {
+    /// The club's name (`Driver`, `7-iron`, ...).
     pub club: String,
+    /// Ball speed (mph).
     pub ball_speed_mph: Real,
+    /// Launch angle (deg).
     pub launch_angle_deg: Real,
+    /// Total spin (rpm).
     pub spin_rpm: Real,
+    /// Apex height (yd).
     pub max_height_yd: Real,
+    /// Angle of descent at landing (deg).
     pub land_angle_deg: Real,
+    /// Carry (yd).
     pub carry_yd: Real,
 }
 
@@ -29,14 +36,26 @@ pub const TRACKMAN_CSV: &str = include_str!("../../../../tests/data/trackman-pga
 /// Why the table cannot be read.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum TableError {
+    /// No header line.
     #[error("empty table")]
     Empty,
+    /// The header lacks this column.
     #[error("no column `{0}`")]
     MissingColumn(&'static str),
+    /// A cell that is missing or not a number.
     #[error("row {row}: column {column}")]
-    BadNumber { row: usize, column: usize },
+    BadNumber {
+        /// The row (1-based, after the header).
+        row: usize,
+        /// The column (0-based, in the header's order).
+        column: usize,
+    },
+    /// A row without a cell for the club.
     #[error("row {row}: no club")]
-    NoClub { row: usize },
+    NoClub {
+        /// The row (1-based, after the header).
+        row: usize,
+    },
 }
 
 /// Parses the CSV (comment lines start with `#`).
@@ -109,6 +128,7 @@ pub struct Tolerance {
     pub carry_pct: Option<Real>,
     /// Apex (yd); `None` leaves apex out of the fit.
     pub apex_yd: Option<Real>,
+    /// Land angle (deg).
     pub land_angle_deg: Real,
     /// The published drag and lift envelope ([`super::envelope::violations`]) held to this (coefficient
     /// units); `None` leaves it out.
@@ -203,8 +223,11 @@ pub const ITERATIONS: usize = 1000;
 /// The fitted coefficients, the first stage's objective ([`cost`]) at them and their largest scaled error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {
+    /// The fitted coefficients.
     pub aero: Aero,
+    /// The first stage's objective at them ([`cost`]).
     pub cost: Real,
+    /// Their largest error over the clubs, each scaled by its tolerance.
     pub worst: Real,
 }
 

@@ -42,7 +42,9 @@ pub const G: Real = 9.80665;
 /// The ball leaving the face.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LaunchState {
+    /// Ball velocity (m/s, world).
     pub velocity_mps: Vector3,
+    /// Ball angular velocity (rad/s, world).
     pub spin_radps: Vector3,
 }
 
@@ -101,22 +103,31 @@ fn hermite_peak(y0: Real, v0: Real, y1: Real, v1: Real, h: Real) -> Real {
 /// Where and how the ball lands.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Trajectory {
+    /// Horizontal distance from the launch point to where the ball lands (m).
     pub carry_m: Real,
+    /// `carry_m` in yards.
     pub carry_yd: Real,
     /// Distance right (+) or left (−) of the target line at landing.
     pub offline_m: Real,
+    /// `offline_m` in yards.
     pub offline_yd: Real,
+    /// Highest point above the ground (m).
     pub apex_m: Real,
+    /// `apex_m` in yards.
     pub apex_yd: Real,
+    /// Time from launch to landing (s).
     pub hang_time_s: Real,
     /// Angle of descent below the horizontal at landing (deg).
     pub land_angle_deg: Real,
+    /// Ball speed at landing (m/s).
     pub land_speed_mps: Real,
     /// Where the ball comes to rest after bouncing and rolling, from the launch point.
     pub total_m: Real,
+    /// `total_m` in yards.
     pub total_yd: Real,
     /// How far the ball ran from its landing point to rest along its line of travel (negative: spun back).
     pub roll_m: Real,
+    /// `roll_m` in yards.
     pub roll_yd: Real,
     /// Sampled positions `[t_s, x_m, y_m, z_m]` in the air and on the ground, when asked for.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -126,8 +137,11 @@ pub struct Trajectory {
 /// The flight model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flight {
+    /// Drag and lift coefficients ([`aero`]).
     pub aero: Aero,
+    /// The air and the wind ([`air`]).
     pub conditions: Conditions,
+    /// The ball's mass and radius.
     pub ball: BallSpec,
     /// The turf the ball lands, bounces and rolls on.
     pub turf: Turf,

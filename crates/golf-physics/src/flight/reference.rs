@@ -6,8 +6,10 @@
 /// material (`experdata/dragdata.m`, `liftdata.m`): airspeeds (m/s), and for 2000, 3000, 4000, 5000 and 6000 rpm
 /// the drag and the lift at each airspeed.
 pub const BH_SPEEDS_MPS: [crate::math::Real; 10] = [13.7, 21.6, 29.9, 38.4, 46.9, 55.2, 63.1, 71.9, 80.2, 88.1];
+/// The spin rates of Bearman and Harvey's rows (rpm).
 pub const BH_RPM: [crate::math::Real; 5] = [2000.0, 3000.0, 4000.0, 5000.0, 6000.0];
 // Measured values; 0.318 is a drag coefficient, not 1/π.
+/// Drag coefficients, a row per spin rate of [`BH_RPM`], a column per airspeed of [`BH_SPEEDS_MPS`].
 #[allow(clippy::approx_constant)]
 pub const BH_CD: [[crate::math::Real; 10]; 5] = [
     [0.363, 0.288, 0.275, 0.255, 0.247, 0.247, 0.247, 0.247, 0.247, 0.247],
@@ -16,6 +18,7 @@ pub const BH_CD: [[crate::math::Real; 10]; 5] = [
     [0.481, 0.430, 0.374, 0.335, 0.306, 0.287, 0.275, 0.271, 0.2673, 0.2673],
     [0.515, 0.441, 0.386, 0.352, 0.329, 0.306, 0.288, 0.279, 0.274, 0.274],
 ];
+/// Lift coefficients, laid out as [`BH_CD`].
 pub const BH_CL: [[crate::math::Real; 10]; 5] = [
     [0.100, 0.185, 0.245, 0.200, 0.173, 0.153, 0.142, 0.136, 0.128, 0.128],
     [0.359, 0.335, 0.304, 0.246, 0.208, 0.184, 0.167, 0.1584, 0.1485, 0.1468],

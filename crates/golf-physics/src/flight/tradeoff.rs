@@ -29,7 +29,9 @@ pub struct TradeoffPoint {
     pub max_apex_error_yd: Real,
     /// The club with the largest carry error and the one with the largest land-angle error.
     pub worst_carry_club: usize,
+    /// Index (in the rows) of the club with the largest land-angle error.
     pub worst_land_club: usize,
+    /// The coefficients these errors are of.
     pub aero: Aero,
 }
 

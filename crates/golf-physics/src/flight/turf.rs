@@ -27,6 +27,7 @@ use crate::math::Real;
 pub const CONTACT_ANGLE_DEG: Real = 15.4;
 /// Penner's reference landing speed (m/s) and angle of descent (deg) for the contact angle.
 pub const CONTACT_REF_MPS: Real = 18.6;
+/// Penner's reference angle of descent (deg) for the contact angle.
 pub const CONTACT_REF_DEG: Real = 44.4;
 /// Coulomb friction between ball and turf.
 pub const FRICTION: Real = 0.4;
@@ -53,6 +54,7 @@ impl Default for Turf {
 /// Why a ground is not usable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TurfError {
+    /// `firmness` outside 0-1 (or not finite).
     #[error("`firmness` must be within 0 and 1, got {0}")]
     Firmness(Real),
 }
@@ -60,11 +62,15 @@ pub enum TurfError {
 /// One stretch of the run: a hop (a parabola) or a slide or roll (constant deceleration along the ground).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
+    /// Start, from landing (s).
     pub t0_s: Real,
+    /// How long it lasts (s).
     pub duration_s: Real,
     /// Distance along the line of travel from the landing point at the start (m), speed and acceleration along it.
     pub d0_m: Real,
+    /// Speed along the line of travel at the start (m/s).
     pub v_mps: Real,
+    /// Acceleration along the line of travel (m/s², negative: slowing).
     pub a_mps2: Real,
     /// Upward speed at the start of a hop (0 on the ground).
     pub up_mps: Real,
@@ -86,11 +92,14 @@ pub struct Run {
     pub roll_m: Real,
     /// Time from landing to rest (s).
     pub duration_s: Real,
+    /// Hops before the ball settles.
     pub bounces: usize,
+    /// The hops, then the slide and roll, in time order.
     pub segments: Vec<Segment>,
 }
 
 impl Turf {
+    /// Checks that `firmness` is within 0-1.
     pub fn validate(&self) -> Result<(), TurfError> {
         if self.firmness.is_finite() && (0.0..=1.0).contains(&self.firmness) {
             Ok(())

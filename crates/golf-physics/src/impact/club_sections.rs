@@ -4,6 +4,7 @@
 
 /// One club-file section.
 pub struct SectionDoc {
+    /// The section's name in a club file (`[name]`).
     pub name: &'static str,
     /// Its fields and what they mean, one line each.
     pub fields: &'static [&'static str],

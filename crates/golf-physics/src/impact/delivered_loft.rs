@@ -50,8 +50,11 @@ const fn row(club: &'static str, speed: Real, attack: Real, ball: Real, launch: 
 /// One point of the curve: a preset's static loft and the dynamic loft tour players deliver with it (deg).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeliveredLoft {
+    /// The preset's name.
     pub preset: &'static str,
+    /// Its static loft (deg).
     pub static_loft_deg: Real,
+    /// The dynamic loft tour players deliver with it (deg).
     pub dynamic_loft_deg: Real,
 }
 
@@ -63,7 +66,7 @@ impl DeliveredLoft {
 }
 
 /// The derived points, in static-loft order (a preset that fails to derive is left out; every embedded one
-/// derives, `tests/physics/tour_deliveries.rs`).
+/// derives, `crates/golf-physics/tests/tour_deliveries.rs`).
 pub fn curve() -> &'static [DeliveredLoft] {
     static CURVE: OnceLock<Vec<DeliveredLoft>> = OnceLock::new();
     CURVE.get_or_init(|| {

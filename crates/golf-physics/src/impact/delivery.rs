@@ -22,12 +22,19 @@ use crate::math::{rot_y, rot_z, Isometry3, Real, UnitQuaternion, Vector3};
 /// A delivery in SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Delivery {
+    /// Clubhead speed at the face centre (m/s).
     pub club_speed_mps: Real,
+    /// Attack angle: the face centre's path above (+) or below the horizontal (rad).
     pub attack_angle_rad: Real,
+    /// Club path: the face centre's path right (+) or left of the target line (rad).
     pub club_path_rad: Real,
+    /// Face angle: the face normal right (+, open) or left of the target line (rad).
     pub face_angle_rad: Real,
+    /// Dynamic loft: the face normal's angle above the horizontal (rad).
     pub dynamic_loft_rad: Real,
+    /// Impact location across the face from its centre (m, toward the toe +).
     pub impact_h_m: Real,
+    /// Impact location up the face from its centre (m, up +).
     pub impact_v_m: Real,
     /// Angular velocity of the head (rad/s, world).
     pub club_angular_velocity_radps: Vector3,
@@ -133,16 +140,27 @@ fn lie_twist(
 /// Delivery numbers read back from any impact state, plus spin loft and face-to-path.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct DeliveryMetrics {
+    /// Clubhead speed at the face centre (m/s).
     pub club_speed_mps: Real,
+    /// The same in mph.
     pub club_speed_mph: Real,
+    /// Attack angle (deg, up +).
     pub attack_angle_deg: Real,
+    /// Club path (deg, right of the target line +).
     pub club_path_deg: Real,
+    /// Face angle (deg, open +).
     pub face_angle_deg: Real,
+    /// Dynamic loft (deg).
     pub dynamic_loft_deg: Real,
+    /// The angle between the face centre's path and the face normal (deg).
     pub spin_loft_deg: Real,
+    /// Face angle less club path (deg).
     pub face_to_path_deg: Real,
+    /// Impact location across the face from its centre (mm, toward the toe +).
     pub impact_h_mm: Real,
+    /// Impact location up the face from its centre (mm, up +).
     pub impact_v_mm: Real,
+    /// The head's angular velocity (rad/s, world).
     pub club_angular_velocity_radps: [Real; 3],
     /// The shaft's angle above the ground at impact (deg), TrackMan's dynamic lie: the static lie at a square
     /// address; above it the shaft is more upright and the toe down (toe first into the turf), below it the toe

@@ -30,11 +30,15 @@ pub struct ParamDef {
     pub name: &'static str,
     /// The key in the model's section, and the element of an array key.
     pub key: &'static str,
+    /// See `key`.
     pub index: Option<usize>,
     /// The unit it is shown in, and the factor from SI to that unit.
     pub unit: &'static str,
+    /// See `unit`.
     pub display_factor: Real,
+    /// The smallest value a fit may take (SI).
     pub lo: Real,
+    /// The largest value a fit may take (SI).
     pub hi: Real,
     /// Search in log space (bounds spanning decades).
     pub log: bool,
@@ -91,10 +95,13 @@ impl ParamDef {
 /// A model whose parameters can be identified: its registry name, club-file section and parameters.
 #[derive(Debug)]
 pub struct FitModel {
+    /// The model's registry name.
     pub name: &'static str,
+    /// Its club-file section.
     pub section: &'static str,
     /// The section's values when the club file has none (the seed's, per club).
     pub defaults: fn(&ClubSpec) -> toml::Table,
+    /// The parameters a fit may vary.
     pub params: &'static [ParamDef],
     /// The model at a coarser integration step, for the global search of a model resolved in time (`None`: the
     /// model is cheap, or has no step).

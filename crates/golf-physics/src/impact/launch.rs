@@ -11,13 +11,21 @@ use crate::units::{mps_to_mph, radps_to_rpm};
 /// TrackMan-style launch numbers.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct LaunchMetrics {
+    /// Ball speed (m/s).
     pub ball_speed_mps: Real,
+    /// Ball speed (mph).
     pub ball_speed_mph: Real,
+    /// Launch angle above the horizontal (deg).
     pub launch_angle_deg: Real,
+    /// Launch direction right (+) or left of the target line (deg).
     pub launch_direction_deg: Real,
+    /// Backspin (rpm; negative: topspin).
     pub backspin_rpm: Real,
+    /// Sidespin (rpm; + curves the ball right: fade or slice).
     pub sidespin_rpm: Real,
+    /// Total spin (rpm).
     pub total_spin_rpm: Real,
+    /// Spin axis tilt `atan2(sidespin, backspin)` (deg; + curves right).
     pub spin_axis_deg: Real,
 }
 

@@ -35,47 +35,97 @@ use crate::math::{Isometry3, Matrix3, Real, Vector3};
 /// Errors of the impact layer (not `Clone`: a part's error keeps its cause, an IO error among them).
 #[derive(Debug, thiserror::Error)]
 pub enum ImpactError {
+    /// The impact location is outside the face's outline.
     #[error("impact location ({h_mm:.1} mm, {v_mm:.1} mm) is off the face")]
-    OffFace { h_mm: Real, v_mm: Real },
+    OffFace {
+        /// Toward the toe from the face centre (mm).
+        h_mm: Real,
+        /// Up the face from the face centre (mm).
+        v_mm: Real,
+    },
+    /// The face's geometry refused the impact location.
     #[error(transparent)]
     Face(#[from] FaceError),
+    /// A number of the state or delivery that is not finite.
     #[error("field `{field}` must be finite")]
-    NotFinite { field: &'static str },
+    NotFinite {
+        /// Its field.
+        field: &'static str,
+    },
+    /// A club speed no swing gives.
     #[error("club speed {speed_mps:.2} m/s is outside 1-100 m/s")]
-    SpeedOutOfRange { speed_mps: Real },
+    SpeedOutOfRange {
+        /// The speed (m/s).
+        speed_mps: Real,
+    },
+    /// A dynamic lie the face's loft and angle cannot give.
     #[error("field `dynamic_lie_deg`: {lie_deg:.1} deg is no lie the face's loft and angle allow")]
-    LieUnreachable { lie_deg: Real },
+    LieUnreachable {
+        /// The lie asked for (deg).
+        lie_deg: Real,
+    },
+    /// The contact point moves away from the ball: no collision.
     #[error("the club is not moving toward the ball at the contact point")]
     NotApproaching,
+    /// The impulse-momentum solve's matrix is singular.
     #[error("the contact solve is singular")]
     Singular,
+    /// A model's solve or stepping that did not finish.
     #[error("{model} did not converge: {reason}")]
-    NotConverged { model: &'static str, reason: String },
+    NotConverged {
+        /// The model's name.
+        model: &'static str,
+        /// What it did not reach.
+        reason: String,
+    },
+    /// A model parameter out of its range.
     #[error("model parameter `{field}` {reason}")]
-    InvalidParameter { field: String, reason: String },
+    InvalidParameter {
+        /// The parameter.
+        field: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// A part a model stands on (the soil, sole or shaft of its club-file sections) that the equipment refuses.
     #[error("model parameter `[{section}]` {source}")]
     Part {
+        /// The club-file section.
         section: &'static str,
+        /// Why the equipment refused it.
         #[source]
         source: EquipmentError,
     },
     /// A soil named for the turf model (`--soil`, a rig's `soil`) that is no preset and no soil file.
     #[error("model parameter `[soil]` {source}; or {} for the ball on a tee", continuous::iron_ground::sections::TEED)]
     Soil {
+        /// Why it could not be read.
         #[source]
         source: EquipmentError,
     },
+    /// A model name the registry does not have.
     #[error("unknown model '{name}' (expected {expected})")]
-    UnknownModel { name: String, expected: String },
+    UnknownModel {
+        /// The name given.
+        name: String,
+        /// The registry's names.
+        expected: String,
+    },
+    /// A club-file section no model reads.
     #[error("the club file's section [{section}] belongs to no model (known sections: {known})")]
-    UnknownSection { section: String, known: String },
+    UnknownSection {
+        /// The section's name.
+        section: String,
+        /// The sections the models read.
+        known: String,
+    },
 }
 
 /// The club and the ball a model needs (physical data only; a model carries its own parameters).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Equipment {
+    /// The clubhead.
     pub club: ClubSpec,
+    /// The ball.
     pub ball: BallSpec,
 }
 
@@ -137,9 +187,13 @@ impl ImpactState {
 /// What a model predicts: the ball's launch and the club just after impact (world frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Launch {
+    /// The ball's velocity after impact (m/s, world).
     pub ball_velocity_mps: Vector3,
+    /// The ball's angular velocity after impact (rad/s, world).
     pub ball_spin_radps: Vector3,
+    /// The head's CG velocity after impact (m/s, world).
     pub club_velocity_mps: Vector3,
+    /// The head's angular velocity after impact (rad/s, world).
     pub club_angular_velocity_radps: Vector3,
     /// Impulse on the ball (N s, world).
     pub impulse_n_s: Vector3,

@@ -134,8 +134,11 @@ pub const MODELS: &[ModelEntry] = &[
 /// A name that stands for several models, published in order: one list for a ball on a tee, one for a ball on
 /// the turf (a rig or command with a soil).
 pub struct Group {
+    /// The name that stands for the group (`both`, ...).
     pub name: &'static str,
+    /// Its models for a ball on a tee, in publication order.
     pub members: &'static [&'static str],
+    /// Its models for a ball on the turf.
     pub on_turf: &'static [&'static str],
 }
 

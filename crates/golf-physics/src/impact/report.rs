@@ -30,6 +30,7 @@ impl RunOptions {
 /// One run of a model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelRun {
+    /// The ball and the club after impact.
     pub launch: Launch,
     /// Published with every launch of this model (`None` for the impulse models).
     pub report: Option<Report>,
@@ -47,22 +48,29 @@ impl ModelRun {
 /// A model's own numbers, published with each of its launches under `key` (the ground model's `ground`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {
+    /// The key it is published under.
     pub key: &'static str,
+    /// Its numbers, in order.
     pub fields: Fields,
 }
 
 /// The course of a run resolved in time: its summary numbers (printed beside the launch) and its trace.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Course {
+    /// Its summary numbers.
     pub summary: Fields,
+    /// Its trace points.
     pub trace: Trace,
 }
 
 /// One named value.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Value {
+    /// A number.
     Number(Real),
+    /// A count.
     Count(u64),
+    /// A fixed text (a name).
     Text(&'static str),
     /// Written as `null`.
     Null,
@@ -120,6 +128,7 @@ impl Fields {
         }
     }
 
+    /// Whether it holds no field.
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
@@ -146,6 +155,7 @@ impl Trace {
         self.0.iter().filter_map(|row| Some((row.number(x)?, row.number(y)?))).collect()
     }
 
+    /// Whether it has no point.
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
@@ -164,8 +174,15 @@ impl Serialize for Trace {
 /// A report as it travels: the numbers a model wrote (in order), or, read back from the wire, its JSON as parsed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum WireReport {
+    /// The report a model wrote.
     Written(Report),
-    Read { key: String, value: serde_json::Value },
+    /// The report read back from the wire, as its JSON.
+    Read {
+        /// The key it was published under.
+        key: String,
+        /// Its JSON object.
+        value: serde_json::Value,
+    },
 }
 
 impl WireReport {
@@ -204,10 +221,12 @@ pub struct WireReports(Option<Box<ReportList>>);
 struct ReportList(Vec<WireReport>);
 
 impl WireReports {
+    /// Whether a launch carries no report.
     pub fn is_empty(&self) -> bool {
         self.iter().next().is_none()
     }
 
+    /// The reports, in order.
     pub fn iter(&self) -> impl Iterator<Item = &WireReport> + Clone {
         self.0.iter().flat_map(|v| v.0.iter())
     }
@@ -217,6 +236,7 @@ impl WireReports {
         self.iter().find(|r| r.key() == key)
     }
 
+    /// Adds a report after the others.
     pub fn push(&mut self, report: WireReport) {
         self.0.get_or_insert_with(Default::default).0.push(report);
     }

@@ -24,9 +24,12 @@ pub const SPIN_AXIS_LIMIT_DEG: Real = 45.0;
 )]
 #[serde(rename_all = "snake_case")]
 pub enum LaunchWarning {
+    /// `|spin_axis| > 45 deg`.
     #[serde(rename = "spin_axis_beyond_45_deg")]
     SpinAxisBeyond45Deg,
+    /// The ball leaves with topspin.
     NegativeBackspin,
+    /// The smash factor outside the club's physical range ([`smash_range`]).
     SmashOutOfRange,
 }
 

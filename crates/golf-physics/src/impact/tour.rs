@@ -16,11 +16,17 @@ use crate::units::mph_to_mps;
 /// One club's row of TrackMan's PGA Tour averages.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TourAverage {
+    /// The club (`driver`, `7i`).
     pub club: &'static str,
+    /// Club speed (mph).
     pub club_speed_mph: Real,
+    /// Attack angle (deg).
     pub attack_angle_deg: Real,
+    /// Ball speed (mph).
     pub ball_speed_mph: Real,
+    /// Launch angle (deg).
     pub launch_angle_deg: Real,
+    /// Total spin (rpm).
     pub spin_rpm: Real,
 }
 
@@ -33,6 +39,7 @@ pub const TOUR_DRIVER: TourAverage = TourAverage {
     launch_angle_deg: 10.9,
     spin_rpm: 2686.0,
 };
+/// See [`TOUR_DRIVER`].
 pub const TOUR_IRON7: TourAverage = TourAverage {
     club: "7i",
     club_speed_mph: 90.0,

@@ -21,6 +21,7 @@ pub const DELIVERY_PARAMETERS: usize = 11;
 /// The covariance of a delivery's parameters (SI: m/s, rad, m, rad/s), in the order of the module docs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeliveryCovariance {
+    /// The covariance matrix (SI units squared, symmetric).
     pub cov: SMatrix<DELIVERY_PARAMETERS, DELIVERY_PARAMETERS>,
 }
 

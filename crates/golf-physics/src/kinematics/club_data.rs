@@ -21,7 +21,7 @@ use crate::impact::SwingArc;
 use crate::math::{Real, Vector3};
 
 /// The span of frames before impact the path is fitted over (ms): the last 50-90 deg of the downswing's arc.
-/// Chosen on the synthetic swings at 720 Hz with 0.2 mm / 0.1 deg of noise (tests/physics/club_data.rs): the low
+/// Chosen on the synthetic swings at 720 Hz with 0.2 mm / 0.1 deg of noise (crates/golf-physics/tests/club_data.rs): the low
 /// point's RMS error is 1.2-1.6 mm on arcs at 50 and 60 ms but 4-6 mm on double-pendulum paths at 60 ms
 /// (the uncocking wrist bends the path away from a circle over the longer span) against 2.3-2.6 mm at 50 ms;
 /// at 40 ms and below the noise takes over (3-12 mm).

@@ -84,7 +84,7 @@ impl GolferProfile {
             club_speed_mph: 113.0,
             attack_angle_deg: -1.3,
             // 14.1 deg of dynamic loft + 1.3 deg of attack over the 9.8 deg static loft: the loft at which the
-            // adjusted model launches the tour's 10.9 deg (impact::tour, tests/physics/tour_deliveries.rs).
+            // adjusted model launches the tour's 10.9 deg (impact::tour, crates/golf-physics/tests/tour_deliveries.rs).
             spin_loft_over_static_deg: 5.6,
             impact_v_mm: 0.0,
         },
@@ -121,7 +121,7 @@ impl GolferProfile {
     /// loft delivered.
     pub const IRON: GolferProfile = GolferProfile {
         // 21.3 deg of dynamic loft + 4.3 deg of attack, 4.9 deg under the 30.5 deg static loft (forward shaft lean):
-        // the loft at which the adjusted model launches the tour's 16.3 deg (impact::tour, tests/physics/tour_deliveries.rs).
+        // the loft at which the adjusted model launches the tour's 16.3 deg (impact::tour, crates/golf-physics/tests/tour_deliveries.rs).
         tour: Player {
             club_speed_mph: 90.0,
             attack_angle_deg: -4.3,

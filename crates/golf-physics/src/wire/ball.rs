@@ -10,7 +10,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BallSampleMsg {
+    /// The rig the sample is of.
     pub rig: String,
+    /// The motion-capture frame number.
     #[serde(default)]
     pub frame: u64,
     /// Capture time on the rig's clock (ns).
@@ -18,6 +20,7 @@ pub struct BallSampleMsg {
     /// The ball's centre in the rig's lab frame (m); a marker on the ball's surface is the centre to within
     /// its radius, so a ball marker is best placed on top and `ball_marker_offset_m` given in the config.
     pub position_m: [f64; 3],
+    /// The ball was not seen in this frame (`position_m` is then not read).
     #[serde(default)]
     pub occluded: bool,
 }
@@ -46,6 +49,8 @@ pub enum BallSource {
 /// The ball position an impact used (world frame).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct BallUsed {
+    /// The ball's centre (m, world).
     pub position_m: [f64; 3],
+    /// Where it came from.
     pub source: BallSource,
 }

@@ -32,8 +32,11 @@ pub enum ClubSource {
 /// A rig's club from now on: recorded on `golf/<rig>/club` at start and at every change.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct ClubChange {
+    /// The rig whose club changed.
     pub rig: String,
+    /// The club now in use: preset or path, and its SHA-256.
     pub club: ClubRef,
+    /// What made the change.
     pub source: ClubSource,
     /// The tracked body that holds the club (`[rig.clubs]`), when bodies choose the club.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -49,10 +52,13 @@ pub const MAX_CLUB_PUT_BYTES: usize = 4096;
 /// Why a put on `golf/<rig>/club` was refused.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ClubPutError {
+    /// Longer than [`MAX_CLUB_PUT_BYTES`] (the put's length in bytes).
     #[error("a club put is a preset name or a club file's path, at most {MAX_CLUB_PUT_BYTES} bytes; got {0} bytes")]
     TooLong(usize),
+    /// Not UTF-8.
     #[error("a club put is UTF-8 text (a preset name or a club file's path)")]
     NotText,
+    /// Nothing but white space.
     #[error("a club put is a preset name or a club file's path; it is empty")]
     Empty,
 }

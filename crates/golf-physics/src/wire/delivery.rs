@@ -14,8 +14,10 @@ use crate::units::{deg_to_rad, mm_to_m, mph_to_mps};
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Handedness {
+    /// A right-handed golfer: the world as it is.
     #[default]
     Right,
+    /// A left-handed golfer: mirrored z -> -z before the models and back after.
     Left,
 }
 
@@ -25,23 +27,31 @@ pub enum Handedness {
 /// (`impactd predict` passes them through to its answer).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct DeliveryInput {
+    /// Clubhead speed at the face centre (mph).
     #[serde(default)]
     pub club_speed_mph: Real,
+    /// Attack angle (deg): the head's path above (+) or below (−) the horizontal.
     #[serde(default)]
     pub attack_angle_deg: Real,
+    /// Club path (deg): the head's path right (+) or left (−) of the target line.
     #[serde(default)]
     pub club_path_deg: Real,
+    /// Face angle (deg): the face normal right (+, open for a right-hander) or left of the target line.
     #[serde(default)]
     pub face_angle_deg: Real,
+    /// Dynamic loft (deg): the face normal's angle above the horizontal; default the tour players' loft for the club.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic_loft_deg: Option<Real>,
+    /// Impact location across the face from its centre (mm, toward the toe +).
     #[serde(default)]
     pub impact_h_mm: Real,
+    /// Impact location up the face from its centre (mm, up +).
     #[serde(default)]
     pub impact_v_mm: Real,
     /// Angular velocity of the head, rad/s, world frame.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub club_angular_velocity_radps: Option<[Real; 3]>,
+    /// Which hand the golfer plays (default right).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub handedness: Option<Handedness>,
     /// TrackMan's dynamic lie (deg, the shaft's angle above the ground at impact): fixes the head's turn about
@@ -58,9 +68,13 @@ pub const MAX_CLUB_ANGULAR_VELOCITY_RADPS: Real = 500.0;
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[error("field `{field}`: {value} is outside {min} to {max}")]
 pub struct OutOfBounds {
+    /// The input's field.
     pub field: &'static str,
+    /// What it was.
     pub value: Real,
+    /// The smallest value accepted.
     pub min: Real,
+    /// The largest value accepted.
     pub max: Real,
 }
 
@@ -164,10 +178,14 @@ impl DeliveryInput {
 /// One answer of `impactd predict`: the launch (TrackMan names) and the delivery numbers that explain it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PredictOutput {
+    /// The ball's launch, TrackMan's numbers.
     #[serde(flatten)]
     pub launch: LaunchMetrics,
+    /// Ball speed over club speed.
     pub smash_factor: Real,
+    /// The angle between the head's path and the face normal at impact (deg).
     pub spin_loft_deg: Real,
+    /// Face angle less club path (deg; closed to the path −).
     pub face_to_path_deg: Real,
     /// TrackMan's dynamic lie: the shaft's angle above the ground at impact (deg; docs/club-data.md).
     #[serde(default)]

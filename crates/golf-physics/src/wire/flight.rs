@@ -10,50 +10,97 @@ use crate::math::{Real, Vector3};
 /// (labels, `warnings`, an earlier flight's `apex_m`) are not read: `impactd flight` passes them through.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct FlightInput {
+    /// Ball speed (m/s); or `ball_speed_mph`.
     pub ball_speed_mps: Option<Real>,
+    /// Ball speed (mph), when `ball_speed_mps` is absent.
     pub ball_speed_mph: Option<Real>,
+    /// Launch angle above the horizontal (deg).
     #[serde(default)]
     pub launch_angle_deg: Real,
+    /// Launch direction right (+) or left (−) of the target line (deg).
     #[serde(default)]
     pub launch_direction_deg: Real,
+    /// Backspin (rpm), with `sidespin_rpm`.
     pub backspin_rpm: Option<Real>,
+    /// Sidespin (rpm; + curves the ball right: fade or slice).
     pub sidespin_rpm: Option<Real>,
+    /// Total spin (rpm), with `spin_axis_deg`, when backspin and sidespin are absent.
     pub total_spin_rpm: Option<Real>,
+    /// Spin axis tilt (deg; + curves the ball right).
     pub spin_axis_deg: Option<Real>,
+    /// Club data `impactd predict` writes; read and not used.
     pub smash_factor: Option<Real>,
+    /// Club data `impactd predict` writes; read and not used.
     pub spin_loft_deg: Option<Real>,
+    /// Club data `impactd predict` writes; read and not used.
     pub face_to_path_deg: Option<Real>,
     /// Club data `impactd predict` writes (docs/club-data.md); read and not used.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic_lie_deg: Option<Real>,
+    /// Club data `impactd predict` writes; read and not used.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub closure_rate_degps: Option<Real>,
+    /// The ball's velocity (m/s, world); used as it is when given.
     pub ball_velocity_mps: Option<[Real; 3]>,
+    /// The ball's angular velocity (rad/s, world); used as it is when given.
     pub ball_spin_radps: Option<[Real; 3]>,
 }
 
 /// Why a line of `impactd flight` input is not a launch; each names its field.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FlightInputError {
+    /// A number that is not finite.
     #[error("field `{field}` must be finite")]
-    NotFinite { field: &'static str },
+    NotFinite {
+        /// The field.
+        field: &'static str,
+    },
+    /// `ball_velocity_mps` too slow or too fast to fly.
     #[error("field `ball_velocity_mps`: speed {speed_mps:.1} m/s is outside 1-150 m/s")]
-    VelocityOutOfRange { speed_mps: Real },
+    VelocityOutOfRange {
+        /// Its length (m/s).
+        speed_mps: Real,
+    },
+    /// Neither `ball_speed_mps` nor `ball_speed_mph` (nor the vectors).
     #[error("field `ball_speed_mps` (or `ball_speed_mph`) is missing")]
     MissingSpeed,
+    /// `ball_speed_mps` (or `ball_speed_mph`) too slow or too fast to fly.
     #[error("field `ball_speed_mps`: {speed_mps:.1} m/s is outside 1-150 m/s")]
-    SpeedOutOfRange { speed_mps: Real },
+    SpeedOutOfRange {
+        /// The speed (m/s).
+        speed_mps: Real,
+    },
+    /// `launch_angle_deg` outside -30 to 80 deg.
     #[error("field `launch_angle_deg`: {launch_angle_deg} is outside -30 to 80 deg")]
-    LaunchAngleOutOfRange { launch_angle_deg: Real },
+    LaunchAngleOutOfRange {
+        /// The angle given (deg).
+        launch_angle_deg: Real,
+    },
+    /// The spin from the spin fields above [`MAX_BALL_SPIN_RPM`].
     #[error("spin {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
-    SpinTooHigh { spin_rpm: Real },
+    SpinTooHigh {
+        /// The total spin (rpm).
+        spin_rpm: Real,
+    },
+    /// `ball_spin_radps` above [`MAX_BALL_SPIN_RPM`].
     #[error("field `ball_spin_radps`: {spin_rpm:.0} rpm is above {MAX_BALL_SPIN_RPM} rpm")]
-    SpinVectorTooHigh { spin_rpm: Real },
+    SpinVectorTooHigh {
+        /// Its length (rpm).
+        spin_rpm: Real,
+    },
+    /// A number given beside the vectors that disagrees with what they give.
     #[error(
         "field `{field}` = {given} disagrees with the vectors ({from_vectors:.3}): the vectors are what flies, so \
          give one or make them agree"
     )]
-    Disagrees { field: &'static str, given: Real, from_vectors: Real },
+    Disagrees {
+        /// The field.
+        field: &'static str,
+        /// Its value.
+        given: Real,
+        /// The value the vectors give.
+        from_vectors: Real,
+    },
 }
 
 /// The most spin a flight accepts: tour wedges reach about 12,000 rpm (TrackMan).

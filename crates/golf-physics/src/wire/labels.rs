@@ -17,6 +17,7 @@ pub struct ShotLabels {
     /// models use is the message's `club`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub club: Option<String>,
+    /// Free tags (`"fitting"`, `"shaft B"`), at most [`MAX_TAGS`].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub tags: Vec<String>,
     /// Free text.
@@ -32,10 +33,16 @@ pub const MAX_TAGS: usize = 32;
 /// Why a put on `golf/<rig>/session` was refused.
 #[derive(Debug, thiserror::Error)]
 pub enum LabelsError {
+    /// Not JSON of the labels' fields.
     #[error("session labels are not valid: {0}")]
     Parse(#[source] serde_json::Error),
+    /// A label longer than [`MAX_LABEL_BYTES`].
     #[error("field `{field}`: longer than {MAX_LABEL_BYTES} bytes")]
-    TooLong { field: &'static str },
+    TooLong {
+        /// The label (`player`, `club`, `note`, a tag).
+        field: &'static str,
+    },
+    /// More than [`MAX_TAGS`] tags.
     #[error("field `tags`: more than {MAX_TAGS} tags")]
     TooManyTags,
 }

@@ -11,9 +11,13 @@ use crate::kinematics::{ClubheadSample, Quality};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct QuaternionMsg {
+    /// The vector part's x.
     pub x: f64,
+    /// The vector part's y.
     pub y: f64,
+    /// The vector part's z.
     pub z: f64,
+    /// The scalar part.
     pub w: f64,
 }
 
@@ -58,12 +62,17 @@ impl From<crate::math::UnitQuaternion> for QuaternionMsg {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ClubheadSampleMsg {
+    /// The rig the sample is of.
     pub rig: String,
+    /// The motion-capture frame number.
     pub frame: u64,
     /// Capture time on the rig's clock (ns).
     pub t_ns: u64,
+    /// The tracked body's origin in the lab frame (m).
     pub position_m: [f64; 3],
+    /// The tracked body's orientation in the lab frame.
     pub orientation: QuaternionMsg,
+    /// The body was not seen in this frame (its pose is then not used).
     #[serde(default)]
     pub occluded: bool,
     /// The cameras' mid-exposure instant on the capture host's clock (ns), when the motion-capture system
@@ -84,6 +93,7 @@ pub struct ClubheadSampleMsg {
 }
 
 impl ClubheadSampleMsg {
+    /// The pipeline's sample (the rig's name and the optional timing fields left out).
     pub fn to_sample(&self) -> ClubheadSample {
         let q = &self.orientation;
         ClubheadSample {
@@ -95,6 +105,7 @@ impl ClubheadSampleMsg {
         }
     }
 
+    /// The message of `rig` for a pipeline sample (no optional fields).
     pub fn from_sample(rig: &str, s: &ClubheadSample) -> Self {
         let [x, y, z, w] = s.orientation_xyzw;
         ClubheadSampleMsg {
@@ -115,11 +126,17 @@ impl ClubheadSampleMsg {
 /// The estimated club state at impact (world frame), in an [`ImpactMessage`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ImpactStateMsg {
+    /// The head's CG (m, world).
     pub cg_position_m: [f64; 3],
+    /// `world_from_club`'s rotation.
     pub orientation: QuaternionMsg,
+    /// The CG's velocity (m/s, world).
     pub cg_velocity_mps: [f64; 3],
+    /// The head's angular velocity (rad/s, world).
     pub angular_velocity_radps: [f64; 3],
+    /// Impact location across the face from its centre (mm, toward the toe +).
     pub impact_h_mm: f64,
+    /// Impact location up the face from its centre (mm, up +).
     pub impact_v_mm: f64,
 }
 
@@ -141,18 +158,26 @@ impl From<&crate::impact::ImpactState> for ImpactStateMsg {
 /// The impact as estimated from the frames, on `golf/<rig>/impact`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ImpactMessage {
+    /// The rig.
     pub rig: String,
+    /// The rig's shot number.
     pub shot: u64,
     /// The frame that revealed the impact.
     pub frame: u64,
+    /// The impact's time on the rig's clock (ns).
     pub t_impact_ns: u64,
+    /// The club's name.
     pub club: String,
     /// The club file the models used: preset or path, and its SHA-256 (absent in recordings made before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub club_file: Option<super::ClubRef>,
+    /// The estimator that extrapolated the frames to impact (`arc`, `poly@44:5:39:3`, ...).
     pub estimator: String,
+    /// The club at impact.
     pub state: ImpactStateMsg,
+    /// The club data of that state (TrackMan's definitions).
     pub delivery: crate::impact::DeliveryMetrics,
+    /// How good the estimate is.
     pub quality: Quality,
     /// The shot's labels (player, club, tags, note) when it has any.
     #[serde(default, skip_serializing_if = "super::ShotLabels::is_empty")]
@@ -166,20 +191,29 @@ pub struct ImpactMessage {
 /// A predicted launch, on `golf/<rig>/launch`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct LaunchPrediction {
+    /// The rig.
     pub rig: String,
+    /// The rig's shot number (the impact's).
     pub shot: u64,
     /// The frame that revealed the impact.
     pub frame: u64,
+    /// The impact's time on the rig's clock (ns).
     pub t_impact_ns: u64,
+    /// The club's name.
     pub club: String,
     /// The club file the model used: preset or path, and its SHA-256 (absent in recordings made before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub club_file: Option<super::ClubRef>,
+    /// The impact model that predicted it (`impactd models`).
     #[serde(deserialize_with = "super::model_name::one")]
     pub model: String,
+    /// The estimator that extrapolated the frames to impact.
     pub estimator: String,
+    /// The club data at impact.
     pub delivery: crate::impact::DeliveryMetrics,
+    /// The predicted launch.
     pub launch: PredictOutput,
+    /// How many frames the estimate used.
     pub frames_used: usize,
     /// The estimate's quality score in (0, 1] (see `Quality`).
     pub quality: f64,

@@ -17,9 +17,13 @@ use crate::math::{Real, Vector3};
 /// The parts of a continuous model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Assembly<L, B, C, G> {
+    /// The contact law between ball and face ([`super::law`]).
     pub law: L,
+    /// The ball ([`super::ball`]).
     pub ball: B,
+    /// The club: a free head or a head on its shaft ([`super::club`]).
     pub club: C,
+    /// The ground under the head ([`super::ground`]; `NoGround` for a ball on a tee).
     pub ground: G,
     /// The face the ball touches, in the club frame.
     pub surface: FaceSurface,
@@ -28,7 +32,9 @@ pub struct Assembly<L, B, C, G> {
 /// How to integrate: the base step and the longest contact before giving up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Integration {
+    /// The base step (s).
     pub step_s: Real,
+    /// The longest contact before the run gives up (s).
     pub max_contact_s: Real,
     /// Record a trace point every this many steps (0: none).
     pub trace_every: usize,
@@ -39,31 +45,40 @@ pub struct Integration {
 /// The club's and the ball's state together.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct State<CS, BS> {
+    /// The club's state.
     pub club: CS,
+    /// The ball's state.
     pub ball: BS,
 }
 
 /// The forces at one instant, for traces.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactForces {
+    /// The normal force on the ball (N, ≥ 0).
     pub normal_n: Real,
     /// Friction on the ball (N, world).
     pub friction_n: Vector3,
+    /// Whether ball and face touch.
     pub in_contact: bool,
+    /// How deep the ball is pressed into the face (m; the law's compression).
     pub depth_m: Real,
 }
 
 /// One sample of a trace.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TracePoint {
+    /// Time from first contact (µs).
     pub t_us: Real,
+    /// The normal force on the ball (N).
     pub normal_force_n: Real,
     /// Friction on the ball along the initial slip direction's opposite (N): positive while it drives the ball's
     /// cover against the slip, negative once it has reversed.
     pub tangential_force_n: Real,
     /// The ball's total spin (rpm) and the cover's (rpm).
     pub ball_spin_rpm: Real,
+    /// See `ball_spin_rpm`.
     pub cover_spin_rpm: Real,
+    /// The ball's compression (mm).
     pub compression_mm: Real,
     /// Maw's model: how many of its rings are stuck.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -73,19 +88,26 @@ pub struct TracePoint {
 /// What a continuous run gives besides the launch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContinuousResult {
+    /// The ball and the club as the ball leaves.
     pub launch: Launch,
+    /// From first contact until the ball leaves (s).
     pub contact_time_s: Real,
+    /// The largest normal force (N).
     pub peak_normal_force_n: Real,
+    /// Steps taken.
     pub steps: usize,
+    /// The contact's course, when asked for (`Integration::trace_every`).
     pub trace: Vec<TracePoint>,
     /// Total mechanical energy (kinetic + spring + contact) before and after (J).
     pub energy_before_j: Real,
+    /// See `energy_before_j`.
     pub energy_after_j: Real,
     /// Largest increase of the total mechanical energy over any step (J).
     pub max_energy_increase_j: Real,
     /// Linear momentum (N s) and angular momentum about the world origin (N m s) of both bodies, before and
     /// after.
     pub momentum_before: (Vector3, Vector3),
+    /// See `momentum_before`.
     pub momentum_after: (Vector3, Vector3),
 }
 

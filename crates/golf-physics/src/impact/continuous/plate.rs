@@ -22,23 +22,30 @@ use crate::math::{Real, Vector3};
 /// One sample of a plate impact.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PlateSample {
+    /// Time from first contact (µs).
     pub t_us: Real,
+    /// The normal force (N).
     pub normal_force_n: Real,
     /// Tangential force on the ball against the incident slip (N); negative once it has reversed.
     pub tangential_force_n: Real,
     /// The ball's spin in the sense the friction first gives it (rad/s).
     pub spin_radps: Real,
+    /// How many of Maw's rings are stuck.
     pub stuck_rings: usize,
 }
 
 /// The result of a plate impact.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlateImpact {
+    /// The contact's course.
     pub samples: Vec<PlateSample>,
     /// Rebound normal speed and the contact point's tangential velocity after (m/s, + along the incident slip).
     pub rebound_normal_mps: Real,
+    /// See `rebound_normal_mps`.
     pub rebound_contact_tangential_mps: Real,
+    /// The ball's spin after, in the sense the friction first gives it (rad/s).
     pub spin_radps: Real,
+    /// From first contact until the ball leaves (s).
     pub contact_time_s: Real,
 }
 

@@ -8,6 +8,7 @@ use crate::math::Vector3;
 /// The start of a continuous run (world frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Start {
+    /// The ball's centre at first contact, touching the face (m).
     pub ball_centre_m: Vector3,
     /// Unit direction of the face's tangential motion at the contact (up the face if there is none).
     pub slip0: Vector3,

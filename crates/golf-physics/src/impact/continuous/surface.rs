@@ -34,9 +34,19 @@ pub struct Overlap {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum FaceSurface {
     /// A plane through `point` with outward `normal` (club frame).
-    Plane { point: Vector3, normal: Vector3 },
+    Plane {
+        /// A point of the plane (m).
+        point: Vector3,
+        /// Its outward unit normal.
+        normal: Vector3,
+    },
     /// A sphere (centre, radius) whose outside is the face (club frame).
-    Sphere { centre: Vector3, radius_m: Real },
+    Sphere {
+        /// The sphere's centre (m).
+        centre: Vector3,
+        /// Its radius (m).
+        radius_m: Real,
+    },
 }
 
 /// Volume and centroid distance (from the sphere's centre) of a cap of height `h` of a sphere of radius `r`.

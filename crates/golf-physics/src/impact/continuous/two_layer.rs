@@ -17,7 +17,7 @@
 //!   meets every comparison (`research/models-notes.md`).
 //!
 //! The `ground` model reuses this ball contact with the same default reading and the same `[continuous]`
-//! section, so with no ground under the ball it is this model with a flexible shaft (tests/physics/ground_teed.rs).
+//! section, so with no ground under the ball it is this model with a flexible shaft (crates/golf-physics/tests/ground_teed.rs).
 //!
 //! Assumptions (seed 3.2.1): the contact never reaches the face's edges; a face whose bulge and roll differ is
 //! taken as a sphere of their geometric-mean radius.
@@ -57,8 +57,11 @@ pub struct TwoLayerParams {
 /// The ball's contact with the face as [`TwoLayerParams::contact`] builds it: an assembly's law, ball and surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLayerContact {
+    /// The volumetric contact law (eq. 3.14-3.15).
     pub law: Volumetric,
+    /// The two-layer ball.
     pub ball: TwoLayerBall,
+    /// The face.
     pub surface: FaceSurface,
 }
 

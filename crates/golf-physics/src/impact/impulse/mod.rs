@@ -58,8 +58,10 @@ pub enum ImpulseVariant {
 }
 
 impl ImpulseVariant {
+    /// Every variant, in the registry's order.
     pub const ALL: [ImpulseVariant; 3] = [ImpulseVariant::Standard, ImpulseVariant::Adjusted, ImpulseVariant::Slip];
 
+    /// The variant's name in the registry (`standard`, `adjusted`, `slip`).
     pub fn as_str(&self) -> &'static str {
         match self {
             ImpulseVariant::Standard => "standard",
@@ -68,6 +70,7 @@ impl ImpulseVariant {
         }
     }
 
+    /// The variant of that name.
     pub fn parse(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|v| v.as_str() == name)
     }
@@ -76,10 +79,15 @@ impl ImpulseVariant {
 /// The numbers the solver needs, resolved from a variant and a club.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpulseParams {
+    /// The normal coefficient of restitution `e` (eq. 3.6).
     pub cor: Real,
+    /// Mass added to the head (kg; the adjusted variant's, Table 3.3; else 0).
     pub delta_mass_kg: Real,
+    /// Shift of the ball's CG in the impact frame (m; the adjusted variant's, Table 3.3; else 0).
     pub ball_cg_shift_m: Vector3,
+    /// Tangential restitution up the face (eq. 3.11; the slip variant's, Table 3.4; 0, rolling, otherwise).
     pub e_y: Real,
+    /// Tangential restitution toward the toe (eq. 3.12; as `e_y`).
     pub e_z: Real,
     /// The slip variant's rise of `e_y` and `e_z` with the impact's obliquity, if the club file gives one.
     pub oblique: Option<ObliqueRise>,
@@ -88,22 +96,27 @@ pub struct ImpulseParams {
 /// An impulse-momentum model: a variant, a COR and the variant's parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpulseModel {
+    /// Which parameter set.
     pub variant: ImpulseVariant,
+    /// The coefficient of restitution.
     pub cor: Real,
     /// The adjusted and slip parameters; `None` uses the seed's for the club ([`ImpulseTuning::seed_for`]).
     pub tuning: Option<ImpulseTuning>,
 }
 
 impl ImpulseModel {
+    /// The variant with [`DEFAULT_COR`] and the seed's parameters for the club.
     pub fn new(variant: ImpulseVariant) -> Self {
         ImpulseModel { variant, cor: DEFAULT_COR, tuning: None }
     }
 
+    /// With these adjusted and slip parameters instead of the seed's.
     pub fn with_tuning(mut self, tuning: ImpulseTuning) -> Self {
         self.tuning = Some(tuning);
         self
     }
 
+    /// With this coefficient of restitution.
     pub fn with_cor(mut self, cor: Real) -> Self {
         self.cor = cor;
         self
@@ -139,9 +152,11 @@ impl ImpulseModel {
 /// One two-body point collision in the world frame: everything [`solve`] needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactProblem {
+    /// The head's mass (kg).
     pub club_mass_kg: Real,
     /// Inverse inertia of the head about its CG, world frame.
     pub club_inertia_inv: Matrix3,
+    /// The ball's mass (kg).
     pub ball_mass_kg: Real,
     /// Inverse inertia of the ball about its CG, world frame.
     pub ball_inertia_inv: Matrix3,
@@ -151,9 +166,13 @@ pub struct ContactProblem {
     pub r_ball_m: Vector3,
     /// The impact frame in the world (columns x′, y′, z′).
     pub world_from_impact: Matrix3,
+    /// The head's CG velocity before (m/s, world).
     pub club_velocity_mps: Vector3,
+    /// The head's angular velocity before (rad/s, world).
     pub club_angular_velocity_radps: Vector3,
+    /// The ball's velocity before (m/s, world).
     pub ball_velocity_mps: Vector3,
+    /// The ball's angular velocity before (rad/s, world).
     pub ball_angular_velocity_radps: Vector3,
     /// `(e, e_y, e_z)`.
     pub restitution: Vector3,
@@ -162,10 +181,15 @@ pub struct ContactProblem {
 /// Velocities after the collision and the impulse on the ball.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactSolution {
+    /// The impulse on the ball (N s, world).
     pub impulse_n_s: Vector3,
+    /// The head's CG velocity after (m/s, world).
     pub club_velocity_mps: Vector3,
+    /// The head's angular velocity after (rad/s, world).
     pub club_angular_velocity_radps: Vector3,
+    /// The ball's velocity after (m/s, world).
     pub ball_velocity_mps: Vector3,
+    /// The ball's angular velocity after (rad/s, world).
     pub ball_angular_velocity_radps: Vector3,
 }
 

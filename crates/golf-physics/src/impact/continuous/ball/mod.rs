@@ -13,9 +13,13 @@ use crate::math::{Real, Vector3};
 
 /// The ball part of a continuous model. The ball starts at rest.
 pub trait BallPart {
+    /// The ball's state (centre, velocity, spins).
     type State: Copy;
+    /// The state's rate of change.
     type Rate: Copy;
+    /// The ball's mass (kg).
     fn mass_kg(&self) -> Real;
+    /// The ball's radius (m).
     fn radius_m(&self) -> Real;
     /// At rest with its centre at `centre_m`.
     fn at_rest(&self, centre_m: Vector3) -> Self::State;
@@ -27,7 +31,9 @@ pub trait BallPart {
     fn spin(&self, s: &Self::State) -> Vector3;
     /// The rate under a force (N) acting at `r_m` from the centre (world).
     fn rate(&self, s: &Self::State, force_n: Vector3, r_m: Vector3) -> Self::Rate;
+    /// Explicit Euler: `s + r h`.
     fn advance(s: &Self::State, r: &Self::Rate, h: Real) -> Self::State;
+    /// The classical Runge-Kutta step from its four stage rates: `s + (h/6) (k1 + 2 k2 + 2 k3 + k4)`.
     fn advance_rk4(s: &Self::State, k: [&Self::Rate; 4], h: Real) -> Self::State;
     /// The same step as [`Self::advance_rk4`] rounded as the assembly's multi-rate stepping rounds it,
     /// `s + (k1 + 2 k2 + 2 k3 + k4) (h/6)`: each system keeps its own floating-point order

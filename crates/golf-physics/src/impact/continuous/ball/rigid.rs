@@ -8,12 +8,16 @@ use crate::math::{Real, Vector3};
 /// A rigid sphere.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidBall {
+    /// Mass (kg).
     pub mass_kg: Real,
+    /// Radius (m).
     pub radius_m: Real,
+    /// Moment of inertia about a diameter (kg m²).
     pub inertia_kg_m2: Real,
 }
 
 impl RigidBall {
+    /// The ball's mass, radius and inertia.
     pub fn new(ball: &BallSpec) -> Self {
         RigidBall { mass_kg: ball.mass_kg, radius_m: ball.radius_m, inertia_kg_m2: ball.inertia_kg_m2 }
     }
@@ -22,8 +26,11 @@ impl RigidBall {
 /// Centre position and velocity and spin.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidBallState {
+    /// Centre (m, world).
     pub centre_m: Vector3,
+    /// Centre velocity (m/s, world).
     pub velocity_mps: Vector3,
+    /// Angular velocity (rad/s, world).
     pub spin_radps: Vector3,
 }
 

@@ -9,9 +9,13 @@ use crate::math::{Real, Vector3};
 /// The two-layer ball's split of mass and inertia (uniform density) and its core-cover coupling.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLayerBall {
+    /// Mass of the whole ball (kg).
     pub mass_kg: Real,
+    /// Radius of the whole ball (m).
     pub radius_m: Real,
+    /// The core's moment of inertia (kg m²).
     pub core_inertia_kg_m2: Real,
+    /// The cover's moment of inertia (kg m²).
     pub cover_inertia_kg_m2: Real,
     /// Rotary spring between core and cover (N m/rad).
     pub k_ball_nm_per_rad: Real,
@@ -39,9 +43,13 @@ impl TwoLayerBall {
 /// Centre position and velocity, core and cover spins and their relative rotation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoLayerBallState {
+    /// Centre (m, world).
     pub centre_m: Vector3,
+    /// Centre velocity (m/s, world).
     pub velocity_mps: Vector3,
+    /// The core's angular velocity (rad/s, world).
     pub core_spin_radps: Vector3,
+    /// The cover's angular velocity (rad/s, world).
     pub cover_spin_radps: Vector3,
     /// The cover's rotation relative to the core (rotation vector, rad).
     pub cover_twist_rad: Vector3,

@@ -8,13 +8,16 @@ use crate::math::{Matrix3, Real, UnitQuaternion, Vector3};
 /// A free 6-DOF head of the club's mass and inertia.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeHead {
+    /// The head's mass (kg).
     pub mass_kg: Real,
     /// Inertia about the CG, club frame, and its inverse.
     pub inertia_kg_m2: Matrix3,
+    /// See `inertia_kg_m2` (1/(kg m²)).
     pub inertia_inv_kg_m2: Matrix3,
 }
 
 impl FreeHead {
+    /// The club's head mass and inertia.
     pub fn new(club: &ClubSpec) -> Self {
         FreeHead { mass_kg: club.mass_kg, inertia_kg_m2: club.inertia_kg_m2, inertia_inv_kg_m2: club.inertia_inv_kg_m2 }
     }
@@ -23,9 +26,13 @@ impl FreeHead {
 /// Position, velocity, attitude and body rate of the head.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeHeadState {
+    /// CG position (m, world).
     pub cg_m: Vector3,
+    /// CG velocity (m/s, world).
     pub velocity_mps: Vector3,
+    /// Attitude: the club frame in the world.
     pub world_from_body: UnitQuaternion,
+    /// Angular velocity in the club frame (rad/s).
     pub body_rate_radps: Vector3,
 }
 

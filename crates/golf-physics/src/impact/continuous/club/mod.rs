@@ -22,15 +22,19 @@ use crate::math::{Real, Rotation3, Vector3};
 pub struct Head {
     /// CG position (m).
     pub position_m: Vector3,
+    /// The club frame's orientation in the world.
     pub world_from_club: Rotation3,
     /// CG velocity (m/s).
     pub velocity_mps: Vector3,
+    /// Angular velocity (rad/s).
     pub angular_velocity_radps: Vector3,
 }
 
 /// The club part of a continuous model.
 pub trait ClubPart {
+    /// The club's state.
     type State: Copy;
+    /// The state's rate of change.
     type Rate: Copy;
     /// The state at first contact.
     fn initial(&self, state: &ImpactState) -> Self::State;
@@ -52,9 +56,13 @@ pub trait ClubPart {
 /// CG to where it acts (m), and the ground's resultant with its moment about the CG.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClubLoad {
+    /// The ball's force on the head (N, world).
     pub ball_force_n: Vector3,
+    /// From the head's CG to where the ball's force acts (m, world).
     pub ball_lever_m: Vector3,
+    /// The ground's resultant force on the head (N, world).
     pub ground_force_n: Vector3,
+    /// Its moment about the head's CG (N m, world).
     pub ground_torque_nm: Vector3,
 }
 
@@ -63,7 +71,9 @@ pub struct ClubLoad {
 /// the forces rather than the stiffest mode. Its state is advanced only by the step's own coefficients
 /// ([`Self::Step`]), built once per step size.
 pub trait SteppedClub {
+    /// The club's state.
     type State: Copy;
+    /// The state's rate of change at one stage.
     type Rate: Copy;
     /// The head's motion at an instant with whatever the part derives beside it (the rigid frame a shaft rides
     /// on).

@@ -22,6 +22,7 @@ use crate::math::{Real, Rotation3, Vector3};
 /// The club on its shaft, fixed during a run.
 #[derive(Debug, Clone)]
 pub struct ShaftClub<'a> {
+    /// The flexible club's modes (seed section 4.1, eq. 4.1-4.2).
     pub modal: &'a ModalClub,
     /// The grip's drive: the rigid club's undisturbed motion.
     pub motion: ConstantTwist,
@@ -29,7 +30,9 @@ pub struct ShaftClub<'a> {
     pub twist: PreparedTwist,
     /// The club frame at the start (world from club), in which the elastic motion is computed.
     pub elastic_frame: Rotation3,
+    /// The head's mass (kg).
     pub head_mass_kg: Real,
+    /// The shaft's mass (kg).
     pub shaft_mass_kg: Real,
     /// The undeformed shaft's CG, club frame (m).
     pub shaft_cg_m: Vector3,
@@ -38,9 +41,13 @@ pub struct ShaftClub<'a> {
 /// The shaft's modes and the impulses on the club (N s, world) from the ball, the ground and the grip.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShaftClubState {
+    /// The shaft's modal coordinates and velocities.
     pub shaft: ModalState,
+    /// The ball's impulse on the club so far (N s, world).
     pub j_ball_n_s: Vector3,
+    /// The ground's impulse on the club so far (N s, world).
     pub j_ground_n_s: Vector3,
+    /// The grip's impulse on the club so far (N s, world).
     pub j_grip_n_s: Vector3,
 }
 
@@ -59,14 +66,18 @@ pub struct ShaftClubRate {
     /// Forces on the club (world); at the grip, the force the rigid swing needs (the clamp's elastic reaction is
     /// integrated per step).
     pub f_ball_n: Vector3,
+    /// The ground's force on the head (N, world).
     pub f_ground_n: Vector3,
+    /// The force at the grip the rigid swing needs (N, world).
     pub f_grip_rigid_n: Vector3,
 }
 
 /// The head's motion and the rigid club's it rides on.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShaftMotion {
+    /// The head, the shaft's deflection included.
     pub head: Head,
+    /// The rigid club's head on the undisturbed swing.
     pub rigid: Head,
 }
 

@@ -19,6 +19,7 @@ use super::sole_arc::{GaussRule, SoleArcWorld};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum GroundPhase {
+    /// The sole above the surface: no ground force.
     Clear,
     /// Only the sole below the surface.
     Compression,
@@ -29,8 +30,11 @@ pub enum GroundPhase {
 /// Every ground force at one instant (world frame; moments about the head's CG).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GroundForces {
+    /// The sole's pressure and shear (eq. 4.3-4.9).
     pub sole: SoleContact,
+    /// The face's passive earth pressure (eq. 4.10-4.13; zero until the divot phase).
     pub face: FacePressure,
+    /// The contact phase.
     pub phase: GroundPhase,
 }
 
@@ -49,20 +53,26 @@ impl GroundForces {
 /// The ground under an iron: soil, the sole's geometry and the surface's height.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SoilGround {
+    /// The soil's Bekker moduli and exponent, density and friction angle (Table 4.3).
     pub soil: SoilSpec,
+    /// The sole's geometry: lie, width, length, bounce, radius (Table 4.1 values for the seed's 7-iron).
     pub sole: SoleSpec,
+    /// The sole's cylinder in the club frame.
     pub arc: SoleArc,
     /// Outward face normal and up-the-face direction, club frame.
     pub face_normal: Vector3,
+    /// See `face_normal`.
     pub up_face: Vector3,
+    /// The playing surface's height `y_ground` (m, world).
     pub ground_y_m: Real,
     /// Shear smoothing speed (m/s).
     pub slip_regularisation_mps: Real,
+    /// The sole's Gauss rule heel to toe.
     pub strips: GaussRule,
+    /// The sole's Gauss rule along its arc.
     pub along_arc: GaussRule,
+    /// The face's Gauss rule along the leading edge.
     pub along_edge: GaussRule,
-    /// World-frame multipliers of every force component (ones: the seed's model); see [`super::sole_forces`].
-    pub force_mask: Vector3,
 }
 
 impl SoilGround {
@@ -81,7 +91,6 @@ impl SoilGround {
             strips: GaussRule::new(3),
             along_arc: GaussRule::new(5),
             along_edge: GaussRule::new(3),
-            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -99,16 +108,8 @@ impl SoilGround {
     /// [`Self::forces`] with the pose as a rotation matrix and the CG's position.
     pub fn forces_at(&self, world_from_club: &Rotation3, cg_m: &Vector3, v_cg: &Vector3, w: &Vector3) -> GroundForces {
         let placed = SoleArcWorld::at(&self.arc, world_from_club, cg_m, self.ground_y_m);
-        let sole = sole_forces(
-            &placed,
-            &self.soil,
-            v_cg,
-            w,
-            self.slip_regularisation_mps,
-            &self.strips,
-            &self.along_arc,
-            &self.force_mask,
-        );
+        let sole =
+            sole_forces(&placed, &self.soil, v_cg, w, self.slip_regularisation_mps, &self.strips, &self.along_arc);
         if sole.max_sinkage_m <= 0.0 {
             return GroundForces { sole, face: FacePressure::default(), phase: GroundPhase::Clear };
         }
@@ -122,7 +123,6 @@ impl SoilGround {
             w,
             self.slip_regularisation_mps,
             &self.along_edge,
-            &self.force_mask,
         );
         let phase = if face.leading_edge_depth_m > 0.0 { GroundPhase::Divot } else { GroundPhase::Compression };
         GroundForces { sole, face, phase }

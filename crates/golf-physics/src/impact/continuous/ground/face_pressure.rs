@@ -20,7 +20,9 @@ use crate::math::{Real, Vector3};
 /// The face's passive earth pressure at one instant (world frame, about the CG).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FacePressure {
+    /// Resultant of eq. 4.13's pressure (N, world; horizontal).
     pub force_n: Vector3,
+    /// Its moment about the head's CG (N m, world).
     pub torque_nm: Vector3,
     /// The leading edge's deepest point below the surface (m; negative when above).
     pub leading_edge_depth_m: Real,
@@ -38,17 +40,40 @@ pub fn face_forces(
     w: &Vector3,
     v_reg_mps: Real,
     rule: &GaussRule,
-    mask: &Vector3,
 ) -> FacePressure {
+    let (mut force_n, mut torque_nm) = (Vector3::zeros(), Vector3::zeros());
+    let leading_edge_depth_m = face_point_forces(arc, face_normal, up_face, soil, v_cg, w, v_reg_mps, rule, |r, f| {
+        force_n += f;
+        torque_nm += r.cross(&f);
+    });
+    FacePressure { force_n, torque_nm, leading_edge_depth_m }
+}
+
+/// [`face_forces`] point by point: `each(r, force)` for every Gauss point of the wetted leading edge that pushes
+/// soil, in order, with `r` the point of action (the centroid of its triangular pressure) from the head's CG (m)
+/// and its share of eq. 4.13's force (N, world). Returns the leading edge's deepest point below the surface (m;
+/// negative when above, and then no point is visited).
+#[allow(clippy::too_many_arguments)]
+pub fn face_point_forces(
+    arc: &SoleArcWorld,
+    face_normal: &Vector3,
+    up_face: &Vector3,
+    soil: &SoilSpec,
+    v_cg: &Vector3,
+    w: &Vector3,
+    v_reg_mps: Real,
+    rule: &GaussRule,
+    mut each: impl FnMut(&Vector3, Vector3),
+) -> Real {
     let half = arc.half_length_m;
     let (h_heel, h_toe) = (arc.leading_edge_depth_m(-half), arc.leading_edge_depth_m(half));
-    let mut out = FacePressure { leading_edge_depth_m: h_heel.max(h_toe), ..FacePressure::default() };
-    if out.leading_edge_depth_m <= 0.0 {
-        return out;
+    let depth_m = h_heel.max(h_toe);
+    if depth_m <= 0.0 {
+        return depth_m;
     }
     let horizontal = Vector3::new(face_normal.x, 0.0, face_normal.z);
     let Some(n_h) = horizontal.try_normalize(1e-9) else {
-        return out; // a face lying flat pushes no soil forward
+        return depth_m; // a face lying flat pushes no soil forward
     };
     // Wetted part of the leading edge: h is linear in s.
     let slope = (h_toe - h_heel) / (2.0 * half);
@@ -64,7 +89,7 @@ pub fn face_forces(
         }
     };
     if hi <= lo {
-        return out;
+        return depth_m;
     }
     let k = 0.5 * soil.unit_weight_n_per_m3() * soil.flow_value();
     let rise = up_face.y.max(1e-6);
@@ -82,9 +107,8 @@ pub fn face_forces(
         if speed <= 0.0 {
             continue;
         }
-        let f = -(k * h * h * rule.w[i] * (hi - lo) * (speed / v_reg_mps).tanh()) * n_h.component_mul(mask);
-        out.force_n += f;
-        out.torque_nm += r.cross(&f);
+        let f = -(k * h * h * rule.w[i] * (hi - lo) * (speed / v_reg_mps).tanh()) * n_h;
+        each(&r, f);
     }
-    out
+    depth_m
 }

@@ -8,8 +8,8 @@ pub mod sole;
 mod sole_arc;
 
 pub use bekker::{GroundForces, GroundPhase, SoilGround};
-pub use face_pressure::{face_forces, FacePressure};
-pub use sole::{sole_forces, SoleContact};
+pub use face_pressure::{face_forces, face_point_forces, FacePressure};
+pub use sole::{sole_forces, sole_point_forces, SoleContact};
 pub use sole_arc::{GaussRule, SoleArcWorld, MAX_GAUSS};
 
 use super::club::Head;
@@ -18,7 +18,9 @@ use crate::math::Vector3;
 /// A force the ground puts on the head, with its moment about the head's CG (world frame).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct GroundWrench {
+    /// The resultant force (N, world).
     pub force_n: Vector3,
+    /// Its moment about the head's CG (N m, world).
     pub torque_nm: Vector3,
 }
 

@@ -33,6 +33,7 @@ use crate::math::{Real, Vector3};
 pub struct SoleContact {
     /// Resultant of the pressure (eq. 4.4-4.5) and of the shear (eq. 4.8-4.9), N.
     pub pressure_n: Vector3,
+    /// See `pressure_n`.
     pub shear_n: Vector3,
     /// Moment of both about the head's CG (N m).
     pub torque_nm: Vector3,
@@ -41,9 +42,7 @@ pub struct SoleContact {
 }
 
 /// The sole's forces. `arc` is the sole placed in the world, `v_cg` and `w` the head's velocity and angular
-/// velocity, `v_reg` the shear's smoothing speed; `strips` the Gauss rule heel to toe, `along` along the arc;
-/// `mask` multiplies each point's force component by component in the world frame (ones: the seed's model;
-/// `(0, 1, 0)` keeps only the vertical part, which separates what each part does: research/ground-parts.md).
+/// velocity, `v_reg` the shear's smoothing speed; `strips` the Gauss rule heel to toe, `along` along the arc.
 #[allow(clippy::too_many_arguments)]
 pub fn sole_forces(
     arc: &SoleArcWorld,
@@ -53,15 +52,37 @@ pub fn sole_forces(
     v_reg_mps: Real,
     strips: &GaussRule,
     along: &GaussRule,
-    mask: &Vector3,
 ) -> SoleContact {
+    let (mut pressure_n, mut shear_n, mut torque_nm) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
+    let max_sinkage_m = sole_point_forces(arc, soil, v_cg, w, v_reg_mps, strips, along, |r, f_p, f_s| {
+        pressure_n += f_p;
+        shear_n += f_s;
+        torque_nm += r.cross(&(f_p + f_s));
+    });
+    SoleContact { pressure_n, shear_n, torque_nm, max_sinkage_m }
+}
+
+/// [`sole_forces`] point by point: `each(r, pressure, shear)` for every wetted quadrature point, in order, with
+/// `r` the point from the head's CG (m) and its share of the pressure (eq. 4.4-4.5) and of the shear (eq.
+/// 4.8-4.9, N, world). Returns the deepest sinkage (m; ≤ 0 when clear, and then no point is visited). What one
+/// part of the force does alone is read from these (research/ground-parts.md).
+#[allow(clippy::too_many_arguments)]
+pub fn sole_point_forces(
+    arc: &SoleArcWorld,
+    soil: &SoilSpec,
+    v_cg: &Vector3,
+    w: &Vector3,
+    v_reg_mps: Real,
+    strips: &GaussRule,
+    along: &GaussRule,
+    mut each: impl FnMut(&Vector3, Vector3, Vector3),
+) -> Real {
     let max_sinkage_m = arc.max_sinkage_m();
-    let mut out = SoleContact { max_sinkage_m, ..SoleContact::default() };
     if max_sinkage_m <= 0.0 {
-        return out;
+        return max_sinkage_m;
     }
     let Some((s_lo, s_hi)) = arc.wetted_heel_toe() else {
-        return out;
+        return max_sinkage_m;
     };
     // First pass: each strip's wetted arc, for the patch's smaller dimension b.
     let (gs, gw) = (&strips.x, &strips.w);
@@ -80,11 +101,11 @@ pub fn sole_forces(
         }
     }
     if weight_sum <= 0.0 {
-        return out;
+        return max_sinkage_m;
     }
     let b_m = (arc_len_sum / weight_sum).min(s_hi - s_lo);
     if b_m <= 1e-9 {
-        return out;
+        return max_sinkage_m;
     }
     let tan_phi = soil.shear_ratio();
     let gtw = &along.w;
@@ -108,20 +129,18 @@ pub fn sole_forces(
             let v = v_cg + w.cross(&r);
             let slip = v - v.dot(&normal) * normal;
             let slip_speed = slip.norm();
-            let f_p = (sigma * area * normal).component_mul(mask);
+            let f_p = sigma * area * normal;
             let f_s = if slip_speed > 1e-12 {
                 let x = slip_speed / v_reg_mps;
                 let smooth = if x > 20.0 { 1.0 } else { x.tanh() }; // tanh(20) = 1 - 8e-18
-                -(tan_phi * sigma * area * smooth / slip_speed) * slip.component_mul(mask)
+                -(tan_phi * sigma * area * smooth / slip_speed) * slip
             } else {
                 Vector3::zeros()
             };
-            out.pressure_n += f_p;
-            out.shear_n += f_s;
-            out.torque_nm += r.cross(&(f_p + f_s));
+            each(&r, f_p, f_s);
         }
     }
-    out
+    max_sinkage_m
 }
 
 /// `(sin θⱼ, cos θⱼ)` at the rule's nodes `θⱼ = a + xⱼ (b − a)`. The Gauss-Legendre nodes pair up about the

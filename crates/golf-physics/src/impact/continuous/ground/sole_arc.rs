@@ -10,8 +10,11 @@ pub const MAX_GAUSS: usize = 16;
 /// A Gauss-Legendre rule on [0, 1].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GaussRule {
+    /// Its number of points (≤ [`MAX_GAUSS`]).
     pub n: usize,
+    /// Its nodes on [0, 1] (the first `n`).
     pub x: [Real; MAX_GAUSS],
+    /// Its weights, summing to 1 (the first `n`).
     pub w: [Real; MAX_GAUSS],
 }
 
@@ -54,20 +57,28 @@ pub struct SoleArcWorld {
     /// The sole cylinder's axes in the world: forward, up, toe (the cylinder's axis); the club frame's for a
     /// level sole.
     pub ex: Vector3,
+    /// See `ex`.
     pub ey: Vector3,
+    /// See `ex`.
     pub ez: Vector3,
     /// The cylinder's axis point at the sole's heel-toe middle (world).
     pub centre_m: Vector3,
+    /// The sole's radius of curvature (m, seed Figure 4.8's `R`).
     pub radius_m: Real,
+    /// The trailing edge's angle on the cylinder (rad, from straight down, toward the leading edge +).
     pub theta_te_rad: Real,
+    /// The leading edge's angle on the cylinder (rad).
     pub theta_le_rad: Real,
+    /// Half the sole's heel-toe length (m).
     pub half_length_m: Real,
+    /// The undisturbed playing surface's height `y_ground` (m, world).
     pub ground_y_m: Real,
     /// The sinkage's form `A(s) + R ρ cos(θ − θ₀)`, computed once: `(A(0), slope of A in s, ρ, θ₀)`.
     form: (Real, Real, Real, Real),
 }
 
 impl SoleArcWorld {
+    /// The sole `arc` on a head at `world_from_club`, over the ground `y = ground_y_m`.
     pub fn new(arc: &SoleArc, world_from_club: &Isometry3, ground_y_m: Real) -> Self {
         Self::at(arc, &world_from_club.rotation.to_rotation_matrix(), &world_from_club.translation.vector, ground_y_m)
     }

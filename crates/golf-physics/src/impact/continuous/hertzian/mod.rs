@@ -37,13 +37,16 @@ use crate::math::{Real, Vector3};
 /// One sample of a trace.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HertzTracePoint {
+    /// Time from first contact (µs).
     pub t_us: Real,
+    /// The Hertz normal force (N, eq. 3.16).
     pub normal_force_n: Real,
     /// Tangential force on the ball along the face's initial slip relative to the ball (N): positive while it
     /// drives the ball's contact point along with the face, negative once it has reversed.
     pub tangential_force_n: Real,
     /// The ball's spin (rpm) about the axis normal x initial slip (positive: the spin the face imparts).
     pub ball_spin_rpm: Real,
+    /// The normal compression (mm).
     pub compression_mm: Real,
     /// Maw: rings stuck.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -53,32 +56,43 @@ pub struct HertzTracePoint {
 /// What a run gives besides the launch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HertzResult {
+    /// The ball and the club as the ball leaves.
     pub launch: Launch,
+    /// From first contact until the ball leaves (s).
     pub contact_time_s: Real,
+    /// The largest normal force (N).
     pub peak_normal_force_n: Real,
     /// The tangential force along the initial axis took both signs (each beyond 1 % of its largest size).
     pub tangential_reversal: bool,
+    /// Steps taken.
     pub steps: usize,
+    /// The contact's course, when asked for.
     pub trace: Vec<HertzTracePoint>,
+    /// Total energy (kinetic + Hertz + rings) before the contact (J).
     pub energy_before_j: Real,
+    /// Total energy after it (J).
     pub energy_after_j: Real,
     /// Largest increase of the total energy (kinetic + Hertz + rings) over any step (J).
     pub max_energy_increase_j: Real,
     /// Linear and angular momentum (about the world origin) of both bodies before and after.
     pub momentum_before: (Vector3, Vector3),
+    /// See `momentum_before`.
     pub momentum_after: (Vector3, Vector3),
 }
 
 /// Which tangential law, with its parameters (`None`: the club's preset, driver's for a curved face).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum HertzLaw {
+    /// Maw's rings (seed section 3.2.2; `None`: the club's preset).
     Maw(Option<MawParams>),
+    /// Arakawa's contact-area friction (seed section 3.2.3, eq. 3.19-3.23; `None`: the club's preset).
     Arakawa(Option<ArakawaParams>),
 }
 
 /// Maw's or Arakawa's model on a free head.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzModel {
+    /// The tangential law.
     pub law: HertzLaw,
     /// Integration step (s).
     pub step_s: Real,
@@ -88,14 +102,14 @@ pub struct HertzModel {
 
 impl HertzModel {
     /// Maw's rings with a 2 µs step: halving it moves ball speed < 2e-7 and spin < 2e-5 (both clubs, 35-55 m/s,
-    /// centred and off-centre; tests/physics/maw_arakawa.rs asserts 1e-4 and 1e-3). The rings reached within a step feel
+    /// centred and off-centre; crates/golf-physics/tests/maw_arakawa.rs asserts 1e-4 and 1e-3). The rings reached within a step feel
     /// the slip since they entered ([`MawRings`]), which makes the spin converge faster than first order.
     pub fn maw() -> Self {
         HertzModel { law: HertzLaw::Maw(None), step_s: 2e-6, max_contact_s: 3e-3 }
     }
 
     /// Arakawa's law with a 1 µs step: halving it moves ball speed < 4e-6 and spin < 3e-4 (both clubs,
-    /// 35-55 m/s, tests/physics/maw_arakawa.rs).
+    /// 35-55 m/s, crates/golf-physics/tests/maw_arakawa.rs).
     pub fn arakawa() -> Self {
         HertzModel { law: HertzLaw::Arakawa(None), step_s: 1e-6, ..Self::maw() }
     }

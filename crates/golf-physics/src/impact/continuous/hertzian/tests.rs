@@ -41,7 +41,7 @@ fn a_bad_step_or_contact_limit_is_an_invalid_parameter() {
     }
 }
 
-/// The contact lasts about 450 µs (tests/physics/maw_arakawa.rs); a 50 µs limit is an error naming `maw` or `arakawa`, the
+/// The contact lasts about 450 µs (crates/golf-physics/tests/maw_arakawa.rs); a 50 µs limit is an error naming `maw` or `arakawa`, the
 /// registry's names.
 #[test]
 fn a_contact_past_the_limit_names_the_registry_model() {

@@ -31,7 +31,7 @@ use crate::equipment::shaft::ShaftSpec;
 use crate::equipment::soil::SoilSpec;
 use crate::equipment::sole::SoleSpec;
 use crate::equipment::EquipmentError;
-use crate::impact::continuous::ground::{GroundPhase, SoilGround};
+use crate::impact::continuous::ground::{GroundForces, GroundPhase, SampledGround, SoilGround};
 use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::shaft::modal::ModalClub;
 use crate::impact::continuous::shaft::{FlexibleClub, HeadOnShaft, ShaftError, ShaftMesh};
@@ -47,10 +47,13 @@ pub use report::GROUND_REPORT;
 /// The model's settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundModel {
+    /// The soil under the ball (Table 4.3's presets or a soil file).
     pub soil: SoilSpec,
     /// The club's sole and shaft (typical 7-iron values and Tables 4.1-4.2 by default).
     pub sole: SoleSpec,
+    /// See `sole`.
     pub shaft: ShaftSpec,
+    /// The shaft's finite elements and the grip's clamp.
     pub mesh: ShaftMesh,
     /// Shaft modes above this are dropped (Hz); infinite keeps them all.
     pub max_mode_hz: Real,
@@ -59,6 +62,7 @@ pub struct GroundModel {
     pub params: Option<TwoLayerParams>,
     /// Steps during the ball's contact and while only the ground acts (s).
     pub ball_step_s: Real,
+    /// See `ball_step_s`.
     pub ground_step_s: Real,
     /// During the ball's contact the ground's forces are evaluated once every `ground_hold_s` and held (s).
     pub ground_hold_s: Real,
@@ -66,16 +70,12 @@ pub struct GroundModel {
     pub follow_s: Real,
     /// `false`: the same club on a teed ball, no ground (`[soil] preset = "none"`, `--soil none`).
     pub with_ground: bool,
-    /// World-frame multipliers of the ground's force components, ones by default (the seed's model);
-    /// `(0, 1, 0)` keeps the vertical part alone, `(1, 0, 1)` the horizontal: what each part does to the strike
-    /// (research/ground-findings.md).
-    pub force_mask: Vector3,
 }
 
 impl GroundModel {
     /// The seed's 7-iron setup on `soil`: Table 4.1-4.2 shaft in 8 elements with every mode (within 0.43 % of
-    /// 48 elements, tests/physics/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
-    /// ball speed < 2e-5 and spin < 6e-4, tests/physics/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
+    /// 48 elements, crates/golf-physics/tests/shaft.rs), the typical 7-iron sole, 2 us steps in the ball's contact (halving moves
+    /// ball speed < 2e-5 and spin < 6e-4, crates/golf-physics/tests/ground.rs), 120 us outside (against 7.5 us: launch within 4e-7
     /// in speed and 7e-6 in spin, divot length within 0.35 %, contact time and peak force within 0.15 %; classical
     /// Runge-Kutta on every mode needed < 18 us for the highest, 1.5e5 rad/s) and the ground held over 15 us in
     /// the ball's contact (against 3.75 us: spin within 2.5e-5).
@@ -92,7 +92,6 @@ impl GroundModel {
             ground_hold_s: 15e-6,
             follow_s: 15e-3,
             with_ground: true,
-            force_mask: Vector3::repeat(1.0),
         }
     }
 
@@ -141,8 +140,11 @@ fn shaft_cg_fraction(shaft: &ShaftSpec) -> Real {
 /// The model with its club assembled.
 #[derive(Debug, Clone)]
 pub struct PreparedGround {
+    /// The settings.
     pub model: GroundModel,
+    /// The club and ball it was assembled for.
     pub equipment: Equipment,
+    /// The flexible club's modes (eq. 4.1-4.2).
     pub modal: ModalClub,
     /// The undeformed shaft's CG in the club frame (m).
     pub shaft_cg_m: Vector3,
@@ -155,21 +157,32 @@ pub struct PreparedGround {
 pub struct GroundTracePoint {
     /// Time from the ball's first contact on the undisturbed swing (ms).
     pub t_ms: Real,
+    /// The sole's force on the head, vertical (N, up +).
     pub sole_vertical_n: Real,
+    /// The sole's force on the head, horizontal magnitude (N).
     pub sole_horizontal_n: Real,
+    /// The face's earth pressure on the head, horizontal magnitude (N).
     pub face_horizontal_n: Real,
+    /// The whole ground force, vertical (N, up +).
     pub ground_vertical_n: Real,
+    /// The whole ground force, horizontal magnitude (N).
     pub ground_horizontal_n: Real,
+    /// The ball's normal force on the face (N; 0 before and after contact).
     pub ball_normal_n: Real,
+    /// Face angle (deg, open +).
     pub face_angle_deg: Real,
+    /// Dynamic loft (deg).
     pub dynamic_loft_deg: Real,
+    /// The contact phase.
     pub phase: GroundPhase,
 }
 
 /// What a run gives.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundResult {
+    /// The ball and the club as the ball leaves.
     pub launch: Launch,
+    /// Thin, good, fat or teed.
     pub strike: Strike,
     /// From the sole's first touch to the ball's first contact (ms; negative when the ball came first, `None`
     /// without ground contact).
@@ -177,26 +190,37 @@ pub struct GroundResult {
     /// At the ball's first contact, against the undisturbed swing: face-centre speed lost (mph), face angle
     /// (open +) and dynamic loft changes (deg).
     pub club_speed_loss_mph: Real,
+    /// See `club_speed_loss_mph`.
     pub face_angle_change_deg: Real,
+    /// See `club_speed_loss_mph`.
     pub dynamic_loft_change_deg: Real,
     /// Deepest sinkage of the sole (mm) and the head's horizontal travel with the leading edge below the
     /// surface (mm).
     pub divot_depth_mm: Real,
+    /// See `divot_depth_mm`.
     pub divot_length_mm: Real,
+    /// The largest ground force on the head (N).
     pub peak_ground_force_n: Real,
     /// Total time in contact with the ground (ms) and with the ball (us).
     pub ground_contact_ms: Real,
+    /// See `ground_contact_ms`.
     pub ball_contact_us: Real,
     /// The club's linear momentum at the start and end, and the impulses of the ball, ground and grip on it
     /// (N s, world).
     pub club_momentum_start_n_s: Vector3,
+    /// See `club_momentum_start_n_s`.
     pub club_momentum_end_n_s: Vector3,
+    /// See `club_momentum_start_n_s`.
     pub ball_impulse_n_s: Vector3,
     /// The ground's impulse on the club before the ball's first contact (N s, world).
     pub ground_impulse_before_ball_n_s: Vector3,
+    /// The ground's impulse on the club over the whole run (N s, world).
     pub ground_impulse_n_s: Vector3,
+    /// The grip's impulse on the club over the whole run (N s, world).
     pub grip_impulse_n_s: Vector3,
+    /// Steps taken.
     pub steps: usize,
+    /// The run's course, when asked for.
     pub trace: Vec<GroundTracePoint>,
 }
 
@@ -212,7 +236,7 @@ impl ImpactModel for PreparedGround {
 
     /// The launch alone stops when the ball leaves (the same launch as [`run`](ImpactModel::run), sooner).
     fn predict(&self, state: &ImpactState, _equipment: &Equipment) -> Result<Launch, ImpactError> {
-        run::simulate(self, state, 0, 0.0).map(|r| r.launch)
+        run::simulate(self, state, 0, 0.0, |ground| ground).map(|r| r.launch)
     }
 }
 
@@ -220,21 +244,31 @@ impl PreparedGround {
     /// Runs one shot, following the ground contact after the ball leaves for up to `follow_s`, recording a
     /// trace point every `trace_every` ball steps of time, at every step where the steps are longer (0: none). [`ImpactModel::predict`] stops when the ball leaves.
     pub fn simulate(&self, state: &ImpactState, trace_every: usize) -> Result<GroundResult, ImpactError> {
-        run::simulate(self, state, trace_every, self.model.follow_s)
+        run::simulate(self, state, trace_every, self.model.follow_s, |ground| ground)
+    }
+
+    /// [`Self::simulate`] with the ground's forces computed by `with(ground)` instead of the soil under the ball
+    /// (`ground`, already lowered out of reach without ground): for reading what a part of the ground's force
+    /// does alone (research/ground-parts.md). The sole's first touch is still found on `ground`.
+    pub fn simulate_with<G: SampledGround<Forces = GroundForces>>(
+        &self,
+        state: &ImpactState,
+        trace_every: usize,
+        with: impl FnOnce(SoilGround) -> G,
+    ) -> Result<GroundResult, ImpactError> {
+        run::simulate(self, state, trace_every, self.model.follow_s, with)
     }
 
     /// The ground under the ball of `state` (for the placement and strike).
     pub fn ground_for(&self, state: &ImpactState) -> Result<SoilGround, ImpactError> {
         let ball = &self.equipment.ball;
         let centre = placement::ball_centre_m(state, &self.equipment.club, ball)?;
-        let mut ground = SoilGround::new(
+        Ok(SoilGround::new(
             self.model.soil.clone(),
             self.model.sole,
             &self.equipment.club,
             placement::ground_y_m(&centre, ball),
-        );
-        ground.force_mask = self.model.force_mask;
-        Ok(ground)
+        ))
     }
 }
 

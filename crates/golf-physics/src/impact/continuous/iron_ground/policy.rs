@@ -15,15 +15,16 @@ use crate::equipment::ClubSpec;
 use crate::impact::continuous::assembly::{Assembly, State};
 use crate::impact::continuous::ball::{BallPart, TwoLayerBall, TwoLayerBallState};
 use crate::impact::continuous::club::{Head, ShaftClub, ShaftClubState, ShaftMotion};
-use crate::impact::continuous::ground::{GroundForces, GroundPhase, SoilGround};
+use crate::impact::continuous::ground::{GroundForces, GroundPhase, SampledGround, SoilGround};
 use crate::impact::continuous::law::volumetric::Volumetric;
 use crate::impact::continuous::shaft::exponential::ModalStepper;
 use crate::impact::continuous::stepping::{Flow, StepLadder, StepPolicy, StepStart};
 use crate::impact::{ImpactError, Launch};
 use crate::math::{Real, Vector3};
 
-/// The iron-plus-ground system on the assembly.
-pub(super) type StrikeSystem<'a> = Assembly<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround>;
+/// The iron-plus-ground system on the assembly, on the soil (`G = SoilGround`) or on a ground computing the same
+/// forces another way ([`super::PreparedGround::simulate_with`]).
+pub(super) type StrikeSystem<'a, G = SoilGround> = Assembly<Volumetric, TwoLayerBall, ShaftClub<'a>, G>;
 
 /// At most this many steps before giving up.
 const MAX_STEPS: usize = 2_000_000;
@@ -58,7 +59,9 @@ pub(super) struct StrikeSteps<'a> {
     pub next_trace_s: Real,
 }
 
-impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for StrikeSteps<'_> {
+impl<'a, G: SampledGround<Forces = GroundForces>> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, G>
+    for StrikeSteps<'_>
+{
     fn step(&self, _t_s: Real, s: &State<ShaftClubState, TwoLayerBallState>, head: &Head) -> &ModalStepper {
         if self.launch.is_some() {
             return self.ladder.long();
@@ -84,7 +87,7 @@ impl<'a> StepPolicy<Volumetric, TwoLayerBall, ShaftClub<'a>, SoilGround> for Str
 
     fn observe(
         &mut self,
-        asm: &StrikeSystem<'a>,
+        asm: &StrikeSystem<'a, G>,
         t_s: Real,
         h_s: Real,
         s: &State<ShaftClubState, TwoLayerBallState>,

@@ -9,6 +9,7 @@ use crate::impact::report::{Course, Fields, ModelRun, Report, RunOptions, Trace}
 pub const GROUND_REPORT: &str = "ground";
 
 impl Strike {
+    /// The strike's name in the report (`thin`, `good`, `fat`, `teed`).
     pub fn as_str(self) -> &'static str {
         match self {
             Strike::Thin => "thin",
@@ -20,6 +21,7 @@ impl Strike {
 }
 
 impl GroundPhase {
+    /// The phase's name in traces (`clear`, `compression`, `divot`).
     pub fn as_str(self) -> &'static str {
         match self {
             GroundPhase::Clear => "clear",

@@ -8,6 +8,7 @@ use super::{GroundResult, PreparedGround};
 use crate::impact::continuous::assembly::{Assembly, State};
 use crate::impact::continuous::ball::BallPart;
 use crate::impact::continuous::club::{ShaftClub, ShaftClubState};
+use crate::impact::continuous::ground::{GroundForces, SampledGround, SoilGround};
 use crate::impact::continuous::shaft::grip::ConstantTwist;
 use crate::impact::continuous::surface::FaceSurface;
 use crate::impact::continuous::{TwoLayerContact, TwoLayerParams, TwoLayerReading};
@@ -15,11 +16,12 @@ use crate::impact::{ImpactError, ImpactState};
 use crate::math::Real;
 use crate::units::MPS_PER_MPH;
 
-pub(super) fn simulate(
+pub(super) fn simulate<G: SampledGround<Forces = GroundForces>>(
     p: &PreparedGround,
     state: &ImpactState,
     trace_every: usize,
     follow_s: Real,
+    with: impl FnOnce(SoilGround) -> G,
 ) -> Result<GroundResult, ImpactError> {
     let model = &p.model;
     let club = &p.equipment.club;
@@ -64,7 +66,7 @@ pub(super) fn simulate(
         shaft_mass_kg: model.shaft.mass_kg,
         shaft_cg_m: p.shaft_cg_m,
     };
-    let asm: StrikeSystem = Assembly { law, ball, club: shaft_club, ground, surface };
+    let asm: StrikeSystem<G> = Assembly { law, ball, club: shaft_club, ground: with(ground), surface };
     let ball_centre = super::placement::ball_centre_m(state, club, &p.equipment.ball)?;
     let s0 = State { club: ShaftClubState::default(), ball: asm.ball.at_rest(ball_centre) };
     let momentum_start = asm.club.momentum_n_s(&s0.club, t0);

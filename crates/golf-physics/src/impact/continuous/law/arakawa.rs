@@ -100,10 +100,12 @@ impl ArakawaParams {
         contact_arm: super::hertz::ContactArm::Radius,
     };
 
+    /// The normal law (eq. 3.16-3.17) of these parameters.
     pub fn hertz(&self) -> Hertz {
         Hertz { e_pa: self.e_pa, nu: self.nu, d_s_per_m: self.d_s_per_m }
     }
 
+    /// Checks every parameter, naming a bad one.
     pub fn validate(&self) -> Result<(), LawError> {
         self.hertz().validate()?;
         positive("mu", self.mu)?;

@@ -20,8 +20,16 @@ use crate::math::{Real, Vector3};
 /// A contact-law parameter is out of its range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LawError {
+    /// A parameter outside its range.
     #[error("`{field}` must be {expected}, got {value}")]
-    OutOfRange { field: &'static str, expected: &'static str, value: Real },
+    OutOfRange {
+        /// The parameter.
+        field: &'static str,
+        /// The range it must be in.
+        expected: &'static str,
+        /// What it was.
+        value: Real,
+    },
 }
 
 /// Checks that `value` is finite and positive.
@@ -81,6 +89,7 @@ pub struct Hertz {
 }
 
 impl Hertz {
+    /// Checks the modulus, Poisson's ratio and damping, naming a bad one.
     pub fn validate(&self) -> Result<(), LawError> {
         positive("e_pa", self.e_pa)?;
         non_negative("d_s_per_m", self.d_s_per_m)?;
@@ -154,6 +163,7 @@ pub struct ContactKinematics {
     pub normal: Vector3,
     /// Normal approach `x` (m) and its rate `ẋ` (m/s, positive while compressing).
     pub x_m: Real,
+    /// See `x_m`.
     pub xdot_mps: Real,
     /// The normal force of eq. 3.16 (N).
     pub normal_force_n: Real,
@@ -203,6 +213,7 @@ impl Begin {
 /// A tangential contact law (Maw's rings; Arakawa's eq. 3.23), set up for one impact ([`Begin`]), its history in
 /// [`Self::State`]; `HertzContact` pairs it with eq. 3.16 as a contact law.
 pub trait Tangential {
+    /// The law's history over one impact (Maw's rings' slips; none for Arakawa's).
     type State: Clone + Default + std::fmt::Debug;
     /// The state at first contact.
     fn initial_state(&self) -> Self::State;

@@ -23,13 +23,16 @@ pub struct HertzContact<T> {
     pub k: Real,
     /// Hunt-Crossley damping `d` (s/m).
     pub d_s_per_m: Real,
+    /// The friction's lever arm from the ball's centre (`R` or `R − x/2`).
     pub contact_arm: ContactArm,
+    /// The tangential law.
     pub tangential: T,
 }
 
 /// The tangential law's history and the force it committed last (`None`: apart, or not yet committed).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HertzState<S> {
+    /// The tangential law's history.
     pub tangential: S,
     committed_friction_n: Option<Vector3>,
 }

@@ -44,16 +44,22 @@ pub struct Contact {
 /// and its radius (m), world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BallAt {
+    /// Centre (m).
     pub centre_m: Vector3,
+    /// Centre velocity (m/s).
     pub velocity_mps: Vector3,
+    /// Angular velocity of the surface in contact (rad/s).
     pub surface_spin_radps: Vector3,
+    /// Radius (m).
     pub radius_m: Real,
 }
 
 /// The force of a law on the ball: `normal_n` along the contact normal and `friction_n` in the tangent plane.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactForce {
+    /// Along the contact normal, toward the ball (N).
     pub normal_n: Real,
+    /// In the tangent plane (N).
     pub friction_n: Vector3,
 }
 

@@ -29,10 +29,13 @@ use crate::math::{skew, Matrix3, Real, Rotation3, Vector3};
 /// Errors of the flexible club.
 #[derive(Debug, thiserror::Error)]
 pub enum ShaftError {
+    /// The shaft's or the sole's specification refused.
     #[error("shaft: {0}")]
     Equipment(#[from] crate::equipment::EquipmentError),
+    /// A mesh the shaft's stations cannot take.
     #[error("shaft mesh: {0}")]
     Mesh(String),
+    /// The assembled matrices are not positive definite.
     #[error("shaft matrices are not positive definite")]
     NotPositiveDefinite,
 }
@@ -55,12 +58,14 @@ impl Default for ShaftMesh {
 /// The head as the shaft carries it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeadOnShaft {
+    /// The head's mass (kg).
     pub mass_kg: Real,
     /// Inertia about the CG, club frame (kg m²).
     pub inertia_kg_m2: Matrix3,
 }
 
 impl HeadOnShaft {
+    /// The head of `club` alone (the shaft's share of a free head's mass left out).
     pub fn of(club: &ClubSpec) -> Self {
         // The head alone: this model carries the shaft, so not the share a free head is given for it.
         HeadOnShaft { mass_kg: club.mass_kg, inertia_kg_m2: club.head_inertia_kg_m2() }
@@ -76,14 +81,17 @@ pub struct FlexibleClub {
     pub first_free: usize,
     /// Stiffness and mass over the free DOFs (6 per free node, butt to tip).
     pub k: DMatrix,
+    /// See `k`.
     pub m: DMatrix,
     /// Rows of the clamped DOFs against the free ones: the clamp's reaction is `K_cf q + M_cf q̈`.
     pub k_cf: DMatrix,
+    /// See `k_cf`.
     pub m_cf: DMatrix,
     /// The shaft frame in the club frame (x from butt to tip, y the club's forward, z = x × y).
     pub club_from_shaft: Rotation3,
     /// The tip (hosel) and the butt in the club frame (m).
     pub tip_m: Vector3,
+    /// See `tip_m`.
     pub butt_m: Vector3,
     /// The head's CG from the tip, shaft frame (m).
     pub cg_from_tip_shaft_m: Vector3,

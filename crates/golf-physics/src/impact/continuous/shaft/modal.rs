@@ -3,7 +3,7 @@
 //! With the mass-normalised modes `Φ` of the clamped club ([`FlexibleClub::modes`]) the free DOFs are
 //! `q = Φ η` and each modal coordinate obeys `η̈ᵢ + 2ζωᵢ η̇ᵢ + ωᵢ² ηᵢ = Φ_tipᵢᵀ f_tip`, `f_tip` the force and moment
 //! the head's contacts put on the tip node (shaft frame). Modes above `max_frequency_hz` are dropped; the
-//! response converges as the cut-off and the mesh are raised (tests/physics/shaft.rs).
+//! response converges as the cut-off and the mesh are raised (crates/golf-physics/tests/shaft.rs).
 
 use crate::math::{DMatrix, SMatrix, SVector};
 
@@ -30,7 +30,9 @@ pub struct ModalClub {
     pub momentum_modes: SMatrix<3, MAX_MODES>,
     /// The clamp's reaction force on the shaft (shaft frame) per unit modal coordinate and acceleration.
     pub grip_stiffness_modes: SMatrix<3, MAX_MODES>,
+    /// See `grip_stiffness_modes` (per unit modal acceleration).
     pub grip_mass_modes: SMatrix<3, MAX_MODES>,
+    /// The shaft frame in the club frame.
     pub club_from_shaft: Rotation3,
     /// The head's CG from the tip, shaft frame (m).
     pub cg_from_tip_shaft_m: Vector3,
@@ -39,7 +41,9 @@ pub struct ModalClub {
 /// Modal coordinates and velocities.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModalState {
+    /// Modal coordinates `η`.
     pub eta: ModalVec,
+    /// Their rates `η̇`.
     pub eta_dot: ModalVec,
 }
 
@@ -54,9 +58,11 @@ impl Default for ModalState {
 pub struct HeadOffset {
     /// CG displacement (m) and its rate (m/s).
     pub cg_m: Vector3,
+    /// See `cg_m`.
     pub cg_velocity_mps: Vector3,
     /// Small rotation vector (rad) and its rate (rad/s).
     pub rotation_rad: Vector3,
+    /// See `rotation_rad`.
     pub angular_velocity_radps: Vector3,
 }
 

@@ -13,7 +13,9 @@ use crate::math::Real;
 /// steps: the face moves off); more than `max_steps` steps is an error naming `model`.
 #[derive(Debug, Clone)]
 pub struct FixedStep<S> {
+    /// The one step (its size and coefficients).
     pub step: S,
+    /// The most steps before the run is an error.
     pub max_steps: usize,
     /// The name errors carry.
     pub model: &'static str,
@@ -22,6 +24,7 @@ pub struct FixedStep<S> {
 }
 
 impl<S> FixedStep<S> {
+    /// Steps of `step`, at most `max_steps`, errors naming `model`.
     pub fn new(step: S, max_steps: usize, model: &'static str) -> Self {
         FixedStep { step, max_steps, model, touched: false, steps: 0 }
     }

@@ -27,10 +27,12 @@ impl<S> StepLadder<S> {
         StepLadder { long: step(long_s), rungs, long_s, short_s }
     }
 
+    /// The long step (`long_s`).
     pub fn long(&self) -> &S {
         &self.long
     }
 
+    /// The short step (`short_s`).
     pub fn short(&self) -> &S {
         &self.rungs[0]
     }

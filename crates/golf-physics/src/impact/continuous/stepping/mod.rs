@@ -56,6 +56,7 @@ pub type SteppedState<B, C> = State<<C as SteppedClub>::State, <B as BallPart>::
 /// Whether to go on after a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Flow {
+    /// Take the next step.
     Continue,
     /// Stop at the step's start: the run ends in that state.
     Stop,

@@ -20,8 +20,11 @@ use crate::math::{Real, Vector3};
 /// What acted at a step's start: the club's motion, the ball's contact (if any) and the ground's forces.
 #[derive(Debug, Clone, Copy)]
 pub struct StepStart<M, F> {
+    /// The club's motion.
     pub motion: M,
+    /// The ball's contact forces, if it touches.
     pub ball: Option<ContactForces>,
+    /// The ground's forces (held over several steps near the ball).
     pub ground: F,
 }
 

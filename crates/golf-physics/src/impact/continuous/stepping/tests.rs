@@ -164,7 +164,7 @@ type System = Assembly<Volumetric, TwoLayerBall, FreeHead, NoGround>;
 /// With the bound each step is as long as the friction allows: from 0.6 us up to six times it, the longest out of
 /// contact, and in contact `h λ <= 2.4` (classical Runge-Kutta's stability on the slip mode, eq. 3.15) unless
 /// at the shortest step. The stiff middle of the contact takes the shortest step, its ends the longest, in about
-/// half the fixed step's steps (tests/physics/continuous.rs bounds the launch against a 0.05 us step).
+/// half the fixed step's steps (crates/golf-physics/tests/continuous.rs bounds the launch against a 0.05 us step).
 #[test]
 fn each_step_is_as_long_as_the_friction_allows() {
     let (eq, state) = strike();

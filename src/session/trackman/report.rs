@@ -1,5 +1,5 @@
 //! TrackMan's report JSON (`"Kind": "multiGroupReport"`, what TrackMan's web API returns for a session) in, as the
-//! same measured shots as its CSV export (`trackman_csv`): each stroke's `Measurement` (not the
+//! same measured shots as its CSV export (`csv`): each stroke's `Measurement` (not the
 //! `NormalizedMeasurement`), in SI units as TrackMan gives them: `ClubSpeed` and `BallSpeed` in m/s (read as mph by
 //! the CSV reader's factor), `ImpactOffset` and `ImpactHeight` in m (mm by a decimal shift, as the CSV export
 //! writes them), angles in degrees, `SpinRate` in rpm. `ReducedAccuracy` lists what TrackMan could not measure in
@@ -14,7 +14,7 @@ use crate::pairing::DatasetLine;
 use crate::units::MPS_PER_MPH;
 use crate::wire::{DeliveryInput, LaunchFields};
 
-use super::trackman_rows::{RowLabels, SkippedRows};
+use super::rows::{RowLabels, SkippedRows};
 
 /// Why a TrackMan report cannot be read; each names the stroke (1-based in the file) and field.
 #[derive(Debug, thiserror::Error)]

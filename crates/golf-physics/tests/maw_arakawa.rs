@@ -4,14 +4,14 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::{BallSpec, ClubSpec};
-use impactd::impact::continuous::hertzian::{HertzLaw, HertzModel};
-use impactd::impact::continuous::law::arakawa::{ArakawaParams, ArakawaReading};
-use impactd::impact::continuous::law::maw::MawParams;
-use impactd::impact::continuous::plate::{chi, impact, rebound_psi};
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
-use impactd::math::Vector3;
-use impactd::rng::Rng;
+use golf_physics::equipment::{BallSpec, ClubSpec};
+use golf_physics::impact::continuous::hertzian::{HertzLaw, HertzModel};
+use golf_physics::impact::continuous::law::arakawa::{ArakawaParams, ArakawaReading};
+use golf_physics::impact::continuous::law::maw::MawParams;
+use golf_physics::impact::continuous::plate::{chi, impact, rebound_psi};
+use golf_physics::impact::{Delivery, Equipment, LaunchMetrics};
+use golf_physics::math::Vector3;
+use golf_physics::rng::Rng;
 
 fn delivery(speed_mps: f64, attack_deg: f64, loft_deg: f64) -> Delivery {
     Delivery {
@@ -67,7 +67,7 @@ fn figure_3_4_damping_lowers_the_peak_and_keeps_the_reversal() {
     let ball = BallSpec::SEED;
     let elastic = impact(false, &MawParams { d_s_per_m: 0.0, ..MawParams::DRIVER }, &ball, 44.0, 30.0, 0.5e-6, 10);
     let damped = impact(false, &MawParams::DRIVER, &ball, 44.0, 30.0, 0.5e-6, 10);
-    let peak = |r: &impactd::impact::continuous::plate::PlateImpact| {
+    let peak = |r: &golf_physics::impact::continuous::plate::PlateImpact| {
         r.samples.iter().map(|s| s.normal_force_n).fold(0.0, f64::max)
     };
     assert!(peak(&damped) < peak(&elastic));
@@ -212,16 +212,16 @@ fn converged_in_step_and_rings() {
 /// default to `R`; `contact_arm = "mid_overlap"` restores the shorter arm, which spins the 7-iron more.
 #[test]
 fn the_contact_arm_is_the_theorys_radius_by_default() {
-    use impactd::impact::continuous::law::hertz::ContactArm;
+    use golf_physics::impact::continuous::law::hertz::ContactArm;
     assert_eq!(MawParams::DRIVER.contact_arm, ContactArm::Radius);
     assert_eq!(ArakawaParams::IRON7.contact_arm, ContactArm::Radius);
-    let ball = impactd::equipment::BallSpec::SEED;
+    let ball = golf_physics::equipment::BallSpec::SEED;
     let elastic = MawParams { d_s_per_m: 0.0, ..MawParams::DRIVER };
     // Rolling at departure from 44 m/s at 30 deg: the angular impulse about the contact point keeps
     // m R v_t = (I + m R^2) w (7,045 rpm for the seed's ball).
     let v_t = 44.0 * 30f64.to_radians().sin();
     let w_roll = ball.mass_kg * ball.radius_m * v_t / (ball.inertia_kg_m2 + ball.mass_kg * ball.radius_m.powi(2));
-    let rolling = |r: &impactd::impact::continuous::plate::PlateImpact| r.spin_radps.abs() / w_roll;
+    let rolling = |r: &golf_physics::impact::continuous::plate::PlateImpact| r.spin_radps.abs() / w_roll;
     let theory = impact(true, &elastic, &ball, 44.0, 30.0, 0.1e-6, 10);
     let mid = impact(false, &elastic, &ball, 44.0, 30.0, 0.1e-6, 10);
     assert!((rolling(&theory) - 1.085).abs() < 0.02, "{}", rolling(&theory));

@@ -4,9 +4,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
-use impactd::flight::{cv, fit, Aero, Conditions, Flight, Turf};
-use impactd::units::{mph_to_mps, rpm_to_radps};
+use golf_physics::flight::reference::{bearman_harvey, lyu, BH_CD, BH_CL};
+use golf_physics::flight::{cv, fit, Aero, Conditions, Flight, Turf};
+use golf_physics::units::{mph_to_mps, rpm_to_radps};
 
 /// Closed form: with no drag and no lift the ball flies the vacuum parabola: range v² sin 2θ / g, apex
 /// v² sin² θ / (2g), time 2 v sin θ / g, landing at the launch angle and speed.
@@ -88,7 +88,7 @@ fn model(v: f64, rpm: f64) -> (f64, f64, f64) {
     let f = Flight::default();
     let c = f.conditions;
     let r = f.ball.radius_m;
-    let re = impactd::flight::aero::reynolds(v, 2.0 * r, c.density_kg_m3(), c.viscosity_pa_s());
+    let re = golf_physics::flight::aero::reynolds(v, 2.0 * r, c.density_kg_m3(), c.viscosity_pa_s());
     let s = r * rpm_to_radps(rpm) / v;
     let (d, l) = Aero::FITTED.coefficients(re, s);
     (d, l, s)
@@ -127,7 +127,7 @@ fn drag_and_lift_stay_within_the_published_measurements() {
 fn drag_above_the_crisis_rises_no_more_than_measured() {
     let r = 0.0213;
     for s in [0.12, 0.15, 0.18] {
-        let rpm = |v: f64| impactd::units::radps_to_rpm(s * v / r);
+        let rpm = |v: f64| golf_physics::units::radps_to_rpm(s * v / r);
         let bh_rise = bearman_harvey(&BH_CD, 88.1, rpm(88.1)) - bearman_harvey(&BH_CD, 40.0, rpm(40.0));
         let (lo, _, _) = model(40.0, rpm(40.0));
         let (hi, _, _) = model(88.1, rpm(88.1));
@@ -150,9 +150,9 @@ fn every_club_is_near_the_trackman_table() {
     }
     assert!(fit::worst(&Aero::FITTED, &rows) < 0.83);
     // Inside the envelope less its margin, but for less than the margin: strictly inside the envelope.
-    assert!(impactd::flight::envelope::violations(&Aero::FITTED)
+    assert!(golf_physics::flight::envelope::violations(&Aero::FITTED)
         .iter()
-        .all(|v| *v < impactd::flight::envelope::MARGIN));
+        .all(|v| *v < golf_physics::flight::envelope::MARGIN));
 }
 
 /// The fit is reproducible: from `fit::START` and the table, `impactd flight-fit` lands on `Aero::FITTED`.
@@ -164,7 +164,7 @@ fn the_fit_from_its_start_reproduces_the_shipped_coefficients() {
         fit::Step::Run(..) => runs += 1,
         fit::Step::Minimax(..) => minimax += 1,
     });
-    let bounds = impactd::flight::aero::BOUNDS;
+    let bounds = golf_physics::flight::aero::BOUNDS;
     for ((got, shipped), (lo, hi)) in result.aero.to_array().iter().zip(Aero::FITTED.to_array()).zip(bounds) {
         assert!((got - shipped).abs() <= 1e-6 * (hi - lo), "{got} vs {shipped}");
     }
@@ -231,7 +231,8 @@ fn bounce_and_roll() {
     let wedge = fly(0.5, 102.0, 24.2, 9304.0);
     assert!(wedge.roll_yd.abs() <= 3.0, "wedge roll {:.1} yd", wedge.roll_yd);
     // The sampled path runs on past the landing to rest, on the ground.
-    let path = Flight::default().fly(&impactd::flight::LaunchState::from_metrics(70.0, 12.0, 0.0, 2500.0, 0.0), 0.05);
+    let path =
+        Flight::default().fly(&golf_physics::flight::LaunchState::from_metrics(70.0, 12.0, 0.0, 2500.0, 0.0), 0.05);
     let last_point = path.points.last().unwrap();
     assert!((last_point[1].hypot(last_point[3]) - path.total_m).abs() < 1e-6 && last_point[2] == 0.0);
     assert!(path.points.iter().all(|p| p[2] >= 0.0));
@@ -243,7 +244,7 @@ fn bounce_and_roll() {
 /// 3.28 % (research/flight-fit.md, "Carry against land angle").
 #[test]
 fn land_angle_costs_carry_for_one_ball() {
-    use impactd::flight::tradeoff::largest_errors;
+    use golf_physics::flight::tradeoff::largest_errors;
     let rows = fit::parse_table(fit::TRACKMAN_CSV).unwrap();
     let at = |land_deg: f64| {
         let tol = fit::Tolerance {

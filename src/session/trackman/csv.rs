@@ -16,7 +16,7 @@ use crate::pairing::DatasetLine;
 use crate::units::{MPS_PER_MPH, M_PER_YD};
 use crate::wire::{DeliveryInput, LaunchFields, LaunchPrediction};
 
-pub use super::trackman_rows::{RowLabels, SkippedRows};
+pub use super::rows::{RowLabels, SkippedRows};
 
 /// The columns of an export, with their units row (empty for text).
 pub const COLUMNS: [(&str, &str); 61] = [
@@ -160,7 +160,7 @@ pub fn row(p: &LaunchPrediction, file: &str, date: &str, measured: Option<(&Laun
     set("TMD No", p.shot.to_string());
     set("TMD Filename", file.to_string());
     set("Player", p.labels.player.clone().unwrap_or_default());
-    set("Club", super::club_of(p).to_string());
+    set("Club", crate::session::club_of(p).to_string());
     set("Club Speed", num(d.club_speed_mph, 6));
     set("Attack Angle", num(d.attack_angle_deg, 6));
     set("Club Path", num(d.club_path_deg, 6));

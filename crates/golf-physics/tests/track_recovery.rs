@@ -4,12 +4,12 @@
 
 #![allow(clippy::unwrap_used, clippy::type_complexity)]
 
-use impactd::equipment::ClubSpec;
-use impactd::impact::Equipment;
-use impactd::kinematics::{Calibration, ClubheadSample};
-use impactd::offline::swing::{sample, Sampling, Swing, SwingSpec};
-use impactd::pipeline::{Event, Pipeline, RigSetup};
-use impactd::rng::Rng;
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::Equipment;
+use golf_physics::kinematics::{Calibration, ClubheadSample};
+use golf_physics::pipeline::{Event, Pipeline, RigSetup};
+use golf_physics::rng::Rng;
+use golf_physics::swing::{sample, Sampling, Swing, SwingSpec};
 
 const YEAR_NS: u64 = 365 * 24 * 3600 * 1_000_000_000;
 

@@ -2,11 +2,11 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::soil::SoilSpec;
-use impactd::equipment::sole::SoleSpec;
-use impactd::equipment::ClubSpec;
-use impactd::impact::continuous::ground::{GaussRule, GroundPhase, SoilGround};
-use impactd::math::{Isometry3, Real, Translation3, UnitQuaternion, Vector3};
+use golf_physics::equipment::soil::SoilSpec;
+use golf_physics::equipment::sole::SoleSpec;
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::continuous::ground::{GaussRule, GroundPhase, SoilGround};
+use golf_physics::math::{Isometry3, Real, Translation3, UnitQuaternion, Vector3};
 
 /// A square club (no rotation) whose sole's lowest point is `z0` below the surface y = 0.
 fn pressed(soil: SoilSpec, z0: Real) -> (SoilGround, Isometry3) {
@@ -155,9 +155,11 @@ fn soils_order_when_deep() {
 // ---------------------------------------------------------------------------------------------------------
 // The assembled model (seed section 4.3) on one swing over the face.
 
-use impactd::impact::continuous::iron_ground::{reference_swing, GroundModel, GroundResult, PreparedGround, Strike};
-use impactd::impact::continuous::shaft::ShaftMesh;
-use impactd::impact::{Equipment, LaunchMetrics};
+use golf_physics::impact::continuous::iron_ground::{
+    reference_swing, GroundModel, GroundResult, PreparedGround, Strike,
+};
+use golf_physics::impact::continuous::shaft::ShaftMesh;
+use golf_physics::impact::{Equipment, LaunchMetrics};
 
 fn prepared(soil: SoilSpec, with_ground: bool) -> (PreparedGround, Equipment) {
     let eq = Equipment::new(ClubSpec::iron7());
@@ -315,7 +317,7 @@ fn trace_shows_the_ground_before_the_ball_on_a_fat_strike() {
     assert!(before.iter().any(|t| t.ground_vertical_n > 10.0), "the sole pushes up before the ball");
     let peak = fat.trace.iter().max_by(|a, b| a.ground_vertical_n.total_cmp(&b.ground_vertical_n)).unwrap();
     assert!(peak.ground_vertical_n > peak.ground_horizontal_n);
-    assert!(fat.trace.iter().any(|t| t.phase == impactd::impact::continuous::ground::GroundPhase::Divot));
+    assert!(fat.trace.iter().any(|t| t.phase == golf_physics::impact::continuous::ground::GroundPhase::Divot));
     let good = p.simulate(&reference_swing(0.0, 0.0).to_state(&eq).unwrap(), 0).unwrap();
     println!("peak ground force: fat {:.0} N, good {:.0} N", fat.peak_ground_force_n, good.peak_ground_force_n);
     assert!(good.peak_ground_force_n < fat.peak_ground_force_n);
@@ -345,9 +347,9 @@ fn ground_summary_has_the_wire_names() {
 /// The registry builds `ground` for the 7-iron (`--model ground`), and it predicts what the model does.
 #[test]
 fn registry_builds_the_ground_model() {
-    use impactd::impact::registry::{build_one, BuildOptions};
-    use impactd::impact::ImpactModel;
-    let club = impactd::equipment::load_club("iron7").unwrap();
+    use golf_physics::impact::registry::{build_one, BuildOptions};
+    use golf_physics::impact::ImpactModel;
+    let club = crate::load_club("iron7").unwrap();
     let model = build_one("ground", &club, &BuildOptions::default()).unwrap();
     assert_eq!(model.name(), "ground");
     let (p, eq) = prepared(SoilSpec::firm(), true);

@@ -10,12 +10,13 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::presets::PRESETS;
-use impactd::equipment::{load_club, BallSpec, LoadedClub};
-use impactd::impact::registry::{self, BuildOptions, MODELS};
-use impactd::impact::{Delivery, Equipment, LaunchMetrics};
-use impactd::math::Vector3;
-use impactd::units::mph_to_mps;
+use crate::load_club;
+use golf_physics::equipment::presets::PRESETS;
+use golf_physics::equipment::{BallSpec, LoadedClub};
+use golf_physics::impact::registry::{self, BuildOptions, MODELS};
+use golf_physics::impact::{Delivery, Equipment, LaunchMetrics};
+use golf_physics::math::Vector3;
+use golf_physics::units::mph_to_mps;
 
 /// (preset, its row in the tour table).
 const ROWS: [(&str, &str); 10] = [
@@ -40,7 +41,7 @@ struct TourRow {
 }
 
 fn tour(club: &str) -> TourRow {
-    let text = include_str!("../data/trackman-pga-tour-averages.csv");
+    let text = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/trackman-pga-tour-averages.csv"));
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let row: Vec<&str> = lines.map(|l| l.split(',').collect::<Vec<_>>()).find(|r| r[0] == club).unwrap();
@@ -82,7 +83,7 @@ fn strike_v_m(club: &LoadedClub, dynamic_loft_deg: f64) -> f64 {
     r * (1.0 - l.sin()) / l.cos() - centre_m
 }
 
-fn launch(model: &str, club: &LoadedClub, d: &Delivery) -> (LaunchMetrics, impactd::impact::Launch) {
+fn launch(model: &str, club: &LoadedClub, d: &Delivery) -> (LaunchMetrics, golf_physics::impact::Launch) {
     let eq = Equipment::new(club.club.clone());
     let m = registry::build_one(model, club, &BuildOptions::default()).unwrap();
     let l = m.predict(&d.to_state(&eq).unwrap(), &eq).unwrap();
@@ -222,7 +223,8 @@ fn momentum_is_conserved_with_every_preset() {
         let state = d.to_state(&eq).unwrap();
         for model in ["standard", "adjusted", "slip", "continuous", "maw", "arakawa"] {
             let (_, l) = launch(model, &club, &d);
-            let tuning = impactd::impact::impulse::ImpulseTuning::from_sections(&club.club, &club.sections).unwrap();
+            let tuning =
+                golf_physics::impact::impulse::ImpulseTuning::from_sections(&club.club, &club.sections).unwrap();
             let m_c = club.club.mass_kg + if model == "adjusted" { tuning.adjusted_delta_mass_kg } else { 0.0 };
             let before = m_c * state.cg_velocity_mps;
             let after = m_c * l.club_velocity_mps + ball.mass_kg * l.ball_velocity_mps;

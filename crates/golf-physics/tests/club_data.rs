@@ -4,13 +4,13 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::ClubSpec;
-use impactd::impact::{Delivery, DeliveryMetrics, Equipment, SwingArc};
-use impactd::kinematics::Calibration;
-use impactd::math::Vector3;
-use impactd::offline::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
-use impactd::pipeline::{Event, Pipeline, RigSetup};
-use impactd::rng::Rng;
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::{Delivery, DeliveryMetrics, Equipment, SwingArc};
+use golf_physics::kinematics::Calibration;
+use golf_physics::math::Vector3;
+use golf_physics::pipeline::{Event, Pipeline, RigSetup};
+use golf_physics::rng::Rng;
+use golf_physics::swing::{sample, Sampling, Swing, SwingPath, SwingSpec};
 
 /// One shot: the truth and what the pipeline measured.
 struct Shot {
@@ -230,7 +230,7 @@ fn dynamic_lie_and_closure_rate_of_a_state() {
     assert!(m.closure_rate_degps.abs() < 1e-9);
     // The same face angle and loft with the toe up by 3 deg: a flatter shaft, by 3 deg on a face without loft
     // (the roll axis is then the x axis); on the iron's 30.5 deg face a little less.
-    let flat = ClubSpec { face: impactd::face::Face { loft_rad: 0.0, ..club.face }, ..club.clone() };
+    let flat = ClubSpec { face: golf_physics::face::Face { loft_rad: 0.0, ..club.face }, ..club.clone() };
     let eq_flat = Equipment::new(flat.clone());
     let mut spec = SwingSpec::golfer(&flat, &mut Rng::new(1));
     spec.delivery = Delivery { dynamic_loft_rad: 0.0, ..d };

@@ -3,12 +3,12 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::shaft::ShaftSpec;
-use impactd::equipment::sole::SoleSpec;
-use impactd::equipment::ClubSpec;
-use impactd::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
-use impactd::impact::continuous::shaft::{three_point_ei, FlexibleClub, HeadOnShaft, ShaftMesh};
-use impactd::math::{Real, Vector3};
+use golf_physics::equipment::shaft::ShaftSpec;
+use golf_physics::equipment::sole::SoleSpec;
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::continuous::shaft::modal::{ModalClub, ModalState, ModalVec};
+use golf_physics::impact::continuous::shaft::{three_point_ei, FlexibleClub, HeadOnShaft, ShaftMesh};
+use golf_physics::math::{Real, Vector3};
 
 fn club(elements: usize, clamp_m: Real) -> FlexibleClub {
     FlexibleClub::new(
@@ -184,7 +184,7 @@ fn momentum_balances_the_push_and_the_grip() {
 /// closed form averages their inverses: a second-order difference that vanishes as the mesh refines).
 #[test]
 fn static_twist_and_tip_deflection_match_closed_forms() {
-    use impactd::math::Real;
+    use golf_physics::math::Real;
     let shaft = ShaftSpec::iron7();
     let c = club(24, 0.0);
     let n = c.dofs();
@@ -198,11 +198,11 @@ fn static_twist_and_tip_deflection_match_closed_forms() {
         twist += h / shaft.gj_n_m2(x);
         bend += h * (l - x).powi(2) / shaft.ei_n_m2(x);
     }
-    let mut f = impactd::math::DVector::zeros(n);
+    let mut f = golf_physics::math::DVector::zeros(n);
     f[tip + 3] = 1.0; // torque about the shaft axis, N m
     let u = c.static_displacement(&f).unwrap();
     assert!((u[tip + 3] / twist - 1.0).abs() < 1e-3, "{} vs {twist}", u[tip + 3]);
-    let mut f = impactd::math::DVector::zeros(n);
+    let mut f = golf_physics::math::DVector::zeros(n);
     f[tip + 1] = 1.0; // lateral force, N
     let u = c.static_displacement(&f).unwrap();
     assert!((u[tip + 1] / bend - 1.0).abs() < 1e-3, "{} vs {bend}", u[tip + 1]);

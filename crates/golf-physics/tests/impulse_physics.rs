@@ -3,12 +3,14 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::ClubSpec;
-use impactd::impact::impulse::{solve, ContactProblem, ImpulseTuning};
-use impactd::impact::{Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics};
-use impactd::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Matrix3, Vector3};
-use impactd::rng::Rng;
-use impactd::wire::{DeliveryInput, Handedness, PredictOutput};
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::impulse::{solve, ContactProblem, ImpulseTuning};
+use golf_physics::impact::{
+    Delivery, DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics,
+};
+use golf_physics::math::{mirror_z, mirror_z_axial, mirror_z_tensor, Matrix3, Vector3};
+use golf_physics::rng::Rng;
+use golf_physics::wire::{DeliveryInput, Handedness, PredictOutput};
 
 fn clubs() -> [ClubSpec; 2] {
     [ClubSpec::driver(), ClubSpec::iron7()]
@@ -94,7 +96,7 @@ fn restitution_constraints_hold() {
 }
 
 /// Kinetic energy of both bodies before and after a solved collision (J).
-fn energies(p: &ContactProblem, s: &impactd::impact::impulse::ContactSolution) -> (f64, f64) {
+fn energies(p: &ContactProblem, s: &golf_physics::impact::impulse::ContactSolution) -> (f64, f64) {
     (
         kinetic_energy(
             p,
@@ -183,7 +185,7 @@ fn energy_change_matches_the_closed_form() {
 fn penner_point_mass_limit() {
     let mut club = ClubSpec::iron7();
     club.face.center_m = Vector3::zeros();
-    club.face.shape = impactd::face::FaceShape::Plane;
+    club.face.shape = golf_physics::face::FaceShape::Plane;
     for loft_deg in [10.0, 20.0, 30.5, 45.0] {
         club.face.loft_rad = f64::to_radians(loft_deg);
         let eq = Equipment::new(club.clone());

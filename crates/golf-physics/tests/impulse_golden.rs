@@ -3,9 +3,9 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::ClubSpec;
-use impactd::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
-use impactd::wire::{DeliveryInput, Handedness, PredictOutput};
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
+use golf_physics::wire::{DeliveryInput, Handedness, PredictOutput};
 
 #[derive(serde::Deserialize)]
 struct Case {
@@ -27,7 +27,7 @@ fn predict(case: &Case) -> PredictOutput {
 
 #[test]
 fn golden_cases_match() {
-    let text = include_str!("../data/im-golden.jsonl");
+    let text = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/im-golden.jsonl"));
     let mut failures = Vec::new();
     let mut n = 0;
     for (i, line) in text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()) {

@@ -53,23 +53,33 @@
 //! dirs = ["/srv/clubs"]         # default: this file's directory and ./clubs; relative to this file; [] for
 //!                               # presets only
 //! ```
+//!
+//! Its parts, a file each: a rig's club with its soil and models ([`club`]), the directories a put may name club
+//! files in ([`club_dirs`]), a rig's air and turf ([`flight`]), the poses and body clubs ([`pose`]) and the bay
+//! screen ([`web`]).
+
+pub mod club;
+pub mod club_dirs;
+pub mod flight;
+pub mod pose;
+pub mod web;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::daemon::config_club_dirs::ClubsConfig;
-pub use crate::daemon::config_web::WebConfig;
+pub use club_dirs::ClubsConfig;
+pub use web::WebConfig;
 
 use crate::daemon::bridges::open_connect::{LaunchMonitorConfig, SimulatorConfig};
-pub use crate::daemon::config_flight::ConditionsConfig;
-pub use crate::daemon::config_pose::{BodyClub, MountedClub, PoseConfig};
 use crate::daemon::inputs::MocapInputConfig;
 use crate::daemon::DaemonError;
 use crate::kinematics::{Calibration, EstimatorSpec};
 use crate::math::Vector3;
 use crate::pipeline::RigSetup;
+pub use flight::ConditionsConfig;
+pub use pose::{BodyClub, MountedClub, PoseConfig};
 
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -8,14 +8,14 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::load_club;
-use impactd::equipment::shaft::ShaftSpec;
-use impactd::equipment::soil::SoilSpec;
-use impactd::impact::continuous::iron_ground::{GroundModel, Strike};
-use impactd::impact::registry::{build_one, BuildOptions};
-use impactd::impact::{Delivery, Equipment, ImpactModel, LaunchMetrics};
-use impactd::math::{Real, Vector3};
-use impactd::units::mph_to_mps;
+use crate::load_club;
+use golf_physics::equipment::shaft::ShaftSpec;
+use golf_physics::equipment::soil::SoilSpec;
+use golf_physics::impact::continuous::iron_ground::{GroundModel, Strike};
+use golf_physics::impact::registry::{build_one, BuildOptions};
+use golf_physics::impact::{Delivery, Equipment, ImpactModel, LaunchMetrics};
+use golf_physics::math::{Real, Vector3};
+use golf_physics::units::mph_to_mps;
 
 /// The delivery: the seed's 7-iron at 85 mph, 4.3 deg down, 26 deg of dynamic loft (its section 4.3
 /// swing), struck `v_mm` up the face and `h_mm` toward the toe.
@@ -38,7 +38,7 @@ fn metrics(model: &dyn ImpactModel, eq: &Equipment, h_mm: Real, v_mm: Real) -> L
 }
 
 /// The teed ground model with the seed's shaft scaled: `mass` and `stiffness` multiply Tables 4.1-4.2's.
-fn teed(eq: &Equipment, mass: Real, stiffness: Real) -> impactd::impact::continuous::iron_ground::PreparedGround {
+fn teed(eq: &Equipment, mass: Real, stiffness: Real) -> golf_physics::impact::continuous::iron_ground::PreparedGround {
     let mut m = GroundModel::new(SoilSpec::firm());
     m.with_ground = false;
     let seed = ShaftSpec::iron7();
@@ -53,9 +53,13 @@ fn teed_ground_model_is_the_continuous_model_plus_the_shaft() {
     let continuous = build_one("continuous", &club, &BuildOptions::default()).unwrap();
     // The registry's ground model, default ball, `--soil none`.
     let mut teed_club = club.clone();
-    teed_club
-        .sections
-        .insert("soil", impactd::impact::continuous::iron_ground::sections::soil_arg_section("none").unwrap());
+    teed_club.sections.insert(
+        "soil",
+        golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| {
+            Err(std::io::ErrorKind::NotFound.into())
+        })
+        .unwrap(),
+    );
     let seed_shaft = build_one("ground", &teed_club, &BuildOptions::default()).unwrap();
     let no_shaft = teed(&eq, 1e-3, 5e-5);
     for (h, v) in [(0.0, -8.0), (0.0, 0.0), (0.0, 5.0), (10.0, -4.0)] {
@@ -116,7 +120,13 @@ fn both_models_take_the_same_reading_of_table_3_5() {
     table.insert("reading".into(), toml::Value::String("table".into()));
     club.sections.insert("continuous", table);
     let continuous = build_one("continuous", &club, &BuildOptions::default()).unwrap();
-    club.sections.insert("soil", impactd::impact::continuous::iron_ground::sections::soil_arg_section("none").unwrap());
+    club.sections.insert(
+        "soil",
+        golf_physics::impact::continuous::iron_ground::sections::soil_arg_section_with("none", &|_| {
+            Err(std::io::ErrorKind::NotFound.into())
+        })
+        .unwrap(),
+    );
     let ground = build_one("ground", &club, &BuildOptions::default()).unwrap();
     let (c, g) = (metrics(continuous.as_ref(), &eq, 0.0, -8.0), metrics(ground.as_ref(), &eq, 0.0, -8.0));
     println!(

@@ -1,6 +1,6 @@
 //! What a TrackMan shot read for comparison carries beside its delivery and measured launch ([`RowLabels`]), and
-//! the rows left out by reason ([`SkippedRows`]); shared by the CSV export's reader (`trackman_csv`) and the
-//! report JSON's (`trackman_report`).
+//! the rows left out by reason ([`SkippedRows`]); shared by the CSV export's reader (`csv`) and the
+//! report JSON's (`report`).
 
 /// What a row of an export says about its shot beyond the delivery and the launch: TrackMan's club name, whether
 /// its spin was measured (`Spin Rate Type` `Measured`, or no such column) rather than estimated by TrackMan's

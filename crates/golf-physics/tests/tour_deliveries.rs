@@ -4,11 +4,12 @@
 //! `adjusted` model (Table 3.3) on the seed's clubs (Table 3.1) is derived here, and the synthetic tour golfer
 //! (`sim`, `demo`) delivers it: the 7-iron with about 9 deg of forward shaft lean instead of its static loft.
 
-use impactd::equipment::{load_club, ClubSpec};
-use impactd::impact::registry::{build_one, BuildOptions};
-use impactd::impact::tour::{centred_delivery, dynamic_loft_for_launch, TourAverage, TOUR_DRIVER, TOUR_IRON7};
-use impactd::impact::{Equipment, LaunchMetrics};
-use impactd::offline::swing::GolferProfile;
+use crate::load_club;
+use golf_physics::equipment::ClubSpec;
+use golf_physics::impact::registry::{build_one, BuildOptions};
+use golf_physics::impact::tour::{centred_delivery, dynamic_loft_for_launch, TourAverage, TOUR_DRIVER, TOUR_IRON7};
+use golf_physics::impact::{Equipment, LaunchMetrics};
+use golf_physics::swing::GolferProfile;
 
 fn derived(preset: &str, row: &TourAverage) -> (f64, LaunchMetrics, ClubSpec) {
     let club = load_club(preset).unwrap();
@@ -58,8 +59,8 @@ fn tour_lofts_reproduce_the_tour_launch_and_the_golfer_delivers_them() {
 /// irons taking it off (`impact::delivered_loft`).
 #[test]
 fn a_delivery_without_loft_gets_the_tour_loft_of_its_club() {
-    use impactd::impact::delivered_loft::{curve, delivered_loft_deg, TOUR_ROWS};
-    use impactd::wire::DeliveryInput;
+    use golf_physics::impact::delivered_loft::{curve, delivered_loft_deg, TOUR_ROWS};
+    use golf_physics::wire::DeliveryInput;
     assert_eq!(curve().len(), TOUR_ROWS.len());
     let (loft, _, club) = derived("iron7", &TOUR_IRON7);
     assert!((delivered_loft_deg(club.loft_deg()) - loft).abs() < 1e-9);

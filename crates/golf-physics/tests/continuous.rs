@@ -4,14 +4,14 @@
 
 #![allow(clippy::unwrap_used)]
 
-use impactd::equipment::{BallSpec, ClubFile, ClubSpec, LoadedClub, ModelSections};
-use impactd::impact::continuous::{TwoLayerParams, TwoLayerReading};
-use impactd::impact::registry::{self, BuildOptions};
-use impactd::impact::{
+use golf_physics::equipment::{BallSpec, ClubFile, ClubSpec, LoadedClub, ModelSections};
+use golf_physics::impact::continuous::{TwoLayerParams, TwoLayerReading};
+use golf_physics::impact::registry::{self, BuildOptions};
+use golf_physics::impact::{
     ContinuousModel, Delivery, Equipment, ImpactModel, ImpulseModel, ImpulseVariant, LaunchMetrics, RunOptions,
 };
-use impactd::math::Vector3;
-use impactd::rng::Rng;
+use golf_physics::math::Vector3;
+use golf_physics::rng::Rng;
 
 fn delivery(speed_mps: f64, attack_deg: f64, loft_deg: f64) -> Delivery {
     Delivery {
@@ -52,8 +52,14 @@ fn readings_of_table_3_5() {
         let loaded = ClubFile::parse(text).unwrap();
         TwoLayerParams::from_sections(&loaded.sections, &loaded.club, &BallSpec::SEED).unwrap()
     };
-    assert_eq!(params(include_str!("../../clubs/driver-one-cycle.toml")), Some(TwoLayerParams::ONE_CYCLE_DRIVER));
-    assert_eq!(params(include_str!("../../clubs/iron7-one-cycle.toml")), Some(TwoLayerParams::ONE_CYCLE_IRON7));
+    assert_eq!(
+        params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/driver-one-cycle.toml"))),
+        Some(TwoLayerParams::ONE_CYCLE_DRIVER)
+    );
+    assert_eq!(
+        params(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/iron7-one-cycle.toml"))),
+        Some(TwoLayerParams::ONE_CYCLE_IRON7)
+    );
     let (driver, iron) = (ClubSpec::driver(), ClubSpec::iron7());
     assert_eq!(TwoLayerParams::preset(&driver, TwoLayerReading::default()), TwoLayerParams::ONE_CYCLE_DRIVER);
     // Table 3.5: k_ball 13.5 / 34.1 N m/rad, c_ball 2.53 / 13.2 ms/rad, d 6.42 / 9.26 ms/m.
@@ -63,7 +69,7 @@ fn readings_of_table_3_5() {
     assert_eq!((one.k_ball_nm_per_rad, one.c_ball_nms_per_rad, one.d_s_per_m), (1000.0, 0.05, 4.5e-3));
     assert_eq!(TwoLayerParams::preset(&driver, TwoLayerReading::Table).k_ball_nm_per_rad, 13.5);
     let section = |body: &str| {
-        let file = include_str!("../../clubs/iron7-one-cycle.toml");
+        let file = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../clubs/iron7-one-cycle.toml"));
         let text = format!("{}\n[continuous]\n{body}\n", &file[..file.find("\n[continuous]").unwrap()]);
         let loaded = ClubFile::parse(&text).unwrap();
         TwoLayerParams::from_sections(&loaded.sections, &iron, &BallSpec::SEED)
