@@ -285,3 +285,78 @@ fn missing_or_unknown_units_and_malformed_headers_are_refused_with_their_line() 
     let err = replay_fails(&w, "bare.csv", &["--columns", spec]);
     assert!(err.contains("pose table line 2: the column spec names column `nope`, which the header does not"), "{err}");
 }
+
+/// Every frame of a capture read through the library (a C3D, TRC or pose table), or the first error.
+fn read_all(path: &Path) -> Result<u64, impactd::captures::CaptureError> {
+    let format = impactd::captures::format_of(path, None)?.unwrap();
+    let set = impactd::kinematics::MarkerSet::from_toml(
+        "[markers]\nCROWN = [-0.040, 0.030, 0.005]\nTOE = [-0.010, 0.012, 0.055]\nHOSEL = [0.005, 0.040, -0.045]\n",
+    )
+    .unwrap();
+    let options = impactd::captures::CaptureOptions {
+        rig: "bay1".into(),
+        fitter: format.markers.is_some().then(|| impactd::kinematics::MarkerFitter::new(set)),
+        face_centre_club_m: Some(ClubSpec::driver().face.center_m),
+        ..Default::default()
+    };
+    let mut samples = (format.open)(path, &options)?;
+    let mut n = 0;
+    while samples.next_sample()?.is_some() {
+        n += 1;
+    }
+    Ok(n)
+}
+
+#[test]
+fn mutated_trc_files_and_pose_tables_never_panic() {
+    let w = write(&CASES[0]);
+    let mut rng = impactd::rng::Rng::new(45);
+    for (file, sidecar) in [("swing.trc", None), ("swing.csv", Some("swing.csv.columns"))] {
+        let original = std::fs::read(w.dir.join(file)).unwrap();
+        assert_eq!(read_all(&w.dir.join(file)).unwrap(), w.frames as u64, "{file} reads whole");
+        let (mut refused, mut read) = (0, 0);
+        for k in 0..200 {
+            let mut bytes = original.clone();
+            match k % 3 {
+                // A cut anywhere.
+                0 => bytes.truncate((rng.unit() * bytes.len() as f64) as usize),
+                // Bytes changed, often in the header.
+                1 => {
+                    let within = if rng.chance(0.5) { 600 } else { bytes.len() };
+                    for _ in 0..1 + (rng.unit() * 8.0) as usize {
+                        let at = (rng.unit() * within.min(bytes.len()) as f64) as usize;
+                        bytes[at] = (rng.next_u64() & 0xff) as u8;
+                    }
+                }
+                // A line doubled or dropped.
+                _ => {
+                    let text = String::from_utf8_lossy(&bytes).into_owned();
+                    let mut lines: Vec<&str> = text.lines().collect();
+                    let at = (rng.unit() * lines.len() as f64) as usize;
+                    if rng.chance(0.5) {
+                        lines.insert(at, lines[at]);
+                    } else {
+                        lines.remove(at);
+                    }
+                    bytes = (lines.join("\n") + "\n").into_bytes();
+                }
+            }
+            let name = format!("m{k}.{}", if sidecar.is_some() { "csv" } else { "trc" });
+            let path = w.dir.join(&name);
+            std::fs::write(&path, &bytes).unwrap();
+            if let Some(s) = sidecar {
+                std::fs::copy(w.dir.join(s), w.dir.join(format!("{name}.columns"))).unwrap();
+            }
+            match read_all(&path) {
+                Ok(_) => read += 1,
+                Err(e) => {
+                    let text = e.to_string();
+                    assert!(!text.is_empty(), "{file} mutation {k}: an error says what");
+                    refused += 1;
+                }
+            }
+        }
+        eprintln!("{file}: 200 mutations: {read} read, {refused} refused with a reason");
+        assert!(refused > 20 && read > 20, "{file}: {read} read, {refused} refused");
+    }
+}
