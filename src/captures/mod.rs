@@ -115,6 +115,12 @@ pub struct CaptureOptions {
     pub face_centre_club_m: Option<Vector3>,
 }
 
+/// A format's reader of a capture as samples of one rig.
+pub type OpenSamples = fn(&Path, &CaptureOptions) -> Result<Box<dyn CaptureSource>, CaptureError>;
+
+/// A marker format's reader of its frames (the units override as in [`OpenSamples`]).
+pub type OpenMarkers = fn(&Path, Option<&str>) -> Result<Box<dyn MarkerFrames>, CaptureError>;
+
 /// One capture format: its name (`--format`), the extensions it is found by, and its readers.
 pub struct Format {
     pub name: &'static str,
@@ -125,9 +131,9 @@ pub struct Format {
     /// Whether the file's first bytes are this format's (`None`: the format is known by its name only).
     pub sniff: Option<fn(&[u8]) -> bool>,
     /// The capture as samples of one rig.
-    pub open: fn(&Path, &CaptureOptions) -> Result<Box<dyn CaptureSource>, CaptureError>,
+    pub open: OpenSamples,
     /// The capture's marker frames, for a marker format (static trials); the units override as in `open`.
-    pub markers: Option<fn(&Path, Option<&str>) -> Result<Box<dyn MarkerFrames>, CaptureError>>,
+    pub markers: Option<OpenMarkers>,
 }
 
 /// Every capture format: a new one is a folder beside these and one entry here.

@@ -215,8 +215,8 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
 
 /// A replay's input: a recording or a JSONL file, or a capture (and the rig its samples go to).
 enum Input {
-    File(ReplayFile),
-    Capture(ReplayCapture, String),
+    File(Box<ReplayFile>),
+    Capture(Box<ReplayCapture>, String),
 }
 
 impl ReplaySource for Input {
@@ -248,7 +248,7 @@ fn open(args: &ReplayArgs) -> Result<Input> {
         }
         // The rigs' capture times are needed only to count --start-offset and --duration from.
         let times = args.start_offset > 0.0 || args.duration.is_some();
-        return Ok(Input::File(ReplayFile::open(&args.file, times)?));
+        return Ok(Input::File(Box::new(ReplayFile::open(&args.file, times)?)));
     };
     if format.markers.is_some() && args.markers.is_none() {
         bail!("{} is a {}: --markers SET.toml says which markers are the club", args.file.display(), format.what);
@@ -268,7 +268,7 @@ fn open(args: &ReplayArgs) -> Result<Input> {
     for w in &capture.warnings {
         eprintln!("{}: warning: {w}", args.file.display());
     }
-    Ok(Input::Capture(capture, rig))
+    Ok(Input::Capture(Box::new(capture), rig))
 }
 
 /// The face centre (club frame, m) of the club `rig` replays with: --club, else the configuration's, else the
