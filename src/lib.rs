@@ -60,6 +60,7 @@
 pub use golf_physics::{face, flight, integrate, kinematics, math, pipeline, rng, units};
 
 pub mod capped;
+pub mod captures;
 #[cfg(feature = "daemon")]
 pub mod daemon;
 pub mod equipment;

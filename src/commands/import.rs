@@ -1,23 +1,29 @@
-//! `impactd import CAPTURE.c3d --markers SET.toml --rig RIG -o samples.jsonl`: a C3D capture's marker
-//! trajectories as clubhead samples (JSONL, one per frame), the marker set fitted to each frame; with
-//! `--ball-marker`, a ball sample before each frame's sample.
+//! `impactd import CAPTURE --markers SET.toml --rig RIG -o samples.jsonl`: a capture as clubhead samples (JSONL,
+//! one per frame): a marker capture's (C3D, TRC) marker set fitted to each frame, a pose table's rows as they are
+//! (`--columns`); with a ball (`--ball-marker`, a pose table's `ball=` columns), a ball sample before each frame's
+//! sample.
 
 use std::io::{BufWriter, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::daemon::recording::c3d::{self, CaptureSamples, ImportCounts};
+use impactd::captures::{CaptureOptions, ImportCounts};
 use impactd::kinematics::{MarkerFitter, MarkerSet};
 
 #[derive(Debug, Args)]
 pub struct ImportArgs {
-    /// A C3D capture.
+    /// A capture: C3D, TRC (OpenSim's marker trajectories) or a pose table (CSV/TSV with --columns).
     pub file: PathBuf,
-    /// The marker set of the tracked body (TOML `[markers]`, metres in the body frame).
+    /// The marker set of the tracked body (TOML `[markers]`, metres in the body frame): for C3D and TRC.
     #[arg(long)]
-    pub markers: PathBuf,
+    pub markers: Option<PathBuf>,
+    /// The club (preset or .toml file) whose face centre places a pose table with `origin=face-centre`.
+    #[arg(long)]
+    pub club: Option<String>,
+    #[command(flatten)]
+    pub capture: CaptureArgs,
     /// The rig the samples belong to.
     #[arg(long)]
     pub rig: String,
@@ -26,6 +32,51 @@ pub struct ImportArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub fit: FitArgs,
+}
+
+/// What a capture is and how to read it, shared by `import` and `replay`.
+#[derive(Debug, Clone, Args)]
+pub struct CaptureArgs {
+    /// The capture's format (c3d, trc, pose-table); default: from the file's first bytes, else its extension.
+    #[arg(long, value_name = "FORMAT")]
+    pub format: Option<String>,
+    /// A pose table's columns: a spec `time=Time:s; position=X,Y,Z:mm; quaternion-xyzw=QX,QY,QZ,QW` (also
+    /// `quaternion-wxyz=`, `matrix=R11,...,R33`, `euler-ZYX=A,B,C:deg`; `ball=BX,BY,BZ`, `origin=face-centre`,
+    /// `frame=`, `rate=HZ`), or a file holding one; default: the table's sidecar TABLE.columns (docs/captures.md).
+    #[arg(long, value_name = "SPEC|FILE")]
+    pub columns: Option<String>,
+    /// Read the capture's lengths in this unit (mm, cm, dm, m, in, ft) instead of the one it states (or for a
+    /// TRC that states none); reported as an override.
+    #[arg(long, value_name = "UNIT")]
+    pub units: Option<String>,
+}
+
+impl CaptureArgs {
+    /// The capture's format, or an error when the file is none.
+    pub fn format(&self, file: &Path) -> Result<Option<&'static impactd::captures::Format>> {
+        if let Some(u) = &self.units {
+            impactd::captures::units::metres_per(u)?;
+        }
+        Ok(impactd::captures::format_of(file, self.format.as_deref())?)
+    }
+
+    /// The options of reading `rig`'s samples from a capture.
+    pub fn options(
+        &self,
+        rig: &str,
+        markers: Option<&Path>,
+        fit: &FitArgs,
+        face_centre_club_m: Option<impactd::math::Vector3>,
+    ) -> Result<CaptureOptions> {
+        Ok(CaptureOptions {
+            rig: rig.to_string(),
+            fitter: markers.map(|m| fit.fitter(m)).transpose()?,
+            ball_marker: fit.ball()?.map(|(label, offset)| (label.to_string(), offset)),
+            columns: self.columns.clone(),
+            units: self.units.clone(),
+            face_centre_club_m,
+        })
+    }
 }
 
 /// The marker fit's flags, shared by `import` and `replay`.
@@ -70,15 +121,21 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
     if !impactd::wire::keys::valid_rig_name(&args.rig) {
         bail!("--rig {}: a rig name is letters, digits, _ or -", args.rig);
     }
-    let fitter = args.fit.fitter(&args.markers)?;
-    let reader = c3d::open(&args.file).with_context(|| format!("{}", args.file.display()))?;
-    for w in &reader.info.warnings {
+    let Some(format) = args.capture.format(&args.file)? else {
+        bail!(
+            "{} is not a capture: import reads {} (give --format for a file named otherwise)",
+            args.file.display(),
+            impactd::captures::format_names()
+        );
+    };
+    let face_centre = match &args.club {
+        Some(c) => Some(super::args::load_club(c)?.club.face.center_m),
+        None => None,
+    };
+    let options = args.capture.options(&args.rig, args.markers.as_deref(), &args.fit, face_centre)?;
+    let mut samples = (format.open)(&args.file, &options).with_context(|| format!("{}", args.file.display()))?;
+    for w in samples.warnings() {
         eprintln!("{}: warning: {w}", args.file.display());
-    }
-    let mut samples =
-        CaptureSamples::new(reader, fitter, &args.rig).with_context(|| format!("{}", args.file.display()))?;
-    if let Some((label, offset)) = args.fit.ball()? {
-        samples = samples.with_ball_marker(label, offset).with_context(|| format!("{}", args.file.display()))?;
     }
     let sink: Box<dyn Write> = if args.output.as_os_str() == "-" {
         Box::new(std::io::stdout().lock())
@@ -95,12 +152,15 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
         out.write_all(b"\n")?;
     }
     out.flush().with_context(|| format!("writing {}", args.output.display()))?;
-    eprintln!("{}", describe(&samples.counts));
+    eprintln!("{}", describe(samples.counts(), format));
     Ok(ExitCode::SUCCESS)
 }
 
 /// One line on what an import saw.
-pub fn describe(c: &ImportCounts) -> String {
+pub fn describe(c: &ImportCounts, format: &impactd::captures::Format) -> String {
+    if format.markers.is_none() {
+        return format!("{} rows: {} occluded (empty position or orientation cells)", c.frames, c.occluded);
+    }
     format!(
         "{} frames: {} occluded (fewer than 3 valid markers; {} of them after rejecting markers by their residual), {} \
          markers rejected by their residual",

@@ -106,13 +106,13 @@ pub enum Command {
     /// A synthetic rig publishing clubhead samples at real rate, with the truth of each shot.
     #[cfg(feature = "daemon")]
     Sim(sim::SimArgs),
-    /// The pipeline over a recording (MCAP) or a JSONL file of samples.
+    /// The pipeline over a recording (MCAP), a JSONL file of samples or a capture (C3D, TRC, pose table).
     #[cfg(feature = "daemon")]
     Replay(replay::ReplayArgs),
     /// Channels, counts, duration and shots of a recording.
     #[cfg(feature = "daemon")]
     Info(info::InfoArgs),
-    /// A C3D capture's markers as clubhead samples (JSONL), a marker set fitted to each frame.
+    /// A capture as clubhead samples (JSONL): C3D or TRC markers with a marker set fitted to each frame, or a pose table.
     #[cfg(feature = "daemon")]
     Import(import::ImportArgs),
     /// Calibration from static trials (C3D): a marker set, `club_from_body`, `world_from_lab`.

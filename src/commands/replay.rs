@@ -22,13 +22,16 @@ use super::run::runtime;
 
 #[derive(Debug, Args)]
 pub struct ReplayArgs {
-    /// An MCAP recording, a JSONL file of ClubheadSample messages, or a C3D capture (with --markers).
+    /// An MCAP recording, a JSONL file of ClubheadSample messages, or a capture: C3D or TRC (with --markers),
+    /// a pose table (CSV/TSV with --columns or its sidecar TABLE.columns).
     pub file: PathBuf,
-    /// A C3D capture's marker set (TOML `[markers]`): the tracked body fitted to each frame.
+    /// A marker capture's marker set (TOML `[markers]`): the tracked body fitted to each frame.
     #[arg(long)]
     pub markers: Option<PathBuf>,
     #[command(flatten)]
     pub fit: super::import::FitArgs,
+    #[command(flatten)]
+    pub capture: super::import::CaptureArgs,
     /// Configuration; default: the one stored in the recording, else one rig per rig name found.
     #[arg(short = 'c', long = "config")]
     pub config: Option<PathBuf>,
@@ -183,7 +186,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         }
         if let Input::Capture(c, rig) = &input {
             if let Some(counts) = c.counts() {
-                eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts));
+                eprintln!("{}: rig {rig}: {}", args.file.display(), super::import::describe(&counts, c.format()));
             }
         }
         for d in &report.damage {
@@ -210,10 +213,10 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     })
 }
 
-/// A replay's input: a recording or a JSONL file, or a C3D capture (and the rig its samples go to).
+/// A replay's input: a recording or a JSONL file, or a capture (and the rig its samples go to).
 enum Input {
-    File(ReplayFile),
-    Capture(ReplayCapture, String),
+    File(Box<ReplayFile>),
+    Capture(Box<ReplayCapture>, String),
 }
 
 impl ReplaySource for Input {
@@ -232,34 +235,57 @@ impl ReplaySource for Input {
     }
 }
 
-/// The replay's input: a C3D capture fitted with --markers, else a recording or JSONL samples.
+/// The replay's input: a capture (C3D or TRC fitted with --markers, a pose table read by its columns), else a
+/// recording or JSONL samples.
 fn open(args: &ReplayArgs) -> Result<Input> {
-    if !super::info::is_c3d(&args.file)? {
-        if args.markers.is_some() {
-            bail!("--markers is for C3D captures; {} is not one", args.file.display());
+    let Some(format) = args.capture.format(&args.file)? else {
+        if args.markers.is_some() || args.capture.columns.is_some() || args.capture.units.is_some() {
+            bail!(
+                "--markers, --columns and --units are for captures ({}); {} is not one",
+                impactd::captures::format_names(),
+                args.file.display()
+            );
         }
         // The rigs' capture times are needed only to count --start-offset and --duration from.
         let times = args.start_offset > 0.0 || args.duration.is_some();
-        return Ok(Input::File(ReplayFile::open(&args.file, times)?));
-    }
-    let Some(markers) = &args.markers else {
-        bail!("{} is a C3D capture: --markers SET.toml says which markers are the club", args.file.display());
+        return Ok(Input::File(Box::new(ReplayFile::open(&args.file, times)?)));
     };
-    let fitter = args.fit.fitter(markers)?;
+    if format.markers.is_some() && args.markers.is_none() {
+        bail!("{} is a {}: --markers SET.toml says which markers are the club", args.file.display(), format.what);
+    }
     // The capture's samples go to the rig named by --rig, else the configuration's first rig.
     let rig = match (args.rig.first(), &args.config) {
         (Some(r), _) => r.clone(),
         (None, Some(path)) => {
             impactd::daemon::DaemonConfig::load(path)?.0.rigs.first().map(|r| r.name.clone()).unwrap_or_default()
         }
-        (None, None) => "c3d".to_string(),
+        (None, None) => format.name.replace('-', "_"),
     };
-    let capture = ReplayCapture::open(&args.file, fitter, &rig, args.fit.ball()?)
-        .with_context(|| format!("{}", args.file.display()))?;
+    let face_centre = if format.markers.is_none() { Some(face_centre(args, &rig)?) } else { None };
+    let options = args.capture.options(&rig, args.markers.as_deref(), &args.fit, face_centre)?;
+    let capture =
+        ReplayCapture::open(&args.file, format, options).with_context(|| format!("{}", args.file.display()))?;
     for w in &capture.warnings {
         eprintln!("{}: warning: {w}", args.file.display());
     }
-    Ok(Input::Capture(capture, rig))
+    Ok(Input::Capture(Box::new(capture), rig))
+}
+
+/// The face centre (club frame, m) of the club `rig` replays with: --club, else the configuration's, else the
+/// default rig's (what places a pose table with `origin=face-centre`).
+fn face_centre(args: &ReplayArgs, rig: &str) -> Result<impactd::math::Vector3> {
+    let club = match (&args.club, &args.config) {
+        (Some(c), _) => c.clone(),
+        (None, Some(path)) => {
+            let config = impactd::daemon::DaemonConfig::load(path)?.0;
+            let found = config.rigs.iter().find(|r| r.name == rig).or(config.rigs.first());
+            found.map(|r| r.club.clone()).unwrap_or_default()
+        }
+        (None, None) => {
+            impactd::daemon::DaemonConfig::default().rigs.first().map(|r| r.club.clone()).unwrap_or_default()
+        }
+    };
+    Ok(super::args::load_club(&club)?.club.face.center_m)
 }
 
 /// The samples of the chosen rigs and capture times (from the earliest sample of those rigs).

@@ -106,12 +106,12 @@ pub enum DaemonError {
     /// `--take-over` that could not take the rig over.
     #[error("rig {rig} is served by {by}, and --take-over cannot take it over: {reason}")]
     TakeOver { rig: String, by: String, reason: &'static str },
-    /// A C3D capture that cannot be read on.
+    /// A capture (C3D, TRC, a pose table) that cannot be read on.
     #[error("{path}: {source}")]
     Capture {
         path: String,
         #[source]
-        source: recording::c3d::C3dError,
+        source: crate::captures::CaptureError,
     },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
     BadRigName(String),

@@ -10,6 +10,7 @@ mod common;
 #[path = "../common/swing.rs"]
 mod swing;
 
+mod captures;
 mod damaged_recordings;
 mod large_recordings;
 mod replay_pause;

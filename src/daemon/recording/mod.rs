@@ -1,9 +1,9 @@
 //! The recording: what is recorded (`record`) and its channel messages (`channels`, shared with the Foxglove
 //! live view), the MCAP writer the live loop and replay feed, the bounded reader of possibly damaged files
-//! and its record parser, `info`, `recover`, the shots and predicted launches a recording holds; and C3D
-//! captures (`c3d`).
+//! and its record parser, `info`, `recover`, the shots and predicted launches a recording holds. C3D captures
+//! are in `crate::captures` (handed on here as `c3d`, where they were).
 
-pub mod c3d;
+pub use crate::captures::c3d;
 pub mod channels;
 pub mod damage;
 pub mod info;

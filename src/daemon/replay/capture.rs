@@ -1,72 +1,57 @@
-//! A C3D capture as the input of a replay: its frames fitted to samples of one rig (`recording::c3d`), read a
-//! frame at a time as the replay goes (as `impactd import` reads it), so a capture of any size replays in
-//! bounded memory. Its samples are in capture order, numbered from the first frame at `t_ns` 0.
+//! A capture (C3D, TRC, a pose table: `crate::captures`) as the input of a replay: its frames as samples of one
+//! rig, read a frame at a time as the replay goes (as `impactd import` reads it), so a capture of any size replays
+//! in bounded memory. Its samples are in capture order, numbered from the first frame at `t_ns` 0.
 
-use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::items::{Item, Items, ReplayIndex, ReplaySource, RigSpan};
-use crate::daemon::recording::c3d::{self, C3dError, CaptureSamples, ImportCounts};
+use crate::captures::{CaptureError, CaptureOptions, CaptureSource, Format, ImportCounts};
 use crate::daemon::DaemonError;
-use crate::kinematics::MarkerFitter;
 
 /// A capture's marker on the ball: its label and the offset from it to the ball's centre (lab frame, m).
 pub type BallMarker<'a> = (&'a str, crate::math::Vector3);
 
-/// A C3D capture, checked and ready to replay as samples of one rig.
+/// A capture, checked and ready to replay as samples of one rig.
 pub struct ReplayCapture {
     path: PathBuf,
-    fitter: MarkerFitter,
-    rig: String,
-    ball: Option<(String, crate::math::Vector3)>,
+    format: &'static Format,
+    options: CaptureOptions,
     index: ReplayIndex,
-    /// The file's warnings (its header and parameters).
+    /// The file's warnings (its header and parameters, the units overridden).
     pub warnings: Vec<String>,
     /// What the last replay of it saw, once it has read every frame.
     counts: Arc<Mutex<Option<ImportCounts>>>,
 }
 
 impl ReplayCapture {
-    /// Opens the capture and checks that its markers hold the set (and the ball marker); every frame announced
-    /// is a sample of `rig`.
-    pub fn open(path: &Path, fitter: MarkerFitter, rig: &str, ball: Option<BallMarker>) -> Result<Self, C3dError> {
-        let capture = ReplayCapture {
-            path: path.to_path_buf(),
-            fitter,
-            rig: rig.to_string(),
-            ball: ball.map(|(label, offset)| (label.to_string(), offset)),
-            index: ReplayIndex::default(),
-            warnings: Vec::new(),
-            counts: Arc::default(),
-        };
-        let samples = capture.samples()?;
-        let frames = samples.info().frames;
-        let warnings = samples.info().warnings.clone();
+    /// Opens the capture and checks that it holds what `options` name (the marker set's markers, the ball marker,
+    /// a pose table's columns); every frame is a sample of `options.rig`.
+    pub fn open(path: &Path, format: &'static Format, options: CaptureOptions) -> Result<Self, CaptureError> {
+        let samples = (format.open)(path, &options)?;
+        let frames = samples.frames();
+        let warnings = samples.warnings().to_vec();
         let mut index = ReplayIndex::default();
         if frames > 0 {
-            index.rigs.insert(rig.to_string(), RigSpan { samples: frames, first_t_ns: 0 });
+            index.rigs.insert(options.rig.clone(), RigSpan { samples: frames, first_t_ns: 0 });
         }
-        Ok(ReplayCapture { index, warnings, ..capture })
-    }
-
-    fn samples(&self) -> Result<CaptureSamples<BufReader<std::fs::File>>, C3dError> {
-        let mut samples = CaptureSamples::new(c3d::open(&self.path)?, self.fitter.clone(), &self.rig)?;
-        if let Some((label, offset_m)) = &self.ball {
-            samples = samples.with_ball_marker(label, *offset_m)?;
-        }
-        Ok(samples)
+        Ok(ReplayCapture { path: path.to_path_buf(), format, options, index, warnings, counts: Arc::default() })
     }
 
     /// What the last replay saw of the capture's frames (once it read them all).
     pub fn counts(&self) -> Option<ImportCounts> {
         self.counts.lock().ok().and_then(|c| c.clone())
     }
+
+    /// The capture's format.
+    pub fn format(&self) -> &'static Format {
+        self.format
+    }
 }
 
 /// A capture's samples, each frame's ball sample before it.
 struct CaptureItems {
-    samples: CaptureSamples<BufReader<std::fs::File>>,
+    samples: Box<dyn CaptureSource>,
     path: String,
     ball_next: Option<Item>,
     counts: Arc<Mutex<Option<ImportCounts>>>,
@@ -98,7 +83,7 @@ impl Iterator for CaptureItems {
             Ok(None) => {
                 self.done = true;
                 if let Ok(mut c) = self.counts.lock() {
-                    *c = Some(self.samples.counts.clone());
+                    *c = Some(self.samples.counts().clone());
                 }
                 None
             }
@@ -117,7 +102,8 @@ impl ReplaySource for ReplayCapture {
 
     fn items(&self) -> Result<Items<'_>, DaemonError> {
         let path = self.path.display().to_string();
-        let samples = self.samples().map_err(|source| DaemonError::Capture { path: path.clone(), source })?;
+        let samples = (self.format.open)(&self.path, &self.options)
+            .map_err(|source| DaemonError::Capture { path: path.clone(), source })?;
         let counts = self.counts.clone();
         Ok(Box::new(CaptureItems { samples, path, ball_next: None, counts, done: false }))
     }

@@ -1,10 +1,9 @@
-//! A capture's frames as clubhead samples: each frame's markers of the set fitted to a pose (`MarkerFitter`), in
-//! the file's lab axes and metres. `t_ns` is the 0-based frame index over the rate, `frame` the C3D frame number
-//! (first frame + index); a frame with fewer than 3 valid markers (seen, and not rejected by its residual) is `occluded`.
+//! A marker capture's frames (C3D, TRC) as clubhead samples: each frame's markers of the set fitted to a pose
+//! (`MarkerFitter`), in the file's lab axes and metres. `t_ns` is the 0-based frame index over the rate, `frame`
+//! the capture's frame number (first frame + index); a frame with fewer than 3 valid markers (seen, and not
+//! rejected by its residual) is `occluded`.
 
-use std::io::{Read, Seek};
-
-use super::{C3dError, C3dReader, Frame};
+use super::{CaptureError, Frame, MarkerFrames};
 use crate::kinematics::{FitFailure, MarkerFitter};
 use crate::math::{Isometry3, Vector3};
 use crate::wire::{ClubheadSampleMsg, QuaternionMsg};
@@ -22,8 +21,8 @@ pub struct ImportCounts {
 }
 
 /// Samples from a capture, one per frame.
-pub struct CaptureSamples<R> {
-    reader: C3dReader<R>,
+pub struct CaptureSamples {
+    reader: Box<dyn MarkerFrames>,
     fitter: MarkerFitter,
     rig: String,
     /// For each marker of the set, its point index in the file.
@@ -36,12 +35,17 @@ pub struct CaptureSamples<R> {
     pub counts: ImportCounts,
 }
 
-impl<R: Read + Seek> CaptureSamples<R> {
-    pub fn new(reader: C3dReader<R>, fitter: MarkerFitter, rig: &str) -> Result<Self, C3dError> {
+impl CaptureSamples {
+    /// The samples of a marker capture's frames (a C3D reader, a TRC reader).
+    pub fn new(reader: impl MarkerFrames + 'static, fitter: MarkerFitter, rig: &str) -> Result<Self, CaptureError> {
+        Self::from_frames(Box::new(reader), fitter, rig)
+    }
+
+    pub fn from_frames(reader: Box<dyn MarkerFrames>, fitter: MarkerFitter, rig: &str) -> Result<Self, CaptureError> {
         let indices = fitter
             .set
-            .indices_in(&reader.info.labels)
-            .map_err(|label| C3dError::MissingMarker { label, available: reader.info.labels.join(", ") })?;
+            .indices_in(reader.labels())
+            .map_err(|label| CaptureError::MissingMarker { label, available: reader.labels().join(", ") })?;
         Ok(CaptureSamples {
             reader,
             lab_m: Vec::with_capacity(indices.len()),
@@ -57,12 +61,12 @@ impl<R: Read + Seek> CaptureSamples<R> {
 
     /// Reads the marker `label` as the ball: its position plus `offset_m` (lab frame, m; from a marker on the
     /// ball's surface to the ball's centre) is the ball's centre of each frame ([`CaptureSamples::ball`]).
-    pub fn with_ball_marker(mut self, label: &str, offset_m: Vector3) -> Result<Self, C3dError> {
-        let labels = &self.reader.info.labels;
+    pub fn with_ball_marker(mut self, label: &str, offset_m: Vector3) -> Result<Self, CaptureError> {
+        let labels = self.reader.labels();
         let index = labels
             .iter()
             .position(|l| l.trim() == label.trim())
-            .ok_or_else(|| C3dError::MissingMarker { label: label.to_string(), available: labels.join(", ") })?;
+            .ok_or_else(|| CaptureError::MissingMarker { label: label.to_string(), available: labels.join(", ") })?;
         self.ball = Some((index, offset_m));
         Ok(self)
     }
@@ -71,24 +75,24 @@ impl<R: Read + Seek> CaptureSamples<R> {
     /// the marker is not valid in that frame).
     pub fn ball(&self) -> Option<crate::wire::BallSampleMsg> {
         let (index, offset) = self.ball?;
-        let info = &self.reader.info;
         let at = self.frame.points_m.get(index).copied().flatten();
         let p = at.map_or([0.0; 3], |p| (p + offset).into());
         Some(crate::wire::BallSampleMsg {
             rig: self.rig.clone(),
-            frame: info.first_frame + self.frame.index,
-            t_ns: (self.frame.index as f64 * 1e9 / info.rate_hz).round() as u64,
+            frame: self.reader.first_frame() + self.frame.index,
+            t_ns: (self.frame.index as f64 * 1e9 / self.reader.rate_hz()).round() as u64,
             position_m: p,
             occluded: at.is_none(),
         })
     }
 
-    pub fn info(&self) -> &super::C3dInfo {
-        &self.reader.info
+    /// The capture's frames.
+    pub fn frames(&self) -> &dyn MarkerFrames {
+        self.reader.as_ref()
     }
 
     /// The next frame's sample, `None` after the last frame.
-    pub fn next_sample(&mut self) -> Result<Option<ClubheadSampleMsg>, C3dError> {
+    pub fn next_sample(&mut self) -> Result<Option<ClubheadSampleMsg>, CaptureError> {
         if !self.reader.next_frame(&mut self.frame)? {
             return Ok(None);
         }
@@ -112,13 +116,12 @@ impl<R: Read + Seek> CaptureSamples<R> {
                 (self.last_pose, true, None)
             }
         };
-        let info = &self.reader.info;
         let index = self.frame.index;
-        let t_ns = (index as f64 * 1e9 / info.rate_hz).round() as u64;
+        let t_ns = (index as f64 * 1e9 / self.reader.rate_hz()).round() as u64;
         let p = pose.translation.vector;
         Ok(Some(ClubheadSampleMsg {
             rig: self.rig.clone(),
-            frame: info.first_frame + index,
+            frame: self.reader.first_frame() + index,
             t_ns,
             position_m: [p.x, p.y, p.z],
             orientation: QuaternionMsg::from(pose.rotation),
@@ -128,5 +131,27 @@ impl<R: Read + Seek> CaptureSamples<R> {
             system_latency_us: None,
             body: None,
         }))
+    }
+}
+
+impl super::CaptureSource for CaptureSamples {
+    fn next_sample(&mut self) -> Result<Option<ClubheadSampleMsg>, CaptureError> {
+        CaptureSamples::next_sample(self)
+    }
+
+    fn ball(&self) -> Option<crate::wire::BallSampleMsg> {
+        CaptureSamples::ball(self)
+    }
+
+    fn counts(&self) -> &ImportCounts {
+        &self.counts
+    }
+
+    fn frames(&self) -> u64 {
+        self.reader.frames()
+    }
+
+    fn warnings(&self) -> &[String] {
+        self.reader.warnings()
     }
 }

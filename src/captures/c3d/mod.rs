@@ -19,8 +19,6 @@
 mod numbers;
 pub mod params;
 mod reader;
-mod samples;
-pub mod static_trial;
 mod summary;
 
 use std::fs::File;
@@ -30,10 +28,10 @@ use std::path::Path;
 pub use numbers::Processor;
 pub use params::Parameters;
 pub use reader::C3dReader;
-pub use samples::{CaptureSamples, ImportCounts};
 pub use summary::C3dSummary;
-
-use crate::math::Vector3;
+// Where these were before captures had a folder of their own (`daemon::recording::c3d::...`).
+pub use super::static_trial;
+pub use super::{CaptureSamples, Frame, ImportCounts};
 
 /// Why a C3D file could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -102,17 +100,6 @@ impl C3dInfo {
     }
 }
 
-/// One frame's points.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Frame {
-    /// 0-based index in the file.
-    pub index: u64,
-    /// Each point's lab-frame position (m), `None` when its residual word marks it invalid.
-    pub points_m: Vec<Option<Vector3>>,
-    /// Each point's residual (m), -1 when invalid.
-    pub residual_m: Vec<f32>,
-}
-
 /// Opens a C3D file for reading frame by frame.
 pub fn open(path: &Path) -> Result<C3dReader<BufReader<File>>, C3dError> {
     let file = File::open(path).map_err(C3dError::io("opening"))?;
@@ -122,4 +109,58 @@ pub fn open(path: &Path) -> Result<C3dReader<BufReader<File>>, C3dError> {
 /// Whether these are the first bytes of a C3D file (a header block names its parameter block and has 0x50 second).
 pub fn looks_like_c3d(first_bytes: &[u8]) -> bool {
     first_bytes.len() >= 2 && first_bytes[1] == 0x50 && first_bytes[0] >= 2
+}
+
+/// The registry's entry ([`super::FORMATS`]).
+pub const FORMAT: super::Format = super::Format {
+    name: "c3d",
+    extensions: &["c3d"],
+    what: "C3D capture",
+    sniff: Some(looks_like_c3d),
+    open: open_samples,
+    markers: Some(open_frames),
+};
+
+fn open_frames(path: &Path, units: Option<&str>) -> Result<Box<dyn super::MarkerFrames>, super::CaptureError> {
+    let mut reader = open(path)?;
+    if let Some(unit) = units {
+        let metres = super::units::metres_per(unit)?;
+        let stated = if reader.info.units.trim().is_empty() { "(none)".to_string() } else { reader.info.units.clone() };
+        reader.info.warnings.push(format!("units: POINT:UNITS is {stated}; read as {unit} (--units)"));
+        reader.info.metres_per_unit = metres;
+    }
+    Ok(Box::new(reader))
+}
+
+fn open_samples(
+    path: &Path,
+    options: &super::CaptureOptions,
+) -> Result<Box<dyn super::CaptureSource>, super::CaptureError> {
+    super::marker_samples(open_frames(path, options.units.as_deref())?, options, &FORMAT)
+}
+
+impl<R: std::io::Read + std::io::Seek + Send> super::MarkerFrames for C3dReader<R> {
+    fn labels(&self) -> &[String] {
+        &self.info.labels
+    }
+
+    fn rate_hz(&self) -> f64 {
+        self.info.rate_hz
+    }
+
+    fn first_frame(&self) -> u64 {
+        self.info.first_frame
+    }
+
+    fn frames(&self) -> u64 {
+        self.info.frames
+    }
+
+    fn warnings(&self) -> &[String] {
+        &self.info.warnings
+    }
+
+    fn next_frame(&mut self, frame: &mut Frame) -> Result<bool, super::CaptureError> {
+        Ok(C3dReader::next_frame(self, frame)?)
+    }
 }

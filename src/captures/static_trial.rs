@@ -1,29 +1,29 @@
-//! A static trial: each named marker's mean position over a run of frames (lab frame, m), for calibration.
+//! A static trial: each named marker's mean position over a run of frames (lab frame, m), for calibration, from
+//! any marker capture (C3D, TRC).
 
 use std::path::Path;
 
-use super::{C3dError, Frame};
+use super::{CaptureError, Frame};
 use crate::math::Vector3;
 
 /// The mean position of each of `labels` over the frames `first..first + count` (0-based indices), each over
 /// the frames where it is valid; an error names a marker never valid there.
-pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) -> Result<Vec<Vector3>, C3dError> {
-    let mut reader = super::open(path)?;
-    let info = &reader.info;
-    if first >= info.frames || count == 0 {
-        return Err(C3dError::Layout(format!(
-            "frames {first}..{} asked for, the capture has frame indices 0..{}",
+pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) -> Result<Vec<Vector3>, CaptureError> {
+    let mut reader = super::open_markers(path, None)?;
+    let frames = reader.frames();
+    if first >= frames || count == 0 {
+        return Err(CaptureError::Usage(format!(
+            "frames {first}..{} asked for, the capture has frame indices 0..{frames}",
             first.saturating_add(count),
-            info.frames
         )));
     }
+    let all = reader.labels();
     let indices: Vec<usize> = labels
         .iter()
         .map(|want| {
-            info.labels
-                .iter()
+            all.iter()
                 .position(|l| l == want.trim())
-                .ok_or_else(|| C3dError::MissingMarker { label: want.clone(), available: info.labels.join(", ") })
+                .ok_or_else(|| CaptureError::MissingMarker { label: want.clone(), available: all.join(", ") })
         })
         .collect::<Result<_, _>>()?;
     let mut sums = vec![(Vector3::zeros(), 0u64); labels.len()];
@@ -42,7 +42,7 @@ pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) ->
     sums.iter()
         .zip(labels)
         .map(|((sum, n), label)| match n {
-            0 => Err(C3dError::Layout(format!("marker `{label}` is not valid in any of the frames asked for"))),
+            0 => Err(CaptureError::Usage(format!("marker `{label}` is not valid in any of the frames asked for"))),
             n => Ok(sum / *n as f64),
         })
         .collect()
