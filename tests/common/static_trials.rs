@@ -106,10 +106,42 @@ pub fn wand(tip_world: &Vector3, toward: &Vector3) -> Vec<(String, Vector3)> {
 /// Writes `frames` noisy copies of markers at world positions into a C3D in the lab `world_from_lab`; `moving`
 /// drifts the markers named that many metres along x over the frames (a club that moved).
 pub fn write_trial(path: &Path, world_from_lab: &Isometry3, world_m: &[(String, Vector3)], seed: u64, moving: (&[&str], f64)) {
-    let lab_from_world = world_from_lab.inverse();
+    write_trial_of(FRAMES, path, world_from_lab, world_m, seed, moving);
+}
+
+/// [`write_trial`] with `count` frames.
+pub fn write_trial_of(
+    count: usize,
+    path: &Path,
+    world_from_lab: &Isometry3,
+    world_m: &[(String, Vector3)],
+    seed: u64,
+    moving: (&[&str], f64),
+) {
     let mut rng = Rng::new(seed);
     let labels: Vec<String> = world_m.iter().map(|(l, _)| l.clone()).collect();
-    let frames: Vec<Vec<(Vector3, bool)>> = (0..FRAMES)
+    let frames = stretch(count, world_from_lab, world_m, &mut rng, moving);
+    crate::c3d_writer::write_c3d(&labels, RATE_HZ, &frames, path);
+}
+
+/// Writes one C3D of still stretches of `FRAMES` frames each, one after the other (the same labels in each).
+pub fn write_stretches(path: &Path, world_from_lab: &Isometry3, stretches: &[Vec<(String, Vector3)>], seed: u64) {
+    let mut rng = Rng::new(seed);
+    let labels: Vec<String> = stretches[0].iter().map(|(l, _)| l.clone()).collect();
+    let frames: Vec<Vec<(Vector3, bool)>> =
+        stretches.iter().flat_map(|world_m| stretch(FRAMES, world_from_lab, world_m, &mut rng, STILL)).collect();
+    crate::c3d_writer::write_c3d(&labels, RATE_HZ, &frames, path);
+}
+
+fn stretch(
+    count: usize,
+    world_from_lab: &Isometry3,
+    world_m: &[(String, Vector3)],
+    rng: &mut Rng,
+    moving: (&[&str], f64),
+) -> Vec<Vec<(Vector3, bool)>> {
+    let lab_from_world = world_from_lab.inverse();
+    (0..count)
         .map(|k| {
             world_m
                 .iter()
@@ -117,7 +149,7 @@ pub fn write_trial(path: &Path, world_from_lab: &Isometry3, world_m: &[(String, 
                     let noise = Vector3::new(rng.normal(), rng.normal(), rng.normal()) * NOISE_M;
                     let drift = match moving {
                         (names, metres) if names.contains(&l.as_str()) => {
-                            Vector3::x() * metres * k as f64 / (FRAMES - 1) as f64
+                            Vector3::x() * metres * k as f64 / (count - 1) as f64
                         }
                         _ => Vector3::zeros(),
                     };
@@ -125,8 +157,7 @@ pub fn write_trial(path: &Path, world_from_lab: &Isometry3, world_m: &[(String, 
                 })
                 .collect()
         })
-        .collect();
-    crate::c3d_writer::write_c3d(&labels, RATE_HZ, &frames, path);
+        .collect()
 }
 
 pub fn impactd(args: &[&str]) -> Output {
@@ -171,8 +202,13 @@ pub fn error_of(got: &Isometry3, want: &Isometry3, what: &str) -> (f64, f64) {
 
 /// Within the calibration's targets: 0.2 deg and 1 mm.
 pub fn assert_recovered(got: &Isometry3, want: &Isometry3, what: &str) {
-    let (deg, mm) = error_of(got, want, what);
-    assert!(deg < 0.2 && mm < 1.0, "{what}: {deg} deg, {mm} mm off");
+    assert_within(got, want, 0.2, what);
+}
+
+/// Within `deg` and 1 mm.
+pub fn assert_within(got: &Isometry3, want: &Isometry3, deg: f64, what: &str) {
+    let (angle_deg, mm) = error_of(got, want, what);
+    assert!(angle_deg < deg && mm < 1.0, "{what}: {angle_deg} deg, {mm} mm off (limit {deg} deg, 1 mm)");
 }
 
 /// A still trial: no marker moves.

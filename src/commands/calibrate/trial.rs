@@ -13,6 +13,7 @@ use super::Trial;
 pub struct StaticTrial {
     path: PathBuf,
     first: u64,
+    asked: u64,
     limit_m: f64,
     labels: Vec<String>,
     frames: Vec<Vec<Option<Vector3>>>,
@@ -33,7 +34,7 @@ impl StaticTrial {
             bail!("--static-mm must be a positive number of millimetres");
         }
         let (labels, frames) = marker_frames(path, first, count).with_context(|| format!("{}", path.display()))?;
-        Ok(StaticTrial { path: path.to_path_buf(), first, limit_m: static_mm * 1e-3, labels, frames, checked: Default::default() })
+        Ok(StaticTrial { path: path.to_path_buf(), first, asked: count, limit_m: static_mm * 1e-3, labels, frames, checked: Default::default() })
     }
 
     fn index(&self, label: &str) -> Result<usize> {
@@ -73,7 +74,12 @@ impl StaticTrial {
     pub fn report(&self, what: &str) -> String {
         let checked = self.checked.borrow();
         let frames = self.frames.first().map_or(0, Vec::len);
-        match checked.iter().max_by(|a, b| a.moved_m.total_cmp(&b.moved_m)) {
+        let short = if (frames as u64) < self.asked {
+            format!(" (the capture ends there: {} frames were asked for)", self.asked)
+        } else {
+            String::new()
+        };
+        let line = match checked.iter().max_by(|a, b| a.moved_m.total_cmp(&b.moved_m)) {
             _ if frames == 1 => format!(
                 "{what}: one frame ({}): nothing to average and no motion to check (--frames 50 averages the noise \
                  and checks the trial is still)",
@@ -88,6 +94,7 @@ impl StaticTrial {
                 self.limit_m * 1e3
             ),
             None => format!("{what}: {frames} frames from {} averaged", self.first),
-        }
+        };
+        line + &short
     }
 }
