@@ -16,7 +16,7 @@ use impactd::math::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 /// The number after `key` in `text`.
 fn number_after(text: &str, key: &str) -> f64 {
     let rest = text.split(key).nth(1).unwrap_or_else(|| panic!("no `{key}` in {text}"));
-    rest.trim_start().split(|c: char| c == ' ' || c == ',' || c == ';').next().unwrap().parse().unwrap()
+    rest.trim_start().split([' ', ',', ';']).next().unwrap().parse().unwrap()
 }
 
 /// The address the truth has: loft, face angle, toe up, and the shaft's lean and lie (deg).
@@ -34,7 +34,8 @@ fn truth_at_address(club: &ClubSpec) -> [f64; 5] {
 
 fn assert_address(err: &str, club: &ClubSpec, face_measured: bool) {
     let [loft, face, toe_up, lean, lie] = truth_at_address(club);
-    let (got_lean, got_lie) = (number_after(err, "shaft at address (SHAFT1, SHAFT2): lean "), number_after(err, "frame's 0), lie "));
+    let (got_lean, got_lie) =
+        (number_after(err, "shaft at address (SHAFT1, SHAFT2): lean "), number_after(err, "frame's 0), lie "));
     eprintln!("shaft lean {got_lean:+.3} deg (truth {lean:+.3}), lie {got_lie:.3} deg (truth {lie:.3})");
     assert!((got_lean - lean).abs() < 0.1 && (got_lie - lie).abs() < 0.1, "{err}");
     if face_measured {
@@ -70,7 +71,13 @@ impl Bay {
     /// The address trial: the club's head and shaft markers.
     fn address(&self, seed: u64) -> String {
         let path = self.path("address.c3d");
-        write_trial(Path::new(&path), &self.truth_lab, &club_markers(&self.club, &world_from_club_at_address()), seed, STILL);
+        write_trial(
+            Path::new(&path),
+            &self.truth_lab,
+            &club_markers(&self.club, &world_from_club_at_address()),
+            seed,
+            STILL,
+        );
         path
     }
 }
@@ -113,11 +120,32 @@ fn pointer_trial_locates_the_face() {
     let pointer = files.join(",");
     let (set, cfg) = (bay.path("set.toml"), bay.path("impactd.toml"));
     let err = impactd_ok(&[
-        "calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "240", "--pointer", &pointer,
-        "--pointer-markers", "W1,W2,W3", "--tip-mm", "120", "--shaft", "SHAFT1,SHAFT2", "-o", &out,
+        "calibrate",
+        "club",
+        &address,
+        "--markers",
+        &set,
+        "-c",
+        &cfg,
+        "--frames",
+        "240",
+        "--pointer",
+        &pointer,
+        "--pointer-markers",
+        "W1,W2,W3",
+        "--tip-mm",
+        "120",
+        "--shaft",
+        "SHAFT1,SHAFT2",
+        "-o",
+        &out,
     ]);
     assert!(err.contains("face: measured by the pointer's touches"), "{err}");
-    assert_recovered(&pose(Path::new(&out), "club_from_body"), &club_from_body(), "club_from_body (pointer, 240-frame touches, Y-up lab)");
+    assert_recovered(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        "club_from_body (pointer, 240-frame touches, Y-up lab)",
+    );
     assert_address(&err, club, true);
 
     // The same touches in one trial, one after the other: --touch-frames gives where each starts.
@@ -125,15 +153,52 @@ fn pointer_trial_locates_the_face() {
     write_stretches(Path::new(&one), &bay.truth_lab, &stretches, 40);
     let frames = format!("0,{FRAMES},{}", 2 * FRAMES);
     let err = impactd_ok(&[
-        "calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "--pointer", &one,
-        "--touch-frames", &frames, "--pointer-markers", "W1,W2,W3", "--tip-mm", "120", "-o", &out,
+        "calibrate",
+        "club",
+        &address,
+        "--markers",
+        &set,
+        "-c",
+        &cfg,
+        "--frames",
+        "50",
+        "--pointer",
+        &one,
+        "--touch-frames",
+        &frames,
+        "--pointer-markers",
+        "W1,W2,W3",
+        "--tip-mm",
+        "120",
+        "-o",
+        &out,
     ]);
     assert!(err.contains("pointer on the leading edge's toe end: 50 frames from 100 averaged"), "{err}");
-    assert_within(&pose(Path::new(&out), "club_from_body"), &club_from_body(), POINTER_50_FRAMES_DEG, "club_from_body (pointer, one trial of 50-frame touches)");
+    assert_within(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        POINTER_50_FRAMES_DEG,
+        "club_from_body (pointer, one trial of 50-frame touches)",
+    );
     // Frames that span two touches are not a touch.
     let err = impactd_refused(&[
-        "calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "--pointer", &one,
-        "--touch-frames", "0,25,100", "--pointer-markers", "W1,W2,W3", "--tip-mm", "120",
+        "calibrate",
+        "club",
+        &address,
+        "--markers",
+        &set,
+        "-c",
+        &cfg,
+        "--frames",
+        "50",
+        "--pointer",
+        &one,
+        "--touch-frames",
+        "0,25,100",
+        "--pointer-markers",
+        "W1,W2,W3",
+        "--tip-mm",
+        "120",
     ]);
     assert!(err.contains("the pointer on the leading edge's heel end") && err.contains("not static"), "{err}");
 }
@@ -147,14 +212,25 @@ fn a_face_stated_in_the_marker_set_is_turned_by_the_shaft() {
     let (set, cfg, out) = (bay.path("set.toml"), bay.path("impactd.toml"), bay.path("club.toml"));
     let base = ["calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "-o", &out];
     let err = impactd_ok(&[&base[..], &["--shaft", "SHAFT1,SHAFT2"]].concat());
-    assert!(err.contains("stated by the marker set's [face], its turn about the normal from the shaft markers"), "{err}");
-    assert_recovered(&pose(Path::new(&out), "club_from_body"), &club_from_body(), "club_from_body ([face] and --shaft, Z-up lab)");
+    assert!(
+        err.contains("stated by the marker set's [face], its turn about the normal from the shaft markers"),
+        "{err}"
+    );
+    assert_recovered(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        "club_from_body ([face] and --shaft, Z-up lab)",
+    );
     assert_address(&err, club, true);
     // Without the shaft the turn about the normal is assumed (the toe level), and said so: here the toe was 1 deg
     // up at address, so the assumption is off by about that.
     let err = impactd_ok(&base);
     assert!(err.contains("ASSUMED (the toe level at address"), "{err}");
-    let (deg, _) = error_of(&pose(Path::new(&out), "club_from_body"), &club_from_body(), "club_from_body ([face], toe assumed level)");
+    let (deg, _) = error_of(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        "club_from_body ([face], toe assumed level)",
+    );
     assert!((deg - 1.0).abs() < 0.2, "{deg}");
     // Located two ways at once is refused.
     let err = impactd_refused(&[&base[..], &["--face", "CROWN,TOE,HOSEL"]].concat());
@@ -169,7 +245,19 @@ fn an_unlocated_face_is_reported_as_an_assumption_not_a_residual() {
     std::fs::write(bay.path("set.toml"), marker_set(false, club)).unwrap();
     let (set, cfg, out) = (bay.path("set.toml"), bay.path("impactd.toml"), bay.path("club.toml"));
     let err = impactd_ok(&[
-        "calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "--shaft", "SHAFT1,SHAFT2", "-o", &out,
+        "calibrate",
+        "club",
+        &address,
+        "--markers",
+        &set,
+        "-c",
+        &cfg,
+        "--frames",
+        "50",
+        "--shaft",
+        "SHAFT1,SHAFT2",
+        "-o",
+        &out,
     ]);
     assert!(err.contains("face: ASSUMED, not measured"), "{err}");
     assert!(err.contains("at address (assumed, not measured): loft 9.80 deg"), "{err}");

@@ -63,7 +63,11 @@ fn calibrate_lab_takes_a_target_axis_a_stated_ball_and_a_ball_trial() {
         let base = ["calibrate", "lab", c, "--frames", "50", "--floor", "F1,F2,F3", "--marker-radius-mm", "7", "-o", o];
         let err = impactd_ok(&[&base[..], &["--target", &target, "--ball-at", &at]].concat());
         assert!(err.contains(&format!("target: the lab's {target}")) && err.contains("ball: stated"), "{err}");
-        assert_recovered(&pose(&out, "world_from_lab"), &truth, &format!("world_from_lab, --target {target}, --ball-at"));
+        assert_recovered(
+            &pose(&out, "world_from_lab"),
+            &truth,
+            &format!("world_from_lab, --target {target}, --ball-at"),
+        );
 
         // The ball from a static ball trial of its own.
         let ball_trial = dir.path().join("ball.c3d");
@@ -71,7 +75,11 @@ fn calibrate_lab_takes_a_target_axis_a_stated_ball_and_a_ball_trial() {
         let b = ball_trial.to_str().unwrap();
         let err = impactd_ok(&[&base[..], &["--target", &target, "--ball", "BALL", "--ball-trial", b]].concat());
         assert!(err.contains("static ball trial"), "{err}");
-        assert_recovered(&pose(&out, "world_from_lab"), &truth, &format!("world_from_lab, --target {target}, ball trial"));
+        assert_recovered(
+            &pose(&out, "world_from_lab"),
+            &truth,
+            &format!("world_from_lab, --target {target}, ball trial"),
+        );
 
         // Without any ball there is no origin.
         let err = impactd_refused(&[&base[..], &["--target", &target]].concat());

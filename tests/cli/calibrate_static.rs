@@ -10,7 +10,8 @@ use impactd::equipment::ClubSpec;
 fn a_moving_static_trial_is_refused_with_its_motion() {
     let dir = tempfile::tempdir().unwrap();
     let club = ClubSpec::driver();
-    let (set, capture, cfg) = (dir.path().join("set.toml"), dir.path().join("club.c3d"), dir.path().join("impactd.toml"));
+    let (set, capture, cfg) =
+        (dir.path().join("set.toml"), dir.path().join("club.c3d"), dir.path().join("impactd.toml"));
     std::fs::write(&set, marker_set(false, &club)).unwrap();
     let truth = world_from_lab(true);
     config(&cfg, &truth);
@@ -32,6 +33,16 @@ fn a_moving_static_trial_is_refused_with_its_motion() {
     let mut lab = floor_markers();
     lab.extend(markers);
     write_trial(&capture, &truth, &lab, 12, (&["F2"], 0.005));
-    let err = impactd_refused(&["calibrate", "lab", c, "--frames", "50", "--target-line", "REAR,FRONT", "--floor", "REAR,FRONT,F1,F2,F3"]);
+    let err = impactd_refused(&[
+        "calibrate",
+        "lab",
+        c,
+        "--frames",
+        "50",
+        "--target-line",
+        "REAR,FRONT",
+        "--floor",
+        "REAR,FRONT,F1,F2,F3",
+    ]);
     assert!(err.contains("marker `F2` moved 2."), "{err}");
 }

@@ -105,7 +105,13 @@ pub fn wand(tip_world: &Vector3, toward: &Vector3) -> Vec<(String, Vector3)> {
 
 /// Writes `frames` noisy copies of markers at world positions into a C3D in the lab `world_from_lab`; `moving`
 /// drifts the markers named that many metres along x over the frames (a club that moved).
-pub fn write_trial(path: &Path, world_from_lab: &Isometry3, world_m: &[(String, Vector3)], seed: u64, moving: (&[&str], f64)) {
+pub fn write_trial(
+    path: &Path,
+    world_from_lab: &Isometry3,
+    world_m: &[(String, Vector3)],
+    seed: u64,
+    moving: (&[&str], f64),
+) {
     write_trial_of(FRAMES, path, world_from_lab, world_m, seed, moving);
 }
 

@@ -171,7 +171,14 @@ fn pointer_touches(a: &ClubArgs, fitter: &MarkerFitter) -> Result<Touches> {
     Ok(Touches { centre_m: tips[0], heel_m: tips[1], toe_m: tips[2] })
 }
 
-fn report(r: &ClubCalibration, club: &ClubSpec, fitter: &MarkerFitter, residual_m: f64, shaft: Option<&calibrate::ShaftReading>, a: &ClubArgs) {
+fn report(
+    r: &ClubCalibration,
+    club: &ClubSpec,
+    fitter: &MarkerFitter,
+    residual_m: f64,
+    shaft: Option<&calibrate::ShaftReading>,
+    a: &ClubArgs,
+) {
     let how = match r.face {
         FaceFrom::Assumed => "ASSUMED, not measured: no --face markers, --pointer trials or [face] in the marker set, \
                               so the club is taken as soled square behind the ball at the club file's loft and lie, \

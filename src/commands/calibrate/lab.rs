@@ -77,12 +77,19 @@ pub fn lab(a: &LabArgs) -> Result<ExitCode> {
     let (ball, ball_text) = match (&a.ball, &ball_trial, a.ball_at.as_slice()) {
         (Some(label), Some(bt), _) => (
             BallAt::Centre(bt.means(std::slice::from_ref(label))?[0]),
-            format!("the marker {label} of the static ball trial {}", a.ball_trial.as_ref().map_or(String::new(), |p| p.display().to_string())),
+            format!(
+                "the marker {label} of the static ball trial {}",
+                a.ball_trial.as_ref().map_or(String::new(), |p| p.display().to_string())
+            ),
         ),
         (Some(label), None, _) => {
             (BallAt::Centre(t.means(std::slice::from_ref(label))?[0]), format!("the marker {label}"))
         }
-        (None, _, []) => (BallAt::RearMarker, "assumed on the floor at the rear target-line marker (no --ball marker, ball trial or --ball-at)".to_string()),
+        (None, _, []) => (
+            BallAt::RearMarker,
+            "assumed on the floor at the rear target-line marker (no --ball marker, ball trial or --ball-at)"
+                .to_string(),
+        ),
         (None, _, v) => (BallAt::Centre(three("--ball-at", v)? * 1e-3), "stated (--ball-at, lab mm)".to_string()),
     };
     let mut used: Vec<String> = a.target_line.iter().chain(&a.floor).cloned().collect();

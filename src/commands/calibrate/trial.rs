@@ -34,7 +34,15 @@ impl StaticTrial {
             bail!("--static-mm must be a positive number of millimetres");
         }
         let (labels, frames) = marker_frames(path, first, count).with_context(|| format!("{}", path.display()))?;
-        Ok(StaticTrial { path: path.to_path_buf(), first, asked: count, limit_m: static_mm * 1e-3, labels, frames, checked: Default::default() })
+        Ok(StaticTrial {
+            path: path.to_path_buf(),
+            first,
+            asked: count,
+            limit_m: static_mm * 1e-3,
+            labels,
+            frames,
+            checked: Default::default(),
+        })
     }
 
     fn index(&self, label: &str) -> Result<usize> {

@@ -48,13 +48,12 @@ pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) ->
         .collect()
 }
 
+/// Per marker, its position in each frame (`None` where invalid).
+pub type MarkerTracks = Vec<Vec<Option<Vector3>>>;
+
 /// Every marker of the capture over the frames `first..first + count` (0-based indices): the labels (trimmed)
 /// and, per marker, its position in each of those frames (`None` where invalid), for a static trial's check.
-pub fn marker_frames(
-    path: &Path,
-    first: u64,
-    count: u64,
-) -> Result<(Vec<String>, Vec<Vec<Option<Vector3>>>), C3dError> {
+pub fn marker_frames(path: &Path, first: u64, count: u64) -> Result<(Vec<String>, MarkerTracks), C3dError> {
     let mut reader = super::open(path)?;
     let info = &reader.info;
     if first >= info.frames || count == 0 {

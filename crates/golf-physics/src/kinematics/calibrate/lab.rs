@@ -84,7 +84,8 @@ pub fn world_from_lab(m: &LabMarkers) -> Result<LabCalibration, CalibrationError
             min_mm: MIN_FLOOR_SPREAD_M * 1e3,
         });
     }
-    let (worst, off) = fit.off_plane_m.iter().enumerate().fold((0, 0.0), |b, (i, d)| if d.abs() > b.1 { (i, d.abs()) } else { b });
+    let (worst, off) =
+        fit.off_plane_m.iter().enumerate().fold((0, 0.0), |b, (i, d)| if d.abs() > b.1 { (i, d.abs()) } else { b });
     if off > MAX_FLOOR_OFF_M {
         return Err(CalibrationError::FloorNotFlat {
             label: m.floor[worst].0.clone(),
@@ -121,17 +122,16 @@ pub fn world_from_lab(m: &LabMarkers) -> Result<LabCalibration, CalibrationError
     let z = x.cross(&up);
     // The floor is the plane of the marker centres lowered by a marker radius.
     let floor_at = |p: &Vector3| (p - fit.centroid).dot(&up) + m.marker_radius_m;
-    let ball_m = match (m.ball, m.target) {
-        (BallAt::Centre(p), _) => p,
-        (BallAt::RearMarker, Target::Line { rear_m, .. }) => rear_m - up * floor_at(&rear_m) + up * m.ball_radius_m,
-        (BallAt::RearMarker, Target::Axis(_)) => {
-            return Err(CalibrationError::Geometry(
+    let ball_m =
+        match (m.ball, m.target) {
+            (BallAt::Centre(p), _) => p,
+            (BallAt::RearMarker, Target::Line { rear_m, .. }) => rear_m - up * floor_at(&rear_m) + up * m.ball_radius_m,
+            (BallAt::RearMarker, Target::Axis(_)) => return Err(CalibrationError::Geometry(
                 "no ball: with a target axis and no target-line markers, give a ball marker, a static ball trial or \
                  the ball's position"
                     .into(),
-            ))
-        }
-    };
+            )),
+        };
     let ball_height_m = floor_at(&ball_m);
     if !(-0.005..=MAX_BALL_HEIGHT_M).contains(&ball_height_m) {
         return Err(CalibrationError::Geometry(format!(
@@ -159,12 +159,8 @@ pub fn world_from_lab(m: &LabMarkers) -> Result<LabCalibration, CalibrationError
 /// The floor's normal on its up side: where the markers off the floor stand, checked against a stated axis; or
 /// the stated axis's side when none stands off it.
 fn up_side(m: &LabMarkers, centroid: &Vector3, normal: &Vector3) -> Result<(Vector3, UpFrom), CalibrationError> {
-    let off: Vec<(&String, Real)> = m
-        .others
-        .iter()
-        .map(|(l, p)| (l, (p - centroid).dot(normal)))
-        .filter(|(_, d)| d.abs() > OFF_FLOOR_M)
-        .collect();
+    let off: Vec<(&String, Real)> =
+        m.others.iter().map(|(l, p)| (l, (p - centroid).dot(normal))).filter(|(_, d)| d.abs() > OFF_FLOOR_M).collect();
     let above = off.iter().filter(|(_, d)| *d > 0.0).count();
     let below = off.len() - above;
     let stated_name = |v: &Vector3| nearest_axis(v).0;
@@ -187,7 +183,8 @@ fn up_side(m: &LabMarkers, centroid: &Vector3, normal: &Vector3) -> Result<(Vect
         let sign = if above > below { 1.0 } else { -1.0 };
         let up = normal * sign;
         let mine: Vec<&(&String, Real)> = off.iter().filter(|(_, d)| d * sign > 0.0).collect();
-        let highest = mine.iter().fold((String::new(), 0.0), |b, (l, d)| if d.abs() > b.1 { ((*l).clone(), d.abs()) } else { b });
+        let highest =
+            mine.iter().fold((String::new(), 0.0), |b, (l, d)| if d.abs() > b.1 { ((*l).clone(), d.abs()) } else { b });
         let evidence = format!(
             "where {} of the {} markers off it stand (`{}` {:.0} mm from it)",
             mine.len(),

@@ -16,7 +16,10 @@ pub mod pointer;
 pub mod shaft;
 pub mod static_check;
 
-pub use club::{club_from_face, club_from_face_in_body, club_from_touches, club_soled_square, ClubCalibration, FaceFrom, FaceMarkers};
+pub use club::{
+    club_from_face, club_from_face_in_body, club_from_touches, club_soled_square, ClubCalibration, FaceFrom,
+    FaceMarkers,
+};
 pub use lab::{world_from_lab, BallAt, LabCalibration, LabMarkers, Target, UpFrom};
 pub use plane::{fit_plane, PlaneFit};
 pub use pointer::{pointer_tip, FaceInBody, TipOffset, Touches};

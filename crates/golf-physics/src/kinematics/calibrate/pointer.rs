@@ -25,17 +25,27 @@ pub fn pointer_tip(markers: &[Vector3], tip: &TipOffset) -> Result<Vector3, Cali
     match tip {
         TipOffset::Along(d) => {
             let [first, .., last] = markers else {
-                return Err(CalibrationError::TooFew { what: "a pointer with its tip on its axis", need: 2, got: markers.len() });
+                return Err(CalibrationError::TooFew {
+                    what: "a pointer with its tip on its axis",
+                    need: 2,
+                    got: markers.len(),
+                });
             };
             let axis = first - last;
             if axis.norm() < 0.02 {
-                return Err(CalibrationError::Geometry("the pointer's first and last markers are under 2 cm apart".into()));
+                return Err(CalibrationError::Geometry(
+                    "the pointer's first and last markers are under 2 cm apart".into(),
+                ));
             }
             Ok(first + axis.normalize() * *d)
         }
         TipOffset::InFrame(offset) => {
             let [o, a, b, ..] = markers else {
-                return Err(CalibrationError::TooFew { what: "a pointer with its tip in its frame", need: 3, got: markers.len() });
+                return Err(CalibrationError::TooFew {
+                    what: "a pointer with its tip in its frame",
+                    need: 3,
+                    got: markers.len(),
+                });
             };
             let x = a - o;
             let y = (b - o) - x.normalize() * (b - o).dot(&x.normalize());
@@ -122,9 +132,8 @@ mod tests {
     fn touches_on_a_curved_face_give_its_centre_frame() {
         for club in [ClubSpec::driver(), ClubSpec::iron7()] {
             let body_from_club = Isometry3::new(Vector3::new(0.02, -0.05, 0.01), Vector3::new(0.3, -0.7, 0.2));
-            let at = |h: Real, v: Real| {
-                (body_from_club * Point3::from(club.face.contact(h, v).unwrap().point_m)).coords
-            };
+            let at =
+                |h: Real, v: Real| (body_from_club * Point3::from(club.face.contact(h, v).unwrap().point_m)).coords;
             // Edge touches unevenly either side, both 25 mm below the centre (the leading edge along the toe axis).
             let touches = Touches { centre_m: at(0.0, 0.0), heel_m: at(-0.035, -0.025), toe_m: at(0.045, -0.025) };
             let face = face_from_touches(&touches, &club.face).unwrap();

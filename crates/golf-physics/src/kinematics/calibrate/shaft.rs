@@ -32,11 +32,7 @@ pub fn shaft_reading(a_world: &Vector3, b_world: &Vector3) -> Result<ShaftReadin
         )));
     }
     let s = if d.y < 0.0 { -d.normalize() } else { d.normalize() };
-    Ok(ShaftReading {
-        up_world: s,
-        lean_deg: s.x.atan2(s.y).to_degrees(),
-        lie_deg: s.y.atan2(-s.z).to_degrees(),
-    })
+    Ok(ShaftReading { up_world: s, lean_deg: s.x.atan2(s.y).to_degrees(), lie_deg: s.y.atan2(-s.z).to_degrees() })
 }
 
 #[cfg(test)]

@@ -40,7 +40,9 @@ pub fn static_markers(
         }
         let mean_m = seen.iter().map(|(_, p)| p).sum::<Vector3>() / seen.len() as Real;
         let (moved_at, moved_m) =
-            seen.iter().map(|(i, p)| (*i, (p - mean_m).norm())).fold((first, 0.0), |b, x| if x.1 > b.1 { x } else { b });
+            seen.iter()
+                .map(|(i, p)| (*i, (p - mean_m).norm()))
+                .fold((first, 0.0), |b, x| if x.1 > b.1 { x } else { b });
         out.push(StaticMarker { label: label.clone(), mean_m, frames: seen.len(), moved_m, moved_at });
     }
     if let Some(worst) = out.iter().max_by(|a, b| a.moved_m.total_cmp(&b.moved_m)) {
@@ -74,6 +76,9 @@ mod tests {
         assert!((moved_mm - 9.0).abs() < 1e-9);
         let ok = static_markers(&labels[..1], &[still], 0, 2e-3).unwrap();
         assert_eq!((ok[0].frames, ok[0].moved_m), (10, 0.0));
-        assert_eq!(static_markers(&labels[..1], &[vec![None]], 0, 2e-3).unwrap_err(), CalibrationError::NeverSeen("A".into()));
+        assert_eq!(
+            static_markers(&labels[..1], &[vec![None]], 0, 2e-3).unwrap_err(),
+            CalibrationError::NeverSeen("A".into())
+        );
     }
 }
