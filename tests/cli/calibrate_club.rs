@@ -266,3 +266,50 @@ fn an_unlocated_face_is_reported_as_an_assumption_not_a_residual() {
     assert_address(&err, club, false);
     assert!(err.contains("from the assumed square address"), "{err}");
 }
+
+#[test]
+fn face_markers_locate_the_face_at_50_frames() {
+    let bay = Bay::new(false);
+    let club = &bay.club;
+    std::fs::write(bay.path("set.toml"), marker_set(false, club)).unwrap();
+    // Stickers on the curved face (their centres a marker radius off it), symmetric about the centre.
+    let w = world_from_club_at_address();
+    let mut markers = club_markers(club, &w);
+    for (l, h, v) in
+        [("FHEEL", -0.03, 0.0), ("FTOE", 0.03, 0.0), ("FUP", 0.0, 0.012), ("FDOWN", 0.0, -0.012), ("FC", 0.0, 0.0)]
+    {
+        let c = club.face.contact(h, v).unwrap();
+        markers.push((l.to_string(), (w * Point3::from(c.point_m + c.normal * MARKER_RADIUS_M)).coords));
+    }
+    let address = bay.path("address.c3d");
+    write_trial(Path::new(&address), &bay.truth_lab, &markers, 24, STILL);
+    let (set, cfg, out) = (bay.path("set.toml"), bay.path("impactd.toml"), bay.path("club.toml"));
+    let err = impactd_ok(&[
+        "calibrate",
+        "club",
+        &address,
+        "--markers",
+        &set,
+        "-c",
+        &cfg,
+        "--frames",
+        "50",
+        "--face",
+        "FHEEL,FTOE,FUP,FDOWN",
+        "--face-centre",
+        "FC",
+        "--marker-radius-mm",
+        "7",
+        "--shaft",
+        "SHAFT1,SHAFT2",
+        "-o",
+        &out,
+    ]);
+    assert!(err.contains("face: measured by the face markers"), "{err}");
+    assert_recovered(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        "club_from_body (face markers, Y-up lab)",
+    );
+    assert_address(&err, club, true);
+}
