@@ -47,3 +47,32 @@ pub fn mean_positions(path: &Path, labels: &[String], first: u64, count: u64) ->
         })
         .collect()
 }
+
+/// Per marker, its position in each frame (`None` where invalid).
+pub type MarkerTracks = Vec<Vec<Option<Vector3>>>;
+
+/// Every marker of the capture over the frames `first..first + count` (0-based indices): the labels (trimmed)
+/// and, per marker, its position in each of those frames (`None` where invalid), for a static trial's check.
+pub fn marker_frames(path: &Path, first: u64, count: u64) -> Result<(Vec<String>, MarkerTracks), C3dError> {
+    let mut reader = super::open(path)?;
+    let info = &reader.info;
+    if first >= info.frames || count == 0 {
+        return Err(C3dError::Layout(format!(
+            "frames {first}..{} asked for, the capture has frame indices 0..{}",
+            first.saturating_add(count),
+            info.frames
+        )));
+    }
+    let labels: Vec<String> = info.labels.iter().map(|l| l.trim().to_string()).collect();
+    let mut tracks = vec![Vec::new(); labels.len()];
+    let mut frame = Frame::default();
+    while reader.next_frame(&mut frame)? && frame.index < first.saturating_add(count) {
+        if frame.index < first {
+            continue;
+        }
+        for (i, track) in tracks.iter_mut().enumerate() {
+            track.push(frame.points_m.get(i).copied().flatten());
+        }
+    }
+    Ok((labels, tracks))
+}

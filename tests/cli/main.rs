@@ -2,6 +2,23 @@
 
 #![allow(clippy::unwrap_used)]
 
+// What the files share, once for the binary.
+#[cfg(feature = "daemon")]
+#[path = "../common/c3d_writer.rs"]
+mod c3d_writer;
+#[cfg(feature = "daemon")]
+#[path = "../common/mod.rs"]
+mod common;
+#[cfg(feature = "daemon")]
+#[path = "../common/static_trials.rs"]
+mod static_trials;
+
+#[cfg(feature = "daemon")]
+mod calibrate_club;
+#[cfg(feature = "daemon")]
+mod calibrate_lab;
+#[cfg(feature = "daemon")]
+mod calibrate_static;
 mod cli;
 mod doc_links;
 mod examples_realistic;

@@ -9,6 +9,15 @@
 //! CH3 = [0.0, 0.02, -0.01]
 //! ```
 //!
+//! A set may also state where its body's face is, for `calibrate club` (the daemon and `import` read only
+//! `[markers]`): the face centre (m) and the face's outward normal in the body frame,
+//!
+//! ```toml
+//! [face]
+//! centre_m = [0.041, -0.012, 0.0]
+//! normal = [0.985, 0.17, 0.0]
+//! ```
+//!
 //! Labels are compared after trimming spaces (C3D pads labels with trailing spaces). A set needs at least three
 //! markers that are not all on one line, or no pose can be fitted from them.
 
@@ -48,6 +57,23 @@ pub struct MarkerSet {
 #[serde(deny_unknown_fields)]
 struct MarkerSetFile {
     markers: BTreeMap<String, [Real; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    face: Option<FaceFile>,
+}
+
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FaceFile {
+    centre_m: [Real; 3],
+    normal: [Real; 3],
+}
+
+/// The face as a marker set's `[face]` states it, in the body frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StatedFace {
+    pub centre_m: Vector3,
+    /// Unit outward normal.
+    pub normal: Vector3,
 }
 
 /// The most markers one body can have (the fit keeps its visible markers in a 64-bit mask).
@@ -96,6 +122,22 @@ impl MarkerSet {
     pub fn from_toml(text: &str) -> Result<Self, MarkerSetError> {
         let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(Box::new(e)))?;
         Self::new(file.markers.into_iter().map(|(l, p)| (l, Vector3::from(p))))
+    }
+
+    /// The `[face]` a marker set's TOML text states, if any (checked: the centre within the set's reach of its
+    /// origin, the normal finite and not zero).
+    pub fn face_from_toml(text: &str) -> Result<Option<StatedFace>, MarkerSetError> {
+        let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(Box::new(e)))?;
+        let Some(face) = file.face else { return Ok(None) };
+        let (centre_m, normal) = (Vector3::from(face.centre_m), Vector3::from(face.normal));
+        let bad = |reason: &str| MarkerSetError::Marker { label: "[face]".into(), reason: reason.into() };
+        if !centre_m.iter().all(|v| v.is_finite()) || centre_m.norm() > MAX_OFFSET_M {
+            return Err(bad(&format!("centre_m must be finite metres within {MAX_OFFSET_M} m of the origin")));
+        }
+        if !normal.iter().all(|v| v.is_finite()) || normal.norm() < 1e-6 {
+            return Err(bad("normal must be a finite direction, not zero"));
+        }
+        Ok(Some(StatedFace { centre_m, normal: normal.normalize() }))
     }
 
     /// The TOML text of this set (0.1 um resolution).
@@ -173,5 +215,17 @@ mod tests {
         let dup = "[markers]\n\"A \" = [0.0, 0.0, 0.0]\nA = [0.1, 0.0, 0.0]\nC = [0.05, 0.1, 0.0]\n";
         assert!(matches!(MarkerSet::from_toml(dup).unwrap_err(), MarkerSetError::Duplicate(..)));
         assert!(matches!(MarkerSet::from_toml("[marker]\n").unwrap_err(), MarkerSetError::Toml(_)));
+    }
+
+    #[test]
+    fn reads_a_stated_face() {
+        let base = "[markers]\nCH1 = [0.03, 0.0, 0.01]\nCH2 = [-0.03, 0.0, 0.01]\nCH3 = [0.0, 0.02, -0.01]\n";
+        assert_eq!(MarkerSet::face_from_toml(base).unwrap(), None);
+        let text = format!("{base}[face]\ncentre_m = [0.04, -0.01, 0.0]\nnormal = [2.0, 0.0, 0.0]\n");
+        let face = MarkerSet::face_from_toml(&text).unwrap().unwrap();
+        assert_eq!((face.centre_m, face.normal), (Vector3::new(0.04, -0.01, 0.0), Vector3::x()));
+        assert_eq!(MarkerSet::from_toml(&text).unwrap(), MarkerSet::from_toml(base).unwrap());
+        let zero = format!("{base}[face]\ncentre_m = [0.04, -0.01, 0.0]\nnormal = [0.0, 0.0, 0.0]\n");
+        assert!(MarkerSet::face_from_toml(&zero).is_err());
     }
 }

@@ -22,6 +22,6 @@ pub mod uncertainty;
 pub use detect::{Detection, DetectorConfig, ImpactDetector};
 pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};
 pub use marker_fit::{BodyFit, FitFailure, MarkerFitter};
-pub use marker_set::{MarkerSet, MarkerSetError};
+pub use marker_set::{MarkerSet, MarkerSetError, StatedFace};
 pub use sample::{Calibration, ClubPose, ClubheadSample};
 pub use track::{Reject, Track, TrackLimits};
