@@ -53,17 +53,16 @@ pub type MarkerTracks = Vec<Vec<Option<Vector3>>>;
 
 /// Every marker of the capture over the frames `first..first + count` (0-based indices): the labels (trimmed)
 /// and, per marker, its position in each of those frames (`None` where invalid), for a static trial's check.
-pub fn marker_frames(path: &Path, first: u64, count: u64) -> Result<(Vec<String>, MarkerTracks), C3dError> {
-    let mut reader = super::open(path)?;
-    let info = &reader.info;
-    if first >= info.frames || count == 0 {
-        return Err(C3dError::Layout(format!(
-            "frames {first}..{} asked for, the capture has frame indices 0..{}",
+pub fn marker_frames(path: &Path, first: u64, count: u64) -> Result<(Vec<String>, MarkerTracks), CaptureError> {
+    let mut reader = super::open_markers(path, None)?;
+    let frames = reader.frames();
+    if first >= frames || count == 0 {
+        return Err(CaptureError::Usage(format!(
+            "frames {first}..{} asked for, the capture has frame indices 0..{frames}",
             first.saturating_add(count),
-            info.frames
         )));
     }
-    let labels: Vec<String> = info.labels.iter().map(|l| l.trim().to_string()).collect();
+    let labels: Vec<String> = reader.labels().iter().map(|l| l.trim().to_string()).collect();
     let mut tracks = vec![Vec::new(); labels.len()];
     let mut frame = Frame::default();
     while reader.next_frame(&mut frame)? && frame.index < first.saturating_add(count) {
