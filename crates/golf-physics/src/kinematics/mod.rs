@@ -19,10 +19,11 @@ pub mod path_speed;
 pub mod sample;
 pub mod so3;
 mod spec;
+pub mod swing_watch;
 pub mod track;
 pub mod uncertainty;
 
-pub use detect::{Detection, DetectorConfig, ImpactDetector};
+pub use detect::{Detection, DetectorConfig, GivenImpact, ImpactDetector};
 pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};
 pub use marker_fit::{BodyFit, FitFailure, MarkerFitter};
 pub use marker_set::{MarkerSet, MarkerSetError};
