@@ -72,7 +72,11 @@ pub fn describe(e: &Event, losses: &dyn Fn(u64) -> Vec<String>) -> Vec<String> {
             lines.extend(losses(*frame).into_iter().map(|l| format!("shot {shot}: {l}")));
             lines
         }
-        Event::Missed(m) => vec![format!("no prediction: {m}")],
+        Event::Missed(m) => {
+            let mut lines = vec![format!("no prediction: {m}")];
+            lines.extend(losses(m.closest_frame).into_iter().map(|l| format!("the swing: {l}")));
+            lines
+        }
         Event::ImpactTiming(t) => vec![t.to_string()],
         Event::Launch(l) => {
             let mut lines = Vec::new();

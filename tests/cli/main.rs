@@ -2,6 +2,7 @@
 
 #![allow(clippy::unwrap_used)]
 
+mod capture_guards;
 mod cli;
 mod doc_links;
 mod examples_realistic;

@@ -14,12 +14,12 @@ pub mod frame_gap;
 pub mod guards;
 pub mod marker_fit;
 pub mod marker_set;
+pub mod miss_watch;
 pub mod normal_factor;
 pub mod path_speed;
 pub mod sample;
 pub mod so3;
 mod spec;
-pub mod swing_watch;
 pub mod track;
 pub mod uncertainty;
 

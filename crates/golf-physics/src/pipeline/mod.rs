@@ -116,8 +116,8 @@ pub enum Event {
     },
     /// Another tracked body came into view: the rig's club is now this body's.
     ClubChanged(crate::wire::ClubChange),
-    /// A swing ended without an impact: how it missed the ball (`kinematics::swing_watch`).
-    Missed(crate::kinematics::swing_watch::MissedSwing),
+    /// A swing ended without an impact: how it missed the ball (`kinematics::miss_watch`).
+    Missed(crate::kinematics::miss_watch::MissedSwing),
     /// The frames after an impact have come: the head's speed step against the instant the estimate used.
     ImpactTiming(timing::ImpactTimingReport),
 }
@@ -165,7 +165,7 @@ pub struct Pipeline {
     /// The tracked body holding the club (`[rig.clubs]`) and the capture time of its last tracked sample.
     body: Option<(String, u64)>,
     /// Swings, for those that find no impact.
-    swings: crate::kinematics::swing_watch::SwingWatch,
+    swings: crate::kinematics::miss_watch::SwingWatch,
     /// The latest impact's speed step, waiting for the frames after it.
     step: Option<timing::PendingStep>,
 }
