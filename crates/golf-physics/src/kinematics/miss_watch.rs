@@ -13,8 +13,12 @@ pub const SWING_SPEED_M_S: Real = 10.0;
 /// A swing at the ball reaches this speed (m/s): a back swing (about 10 m/s at the head) does not.
 pub const SWING_PEAK_M_S: Real = 20.0;
 
-/// Slower than this, the head is at address (m/s).
+/// Slower than this for [`ADDRESS_STILL_S`] or longer, the head is at address (m/s): the top of the back swing,
+/// as slow, lasts a tenth of that.
 pub const ADDRESS_SPEED_M_S: Real = 0.5;
+
+/// How long a head at address stays still (s).
+pub const ADDRESS_STILL_S: Real = 0.3;
 
 /// A swing ends at a frame slower than [`SWING_SPEED_M_S`], or at a frame this long after the previous one (s).
 pub const SWING_BREAK_S: Real = 0.1;
@@ -31,7 +35,8 @@ pub struct MissedSwing {
     /// The frame at (or just after) the face's closest approach to the ball.
     pub closest_frame: u64,
     pub miss: Miss,
-    /// The face centre's distance from the ball at address (the last slow frame before the swing; m), when seen.
+    /// The face centre's distance from the ball at address (the last frame of the last still stretch before the
+    /// swing; m), when seen.
     pub address: Option<(u64, Real)>,
 }
 
@@ -78,6 +83,8 @@ pub struct SwingWatch {
     /// The previous pose: time, face centre (world) and the ball's centre in the club frame.
     last: Option<(u64, Vector3, Vector3)>,
     address: Option<(u64, Real)>,
+    /// Since when the head has been slower than [`ADDRESS_SPEED_M_S`] (ns).
+    still_since_ns: Option<u64>,
 }
 
 impl SwingWatch {
@@ -101,7 +108,12 @@ impl SwingWatch {
         }
         let speed = (centre_m - centre_prev).norm() / dt;
         if speed < ADDRESS_SPEED_M_S {
-            self.address = Some((frame, (centre_m - ball_world_m).norm()));
+            let since = *self.still_since_ns.get_or_insert(t_prev);
+            if t_ns.saturating_sub(since) as Real * 1e-9 >= ADDRESS_STILL_S {
+                self.address = Some((frame, (centre_m - ball_world_m).norm()));
+            }
+        } else {
+            self.still_since_ns = None;
         }
         if speed < SWING_SPEED_M_S {
             return self.end();
@@ -154,5 +166,45 @@ impl SwingWatch {
             miss,
             address: c.address,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A head still 0.8 m from the ball for 0.5 s, a pause of 0.1 s at the top, then 45 m/s past the ball 0.12 m
+    /// above the face: the swing is missed, the address is the still stretch's, not the top's.
+    #[test]
+    fn a_missed_swing_says_its_address_and_its_side() {
+        let club = ClubSpec::driver();
+        let (ball, r) = (Vector3::zeros(), 0.02135);
+        let mut watch = SwingWatch::default();
+        let mut missed = None;
+        let mut feed = |frame: u64, t_s: Real, centre: Vector3, watch: &mut SwingWatch| {
+            // The club frame is the world shifted so the face centre is at `centre`.
+            let ball_club = ball - centre + club.face.center_m;
+            if let Some(m) = watch.on_pose(frame, (t_s * 1e9) as u64, centre, ball_club, ball, &club, r) {
+                missed = Some(m);
+            }
+        };
+        let address = Vector3::new(-0.8, 0.0, 0.0);
+        let top = Vector3::new(-1.5, 1.5, 0.0);
+        for k in 0..360 {
+            feed(k, k as Real / 720.0, address, &mut watch);
+        }
+        for k in 0..72 {
+            feed(360 + k, (360 + k) as Real / 720.0, top, &mut watch);
+        }
+        for k in 0..40 {
+            let x = -0.5 + 45.0 * k as Real / 720.0;
+            feed(432 + k, (432 + k) as Real / 720.0, Vector3::new(x, 0.12, 0.0), &mut watch);
+        }
+        let m = missed.or_else(|| watch.end()).expect("a missed swing");
+        assert_eq!(m.address.map(|a| a.0), Some(359), "{m:?}");
+        assert!((m.address.unwrap().1 - 0.8).abs() < 1e-9);
+        let text = m.to_string();
+        assert!(text.contains("at address (frame 359) the face centre was 0.80 m from the ball"), "{text}");
+        assert!(m.peak_speed_mps > 40.0 && m.miss.distance_mm > 50.0, "{m:?}");
     }
 }
