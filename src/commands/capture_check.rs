@@ -36,9 +36,7 @@ impl ImpactArgs {
     pub fn given(&self) -> anyhow::Result<Option<GivenImpact>> {
         match (self.impact_frame, self.impact_time) {
             (Some(n), _) => Ok(Some(GivenImpact::Frame(n))),
-            (None, Some(s)) if s.is_finite() && s >= 0.0 && s < 1.8e10 => {
-                Ok(Some(GivenImpact::TimeNs((s * 1e9).round() as u64)))
-            }
+            (None, Some(s)) if (0.0..1.8e10).contains(&s) => Ok(Some(GivenImpact::TimeNs((s * 1e9).round() as u64))),
             (None, Some(s)) => anyhow::bail!("--impact-time must be a non-negative number of seconds, got {s}"),
             (None, None) => Ok(None),
         }

@@ -28,7 +28,7 @@ impl FrameGap {
         let gaps = spacing.clone();
         spacing.sort_by(|a, b| a.total_cmp(b));
         let interval = spacing[spacing.len() / 2];
-        if !(interval > 0.0) {
+        if interval.is_nan() || interval <= 0.0 {
             return None;
         }
         let (i, longest) = gaps.iter().copied().enumerate().max_by(|a, b| a.1.total_cmp(&b.1))?;

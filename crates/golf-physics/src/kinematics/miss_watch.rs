@@ -76,6 +76,19 @@ struct Current {
     address: Option<(u64, Real)>,
 }
 
+/// A pose as the watch sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeenPose {
+    pub frame: u64,
+    pub t_ns: u64,
+    /// The face centre (world, m).
+    pub centre_m: Vector3,
+    /// The ball's centre in the club frame (m).
+    pub ball_club_m: Vector3,
+    /// The ball's centre (world, m).
+    pub ball_world_m: Vector3,
+}
+
 /// Watches one track's poses for swings.
 #[derive(Debug, Clone, Default)]
 pub struct SwingWatch {
@@ -88,20 +101,10 @@ pub struct SwingWatch {
 }
 
 impl SwingWatch {
-    /// Takes a pose: its frame and time, the face centre (world, m) and the ball centre in the club frame (m).
-    /// Returns the swing that ended before it without an impact.
-    pub fn on_pose(
-        &mut self,
-        frame: u64,
-        t_ns: u64,
-        centre_m: Vector3,
-        ball_club_m: Vector3,
-        ball_world_m: Vector3,
-        club: &ClubSpec,
-        ball_radius_m: Real,
-    ) -> Option<MissedSwing> {
-        let last = self.last.replace((t_ns, centre_m, ball_club_m));
-        let Some((t_prev, centre_prev, ball_prev)) = last else { return None };
+    /// Takes a pose ([`SeenPose`]) of `club`; returns the swing that ended before it without an impact.
+    pub fn on_pose(&mut self, pose: &SeenPose, club: &ClubSpec, ball_radius_m: Real) -> Option<MissedSwing> {
+        let SeenPose { frame, t_ns, centre_m, ball_club_m, ball_world_m } = *pose;
+        let (t_prev, centre_prev, ball_prev) = self.last.replace((t_ns, centre_m, ball_club_m))?;
         let dt = t_ns.saturating_sub(t_prev) as Real * 1e-9;
         if dt > SWING_BREAK_S || dt <= 0.0 {
             return self.end();
@@ -184,7 +187,14 @@ mod tests {
         let mut feed = |frame: u64, t_s: Real, centre: Vector3, watch: &mut SwingWatch| {
             // The club frame is the world shifted so the face centre is at `centre`.
             let ball_club = ball - centre + club.face.center_m;
-            if let Some(m) = watch.on_pose(frame, (t_s * 1e9) as u64, centre, ball_club, ball, &club, r) {
+            let pose = SeenPose {
+                frame,
+                t_ns: (t_s * 1e9) as u64,
+                centre_m: centre,
+                ball_club_m: ball_club,
+                ball_world_m: ball,
+            };
+            if let Some(m) = watch.on_pose(&pose, &club, r) {
                 missed = Some(m);
             }
         };

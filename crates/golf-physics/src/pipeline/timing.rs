@@ -95,9 +95,14 @@ impl Pipeline {
         let config = &self.detector.config;
         let ball = config.ball_position_m;
         let ball_club = pose.world_from_club.inverse_transform_point(&Point3::from(ball)).coords;
-        if let Some(m) =
-            self.swings.on_pose(pose.frame, pose.t_ns, centre, ball_club, ball, &self.setup.club, config.ball_radius_m)
-        {
+        let seen = crate::kinematics::miss_watch::SeenPose {
+            frame: pose.frame,
+            t_ns: pose.t_ns,
+            centre_m: centre,
+            ball_club_m: ball_club,
+            ball_world_m: ball,
+        };
+        if let Some(m) = self.swings.on_pose(&seen, &self.setup.club, config.ball_radius_m) {
             self.counts.missed_swings += 1;
             out(Event::Missed(m));
         }
