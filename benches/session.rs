@@ -54,6 +54,7 @@ fn recorded(n: usize) -> Vec<Vec<u8>> {
                 reports: Default::default(),
                 labels: ShotLabels::default(),
                 ball: None,
+                impact_timing: None,
             }
         })
         .collect();

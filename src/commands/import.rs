@@ -13,6 +13,7 @@ use impactd::captures::{CaptureOptions, ImportCounts};
 use impactd::kinematics::{MarkerFitter, MarkerSet};
 
 #[derive(Debug, Args)]
+#[command(after_help = super::capture_check::QUALITY_HELP)]
 pub struct ImportArgs {
     /// A capture: C3D, TRC (OpenSim's marker trajectories) or a pose table (CSV/TSV with --columns).
     pub file: PathBuf,
@@ -32,6 +33,13 @@ pub struct ImportArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub fit: FitArgs,
+    /// The rigs' configuration (the rig named by --rig: its club, calibration and ball): the samples are run
+    /// through its pipeline as they are written, each swing that gives no prediction says why, and a capture
+    /// whose swings give none exits 2. Without it the swings are not checked.
+    #[arg(short = 'c', long = "config")]
+    pub config: Option<PathBuf>,
+    #[command(flatten)]
+    pub impact: super::capture_check::ImpactArgs,
 }
 
 /// What a capture is and how to read it, shared by `import` and `replay`.
@@ -142,19 +150,63 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode> {
     } else {
         Box::new(std::fs::File::create(&args.output).with_context(|| format!("creating {}", args.output.display()))?)
     };
+    let mut check = check_pipeline(args)?;
+    let mut tally = (0u64, 0u64, 0u64);
+    let mut on_event = |e: impactd::pipeline::Event| {
+        match &e {
+            impactd::pipeline::Event::Launch(_) => tally.0 += 1,
+            impactd::pipeline::Event::Failed { .. } => tally.1 += 1,
+            impactd::pipeline::Event::Missed(_) => tally.2 += 1,
+            _ => {}
+        }
+        for line in super::capture_check::describe(&e, &|_| Vec::new()) {
+            eprintln!("{line}");
+        }
+    };
     let mut out = BufWriter::with_capacity(1 << 16, sink);
     while let Some(s) = samples.next_sample().with_context(|| format!("{}", args.file.display()))? {
         if let Some(ball) = samples.ball() {
             serde_json::to_writer(&mut out, &ball)?;
             out.write_all(b"\n")?;
+            if let Some(p) = &mut check {
+                let _ = p.on_ball((!ball.occluded).then_some(ball.position_m));
+            }
         }
         serde_json::to_writer(&mut out, &s)?;
         out.write_all(b"\n")?;
+        if let Some(p) = &mut check {
+            p.on_sample_with(&s.to_sample(), &mut on_event);
+        }
     }
     out.flush().with_context(|| format!("writing {}", args.output.display()))?;
     eprintln!("{}", describe(samples.counts(), format));
-    Ok(ExitCode::SUCCESS)
+    let Some(mut p) = check else {
+        eprintln!("swings not checked: import with -c CONFIG (or replay the samples) for their launches");
+        return Ok(ExitCode::SUCCESS);
+    };
+    p.finish(&mut on_event);
+    let (predictions, failed, missed) = tally;
+    eprintln!("checked with rig {}: {predictions} predictions, {failed} failed, {missed} swings missed", args.rig);
+    Ok(super::capture_check::nothing_predicted(predictions, failed, missed).unwrap_or(ExitCode::SUCCESS))
 }
+
+/// The pipeline of the rig named by --rig in the -c configuration, with the given impact instant.
+fn check_pipeline(args: &ImportArgs) -> Result<Option<impactd::pipeline::Pipeline>> {
+    let Some(path) = &args.config else {
+        if args.impact.given()?.is_some() {
+            bail!("--impact-frame and --impact-time check the capture's swings: they need -c CONFIG");
+        }
+        return Ok(None);
+    };
+    let (_, mut setups) = impactd::daemon::DaemonConfig::load(path)?;
+    args.impact.apply(&mut setups)?;
+    let names: Vec<String> = setups.iter().map(|s| s.name.clone()).collect();
+    let Some(setup) = setups.into_iter().find(|s| s.name == args.rig) else {
+        bail!("--rig {}: {} has no such rig (rigs: {})", args.rig, path.display(), names.join(", "));
+    };
+    Ok(Some(impactd::pipeline::Pipeline::new(setup)))
+}
+
 
 /// One line on what an import saw.
 pub fn describe(c: &ImportCounts, format: &impactd::captures::Format) -> String {

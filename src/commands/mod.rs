@@ -35,6 +35,8 @@ mod synth;
 #[cfg(feature = "daemon")]
 mod bridge;
 #[cfg(feature = "daemon")]
+mod capture_check;
+#[cfg(feature = "daemon")]
 mod demo;
 #[cfg(feature = "daemon")]
 mod export;

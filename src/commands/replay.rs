@@ -21,6 +21,7 @@ use super::args::{model_name, ZenohArgs};
 use super::run::runtime;
 
 #[derive(Debug, Args)]
+#[command(after_help = super::capture_check::QUALITY_HELP)]
 pub struct ReplayArgs {
     /// An MCAP recording, a JSONL file of ClubheadSample messages, or a capture: C3D or TRC (with --markers),
     /// a pose table (CSV/TSV with --columns or its sidecar TABLE.columns).
@@ -32,6 +33,8 @@ pub struct ReplayArgs {
     pub fit: super::import::FitArgs,
     #[command(flatten)]
     pub capture: super::import::CaptureArgs,
+    #[command(flatten)]
+    pub impact: super::capture_check::ImpactArgs,
     /// Configuration; default: the one stored in the recording, else one rig per rig name found.
     #[arg(short = 'c', long = "config")]
     pub config: Option<PathBuf>,
@@ -139,6 +142,12 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
             args.file.display()
         );
     }
+    args.impact.apply(&mut setups)?;
+    if let Some(what) = args.impact.describe() {
+        eprintln!("{}: the impact instant is given ({what}): the estimate is made there", args.file.display());
+    }
+    let layout = capture_layout(args, &input, &setups)?;
+    let losses = |frame: u64| layout.as_ref().map_or_else(Vec::new, |l| l.losses_before(frame, 100));
     let changed = config.rigs.iter().zip(&recorded).any(|(r, (club, model))| &r.club != club || &r.model != model);
     let publish = match (args.publish, args.publish_samples) {
         (true, true) => Some(Publish::Both),
@@ -167,14 +176,13 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         let mut out = std::io::stdout().lock();
         let mut report;
         loop {
-            report = replay::run(&input, &config, setups.clone(), session.as_ref(), &options, |e, bytes| match e {
-                Event::Launch(_) => {
+            report = replay::run(&input, &config, setups.clone(), session.as_ref(), &options, |e, bytes| {
+                if let Event::Launch(_) = e {
                     let _ = writeln!(out, "{}", String::from_utf8_lossy(bytes));
                 }
-                Event::Failed { shot, frame, reason, .. } => {
-                    eprintln!("shot {shot} (frame {frame}): no prediction: {reason}")
+                for line in super::capture_check::describe(e, &losses) {
+                    eprintln!("{line}");
                 }
-                _ => {}
             })
             .await?;
             if !args.repeat {
@@ -203,7 +211,11 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
             bail!("--rig/--start-offset/--duration leave no samples");
         }
         print_throughput(&report, load_s);
-        let code = verdict(&report, changed.then(|| describe(&config, &recorded)), report.stats.left_out > 0);
+        let mut code = verdict(&report, changed.then(|| describe(&config, &recorded)), report.stats.left_out > 0);
+        if report.recorded == 0 && !report.damaged {
+            let s = &report.stats;
+            code = super::capture_check::nothing_predicted(s.predictions, s.failed, s.missed).unwrap_or(code);
+        }
         if index.skipped > 0 {
             // A line that is not a sample is bad input, as for every command that reads lines (exit 2).
             eprintln!("{} lines of {} are not clubhead samples (exit 2)", index.skipped, args.file.display());
@@ -286,6 +298,30 @@ fn face_centre(args: &ReplayArgs, rig: &str) -> Result<impactd::math::Vector3> {
         }
     };
     Ok(super::args::load_club(&club)?.club.face.center_m)
+}
+
+/// A capture's layout, checked against the rig it replays into: the face centre near the head's markers, a grip
+/// marker at a club's length (a refusal, exit 2, before any swing); its marker losses name the markers a shot
+/// lacked.
+fn capture_layout(
+    args: &ReplayArgs,
+    input: &Input,
+    setups: &[impactd::pipeline::RigSetup],
+) -> Result<Option<replay::CaptureLayout>> {
+    let (Input::Capture(_, rig), Some(markers)) = (input, &args.markers) else { return Ok(None) };
+    let fitter = args.fit.fitter(markers)?;
+    let layout =
+        replay::CaptureLayout::scan(&args.file, &fitter).with_context(|| format!("{}", args.file.display()))?;
+    if let Some(setup) = setups.iter().find(|s| &s.name == rig).or(setups.first()) {
+        let face = setup.calibration.club_from_body.inverse() * impactd::math::Point3::from(setup.club.face.center_m);
+        if let Some(why) = replay::face_from_markers_refusal(&fitter.set, &face.coords) {
+            bail!("{}: rig {}: {why}", args.file.display(), setup.name);
+        }
+    }
+    if let Some(why) = layout.club_length_refusal() {
+        bail!("{}: {why}", args.file.display());
+    }
+    Ok(Some(layout))
 }
 
 /// The samples of the chosen rigs and capture times (from the earliest sample of those rigs).

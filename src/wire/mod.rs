@@ -37,5 +37,10 @@ pub const WIRE_VERSION: u32 = 1;
 /// changed: a reader of version 1 that passes unknown fields by reads them as before.
 pub const UNCERTAINTY_WIRE_VERSION: u32 = 2;
 
+/// The version of `LaunchPrediction` and `PredictOutput` that say what an estimate bridged: `impact_timing` (a
+/// given impact instant, a gap in the frames before impact, a ball far from the face at address) and the
+/// warnings `frame_gap_before_impact` and `ball_far_from_address`. Fields and warning kinds added, none changed.
+pub const IMPACT_TIMING_WIRE_VERSION: u32 = 3;
+
 /// Largest accepted payload (bytes): a clubhead sample is about 200.
 pub const MAX_PAYLOAD_BYTES: usize = 64 * 1024;

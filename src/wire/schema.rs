@@ -85,18 +85,17 @@ messages! {
 }
 
 impl MessageType {
-    /// The type's version: [`WIRE_VERSION`], or [`UNCERTAINTY_WIRE_VERSION`] for the types that carry a
-    /// prediction's uncertainty.
+    /// The type's version: [`WIRE_VERSION`], [`UNCERTAINTY_WIRE_VERSION`] for the impact (which carries a
+    /// prediction's uncertainty), [`IMPACT_TIMING_WIRE_VERSION`] for the launch types.
     pub fn version(self) -> u32 {
         match self {
-            MessageType::ImpactMessage | MessageType::LaunchPrediction | MessageType::PredictOutput => {
-                UNCERTAINTY_WIRE_VERSION
-            }
+            MessageType::ImpactMessage => UNCERTAINTY_WIRE_VERSION,
+            MessageType::LaunchPrediction | MessageType::PredictOutput => IMPACT_TIMING_WIRE_VERSION,
             _ => WIRE_VERSION,
         }
     }
 
-    /// The encoding on zenoh: `application/json;impactd.LaunchPrediction/2`.
+    /// The encoding on zenoh: `application/json;impactd.LaunchPrediction/3`.
     pub fn encoding(self) -> String {
         format!("application/json;impactd.{}/{}", self.name(), self.version())
     }

@@ -43,6 +43,7 @@ fn prediction(shot: u64, t_impact_ns: u64, model: &str) -> LaunchPrediction {
         reports: Default::default(),
         labels: Default::default(),
         ball: None,
+        impact_timing: None,
     }
 }
 

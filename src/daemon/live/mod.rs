@@ -436,6 +436,8 @@ impl Worker {
                 self.sinks.failed();
             }
             Event::ClubChanged(change) => self.record_club_change(wall_ns(), &change),
+            Event::Missed(m) => tracing::info!("rig {rig}: {m}"),
+            Event::ImpactTiming(t) => tracing::info!("rig {rig} {t}"),
         }
     }
 }

@@ -57,6 +57,10 @@ pub struct ReplayIndex {
     /// Per recorded prediction, whether it was made before predictions carried their uncertainty
     /// (`LaunchPrediction` version 1): it is compared with the replay's without it.
     pub recorded_before_uncertainty: Vec<bool>,
+    /// Per recorded prediction, whether it was made before predictions said what the estimate bridged
+    /// (`LaunchPrediction` version 2 and before: no `impact_timing`, no warnings `frame_gap_before_impact` or
+    /// `ball_far_from_address`): it is compared with the replay's without them.
+    pub recorded_before_impact_timing: Vec<bool>,
     /// Former model names the recorded predictions carried, each with the name it is compared under
     /// (`impact::registry::FORMER_NAMES`): `(former, current)`, each pair once.
     pub renamed_models: Vec<(String, String)>,
@@ -100,6 +104,7 @@ impl ReplayIndex {
     pub fn add_launch(&mut self, data: &[u8], key: Option<((String, u64, String), f64)>) {
         self.recorded_launches.push(digest(data));
         self.recorded_before_uncertainty.push(!contains(data, b"\"uncertainty\":"));
+        self.recorded_before_impact_timing.push(!contains(data, b"\"impact_timing\":"));
         if let Some((key, latency_us)) = key {
             self.recorded_latency_us.insert(key, latency_us);
         }
@@ -112,14 +117,31 @@ impl ReplayIndex {
 
     /// Whether the replay's prediction `l`, published as `bytes`, is the recorded prediction at `index`: byte for
     /// byte, or, where that was recorded before predictions carried their uncertainty, byte for byte without it.
+    /// A recording without `impact_timing` (made before version 3, or with nothing to say) is compared with the
+    /// replay's prediction without it and without the warnings it explains.
     pub fn reproduces(&self, index: usize, l: &crate::wire::LaunchPrediction, bytes: &[u8]) -> bool {
         let Some(recorded) = self.recorded_launches.get(index) else { return false };
-        if !self.recorded_before_uncertainty.get(index).copied().unwrap_or(false) {
-            return *recorded == digest(bytes);
+        if *recorded == digest(bytes) {
+            return true;
+        }
+        let before_uncertainty = self.recorded_before_uncertainty.get(index).copied().unwrap_or(false);
+        let before_timing = self.recorded_before_impact_timing.get(index).copied().unwrap_or(false);
+        if !(before_uncertainty || before_timing) {
+            return false;
         }
         let mut without = l.clone();
-        without.delivery.uncertainty = None;
-        without.launch.uncertainty = None;
+        if before_uncertainty {
+            without.delivery.uncertainty = None;
+            without.launch.uncertainty = None;
+        }
+        if before_timing {
+            use crate::impact::LaunchWarning;
+            without.impact_timing = None;
+            without
+                .launch
+                .warnings
+                .retain(|w| !matches!(w, LaunchWarning::FrameGapBeforeImpact | LaunchWarning::BallFarFromAddress));
+        }
         serde_json::to_vec(&without).is_ok_and(|b| *recorded == digest(&b))
     }
 

@@ -14,6 +14,7 @@ use std::collections::HashMap;
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
 mod capture;
+mod capture_layout;
 mod file;
 mod items;
 mod load;
@@ -23,6 +24,7 @@ mod session;
 mod verdict;
 
 pub use capture::{BallMarker, ReplayCapture};
+pub use capture_layout::{face_from_markers_refusal, is_grip_label, CaptureLayout, MarkerLoss};
 pub use file::ReplayFile;
 pub use items::{Item, Items, ReplayIndex, ReplaySource, RigSpan, MAX_INDEXED_RIGS};
 pub use load::{is_mcap, load, ReplayInput};
@@ -40,6 +42,8 @@ pub struct ReplayStats {
     pub unknown_rig: u64,
     pub predictions: u64,
     pub failed: u64,
+    /// Swings that found no impact (`Event::Missed`).
+    pub missed: u64,
 }
 
 /// Runs the pipelines over the samples; `on_event` sees every event (launches with their latency filled in).
@@ -81,10 +85,19 @@ pub fn replay(
                     stats.predictions += 1;
                 }
                 Event::Failed { .. } => stats.failed += 1,
+                Event::Missed(_) => stats.missed += 1,
                 _ => {}
             }
             on_event(e);
         }
+    }
+    for p in pipelines.values_mut() {
+        p.finish(&mut |e| {
+            if let Event::Missed(_) = e {
+                stats.missed += 1;
+            }
+            on_event(&e);
+        });
     }
     stats
 }

@@ -326,7 +326,11 @@ pub async fn run(
                     rig.sinks.failed();
                     on_event(e, &[]);
                 }
-                Event::Rejected { .. } => on_event(e, &[]),
+                Event::Rejected { .. } | Event::ImpactTiming(_) => on_event(e, &[]),
+                Event::Missed(_) => {
+                    stats.missed += 1;
+                    on_event(e, &[]);
+                }
                 Event::ClubChanged(change) => {
                     rig.sinks.club_change(log_time_ns, change);
                     on_event(e, &[]);
@@ -352,6 +356,17 @@ pub async fn run(
     for (name, t_impact_ns, payload) in pending.truths.drain(..) {
         if let Some(rig) = rigs.get(&name) {
             rig.sinks.truth(last_log_time_ns.unwrap_or_else(wall_ns), t_impact_ns, payload);
+        }
+    }
+    // The input ended: each rig's swing in progress, and the step waiting for the frames after its impact.
+    for rig in rigs.values_mut() {
+        events.clear();
+        rig.pipeline.finish(&mut |e| events.push(e));
+        for e in &events {
+            if let Event::Missed(_) = e {
+                stats.missed += 1;
+            }
+            on_event(e, &[]);
         }
     }
     for rig in rigs.values() {

@@ -4,6 +4,8 @@
 //! - `spin_axis_beyond_45_deg`: `|spin_axis| > 45 deg` (TrackMan's spin axis, ARCHITECTURE.md section 2). A 45 deg
 //!   axis is a hard hook or slice; launch monitors report golfers' full shots within about +-30 deg.
 //! - `negative_backspin`: the ball leaves with topspin, which a lofted face cannot give a centred ball.
+//! - `frame_gap_before_impact`, `ball_far_from_address`: raised by the pipeline from the frames
+//!   (`kinematics::guards`), not by the launch's numbers.
 //! - `smash_out_of_range`: smash factor outside the club's physical range [`smash_range`]. The upper bound is
 //!   the point-mass limit of the impulse-momentum model at the rules' COR, `(1 + e) M / (M + m)` (seed eq. 3.6
 //!   with a free head of mass M and a ball of mass m, the head's face normal along its velocity); no club gives
@@ -31,6 +33,12 @@ pub enum LaunchWarning {
     NegativeBackspin,
     /// The smash factor outside the club's physical range ([`smash_range`]).
     SmashOutOfRange,
+    /// Frames were missing before the impact and the fit bridged them (`impact_timing.frame_gap` says how many
+    /// and how long; `kinematics::frame_gap`).
+    FrameGapBeforeImpact,
+    /// The face centre was more than 0.5 m from the ball at the address before the swing
+    /// (`impact_timing.address_ball_distance_m`; `kinematics::guards`).
+    BallFarFromAddress,
 }
 
 impl LaunchWarning {
@@ -40,6 +48,8 @@ impl LaunchWarning {
             LaunchWarning::SpinAxisBeyond45Deg => "spin_axis_beyond_45_deg",
             LaunchWarning::NegativeBackspin => "negative_backspin",
             LaunchWarning::SmashOutOfRange => "smash_out_of_range",
+            LaunchWarning::FrameGapBeforeImpact => "frame_gap_before_impact",
+            LaunchWarning::BallFarFromAddress => "ball_far_from_address",
         }
     }
 }

@@ -9,7 +9,7 @@
 //! be on the face (within its extents plus a margin). It re-arms once the face centre is `rearm_distance_m`
 //! away from the ball.
 
-use super::estimate::{estimate, EstimateError, EstimatorSpec, ImpactEstimate, Scene};
+use super::estimate::{estimate, estimate_at, EstimateError, EstimatorSpec, ImpactEstimate, Scene};
 use super::sample::ClubPose;
 use super::track::Track;
 use crate::equipment::ClubSpec;
@@ -26,6 +26,18 @@ pub struct DetectorConfig {
     /// Tolerance around the face extents for accepting a crossing (m).
     pub face_margin_m: Real,
     pub max_extrapolation_s: Real,
+    /// The impact instant the user gives (`--impact-frame`, `--impact-time`): the estimate is made there, once,
+    /// instead of at the geometric contact with the ball, which is then not looked for.
+    pub given_impact: Option<GivenImpact>,
+}
+
+/// An impact instant the user knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GivenImpact {
+    /// The instant of this frame (the rig's or the capture's frame number).
+    Frame(u64),
+    /// This capture time on the rig's clock (ns).
+    TimeNs(u64),
 }
 
 impl Default for DetectorConfig {
@@ -37,6 +49,7 @@ impl Default for DetectorConfig {
             rearm_distance_m: 0.25,
             face_margin_m: 0.04,
             max_extrapolation_s: 0.010,
+            given_impact: None,
         }
     }
 }
@@ -57,11 +70,20 @@ pub struct ImpactDetector {
     previous: Option<(u64, crate::face::FaceGap, Vector3)>,
     before_previous: Option<(u64, crate::face::FaceGap, Vector3)>,
     scratch: Vec<ClubPose>,
+    /// The given instant has been estimated at.
+    given_used: bool,
 }
 
 impl ImpactDetector {
     pub fn new(config: DetectorConfig) -> Self {
-        ImpactDetector { config, armed: false, previous: None, before_previous: None, scratch: Vec::with_capacity(64) }
+        ImpactDetector {
+            config,
+            armed: false,
+            previous: None,
+            before_previous: None,
+            scratch: Vec::with_capacity(64),
+            given_used: false,
+        }
     }
 
     /// The pre-impact poses of the latest detection (oldest first), for the club data of its path.
@@ -83,6 +105,9 @@ impl ImpactDetector {
             ball_radius_m: self.config.ball_radius_m,
             max_extrapolation_s: self.config.max_extrapolation_s,
         };
+        if let Some(given) = self.config.given_impact {
+            return self.at_given(given, track, &newest, &scene, estimators);
+        }
         let g = scene.gap(&newest.world_from_club);
         let face_centre = newest.world_from_club * crate::math::Point3::from(club.face.center_m);
         let distance = (face_centre.coords - self.config.ball_position_m).norm();
@@ -143,6 +168,45 @@ impl ImpactDetector {
                     reveal_frame: newest.frame,
                     reveal_t_ns: newest.t_ns,
                     result: estimate(spec, &self.scratch, newest.t_ns, &scene),
+                })
+                .collect(),
+        )
+    }
+
+    /// A detection at the given instant, from the first pose at or after it.
+    fn at_given(
+        &mut self,
+        given: GivenImpact,
+        track: &Track,
+        newest: &ClubPose,
+        scene: &Scene,
+        estimators: &[EstimatorSpec],
+    ) -> Option<Vec<Detection>> {
+        if self.given_used {
+            return None;
+        }
+        let t_given_ns = match given {
+            GivenImpact::TimeNs(t) => (newest.t_ns >= t).then_some(t)?,
+            GivenImpact::Frame(n) if newest.frame == n => newest.t_ns,
+            GivenImpact::Frame(n) if newest.frame > n => {
+                // The frame is missing: its instant between the poses around it.
+                let before = track.poses().iter().rev().find(|p| p.frame < n)?;
+                let f = (n - before.frame) as Real / (newest.frame - before.frame) as Real;
+                before.t_ns + (f * newest.t_ns.saturating_sub(before.t_ns) as Real).round() as u64
+            }
+            GivenImpact::Frame(_) => return None,
+        };
+        self.given_used = true;
+        self.scratch.clear();
+        self.scratch.extend(track.poses().iter().filter(|p| p.t_ns < t_given_ns).copied());
+        let given_t_s = -(newest.t_ns.saturating_sub(t_given_ns) as Real) * 1e-9;
+        Some(
+            estimators
+                .iter()
+                .map(|spec| Detection {
+                    reveal_frame: newest.frame,
+                    reveal_t_ns: newest.t_ns,
+                    result: estimate_at(spec, &self.scratch, newest.t_ns, scene, Some(given_t_s)),
                 })
                 .collect(),
         )

@@ -40,8 +40,19 @@ pub enum EstimateError {
     StaleFrames { gap_ms: Real, limit_ms: Real },
     #[error("the fit of the pre-impact frames is singular")]
     SingularFit,
-    #[error("the fitted motion does not reach the ball")]
-    NoContact,
+    /// The fitted motion's gap to the ball stays positive (it stops short), or is already closed at the newest
+    /// frame before impact (`past`); the gap is the ball surface's from the face surface where it was smallest,
+    /// and `h_mm`, `v_mm` the face point nearest the ball there (toward the toe, up the face).
+    #[error(
+        "the fitted motion does not reach the ball: {}, the face's nearest point {h_mm:+.0} mm toward the toe and \
+         {v_mm:+.0} mm up from its centre",
+        if *past {
+            format!("the face is already {:.0} mm through it at the newest frame before impact", -gap_mm)
+        } else {
+            format!("it stops {gap_mm:.0} mm short of it")
+        }
+    )]
+    NoContact { gap_mm: Real, h_mm: Real, v_mm: Real, past: bool },
 }
 
 impl EstimateError {
@@ -50,7 +61,7 @@ impl EstimateError {
             EstimateError::TooFewFrames { .. } => "too_few_frames",
             EstimateError::StaleFrames { .. } => "stale_frames",
             EstimateError::SingularFit => "singular_fit",
-            EstimateError::NoContact => "no_contact",
+            EstimateError::NoContact { .. } => "no_contact",
         }
     }
 }
@@ -131,6 +142,19 @@ pub fn estimate(
     reveal_t_ns: u64,
     scene: &Scene,
 ) -> Result<ImpactEstimate, EstimateError> {
+    estimate_at(spec, pre_impact, reveal_t_ns, scene, None)
+}
+
+/// [`estimate`], at a given instant (`given_t_s` from the revealing frame, the user's `--impact-frame` or
+/// `--impact-time`) instead of the geometric contact with the ball when one is given: the fitted motion is
+/// evaluated there, and the impact location is the face point nearest the ball at that instant.
+pub fn estimate_at(
+    spec: &EstimatorSpec,
+    pre_impact: &[ClubPose],
+    reveal_t_ns: u64,
+    scene: &Scene,
+    given_t_s: Option<Real>,
+) -> Result<ImpactEstimate, EstimateError> {
     let (need, pos_frames, pos_degree, rot_frames, rot_degree) = match spec.window_ms {
         None => {
             if pre_impact.len() < spec.frames {
@@ -209,57 +233,17 @@ pub fn estimate(
         Isometry3::from_parts((face_centre - orientation * r_fit).into_translation(), orientation)
     };
     let gap_at = |t: Real| scene.gap(&club_pose(position_at(t), fit.orientation(t))).distance_m;
-    // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
-    // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
-    // falls short).
     let t_last = fit.t_ref_s();
-    let dt = if need >= 2 { (t_last - poses[need - 2].t_s).max(1e-5) } else { 1.0 / 720.0 };
-    let mut lo = t_last;
-    let mut g_lo = gap_at(lo);
-    let mut steps = 0;
-    while g_lo <= 0.0 && steps < 4 {
-        lo -= dt;
-        g_lo = gap_at(lo);
-        steps += 1;
-    }
-    let mut hi = 0.0;
-    let mut g_hi = gap_at(hi);
-    steps = 0;
-    while g_hi > 0.0 && steps < 4 {
-        hi += dt;
-        g_hi = gap_at(hi);
-        steps += 1;
-    }
-    if !(g_lo > 0.0 && g_hi <= 0.0) {
-        return Err(EstimateError::NoContact);
-    }
-    // Illinois false position: superlinear and safe.
-    let (mut a, mut fa, mut b, mut fb) = (lo, g_lo, hi, g_hi);
-    let mut side = 0i8;
-    let mut t = a;
-    for _ in 0..60 {
-        t = (a * fb - b * fa) / (fb - fa);
-        let ft = gap_at(t);
-        // A nanometre of gap is a few hundredths of a nanosecond of approach: far below the frames' noise.
-        if ft.abs() < 1e-9 || (b - a).abs() < 1e-12 {
-            break;
+    let t = match given_t_s {
+        Some(t) => t,
+        None => {
+            let dt = if need >= 2 { (t_last - poses[need - 2].t_s).max(1e-5) } else { 1.0 / 720.0 };
+            first_contact(&gap_at, t_last, dt).map_err(|(t, past)| {
+                let g = scene.gap(&club_pose(position_at(t), fit.orientation(t)));
+                EstimateError::NoContact { gap_mm: g.distance_m * 1e3, h_mm: g.h_m * 1e3, v_mm: g.v_m * 1e3, past }
+            })?
         }
-        if ft > 0.0 {
-            a = t;
-            fa = ft;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        } else {
-            b = t;
-            fb = ft;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        }
-    }
+    };
     let extrapolation_s = t - t_last;
     if extrapolation_s > scene.max_extrapolation_s {
         return Err(EstimateError::StaleFrames {
@@ -317,4 +301,72 @@ pub fn estimate(
             dropped_arc,
         },
     })
+}
+
+/// The first contact on a fitted motion whose ball gap is `gap_at(t)` (t from the revealing frame), bracketed from
+/// the newest pre-impact frame at `t_last`, frames `dt` apart; else the instant to describe the miss at and whether
+/// the face is already past the ball there.
+fn first_contact(gap_at: &dyn Fn(Real) -> Real, t_last: Real, dt: Real) -> Result<Real, (Real, bool)> {
+    // Bracket the first contact: the fitted gap is positive at the newest pre-impact frame (stepping back if
+    // noise says otherwise) and not positive by the revealing frame (stepping on a little if the extrapolation
+    // falls short).
+    let mut lo = t_last;
+    let mut g_lo = gap_at(lo);
+    let mut steps = 0;
+    while g_lo <= 0.0 && steps < 4 {
+        lo -= dt;
+        g_lo = gap_at(lo);
+        steps += 1;
+    }
+    let mut hi = 0.0;
+    let mut g_hi = gap_at(hi);
+    steps = 0;
+    while g_hi > 0.0 && steps < 4 {
+        hi += dt;
+        g_hi = gap_at(hi);
+        steps += 1;
+    }
+    if g_lo <= 0.0 {
+        return Err((lo, true));
+    }
+    if g_hi > 0.0 {
+        // Where the fitted gap is smallest over the frames' span and the steps beyond it.
+        let (mut t_min, mut g_min) = (hi, g_hi);
+        for k in 0..=64 {
+            let t = lo + (hi - lo) * k as Real / 64.0;
+            let g = gap_at(t);
+            if g < g_min {
+                (t_min, g_min) = (t, g);
+            }
+        }
+        return Err((t_min, false));
+    }
+    // Illinois false position: superlinear and safe.
+    let (mut a, mut fa, mut b, mut fb) = (lo, g_lo, hi, g_hi);
+    let mut side = 0i8;
+    let mut t = a;
+    for _ in 0..60 {
+        t = (a * fb - b * fa) / (fb - fa);
+        let ft = gap_at(t);
+        // A nanometre of gap is a few hundredths of a nanosecond of approach: far below the frames' noise.
+        if ft.abs() < 1e-9 || (b - a).abs() < 1e-12 {
+            break;
+        }
+        if ft > 0.0 {
+            a = t;
+            fa = ft;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        } else {
+            b = t;
+            fb = ft;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    Ok(t)
 }

@@ -116,6 +116,10 @@ pub enum Event {
     },
     /// Another tracked body came into view: the rig's club is now this body's.
     ClubChanged(crate::wire::ClubChange),
+    /// A swing ended without an impact: how it missed the ball (`kinematics::miss_watch`).
+    Missed(crate::kinematics::miss_watch::MissedSwing),
+    /// The frames after an impact have come: the head's speed step against the instant the estimate used.
+    ImpactTiming(timing::ImpactTimingReport),
 }
 
 /// Counters of one rig's pipeline.
@@ -141,6 +145,8 @@ pub struct Counts {
     pub failed: BTreeMap<String, u64>,
     /// Predictions that raised each sanity flag (`impact::sanity`).
     pub flagged: BTreeMap<String, u64>,
+    /// Swings that found no impact ([`Event::Missed`]).
+    pub missed_swings: u64,
 }
 
 /// One rig's pipeline: track -> detect -> estimate -> model.
@@ -158,6 +164,10 @@ pub struct Pipeline {
     pub counts: Counts,
     /// The tracked body holding the club (`[rig.clubs]`) and the capture time of its last tracked sample.
     body: Option<(String, u64)>,
+    /// Swings, for those that find no impact.
+    swings: crate::kinematics::miss_watch::SwingWatch,
+    /// The latest impact's speed step, waiting for the frames after it.
+    step: Option<timing::PendingStep>,
 }
 
 impl Pipeline {
@@ -172,6 +182,8 @@ impl Pipeline {
             setup,
             counts: Counts::default(),
             body: None,
+            swings: Default::default(),
+            step: None,
         }
     }
 
@@ -295,12 +307,15 @@ impl Pipeline {
                 self.counts.accepted += 1;
                 self.counts.dropped = self.track.counts.dropped;
                 if let Some(detections) = self.detector.on_pose(&self.track, &self.setup.club, &self.estimators) {
+                    self.swings.note_impact();
+                    self.resolve_step(out);
                     for d in detections {
                         self.counts.shots += 1;
                         let shot = self.counts.shots;
                         self.predict(shot, d, out);
                     }
                 }
+                self.watch_pose(out);
             }
         }
     }
@@ -313,10 +328,18 @@ impl Pipeline {
     fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut dyn FnMut(Event)) {
         let est = match d.result {
             Ok(e) => e,
-            Err(e) => return self.fail(shot, d.reveal_frame, e.to_string(), e.key(), out),
+            Err(e) => return self.fail(shot, d.reveal_frame, self.explain(&e), e.key(), out),
         };
+        let given = self.detector.config.given_impact.is_some();
         let club = &self.setup.club;
         let mut delivery = DeliveryMetrics::from_state(&est.state, club);
+        if let Some(why) = crate::kinematics::guards::head_speed_refusal(delivery.club_speed_mps) {
+            return self.fail(shot, d.reveal_frame, why, "head_speed_beyond_bound", out);
+        }
+        self.await_step(shot, d.reveal_frame, &est, given);
+        let (frame_gap, far_address) = (Self::frame_gap(&est, given), self.far_address());
+        let impact_timing = crate::wire::ImpactTimingMsg::of(given, frame_gap, far_address);
+        let club = &self.setup.club;
         // Once per impact: the plane and low point of the path over the frames before it (docs/club-data.md).
         let config = &self.detector.config;
         let scene = crate::kinematics::Scene {
@@ -372,6 +395,12 @@ impl Pipeline {
                         };
                         j.map(|j| j.uncertainty(&u.delivery))
                     });
+                    if frame_gap.is_some() {
+                        output.warnings.push(crate::impact::LaunchWarning::FrameGapBeforeImpact);
+                    }
+                    if far_address.is_some() {
+                        output.warnings.push(crate::impact::LaunchWarning::BallFarFromAddress);
+                    }
                     for w in &output.warnings {
                         *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
                     }
@@ -401,6 +430,7 @@ impl Pipeline {
                         reports: report.into(),
                         labels: self.setup.labels.clone(),
                         ball: Some(self.ball_used()),
+                        impact_timing,
                     }))
                 }
                 Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),
@@ -411,3 +441,6 @@ impl Pipeline {
 
 #[cfg(test)]
 mod tests;
+mod timing;
+
+pub use timing::ImpactTimingReport;

@@ -234,4 +234,8 @@ pub struct LaunchPrediction {
     /// before it was reported: the rig's fixed `ball_position_m`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ball: Option<super::BallUsed>,
+    /// A given impact instant, a gap the fit bridged, a ball far from the face at address (absent: none of
+    /// them; `LaunchPrediction` version 3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact_timing: Option<super::ImpactTimingMsg>,
 }

@@ -1,0 +1,157 @@
+//! What a capture's markers say before its swings are replayed: the runs of frames in which each marker of the
+//! head's set was lost (so a shot that fails or bridges a gap names the marker and the frames), and the club's
+//! length from the head's markers to a grip marker where the capture has one (`kinematics::guards`). Read in a
+//! pass of its own over the file, a frame at a time: only the runs are kept.
+
+use std::path::Path;
+
+use crate::daemon::recording::c3d::{self, C3dError, Frame};
+use crate::kinematics::guards::CLUB_LENGTH_M;
+use crate::kinematics::MarkerFitter;
+use crate::math::Vector3;
+
+/// The most marker-loss runs kept; more are counted.
+pub const MAX_LOSSES: usize = 4096;
+
+/// A marker of the set not seen over a run of frames.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MarkerLoss {
+    pub label: String,
+    /// The C3D frame numbers of the first and last frame without it.
+    pub first_frame: u64,
+    pub last_frame: u64,
+}
+
+impl MarkerLoss {
+    pub fn frames(&self) -> u64 {
+        self.last_frame - self.first_frame + 1
+    }
+}
+
+/// What the scan found.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CaptureLayout {
+    pub rate_hz: f64,
+    pub losses: Vec<MarkerLoss>,
+    /// Runs beyond [`MAX_LOSSES`].
+    pub more_losses: u64,
+    /// The grip marker, the frame and the distance from the head's body origin to it (m), at the first frame
+    /// both are seen.
+    pub club_length: Option<(String, u64, f64)>,
+}
+
+/// Whether a capture label is a marker at the grip end of the shaft.
+pub fn is_grip_label(label: &str) -> bool {
+    let l = label.trim().to_ascii_lowercase();
+    l.contains("grip") || l.contains("butt")
+}
+
+impl CaptureLayout {
+    /// Scans the capture at `path` for the set `fitter` fits.
+    pub fn scan(path: &Path, fitter: &MarkerFitter) -> Result<CaptureLayout, C3dError> {
+        let mut reader = c3d::open(path)?;
+        let info = reader.info.clone();
+        let indices = fitter
+            .set
+            .indices_in(&info.labels)
+            .map_err(|label| C3dError::MissingMarker { label, available: info.labels.join(", ") })?;
+        let grip = info.labels.iter().position(|l| is_grip_label(l));
+        let mut layout = CaptureLayout { rate_hz: info.rate_hz, ..CaptureLayout::default() };
+        let mut open: Vec<Option<u64>> = vec![None; indices.len()];
+        let mut frame = Frame::default();
+        let mut last_frame = info.first_frame;
+        let mut lab: Vec<Option<Vector3>> = Vec::with_capacity(indices.len());
+        while reader.next_frame(&mut frame)? {
+            let number = info.first_frame + frame.index;
+            last_frame = number;
+            lab.clear();
+            lab.extend(indices.iter().map(|&i| frame.points_m.get(i).copied().flatten()));
+            for (k, p) in lab.iter().enumerate() {
+                match (p, open[k]) {
+                    (None, None) => open[k] = Some(number),
+                    (Some(_), Some(first)) => {
+                        open[k] = None;
+                        layout.push(&fitter.set.labels[k], first, number - 1);
+                    }
+                    _ => {}
+                }
+            }
+            if let (None, Some(g)) = (&layout.club_length, grip) {
+                if let (Some(p), Ok(fit)) = (frame.points_m.get(g).copied().flatten(), fitter.fit(&lab)) {
+                    let d = (p - fit.lab_from_body.translation.vector).norm();
+                    layout.club_length = Some((info.labels[g].trim().to_string(), number, d));
+                }
+            }
+        }
+        for (k, first) in open.iter().enumerate() {
+            if let Some(first) = first {
+                layout.push(&fitter.set.labels[k], *first, last_frame);
+            }
+        }
+        Ok(layout)
+    }
+
+    fn push(&mut self, label: &str, first_frame: u64, last_frame: u64) {
+        if self.losses.len() < MAX_LOSSES {
+            self.losses.push(MarkerLoss { label: label.to_string(), first_frame, last_frame });
+        } else {
+            self.more_losses += 1;
+        }
+    }
+
+    /// The club length's refusal: a grip marker outside [`CLUB_LENGTH_M`] from the head's markers.
+    pub fn club_length_refusal(&self) -> Option<String> {
+        let (label, frame, d) = self.club_length.as_ref()?;
+        let (lo, hi) = CLUB_LENGTH_M;
+        (!(lo..=hi).contains(d)).then(|| {
+            format!(
+                "the grip marker {label} is {d:.2} m from the head's markers (frame {frame}), outside the {lo}-{hi} m \
+                 of a golf club: the markers are of another object, or the capture's units are wrong"
+            )
+        })
+    }
+
+    /// The marker losses that end within `window` frames before `frame` (or span it), said for a person.
+    pub fn losses_before(&self, frame: u64, window: u64) -> Vec<String> {
+        let ms = |n: u64| n as f64 * 1e3 / self.rate_hz.max(1e-9);
+        self.losses
+            .iter()
+            .filter(|l| l.first_frame <= frame && l.last_frame + window >= frame && l.frames() >= 2)
+            .map(|l| {
+                format!(
+                    "marker {} lost in frames {}-{} ({} frames, {:.1} ms), {} before the revealing frame {frame}",
+                    l.label,
+                    l.first_frame,
+                    l.last_frame,
+                    l.frames(),
+                    ms(l.frames()),
+                    match frame.saturating_sub(l.last_frame) {
+                        0 => "up to".to_string(),
+                        n => format!("ending {n} frames"),
+                    }
+                )
+            })
+            .collect()
+    }
+}
+
+/// The face centre's refusal: further than [`MAX_FACE_FROM_MARKERS_M`] from every marker of the head's set
+/// (`face_centre_body_m`: the club's face centre in the tracked body's frame, through `club_from_body`).
+///
+/// [`MAX_FACE_FROM_MARKERS_M`]: crate::kinematics::guards::MAX_FACE_FROM_MARKERS_M
+pub fn face_from_markers_refusal(set: &crate::kinematics::MarkerSet, face_centre_body_m: &Vector3) -> Option<String> {
+    use crate::kinematics::guards::MAX_FACE_FROM_MARKERS_M;
+    let (label, d) = set
+        .labels
+        .iter()
+        .zip(&set.body_m)
+        .map(|(l, p)| (l, (p - face_centre_body_m).norm()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    (d > MAX_FACE_FROM_MARKERS_M).then(|| {
+        format!(
+            "the face centre is {d:.2} m from the nearest marker of the head's set ({label}), more than the \
+             {MAX_FACE_FROM_MARKERS_M} m a face centre can be from markers on its head: the calibration's \
+             club_from_body is wrong (`impactd calibrate club`, docs/c3d.md)"
+        )
+    })
+}
