@@ -19,6 +19,8 @@ pub struct BallTrackerConfig {
 }
 
 impl BallTrackerConfig {
+    /// The rig's fixed ball position (world, m) with a hitting area of 0.5 m around it and 1 mm between
+    /// consecutive observations for a ball at rest.
     pub fn new(fallback_m: Vector3) -> Self {
         BallTrackerConfig { fallback_m, max_distance_m: 0.5, at_rest_m: 0.001 }
     }
@@ -27,7 +29,9 @@ impl BallTrackerConfig {
 /// Why an observation changed nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BallIgnored {
+    /// No position, or a non-finite one.
     Occluded,
+    /// Further than [`BallTrackerConfig::max_distance_m`] from the fixed position.
     OutsideHittingArea,
     /// Moving (or the first observation after a gap): it sets nothing until the next one agrees with it.
     Moving,
@@ -47,12 +51,14 @@ impl BallIgnored {
 /// The tracked ball's state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BallTracker {
+    /// How observations are accepted.
     pub config: BallTrackerConfig,
     previous: Option<Vector3>,
     at_rest: Option<Vector3>,
 }
 
 impl BallTracker {
+    /// A tracker that has seen no ball yet: [`position`](Self::position) gives the fallback.
     pub fn new(config: BallTrackerConfig) -> Self {
         BallTracker { config, previous: None, at_rest: None }
     }

@@ -13,8 +13,12 @@ pub use super::normal_factor::{NormalFactor, MAX_DEGREE};
 /// One pose at a time relative to the fit's reference (s).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimedPose {
+    /// Time relative to the fit's reference (s; the estimator uses the revealing frame, so pre-impact frames
+    /// are negative).
     pub t_s: Real,
+    /// The fitted point's position (m; the estimator fits the face centre in the world).
     pub position_m: Vector3,
+    /// The body's orientation (the estimator's `world_from_club` rotation).
     pub orientation: UnitQuaternion,
 }
 
@@ -28,20 +32,26 @@ pub struct PoseFit {
     rot: [Vector3; MAX_DEGREE + 1],
     rot_degree: usize,
     r_ref: UnitQuaternion,
-    /// RMS residuals of the fit.
+    /// RMS over the frames of the position residual vectors' lengths (m).
     pub residual_rms_m: Real,
+    /// RMS over the frames of the rotation-vector residuals' lengths (rad).
     pub residual_rms_rad: Real,
-    /// The position and rotation fits' normal factors, for their covariance.
+    /// The position fit's normal factor, for its covariance.
     pub position_factor: NormalFactor,
+    /// The rotation fit's normal factor, for its covariance.
     pub rotation_factor: NormalFactor,
 }
 
 /// The state of the fitted motion at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PoseAt {
+    /// The fitted point's position (m), in the frame of the fitted poses.
     pub position_m: Vector3,
+    /// Its velocity, the position polynomial's derivative (m/s).
     pub velocity_mps: Vector3,
+    /// The orientation `R(t) = R_ref Exp(θ(t))`.
     pub orientation: UnitQuaternion,
+    /// The angular velocity `ω = R(t) J_r(θ) θ'(t)` in the frame the orientations map into (rad/s).
     pub angular_velocity_radps: Vector3,
 }
 

@@ -28,6 +28,7 @@ pub const DEFAULT_REJECT_M: Real = 0.003;
 /// A pose fitted from markers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyFit {
+    /// The body's pose in the lab frame: takes the set's body-frame positions (m) onto the seen markers.
     pub lab_from_body: Isometry3,
     /// Root-mean-square distance of the markers used from their fitted places (m).
     pub residual_m: Real,
@@ -40,28 +41,46 @@ pub struct BodyFit {
 /// Why a frame gave no pose: fewer than 3 valid markers (the frame is occluded).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FitFailure {
+    /// Fewer than 3 of the set's markers were seen.
     #[error("{seen} of the set's markers seen, a pose needs 3 valid")]
-    TooFew { seen: u32 },
+    TooFew {
+        /// The set's markers seen (finite coordinates).
+        seen: u32,
+    },
+    /// Enough markers were seen, but rejecting those off their fitted places left fewer than 3.
     #[error(
         "{seen} of the set's markers seen, {rejected} rejected by their residual ({worst_mm:.2} mm over the \
          {reject_mm:.2} mm limit): {} valid, a pose needs 3",
         seen - rejected
     )]
-    Rejected { seen: u32, rejected: u32, worst_mm: Real, reject_mm: Real },
+    Rejected {
+        /// The set's markers seen (finite coordinates).
+        seen: u32,
+        /// The markers rejected by their residual, the last one with 3 valid included.
+        rejected: u32,
+        /// The largest residual of the last fit, over 3 markers (mm).
+        worst_mm: Real,
+        /// The limit it exceeded, [`MarkerFitter::reject_m`] (mm).
+        reject_mm: Real,
+    },
 }
 
 /// Fits one marker set, frame after frame.
 #[derive(Debug, Clone)]
 pub struct MarkerFitter {
+    /// The body's markers and their body-frame positions.
     pub set: MarkerSet,
+    /// How far a marker may sit from its fitted place before it is rejected (m).
     pub reject_m: Real,
 }
 
 impl MarkerFitter {
+    /// A fitter of `set` rejecting markers more than [`DEFAULT_REJECT_M`] off their fitted places.
     pub fn new(set: MarkerSet) -> Self {
         MarkerFitter { set, reject_m: DEFAULT_REJECT_M }
     }
 
+    /// The same fitter with another rejection distance (m).
     pub fn with_reject_m(mut self, reject_m: Real) -> Self {
         self.reject_m = reject_m;
         self

@@ -30,16 +30,31 @@ use crate::math::{Real, Vector3};
 /// Why a marker set could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MarkerSetError {
+    /// The text is not TOML of the set's form (`[markers]`, optional `[face]`, nothing else).
     #[error("not a marker set: {0}")]
     Toml(#[source] Box<toml::de::Error>),
+    /// Fewer than 3 markers (the count given).
     #[error("a marker set needs at least 3 markers, this one has {0}")]
     TooFew(usize),
+    /// More than [`MAX_MARKERS`] markers (the count given).
     #[error("a marker set has at most {MAX_MARKERS} markers, this one has {0}")]
     TooMany(usize),
+    /// One marker (or the `[face]` table) is unusable.
     #[error("marker `{label}`: {reason}")]
-    Marker { label: String, reason: String },
+    Marker {
+        /// The marker's label, or `[face]`.
+        label: String,
+        /// What is wrong with it: an empty label, a position (or face centre) that is not finite metres within
+        /// 2 m of the body's origin, or a face normal that is not finite or is zero.
+        reason: String,
+    },
+    /// The markers are too near one line (under 1 mm off it) to give an orientation.
     #[error("the markers lie on one line (spread {spread_mm:.2} mm off it): no orientation can be fitted")]
-    Collinear { spread_mm: Real },
+    Collinear {
+        /// The largest distance of a marker from the line through the two markers furthest apart (mm).
+        spread_mm: Real,
+    },
+    /// Two labels are the same once trimmed: the earlier one (trimmed) and the later one as given.
     #[error("marker labels `{0}` and `{1}` are the same once trailing spaces are trimmed")]
     Duplicate(String, String),
 }
@@ -71,6 +86,7 @@ struct FaceFile {
 /// The face as a marker set's `[face]` states it, in the body frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StatedFace {
+    /// The face centre in the body frame (m).
     pub centre_m: Vector3,
     /// Unit outward normal.
     pub normal: Vector3,
@@ -154,10 +170,12 @@ impl MarkerSet {
         out
     }
 
+    /// The number of markers.
     pub fn len(&self) -> usize {
         self.labels.len()
     }
 
+    /// Whether the set has no markers (never true of a set built by [`new`](Self::new)).
     pub fn is_empty(&self) -> bool {
         self.labels.is_empty()
     }

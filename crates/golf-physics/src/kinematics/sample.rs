@@ -21,6 +21,7 @@ pub struct ClubheadSample {
 /// Identity by default: the rig reports the club's CG pose in the world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Calibration {
+    /// The lab frame's pose in the world frame: takes lab coordinates (m) to world coordinates.
     pub world_from_lab: Isometry3,
     /// The tracked body's pose in the club frame.
     pub club_from_body: Isometry3,
@@ -49,8 +50,11 @@ impl Calibration {
 /// A sample after validation and calibration: the club frame's pose in the world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClubPose {
+    /// The rig's frame number of the sample.
     pub frame: u64,
+    /// Capture time on the rig's clock (ns).
     pub t_ns: u64,
+    /// The club frame's pose (origin at the head's CG) in the world frame (m).
     pub world_from_club: Isometry3,
 }
 

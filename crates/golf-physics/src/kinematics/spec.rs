@@ -7,10 +7,29 @@ use crate::math::Real;
 /// Why an estimator's numbers are unusable.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum EstimatorSpecError {
+    /// A fit's polynomial degree is above [`MAX_DEGREE`].
     #[error("{what} degree {degree} is above the maximum {max}")]
-    DegreeTooHigh { what: &'static str, degree: usize, max: usize },
+    DegreeTooHigh {
+        /// Which fit: `position` or `rotation`.
+        what: &'static str,
+        /// The degree asked for.
+        degree: usize,
+        /// The highest degree a fit supports ([`MAX_DEGREE`]).
+        max: usize,
+    },
+    /// A fit's frame count is not above its degree, or is above 64.
     #[error("{what} frames must be within {min} and 64 for degree {degree}, got {frames}")]
-    FrameCount { what: &'static str, frames: usize, degree: usize, min: usize },
+    FrameCount {
+        /// Which fit: `position` or `rotation`.
+        what: &'static str,
+        /// The frame count asked for.
+        frames: usize,
+        /// The fit's degree.
+        degree: usize,
+        /// The fewest frames that degree needs (`degree + 1`).
+        min: usize,
+    },
+    /// `rotation_frames` is above `frames`.
     #[error("rotation frames must not exceed position frames")]
     RotationFrames,
 }
@@ -19,18 +38,24 @@ pub enum EstimatorSpecError {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EstimatorSpec {
+    /// The estimator's name as [`by_name`](Self::by_name) reads it (`linear2`, `poly`, `arc` or a custom
+    /// `poly:...`, `poly@...`, `arc@...`), reported with each estimate.
     pub name: String,
     /// Frames of the position fit (the newest pre-impact ones).
     pub frames: usize,
+    /// Degree of the position polynomial in time (at most [`MAX_DEGREE`]; 1 for `linear2`).
     pub position_degree: usize,
     /// Frames of the orientation fit (at most `frames`).
     pub rotation_frames: usize,
+    /// Degree of the orientation's polynomial: the rotation vector relative to the newest frame, in time (at most
+    /// [`MAX_DEGREE`]).
     pub rotation_degree: usize,
     /// When set, the fits use the pre-impact frames within this time span instead of a fixed count (at most
     /// `frames` / `rotation_frames`), and each degree is capped at half the frames minus one, so one spec
     /// serves every capture rate (ms).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub window_ms: Option<Real>,
+    /// With `window_ms` set, the orientation fit's own time span (ms); unset, it uses `window_ms`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation_window_ms: Option<Real>,
     /// When set, the club speed comes from a fit of the path length over this span ([`PathSpeedFit`](super::path_speed::PathSpeedFit)) and the
@@ -48,7 +73,9 @@ pub struct EstimatorSpec {
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PathSpeedSpec {
+    /// The span of the newest pre-impact frames whose path length is fitted (ms).
     pub window_ms: Real,
+    /// Degree of the path length's polynomial in time (capped at half the span's frames minus one).
     pub degree: usize,
 }
 
@@ -160,6 +187,7 @@ impl EstimatorSpec {
         }
     }
 
+    /// The named estimators [`by_name`](Self::by_name) knows besides the custom `poly:`, `poly@` and `arc@` forms.
     pub const NAMES: [&'static str; 3] = ["linear2", "poly", "arc"];
 
     /// Checks the numbers are usable.

@@ -16,22 +16,63 @@ use crate::math::{Isometry3, Real, Translation3Ext};
 /// Why a sample was not accepted.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum Reject {
+    /// A position or orientation component is NaN or infinite.
     #[error("non-finite field `{field}`")]
-    NonFinite { field: &'static str },
+    NonFinite {
+        /// The sample's field that holds it (`position_m` or `orientation`).
+        field: &'static str,
+    },
+    /// The orientation's norm is further from 1 than [`TrackLimits::quaternion_tolerance`].
     #[error("orientation is not a unit quaternion (norm {norm:.4})")]
-    NotUnitQuaternion { norm: Real },
+    NotUnitQuaternion {
+        /// The quaternion's norm as sent.
+        norm: Real,
+    },
+    /// The position is further from the lab origin than [`TrackLimits::max_distance_m`].
     #[error("position {distance_m:.1} m from the lab origin is implausible (millimetres sent as metres?)")]
-    OutOfRange { distance_m: Real },
+    OutOfRange {
+        /// The position's distance from the lab origin (m).
+        distance_m: Real,
+    },
+    /// The sample has the same capture time as the previous frame.
     #[error("duplicate frame {frame} (t_ns {t_ns})")]
-    Duplicate { frame: u64, t_ns: u64 },
+    Duplicate {
+        /// The sample's frame number.
+        frame: u64,
+        /// The capture time it shares with the previous frame (ns, rig clock).
+        t_ns: u64,
+    },
+    /// The sample's capture time is before the previous frame's (held as a candidate for a new time base).
     #[error("frame {frame} goes back in time ({back_ns} ns before the previous)")]
-    Backwards { frame: u64, back_ns: u64 },
+    Backwards {
+        /// The sample's frame number.
+        frame: u64,
+        /// How far its capture time is before the previous frame's (ns).
+        back_ns: u64,
+    },
+    /// The calibrated club position moved faster than [`TrackLimits::max_speed_mps`] since the newest pose.
     #[error("implausible jump: {speed_mps:.0} m/s since the previous frame")]
-    Jump { speed_mps: Real },
+    Jump {
+        /// The speed the move implies: the distance between the two club-frame origins (world) over the time
+        /// between them (m/s).
+        speed_mps: Real,
+    },
+    /// The sample is further ahead of the previous frame than [`TrackLimits::max_ahead_s`] (held as a candidate
+    /// for a new time base).
     #[error("frame {frame} is {ahead_ns} ns ahead of the rig's time base (held as an outlier)")]
-    Outlier { frame: u64, ahead_ns: u64 },
+    Outlier {
+        /// The sample's frame number.
+        frame: u64,
+        /// How far its capture time is after the previous frame's (ns).
+        ahead_ns: u64,
+    },
+    /// The sample agrees with a held candidate for a new time base, which fewer than
+    /// [`TrackLimits::resync_frames`] consecutive samples confirm so far.
     #[error("frame {frame} is on a new time base; waiting for it to be confirmed")]
-    Resyncing { frame: u64 },
+    Resyncing {
+        /// The sample's frame number.
+        frame: u64,
+    },
 }
 
 impl Reject {
@@ -90,8 +131,11 @@ impl Default for TrackLimits {
 /// What the track did with one sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Accepted {
-    /// A new pose (with the number of frames missing before it).
-    Pose { dropped_before: u64 },
+    /// A new pose.
+    Pose {
+        /// Frames missing between it and the previous accepted or occluded sample, by their frame numbers.
+        dropped_before: u64,
+    },
     /// The rig flagged the frame occluded; nothing was added.
     Occluded,
 }
@@ -99,9 +143,13 @@ pub enum Accepted {
 /// Counts over the life of a track.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct TrackCounts {
+    /// Samples added as poses.
     pub accepted: u64,
+    /// Samples the rig flagged occluded (counted, no pose added).
     pub occluded: u64,
+    /// Frames missing between consecutive accepted or occluded samples, from the gaps in their frame numbers.
     pub dropped: u64,
+    /// Samples refused with a [`Reject`].
     pub rejected: u64,
     /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
     pub resets: u64,
@@ -116,10 +164,12 @@ pub struct Track {
     last_frame: Option<(u64, u64)>,
     /// A sample off the current time base, and how many consecutive samples agree with it.
     candidate: Option<(u64, u32)>,
+    /// What the track has done with the samples pushed so far.
     pub counts: TrackCounts,
 }
 
 impl Track {
+    /// An empty track whose samples `calibration` takes to club poses in the world, checked against `limits`.
     pub fn new(calibration: Calibration, limits: TrackLimits) -> Self {
         Track {
             limits,

@@ -38,13 +38,16 @@ use crate::math::{skew, Isometry3, Matrix3, Point3, Real, SMatrix, Translation3E
 /// (zero: the calibration reported none).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct CalibrationSigma {
+    /// The face centre's place, per axis (m): `σ_p`.
     pub position_m: Real,
+    /// The head's orientation, per axis of its rotation vector (rad): `σ_a`.
     pub angle_rad: Real,
 }
 
 /// The uncertainty of one estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EstimateUncertainty {
+    /// The covariance `Σ_d = D E Σ_x Eᵀ Dᵀ` of the delivery's eleven parameters (SI units).
     pub delivery: DeliveryCovariance,
     /// The impact instant's standard deviation (s).
     pub t_impact_sigma_s: Real,

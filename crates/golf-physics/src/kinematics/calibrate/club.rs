@@ -12,13 +12,15 @@ use super::{fit_plane, CalibrationError};
 /// Face markers of a club calibration (lab frame, m, marker centres, stuck on the face).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceMarkers {
-    /// Along a score line: the heel end and the toe end.
+    /// The marker at the heel end of a score line.
     pub heel_m: Vector3,
+    /// The marker at the toe end of the same score line.
     pub toe_m: Vector3,
     /// Further markers on the face (at least one, off the heel-toe line).
     pub others_m: Vec<Vector3>,
     /// A marker on the face centre; without one, the face markers' centroid is taken as the face centre.
     pub centre_m: Option<Vector3>,
+    /// The markers' radius (m): their centres sit this far off the face along its normal.
     pub marker_radius_m: Real,
 }
 
@@ -33,21 +35,30 @@ pub enum FaceFrom {
     Pointer,
     /// The marker set's `[face]`; `toe_measured` when shaft markers fixed its turn about the normal, else the toe
     /// was taken as level at address (the club file's lie).
-    MarkerSet { toe_measured: bool },
+    MarkerSet {
+        /// Shaft markers fixed the face's turn about its normal.
+        toe_measured: bool,
+    },
 }
 
 /// What a club calibration found, in the body frame and at address in the world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClubCalibration {
+    /// The tracked body's pose in the club frame (origin at the head's CG; m): the rig's calibration.
     pub club_from_body: Isometry3,
+    /// The club file's face centre in the body frame (m).
     pub face_centre_body_m: Vector3,
+    /// The club file's face normal `n0` in the body frame (unit).
     pub face_normal_body: Vector3,
+    /// How the face was found.
     pub face: FaceFrom,
     /// At address (world frame): the face normal's elevation (loft), the toe axis's elevation (toe up +, 0 at the
     /// club file's lie) and the face normal's heading right of the target line (face angle, + toward +z). Measured when
     /// the face is; the assumption's own values (the club file's loft, 0, 0) when it is assumed.
     pub loft_deg: Real,
+    /// The toe axis's elevation at address (deg, toe up +; see `loft_deg`).
     pub toe_up_deg: Real,
+    /// The face normal's heading right of the target line at address (deg, + toward +z; see `loft_deg`).
     pub face_angle_deg: Real,
 }
 

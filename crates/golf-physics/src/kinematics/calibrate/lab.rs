@@ -22,7 +22,12 @@ pub const MAX_BALL_HEIGHT_M: Real = 0.15;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Target {
     /// Two markers on the target line: the one nearer the golfer, and the one toward the target.
-    Line { rear_m: Vector3, front_m: Vector3 },
+    Line {
+        /// The marker nearer the golfer (lab, m).
+        rear_m: Vector3,
+        /// The marker toward the target (lab, m).
+        front_m: Vector3,
+    },
     /// A lab axis (unit vector) toward the target, laid into the floor.
     Axis(Vector3),
 }
@@ -39,6 +44,7 @@ pub enum BallAt {
 /// The markers of a lab calibration (lab frame, m, marker centres).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LabMarkers {
+    /// Where the target is.
     pub target: Target,
     /// On the floor (at least 3, spread off one line; may include the target-line markers), with their labels.
     pub floor: Vec<(String, Vector3)>,
@@ -46,8 +52,11 @@ pub struct LabMarkers {
     pub others: Vec<(String, Vector3)>,
     /// The stated up axis, if any: a check on the capture, or the side when no marker stands off the floor.
     pub lab_up: Option<Vector3>,
+    /// Where the ball is: the world's origin.
     pub ball: BallAt,
+    /// The markers' radius (m): the floor lies this far below the plane of the floor markers' centres.
     pub marker_radius_m: Real,
+    /// The ball's radius (m): its centre's height above the floor for [`BallAt::RearMarker`].
     pub ball_radius_m: Real,
 }
 
@@ -55,7 +64,12 @@ pub struct LabMarkers {
 #[derive(Debug, Clone, PartialEq)]
 pub enum UpFrom {
     /// From `count` markers off the floor, all on one side; `highest` is the furthest (label, m).
-    Markers { count: usize, highest: (String, Real) },
+    Markers {
+        /// The markers off the floor on its up side (more than [`OFF_FLOOR_M`] from its plane).
+        count: usize,
+        /// The one furthest from the floor markers' plane: its label and that distance (m).
+        highest: (String, Real),
+    },
     /// From the stated axis: no marker stood off the floor to say.
     Stated,
 }
@@ -63,12 +77,15 @@ pub enum UpFrom {
 /// What a lab calibration found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LabCalibration {
+    /// The lab frame's pose in the world: y up the floor's normal, x toward the target, origin at the ball's centre.
     pub world_from_lab: Isometry3,
     /// The up axis (the floor's normal) in the lab.
     pub up_lab: Vector3,
+    /// How the up side of the floor was found.
     pub up_from: UpFrom,
-    /// The floor markers' spread across their best line (RMS, m) and their largest distance off their plane (m).
+    /// The floor markers' spread across their best-fit line (RMS, m).
     pub floor_spread_m: Real,
+    /// The floor markers' largest distance off their plane (m).
     pub floor_off_max_m: Real,
     /// The ball's centre above the floor (m).
     pub ball_height_m: Real,

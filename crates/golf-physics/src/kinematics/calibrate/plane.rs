@@ -8,6 +8,7 @@ use super::CalibrationError;
 /// eigenvalue), and what says how well the points determine it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlaneFit {
+    /// The points' mean, a point of the plane (in the points' frame, m).
     pub centroid: Vector3,
     /// Unit normal; its sign is the caller's to choose.
     pub normal: Vector3,

@@ -65,17 +65,22 @@ pub fn pointer_tip(markers: &[Vector3], tip: &TipOffset) -> Result<Vector3, Cali
 /// The three touches of the pointer's tip, in the club body's frame (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Touches {
+    /// The touch at the face centre.
     pub centre_m: Vector3,
-    /// The leading edge's heel end and toe end.
+    /// The touch at the leading edge's heel end.
     pub heel_m: Vector3,
+    /// The touch at the leading edge's toe end.
     pub toe_m: Vector3,
 }
 
 /// The face located in the club body's frame: its centre, its outward normal and its toe axis (unit vectors).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FaceInBody {
+    /// The face centre (m).
     pub centre_m: Vector3,
+    /// The face's outward normal at the centre (unit): the club file's `n0`, seen in the body frame.
     pub normal: Vector3,
+    /// The toe axis (unit, across the normal): the club file's `t0`, seen in the body frame.
     pub toe: Vector3,
 }
 

@@ -13,13 +13,15 @@ pub const DEFAULT_STATIC_LIMIT_M: Real = 0.002;
 /// One marker of a static trial.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StaticMarker {
+    /// The marker's label.
     pub label: String,
     /// Mean position over the frames where the marker is valid (lab, m).
     pub mean_m: Vector3,
     /// The frames it is valid in.
     pub frames: usize,
-    /// The furthest it sits from its mean in any of them (m), and that frame's index in the capture.
+    /// The furthest it sits from its mean in any of them (m).
     pub moved_m: Real,
+    /// The frame it sits furthest from its mean in, as its index in the capture.
     pub moved_at: u64,
 }
 
