@@ -2,12 +2,16 @@
 //! TrackMan's metrics per group (count, mean, SD, median), the gaps between clubs, and the mishits flagged (and,
 //! when the user says so, excluded). Pure: the shots come in as [`LaunchPrediction`]s, read by the caller.
 
+pub mod foresight;
+pub mod labelled_header;
+pub mod measured;
 pub mod metrics;
 pub mod shot_table;
 pub mod stats;
 pub mod trackman_csv;
 pub mod trackman_report;
 pub mod trackman_rows;
+pub mod uneekor;
 
 pub use metrics::{Metric, Quantity, Units, METRICS};
 pub use stats::{summarize, Gap, GroupBy, GroupSummary, MetricStats, Outlier, SessionSummary, ShotId};
