@@ -2,6 +2,7 @@
 
 #![allow(clippy::unwrap_used)]
 
+mod camera_monitors;
 mod cli;
 mod doc_links;
 mod examples_realistic;
