@@ -296,4 +296,6 @@ impl ImpactModel for ImpulseModel {
 }
 
 #[cfg(test)]
+mod closed_forms;
+#[cfg(test)]
 mod tests;
