@@ -15,8 +15,8 @@ use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name
 use impactd::offline::identify::cost::predict_all;
 use impactd::offline::identify::trackman_reading::{at_face_centre, through_spin_relation};
 use impactd::offline::identify::DatasetLine;
-use impactd::session::trackman_csv::{RowLabels, SkippedRows};
 use impactd::session::measured;
+use impactd::session::trackman_csv::{RowLabels, SkippedRows};
 
 /// One club's shots and each model's accuracy on them.
 #[derive(Debug, serde::Serialize)]

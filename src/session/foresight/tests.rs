@@ -17,7 +17,10 @@ fn each_sign_reads_in_impactds_convention() {
     // Centre, square.
     assert_eq!((d(0).impact_h_mm, d(0).impact_v_mm, d(0).face_angle_deg, d(0).club_path_deg), (0.0, 0.0, 0.0, 0.0));
     assert_eq!((d(0).club_speed_mph, d(0).attack_angle_deg, d(0).dynamic_loft_deg), (103.0, 2.0, Some(14.0)));
-    assert_eq!((m(0).ball_speed_mph, m(0).launch_angle_deg, m(0).backspin_rpm, m(0).carry_yd), (150.0, 12.0, 2500.0, Some(250.0)));
+    assert_eq!(
+        (m(0).ball_speed_mph, m(0).launch_angle_deg, m(0).backspin_rpm, m(0).carry_yd),
+        (150.0, 12.0, 2500.0, Some(250.0))
+    );
     // Foresight's toe- is impactd's toward-the-toe +; its L- side spin a draw (sidespin -), its R+ push right +.
     assert_eq!(d(1).impact_h_mm, 15.0);
     assert_eq!((m(1).sidespin_rpm, m(1).launch_direction_deg), (-400.0, 1.5));
