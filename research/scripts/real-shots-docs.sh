@@ -278,12 +278,14 @@ PY
 python3 - "$BIN" "$OUT" <<'PY'
 import json, subprocess, sys
 bin, out = sys.argv[1], sys.argv[2]
-preset = open("clubs/presets/iron7.toml").read() + "shaft_heel_toe_inertia_g_cm2 = 594.0\n"
+# The preset's top-level fields and the shaft's share, then its own [slip] section or the one tried here.
+top, _, own_slip = open("clubs/presets/iron7.toml").read().partition("\n[slip]")
+preset = top + "\nshaft_heel_toe_inertia_g_cm2 = 594.0\n"
 rows = []
 for model, e_y, cor in [("standard", None, 0.83), ("slip", 0.0183, 0.83), ("slip", 0.10, 0.83), ("slip", 0.20, 0.83),
                         ("slip", 0.20, 0.78), ("slip", 0.30, 0.78)]:
     club = f"{out}/tour.toml"
-    open(club, "w").write(preset + (f"[slip]\ne_y = {e_y}\ne_z = 0.0\n" if e_y is not None else ""))
+    open(club, "w").write(preset + (f"[slip]\ne_y = {e_y}\ne_z = 0.0\n" if e_y is not None else "[slip]" + own_slip))
     def run(dl):
         line = json.dumps({"club_speed_mph": 90, "attack_angle_deg": -4.3, "dynamic_loft_deg": dl}) + "\n"
         p = subprocess.run([bin, "predict", "--club", club, "--model", model, "--cor", str(cor)], input=line,

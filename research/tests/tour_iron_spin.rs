@@ -19,13 +19,17 @@ use impactd::impact::tour::{centred_delivery, dynamic_loft_for_launch, TOUR_IRON
 use impactd::impact::{Equipment, LaunchMetrics};
 
 /// (dynamic loft, launch metrics) of `model` on the seed's 7-iron with `extra` (fields, then sections) added, at
-/// the tour launch.
+/// the tour launch (an extra `[slip]` section in place of the preset's).
 fn at_tour_launch(model: &str, extra: &str, cor: f64) -> (f64, LaunchMetrics) {
     let dir = std::env::temp_dir().join(format!("impactd-tour-iron-{}-{model}-{cor}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("iron7.toml");
     let preset = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/clubs/presets/iron7.toml")).unwrap();
-    std::fs::write(&path, format!("{preset}\n{extra}")).unwrap();
+    // The extra fields go before the preset's sections; an extra `[slip]` replaces the preset's.
+    let (fields, sections) = extra.find('[').map_or((extra, ""), |i| extra.split_at(i));
+    let (top, slip) = preset.split_at(preset.find("\n[slip]").unwrap_or(preset.len()));
+    let slip = if sections.contains("[slip]") { "" } else { slip };
+    std::fs::write(&path, format!("{top}\n{fields}{slip}\n{sections}")).unwrap();
     let club = load_club(path.to_str().unwrap()).unwrap();
     let eq = Equipment::new(club.club.clone());
     let m = build_one(model, &club, &BuildOptions { cor, ..Default::default() }).unwrap();

@@ -121,30 +121,20 @@ pub fn load_files(files: &[PathBuf]) -> Result<Loaded> {
         } else {
             let file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
             let mut input = std::io::BufReader::new(file);
-            // A TrackMan export says so on its first line; anything else is streamed as JSONL, a bounded line at a
-            // time.
+            // A launch monitor's export says so at its start (`session::measured`); anything else is streamed as
+            // JSONL, a bounded line at a time.
             let head = std::io::BufRead::fill_buf(&mut input).with_context(|| format!("reading {}", path.display()))?;
             let head = String::from_utf8_lossy(head).into_owned();
-            if impactd::session::trackman_report::is_trackman_report(&head) {
+            if let Some(format) = impactd::session::measured::format_of(&head) {
                 let mut text = String::new();
                 std::io::Read::read_to_string(&mut input, &mut text)
                     .with_context(|| format!("reading {}", path.display()))?;
-                let (rows, skipped) = impactd::session::trackman_report::read_labelled(&text)
-                    .with_context(|| path.display().to_string())?;
+                let (rows, skipped) = impactd::session::measured::read_labelled(format, &text)
+                    .with_context(|| format!("{} ({})", path.display(), format.describe()))?;
                 if skipped.total() > 0 {
                     eprintln!("{}: {}", path.display(), skipped.describe());
                 }
                 loaded.lines.extend(rows.into_iter().map(|(line, _)| line));
-            } else if impactd::session::trackman_csv::is_trackman_csv(&head) {
-                let mut text = String::new();
-                std::io::Read::read_to_string(&mut input, &mut text)
-                    .with_context(|| format!("reading {}", path.display()))?;
-                let (lines, skipped) =
-                    impactd::session::trackman_csv::read(&text).with_context(|| path.display().to_string())?;
-                if skipped > 0 {
-                    eprintln!("{}: {skipped} rows without club or ball data skipped", path.display());
-                }
-                loaded.lines.extend(lines);
             } else {
                 let lines = read_jsonl(input).with_context(|| path.display().to_string())?;
                 loaded.lines.extend(lines);

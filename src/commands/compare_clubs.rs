@@ -15,8 +15,8 @@ use impactd::offline::identify::by_club::{club_model_stats, preset_for_club_name
 use impactd::offline::identify::cost::predict_all;
 use impactd::offline::identify::trackman_reading::{at_face_centre, through_spin_relation};
 use impactd::offline::identify::DatasetLine;
+use impactd::session::measured;
 use impactd::session::trackman_csv::{RowLabels, SkippedRows};
-use impactd::session::{trackman_csv, trackman_report};
 
 /// One club's shots and each model's accuracy on them.
 #[derive(Debug, serde::Serialize)]
@@ -56,19 +56,21 @@ pub struct ByClub {
     pub clubs: Vec<ClubReport>,
 }
 
-/// Every labelled row of the files (TrackMan CSV exports and report JSON) and the rows skipped.
+/// Every labelled row of the files (any launch monitor's export `session::measured` reads) and the rows skipped.
 fn read_rows(files: &[PathBuf]) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows)> {
     let mut rows = Vec::new();
     let mut skipped = SkippedRows::default();
     for path in files {
         let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-        let (r, s) = if trackman_report::is_trackman_report(&text) {
-            trackman_report::read_labelled(&text).with_context(|| path.display().to_string())?
-        } else if trackman_csv::is_trackman_csv(&text) {
-            trackman_csv::read_labelled(&text).with_context(|| path.display().to_string())?
-        } else {
-            bail!("{}: --by-club reads TrackMan CSV exports and TrackMan report JSON only", path.display());
+        let Some(format) = measured::format_of(&text) else {
+            bail!(
+                "{}: --by-club reads launch monitors' exports only (TrackMan CSV or report JSON, Foresight FSX CSV, \
+                 Uneekor shot CSV)",
+                path.display()
+            );
         };
+        let (r, s) = measured::read_labelled(format, &text)
+            .with_context(|| format!("{} ({})", path.display(), format.describe()))?;
         if s.total() > 0 {
             eprintln!("{}: {}", path.display(), s.describe());
         }

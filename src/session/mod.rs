@@ -2,11 +2,15 @@
 //! TrackMan's metrics per group (count, mean, SD, median), the gaps between clubs, and the mishits flagged (and,
 //! when the user says so, excluded). Pure: the shots come in as [`LaunchPrediction`]s, read by the caller.
 
+pub mod foresight;
+pub mod labelled_header;
+pub mod measured;
 pub mod metrics;
 pub mod shot_table;
 pub mod sigma;
 pub mod stats;
 pub mod trackman;
+pub mod uneekor;
 
 // TrackMan's readers and writer under their paths before they became `trackman/`'s files.
 pub use trackman::{csv as trackman_csv, report as trackman_report, rows as trackman_rows};

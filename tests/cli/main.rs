@@ -19,6 +19,7 @@ mod calibrate_club;
 mod calibrate_lab;
 #[cfg(feature = "daemon")]
 mod calibrate_static;
+mod camera_monitors;
 mod capture_guards;
 mod cli;
 mod doc_links;

@@ -93,10 +93,25 @@ mod tests {
         }
         assert!(find("putter").is_none());
         assert_eq!(find("driver").unwrap().load().unwrap().club, super::super::ClubSpec::driver());
+        // The iron7 preset's club is the seed's (Table 3.1); its file adds the slip model's obliquity law only.
         assert_eq!(find("iron7").unwrap().load().unwrap().club, super::super::ClubSpec::iron7());
         // The other irons and wedges carry the shaft's share about the heel-toe axis (research/scripts/shaft-share.py).
         for p in ["iron4", "iron5", "iron6", "iron8", "iron9", "pw", "gw", "sw", "lw"] {
             assert!(find(p).unwrap().load().unwrap().club.shaft_heel_toe_inertia_kg_m2 > 0.0, "{p}");
+        }
+    }
+
+    /// Every iron and wedge preset uses the same slip physics with its own club's numbers (issue 47): the rise of
+    /// the tangential restitution with obliquity (Cross, "Grip-slip behavior of a bouncing ball", Am. J. Phys. 70,
+    /// 2002, as the seed's chapter 2 cites it; `impact::impulse::oblique`). The `iron7` preset, the seed's head,
+    /// did not carry it, so the slip model's spin changed character between the 6-, 7- and 8-iron.
+    #[test]
+    fn every_iron_and_wedge_carries_the_obliquity_law() {
+        for p in ["iron4", "iron5", "iron6", "iron7", "iron8", "iron9", "pw", "gw", "sw", "lw"] {
+            let loaded = find(p).unwrap().load().unwrap();
+            let tuning = crate::impact::impulse::ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap();
+            let rise = tuning.slip_oblique.unwrap_or_else(|| panic!("{p}: no obliquity law for the slip model"));
+            assert_eq!((rise.from_deg, rise.full_deg, rise.e_t), (32.8, 40.0, 0.25), "{p}");
         }
     }
 

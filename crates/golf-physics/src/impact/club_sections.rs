@@ -18,8 +18,8 @@ pub const SECTIONS: &[SectionDoc] = &[
         fields: &[
             "e_y, e_z; optionally oblique_from_deg, oblique_full_deg,",
             "oblique_e_t together (Cross's grip rising with the strike's",
-            "obliquity, impact/impulse/oblique.rs; the iron and wedge",
-            "presets but iron7 carry it, research/wedge-spin.md)",
+            "obliquity, impact/impulse/oblique.rs; every iron and wedge",
+            "preset carries it, research/wedge-spin.md)",
         ],
     },
     SectionDoc {

@@ -320,4 +320,6 @@ impl ImpactModel for ImpulseModel {
 }
 
 #[cfg(test)]
+mod closed_forms;
+#[cfg(test)]
 mod tests;
