@@ -207,7 +207,6 @@ fn check_pipeline(args: &ImportArgs) -> Result<Option<impactd::pipeline::Pipelin
     Ok(Some(impactd::pipeline::Pipeline::new(setup)))
 }
 
-
 /// One line on what an import saw.
 pub fn describe(c: &ImportCounts, format: &impactd::captures::Format) -> String {
     if format.markers.is_none() {

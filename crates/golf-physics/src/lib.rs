@@ -61,11 +61,6 @@ pub mod face;
 pub mod flight;
 pub mod impact;
 pub mod integrate;
-// Not every public field and variant of `kinematics::estimate` and `kinematics::detect` has its own doc yet
-// (their types and functions say what their fields are, several to one comment). The other kinematics files
-// document every public item, but this allow covers the whole module until those two do; the lint holds for
-// the rest of the crate.
-#[allow(missing_docs)]
 pub mod kinematics;
 pub mod math;
 pub mod pipeline;

@@ -47,7 +47,11 @@ pub struct SpeedStep {
     pub t_from_contact_s: Real,
     /// Its standard deviation (s).
     pub sigma_s: Real,
+    /// The face centre's speed along its path before the step, at the geometric contact (m/s): the slope there
+    /// of the line fitted to the frames before the split.
     pub speed_before_mps: Real,
+    /// The same after the step (m/s): the slope at the geometric contact of the line fitted to the frames after
+    /// the split.
     pub speed_after_mps: Real,
     /// The frame interval (s).
     pub interval_s: Real,
@@ -68,14 +72,34 @@ impl SpeedStep {
 /// Why no step was placed.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum StepUnresolved {
+    /// Fewer than [`MIN_FRAMES_PER_SIDE`] frames on a side of the geometric contact, or no split of the frames
+    /// that the model could be fitted to.
     #[error("{before} frames before and {after} after the contact, need {MIN_FRAMES_PER_SIDE} on each side")]
-    TooFewFrames { before: usize, after: usize },
+    TooFewFrames {
+        /// The frames within [`WINDOW_S`] before the geometric contact (at most [`MAX_FRAMES_PER_SIDE`]).
+        before: usize,
+        /// The frames within [`WINDOW_S`] after it and more than [`CONTACT_S`] past it.
+        after: usize,
+    },
     #[error(
         "the step is below the noise: the speed drops {drop_mps:.2} +- {sigma_mps:.2} m/s ({drop_pct:.1} %) and \
          the lines cross +-{sigma_ms:.2} ms, against a frame interval of {interval_ms:.2} ms (need a drop of \
          {MIN_STEP_SIGMAS} sigma and a crossing within a third of the interval)"
     )]
-    BelowNoise { drop_mps: Real, sigma_mps: Real, drop_pct: Real, sigma_ms: Real, interval_ms: Real },
+    /// The best fit's speed drop is not above [`MIN_STEP_SIGMAS`] of its standard deviation, or the crossing's
+    /// standard deviation is above [`MAX_SIGMA_OF_INTERVAL`] of the frame interval.
+    BelowNoise {
+        /// The speed drop across the step (m/s; the before line's slope less the after line's).
+        drop_mps: Real,
+        /// Its standard deviation (m/s).
+        sigma_mps: Real,
+        /// The drop as a percentage of the speed before it.
+        drop_pct: Real,
+        /// The standard deviation of the lines' crossing (ms).
+        sigma_ms: Real,
+        /// The frame interval: the median time between the frames used (ms).
+        interval_ms: Real,
+    },
 }
 
 /// The path length `s(t)` on both sides of a split: `a1 + b1 t + c t^2` before it and `a2 + b2 t + c t^2` after it

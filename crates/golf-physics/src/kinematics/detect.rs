@@ -20,11 +20,17 @@ use crate::math::{Real, Vector3};
 pub struct DetectorConfig {
     /// The ball's centre (m, world).
     pub ball_position_m: Vector3,
+    /// The ball's radius (m); the seed's ball by default.
     pub ball_radius_m: Real,
+    /// How fast the face's gap to the ball must close between the frames at the crossing for the detector to
+    /// fire (m/s): an address or a waggle is slower.
     pub min_approach_speed_mps: Real,
+    /// The face centre's distance from the ball's centre (m, world) beyond which a disarmed detector re-arms.
     pub rearm_distance_m: Real,
     /// Tolerance around the face extents for accepting a crossing (m).
     pub face_margin_m: Real,
+    /// An estimate may extrapolate at most this far past the newest pre-impact frame (s); see
+    /// [`Scene::max_extrapolation_s`].
     pub max_extrapolation_s: Real,
     /// The impact instant the user gives (`--impact-frame`, `--impact-time`): the estimate is made there, once,
     /// instead of at the geometric contact with the ball, which is then not looked for.
@@ -57,14 +63,18 @@ impl Default for DetectorConfig {
 /// A detected impact: the estimate (or why there is none) and the frame that revealed it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Detection {
+    /// The rig's frame number of the revealing frame (with a [`GivenImpact`], the first pose at or after it).
     pub reveal_frame: u64,
+    /// The revealing frame's capture time on the rig's clock (ns).
     pub reveal_t_ns: u64,
+    /// One estimator's estimate from the frames before the impact, or why it refused.
     pub result: Result<ImpactEstimate, EstimateError>,
 }
 
 /// Watches one track for impacts.
 #[derive(Debug, Clone)]
 pub struct ImpactDetector {
+    /// The settings it detects with.
     pub config: DetectorConfig,
     armed: bool,
     previous: Option<(u64, crate::face::FaceGap, Vector3)>,
@@ -75,6 +85,7 @@ pub struct ImpactDetector {
 }
 
 impl ImpactDetector {
+    /// A detector with these settings, disarmed until the face centre is `rearm_distance_m` from the ball.
     pub fn new(config: DetectorConfig) -> Self {
         ImpactDetector {
             config,

@@ -34,10 +34,23 @@ const ARC_LACK_OF_FIT_RATIO: Real = 1.3;
 /// Why an estimator refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EstimateError {
+    /// Fewer pre-impact frames than the estimator fits.
     #[error("too few good pre-impact frames: {have}, need {need}")]
-    TooFewFrames { have: usize, need: usize },
+    TooFewFrames {
+        /// The pre-impact frames there are (for a windowed estimator, those within its rotation window).
+        have: usize,
+        /// The frames the estimator needs: its `frames`, or [`EstimatorSpec::MIN_WINDOW_FRAMES`] for a window.
+        need: usize,
+    },
+    /// The contact is further from the newest pre-impact frame than [`Scene::max_extrapolation_s`].
     #[error("the newest pre-impact frame is {gap_ms:.1} ms before contact (limit {limit_ms:.1} ms)")]
-    StaleFrames { gap_ms: Real, limit_ms: Real },
+    StaleFrames {
+        /// The time from the newest pre-impact frame to the contact (ms).
+        gap_ms: Real,
+        /// The scene's [`Scene::max_extrapolation_s`] (ms).
+        limit_ms: Real,
+    },
+    /// The least-squares fit of the pre-impact poses has no unique solution.
     #[error("the fit of the pre-impact frames is singular")]
     SingularFit,
     /// The fitted motion's gap to the ball stays positive (it stops short), or is already closed at the newest
@@ -52,10 +65,22 @@ pub enum EstimateError {
             format!("it stops {gap_mm:.0} mm short of it")
         }
     )]
-    NoContact { gap_mm: Real, h_mm: Real, v_mm: Real, past: bool },
+    NoContact {
+        /// The ball surface's gap from the face surface (mm): positive when the motion stops short, not positive
+        /// when it is `past`.
+        gap_mm: Real,
+        /// The face point nearest the ball, toward the toe from the face centre (mm).
+        h_mm: Real,
+        /// The face point nearest the ball, up the face from its centre (mm).
+        v_mm: Real,
+        /// The gap is already closed at the newest pre-impact frame (and up to four frame intervals before it).
+        past: bool,
+    },
 }
 
 impl EstimateError {
+    /// The refusal's name for counts and warnings keyed by reason: `too_few_frames`, `stale_frames`,
+    /// `singular_fit` or `no_contact`.
     pub fn key(&self) -> &'static str {
         match self {
             EstimateError::TooFewFrames { .. } => "too_few_frames",
@@ -69,6 +94,8 @@ impl EstimateError {
 /// How much to trust an estimate.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Quality {
+    /// The pre-impact frames the estimate spans (for a windowed estimator, the longest of its position, arc and
+    /// speed windows).
     pub frames_used: usize,
     /// RMS residual of the position fit (mm); 0 for an exact fit (linear2).
     pub residual_rms_mm: Real,
@@ -87,7 +114,9 @@ pub struct ImpactEstimate {
     pub t_impact_ns: u64,
     /// The same, as a fraction of a nanosecond-exact offset from the revealing frame (s, negative).
     pub t_from_reveal_s: Real,
+    /// The clubhead at the contact (world frame): its pose, velocities and impact location.
     pub state: ImpactState,
+    /// How much to trust it.
     pub quality: Quality,
     /// The face centre's arc the estimate used (`arc` estimator, while it fits the frames), with times from the
     /// revealing frame: the club data of the path reuse it (`club_data::swing_arc`).
@@ -102,13 +131,16 @@ pub struct ImpactEstimate {
 /// but not kept showed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EstimateFits {
+    /// The face centre's position and the orientation fitted over the frames (times from the revealing frame).
     pub pose: PoseFit,
+    /// The path-length fit the club speed came from: a windowed estimator's `path_speed` fit, when it succeeded.
     pub speed: Option<PathSpeedFit>,
     /// The path-length fit one degree higher over the same frames, where they allow it: the club speed's bias
     /// (`kinematics::uncertainty`).
     pub speed_check: Option<PathSpeedFit>,
     /// The fitted frames' times from the revealing frame, oldest first (s; the first `frames`).
     pub frame_t_s: [Real; 64],
+    /// How many of `frame_t_s` are the fitted frames' (the estimate's [`Quality::frames_used`]).
     pub frames: usize,
     /// An arc fitted and dropped for the polynomial path.
     pub dropped_arc: Option<ArcFit>,
@@ -117,8 +149,11 @@ pub struct EstimateFits {
 /// What an estimate needs to know of the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scene<'a> {
+    /// The club's face (club frame).
     pub face: &'a Face,
+    /// The ball's centre (m, world).
     pub ball_position_m: Vector3,
+    /// The ball's radius (m).
     pub ball_radius_m: Real,
     /// Extrapolating further than this from the newest pre-impact frame is refused (s).
     pub max_extrapolation_s: Real,

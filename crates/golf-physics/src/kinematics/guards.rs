@@ -57,6 +57,7 @@ pub enum MissSide {
 }
 
 impl MissSide {
+    /// The side's name, as it is serialized: `above`, `below`, `heel`, `toe` or `short`.
     pub fn as_str(self) -> &'static str {
         match self {
             MissSide::Above => "above",
@@ -74,6 +75,7 @@ pub struct Miss {
     /// How far the ball's surface stayed from the face (mm): beyond the face's edge for a heel, toe, above or
     /// below miss, in front of the face for a short one.
     pub distance_mm: Real,
+    /// Where the ball was, seen from the face.
     pub side: MissSide,
 }
 

@@ -29,14 +29,18 @@ const SUBSTEPS: usize = 8;
 /// A swing that found no impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MissedSwing {
+    /// The rig's frame number of the swing's first frame faster than [`SWING_SPEED_M_S`].
     pub first_frame: u64,
+    /// The rig's frame number of its last frame faster than [`SWING_SPEED_M_S`].
     pub last_frame: u64,
+    /// The face centre's highest speed over the swing, from frame to frame (m/s).
     pub peak_speed_mps: Real,
     /// The frame at (or just after) the face's closest approach to the ball.
     pub closest_frame: u64,
+    /// How far the face passed from the ball at its closest, and on which side.
     pub miss: Miss,
     /// The face centre's distance from the ball at address (the last frame of the last still stretch before the
-    /// swing; m), when seen.
+    /// swing; m), when seen, with that frame's number.
     pub address: Option<(u64, Real)>,
 }
 
@@ -79,7 +83,9 @@ struct Current {
 /// A pose as the watch sees it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeenPose {
+    /// The rig's frame number of the pose.
     pub frame: u64,
+    /// Its capture time on the rig's clock (ns).
     pub t_ns: u64,
     /// The face centre (world, m).
     pub centre_m: Vector3,
