@@ -10,15 +10,15 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use super::club_put;
 use super::inputs::Route;
-use super::queue::{Incoming, InputKind};
+use super::queue::{Arrival, Incoming, Stamp};
 use super::Worker;
 use crate::daemon::config::RigConfig;
 use crate::daemon::peer_log::PeerLog;
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{DaemonConfig, DaemonError};
 use crate::wire::{self, keys, ClubSource};
 
 /// Club puts waiting for the loader; a put beyond them is refused (logged), never blocking zenoh.
@@ -125,14 +125,7 @@ fn load(
         });
         match switch {
             Ok(switch) => {
-                let incoming = Incoming {
-                    kind: InputKind::Club,
-                    received: Instant::now(),
-                    log_time_ns: wall_ns(),
-                    payload: Vec::new(),
-                    encoding: String::new(),
-                    club: Some(Box::new(switch)),
-                };
+                let incoming = Incoming::now(Arrival::Club(Box::new(switch)));
                 if tx.try_send(incoming).is_err() {
                     dropped.fetch_add(1, Ordering::Relaxed);
                     log().warn("club_queue_full", || format!("put on {key} refused: the rig's queue is full"));
@@ -147,12 +140,11 @@ fn load(
 
 impl Worker {
     /// A put's club, loaded: the rig's club from now on, recorded.
-    pub(super) fn on_club(&mut self, incoming: Incoming) {
-        let Some(switch) = incoming.club else { return };
+    pub(super) fn on_club(&mut self, at: Stamp, switch: crate::pipeline::ClubSwitch) {
         if let Some(p) = self.pipeline.as_mut() {
-            p.switch_club(*switch);
+            p.switch_club(switch);
         }
-        self.record_club(incoming.log_time_ns, ClubSource::Put, None);
+        self.record_club(at.log_time_ns, ClubSource::Put, None);
     }
 
     /// Records (and logs) the rig's club from a pipeline's change (a body's club).

@@ -44,9 +44,10 @@ mod inputs;
 mod labels;
 mod measured;
 mod queue;
+mod sample;
 mod shot_log;
 mod status;
-use queue::{Incoming, InputKind};
+use queue::{Arrival, Incoming, Stamp};
 pub mod sinks;
 mod truth;
 
@@ -135,11 +136,11 @@ pub async fn run(
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
         for (key, kind) in [
-            (keys::measured_launch(&name), InputKind::Measured),
-            (keys::session(&name), InputKind::Labels),
-            (keys::truth(&name), InputKind::Truth),
-            (keys::exclude(&name), InputKind::Exclusion),
-            (keys::ball(&name), InputKind::Ball),
+            (keys::measured_launch(&name), Arrival::Measured as fn(Vec<u8>) -> Arrival),
+            (keys::session(&name), Arrival::Labels),
+            (keys::truth(&name), Arrival::Truth),
+            (keys::exclude(&name), Arrival::Exclusion),
+            (keys::ball(&name), Arrival::Ball),
         ] {
             measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
         }
@@ -222,14 +223,11 @@ pub async fn run(
                 }
                 return;
             };
-            let incoming = Incoming {
-                kind: InputKind::Sample,
-                received,
-                log_time_ns: wall_ns(),
+            let arrival = Arrival::Sample {
                 payload: sample.payload().to_bytes().into_owned(),
                 encoding: sample.encoding().to_string(),
-                club: None,
             };
+            let incoming = Incoming { at: Stamp { received, log_time_ns: wall_ns() }, arrival };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }
@@ -360,56 +358,17 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
-        match incoming.kind {
-            InputKind::Sample => {}
-            InputKind::Measured => return self.on_measured(incoming),
-            InputKind::Labels => return self.on_labels(incoming),
-            InputKind::Truth => return self.on_truth(incoming),
-            InputKind::Club => return self.on_club(incoming),
-            InputKind::Exclusion => return self.on_exclusion(incoming),
-            InputKind::Ball => return self.on_ball(incoming),
-        }
-        let rig = self.rig.clone();
-        let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
-            Ok(m) => m,
-            Err(e) => {
-                if let Some(p) = self.pipeline.as_mut() {
-                    *p.counts.rejected.entry(e.key().to_string()).or_default() += 1;
-                    p.counts.samples += 1;
-                }
-                let bytes = incoming.payload.len();
-                self.warn(e.key(), || format!("rejected sample: {e}"));
-                // The raw payload goes to the recording beside the reason, within the budget; beyond it the
-                // payload is counted (status `rejected_not_recorded`), so a flood cannot fill the disk.
-                let keep = &incoming.payload[..bytes.min(REJECTED_KEEP_BYTES)];
-                if !self.sinks.recorder().enabled() || !self.budget.allow(keep.len()) {
-                    return;
-                }
-                let rejected = wire::RejectedInput {
-                    reason: e.to_string(),
-                    bytes,
-                    payload: String::from_utf8_lossy(keep).into_owned(),
-                };
-                self.sinks.rejected(incoming.log_time_ns, &rejected);
-                return;
-            }
-        };
-        let sample = msg.to_sample();
-        self.sinks.sample(incoming.log_time_ns, msg.t_ns, incoming.payload);
-        let mut any_event = false;
-        let received = incoming.received;
-        // Out of its slot while it runs the sample (its events are published as they come, by `self`); it is
-        // only ever taken here, so it is always back between samples.
-        let Some(mut pipeline) = self.pipeline.take() else { return };
-        pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |event| {
-            any_event = true;
-            self.on_event(&rig, event, received);
-        });
-        self.pipeline = Some(pipeline);
-        if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
-            if let Some(world_from_club) = self.pipeline.as_ref().and_then(|p| sinks::world_from_club(p, &sample)) {
-                self.sinks.club_pose(sample.t_ns, incoming.log_time_ns, world_from_club);
-            }
+        let at = incoming.at;
+        match incoming.arrival {
+            Arrival::Sample { payload, encoding } => self.on_sample(at, payload, &encoding),
+            Arrival::DecodedSample(msg) => self.on_decoded_sample(at, &msg),
+            Arrival::Measured(payload) => self.on_measured(at, payload),
+            Arrival::Labels(payload) => self.on_labels(at, &payload),
+            Arrival::Truth(payload) => self.on_truth(at, payload),
+            Arrival::Club(switch) => self.on_club(at, *switch),
+            Arrival::Exclusion(payload) => self.on_exclusion(at, &payload),
+            Arrival::Ball(payload) => self.on_ball(at, payload),
+            Arrival::DecodedBall(msg) => self.on_decoded_ball(at, msg),
         }
     }
 
