@@ -145,6 +145,11 @@ pub async fn run(
             measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
         }
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
+        let mut setup = setup;
+        // A recording or the live view draws each flight: the prediction's own flight samples its line.
+        if handle.enabled() {
+            setup.flight_line_step_s = crate::daemon::recording::channels::FLIGHT_LINE_STEP_S;
+        }
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
             rig: Arc::from(name.as_str()),
@@ -379,8 +384,11 @@ impl Worker {
             }
             Event::Impact(m) => self.sinks.impact(&m, wall_ns()),
             Event::Launch(mut l) => {
+                // The flight's sampled line (`RigSetup::flight_line_step_s`) is for the recording and the live
+                // view, never the wire: taken out before the prediction is published.
+                let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
                 l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
-                self.sinks.launch(&l, wall_ns());
+                self.sinks.launch_with_line(&l, line, wall_ns());
                 self.latency.push(l.latency_us);
                 if let Some(simulator) = &mut self.simulator {
                     simulator.offer(&l);

@@ -164,14 +164,22 @@ impl RigSinks {
         }
     }
 
-    /// Publishes and records a prediction and the line of its flight (flown by the recorder or the live view,
-    /// off the prediction path), and closes the recording's chunk (a shot is never half-written).
+    /// Publishes and records a prediction and the line of its flight, flown by the recorder or the live view
+    /// ([`RigSinks::launch_with_line`]).
     pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
+        self.launch_with_line(l, None, now_ns)
+    }
+
+    /// Publishes and records a prediction and the line of its flight (`line`: the points of the prediction's
+    /// own flight, taken out of it; without them flown by the recorder or the live view, off the prediction
+    /// path), and closes the recording's chunk (a shot is never half-written).
+    pub fn launch_with_line(&self, l: &LaunchPrediction, line: Option<Vec<[f64; 4]>>, now_ns: u64) -> Vec<u8> {
         let data = serde_json::to_vec(l).unwrap_or_default();
         self.publish(|p| &p.launch, "launch", &data);
         self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
         if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
-            self.recorder.send(crate::daemon::recording::channels::flight_record(l, flight, now_ns));
+            let points = line.map(std::sync::Arc::new);
+            self.recorder.send(crate::daemon::recording::channels::flight_record(l, flight, points, now_ns));
         }
         self.recorder.send(Record::Flush);
         data

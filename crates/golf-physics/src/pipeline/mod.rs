@@ -45,6 +45,10 @@ pub struct RigSetup {
     /// The calibration's residuals, carried into every prediction's uncertainty (zero: no calibration reports
     /// them yet).
     pub calibration_sigma: CalibrationSigma,
+    /// Sample each prediction's flight every this many seconds (`Trajectory::points`, for a drawn line) when it
+    /// is the flight of the launch as published (0: no points). The points come from the one flight that gives
+    /// the carry, so whoever draws the line need not fly the ball again.
+    pub flight_line_step_s: f64,
 }
 
 /// A club to switch to: the head, its models (built by `impact::registry`), its file, and for a tracked body
@@ -82,6 +86,7 @@ impl RigSetup {
             club_ref: None,
             bodies: BTreeMap::new(),
             calibration_sigma: CalibrationSigma::default(),
+            flight_line_step_s: 0.0,
         }
     }
 }
@@ -375,6 +380,17 @@ impl Pipeline {
                     for w in &output.warnings {
                         *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
                     }
+                    let ball = crate::flight::LaunchState {
+                        velocity_mps: launch.ball_velocity_mps,
+                        spin_radps: launch.ball_spin_radps,
+                    };
+                    // The line is of the launch as published (mirrored for a left-handed club): sampled here
+                    // only when that is the launch flown.
+                    let (v, w) = (&launch.ball_velocity_mps, &launch.ball_spin_radps);
+                    let published =
+                        output.ball_velocity_mps == [v.x, v.y, v.z] && output.ball_spin_radps == [w.x, w.y, w.z];
+                    let line_step_s = if published { self.setup.flight_line_step_s } else { 0.0 };
+                    let flight = self.setup.flight.as_ref().map(|f| f.fly(&ball, line_step_s));
                     out(Event::Launch(LaunchPrediction {
                         rig: self.setup.name.clone(),
                         shot,
@@ -389,15 +405,7 @@ impl Pipeline {
                         frames_used: est.quality.frames_used,
                         quality: est.quality.score,
                         latency_us: 0.0,
-                        flight: self.setup.flight.as_ref().map(|f| {
-                            f.fly(
-                                &crate::flight::LaunchState {
-                                    velocity_mps: launch.ball_velocity_mps,
-                                    spin_radps: launch.ball_spin_radps,
-                                },
-                                0.0,
-                            )
-                        }),
+                        flight,
                         reports: report.into(),
                         labels: self.setup.labels.clone(),
                         ball: Some(self.ball_used()),
