@@ -16,6 +16,7 @@ use super::club_put;
 use super::inputs::Route;
 use super::queue::{Arrival, Incoming, Stamp};
 use super::Worker;
+use crate::daemon::clock::Clock;
 use crate::daemon::config::RigConfig;
 use crate::daemon::peer_log::PeerLog;
 use crate::daemon::{DaemonConfig, DaemonError};
@@ -47,6 +48,7 @@ pub(super) async fn start(
     session: &zenoh::Session,
     config: &DaemonConfig,
     routes: &HashMap<String, Route>,
+    clock: &Clock,
 ) -> Result<ClubLoader, DaemonError> {
     let (tx, rx) = sync_channel::<Put>(PENDING_PUTS);
     let dirs = crate::daemon::config_club_dirs::club_dirs(config.clubs.as_ref(), config.config_dir.as_deref())?;
@@ -61,8 +63,8 @@ pub(super) async fn start(
     let stop = Arc::new(AtomicBool::new(false));
     let loader_stop = stop.clone();
     // The puts' log lines, the subscribers' and the loader's: one a second per kind, floods counted.
-    let log = Arc::new(Mutex::new(PeerLog::new()));
-    let loader_log = log.clone();
+    let log = Arc::new(Mutex::new(PeerLog::with_clock(clock.clone())));
+    let (loader_log, loader_clock) = (log.clone(), clock.clone());
     let rigs: HashMap<String, (RigConfig, Route)> = config
         .rigs
         .iter()
@@ -70,7 +72,7 @@ pub(super) async fn start(
         .collect();
     let thread = std::thread::Builder::new()
         .name("impactd-clubs".into())
-        .spawn(move || load(rx, rigs, dirs, loader_stop, &loader_log))
+        .spawn(move || load(rx, rigs, dirs, loader_stop, &loader_log, &loader_clock))
         .map_err(|e| DaemonError::Io { what: "starting the club loader".into(), source: e })?;
     let mut subscribers = Vec::new();
     for rig in &config.rigs {
@@ -101,6 +103,7 @@ fn load(
     dirs: Vec<PathBuf>,
     stop: Arc<AtomicBool>,
     log: &Mutex<PeerLog>,
+    clock: &Clock,
 ) {
     let log = || log.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let running = Arc::new(AtomicUsize::new(0));
@@ -125,7 +128,7 @@ fn load(
         });
         match switch {
             Ok(switch) => {
-                let incoming = Incoming::now(Arrival::Club(Box::new(switch)));
+                let incoming = Incoming::now(clock, Arrival::Club(Box::new(switch)));
                 if tx.try_send(incoming).is_err() {
                     dropped.fetch_add(1, Ordering::Relaxed);
                     log().warn("club_queue_full", || format!("put on {key} refused: the rig's queue is full"));

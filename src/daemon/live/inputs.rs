@@ -10,9 +10,10 @@ use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
 use super::queue::{Arrival, Incoming, Stamp};
+use crate::daemon::clock::Clock;
 use crate::daemon::inputs::config::marker_fitter;
 use crate::daemon::inputs::{InputHandle, Route as InputRoute, Source, StatusSource};
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{DaemonConfig, DaemonError};
 
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
@@ -37,6 +38,7 @@ type Target = (Arc<str>, Option<Route>, Feed, Option<String>);
 pub(super) fn start(
     config: &DaemonConfig,
     routes: &HashMap<String, Route>,
+    clock: &Clock,
 ) -> Result<(Vec<InputHandle>, HashMap<String, StatusSource>), DaemonError> {
     let mut groups: Vec<Group> = Vec::new();
     for rig in &config.rigs {
@@ -83,6 +85,7 @@ pub(super) fn start(
                 (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind, named(rig).then(|| route.body.clone()))
             })
             .collect();
+        let clock = clock.clone();
         let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
             let Some((rig, Some((tx, dropped)), feed, body)) = targets.get(i) else { return };
             let arrival = match feed {
@@ -93,7 +96,7 @@ pub(super) fn start(
                     Arrival::DecodedSample(Box::new(msg))
                 }
             };
-            let incoming = Incoming { at: Stamp { received, log_time_ns: wall_ns() }, arrival };
+            let incoming = Incoming { at: Stamp { received, log_time_ns: clock.wall_ns() }, arrival };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }

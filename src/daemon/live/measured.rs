@@ -2,9 +2,7 @@
 //! rig's predictions, and each comparison published on `golf/<rig>/comparison` at once.
 
 use super::{Stamp, Worker};
-use std::time::Instant;
 
-use crate::daemon::wall_ns;
 use crate::wire::{self, ComparisonMessage, MeasuredLaunch};
 
 impl Worker {
@@ -42,9 +40,9 @@ impl Worker {
     }
 
     /// Publishes and records a comparison; its latency is measured from `received`.
-    pub(super) fn publish_comparison(&mut self, mut c: ComparisonMessage, received: Instant) {
-        c.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
-        self.sinks.comparison(&c, wall_ns());
+    pub(super) fn publish_comparison(&mut self, mut c: ComparisonMessage, received: std::time::Instant) {
+        c.latency_us = self.clock.since(received).as_nanos() as f64 / 1e3;
+        self.sinks.comparison(&c, self.clock.wall_ns());
         tracing::info!("{}", super::shot_log::comparison(&self.rig, &c, self.units));
     }
 }

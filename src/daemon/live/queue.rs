@@ -7,9 +7,9 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
-use std::time::Instant;
 
-use crate::daemon::{wall_ns, DaemonError};
+use crate::daemon::clock::Clock;
+use crate::daemon::DaemonError;
 use crate::wire::{BallSampleMsg, ClubheadSampleMsg};
 
 /// What arrived, with the payload of its kind.
@@ -34,10 +34,10 @@ pub(super) enum Arrival {
     Exclusion(Vec<u8>),
 }
 
-/// When something arrived: the instant its latency is measured from, and its recording's log time.
+/// When something arrived (on the daemon's [`Clock`]): the instant its latency is measured from, and its recording's log time.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Stamp {
-    pub(super) received: Instant,
+    pub(super) received: std::time::Instant,
     pub(super) log_time_ns: u64,
 }
 
@@ -48,9 +48,9 @@ pub(super) struct Incoming {
 }
 
 impl Incoming {
-    /// Arrived now.
-    pub(super) fn now(arrival: Arrival) -> Self {
-        Incoming { at: Stamp { received: Instant::now(), log_time_ns: wall_ns() }, arrival }
+    /// Arrived now, on `clock`.
+    pub(super) fn now(clock: &Clock, arrival: Arrival) -> Self {
+        Incoming { at: Stamp { received: clock.now(), log_time_ns: clock.wall_ns() }, arrival }
     }
 }
 
@@ -60,13 +60,13 @@ pub(super) async fn subscribe(
     session: &zenoh::Session,
     key: String,
     kind: fn(Vec<u8>) -> Arrival,
-    tx: SyncSender<Incoming>,
-    dropped: Arc<AtomicU64>,
+    (tx, dropped): (SyncSender<Incoming>, Arc<AtomicU64>),
+    clock: Clock,
 ) -> Result<zenoh::pubsub::Subscriber<()>, DaemonError> {
     session
         .declare_subscriber(key)
         .callback(move |sample| {
-            let incoming = Incoming::now(kind(sample.payload().to_bytes().into_owned()));
+            let incoming = Incoming::now(&clock, kind(sample.payload().to_bytes().into_owned()));
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }
