@@ -111,7 +111,7 @@ pub fn flight_record(
     let line = match points {
         Some(points) => FlightLine::Flown(points),
         None => FlightLine::ToFly {
-            flight,
+            flight: Box::new(flight),
             launch: crate::flight::LaunchState {
                 velocity_mps: l.launch.ball_velocity_mps.into(),
                 spin_radps: l.launch.ball_spin_radps.into(),
@@ -205,7 +205,7 @@ mod tests {
         };
         // The line runs through the bounce and roll to where the ball stops (straight here: x is the total).
         let total_m = flight.fly(&launch, 0.0).total_m;
-        let line = FlightLine::ToFly { flight, launch };
+        let line = FlightLine::ToFly { flight: Box::new(flight), launch };
         let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, line }).unwrap();
         assert_eq!(
             (e.topic.as_str(), e.schema, e.publish_time_ns),

@@ -12,7 +12,7 @@ pub enum FlightLine {
     /// shared by the recording and the live view.
     Flown(std::sync::Arc<Vec<[f64; 4]>>),
     /// The launch and the flight model that flies it.
-    ToFly { flight: crate::flight::Flight, launch: crate::flight::LaunchState },
+    ToFly { flight: Box<crate::flight::Flight>, launch: crate::flight::LaunchState },
 }
 
 /// One thing to record.
