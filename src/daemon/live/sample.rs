@@ -24,7 +24,7 @@ impl Worker {
             Ok(m) => m,
             Err(e) => {
                 if let Some(p) = self.pipeline.as_mut() {
-                    *p.counts.rejected.entry(e.key().to_string()).or_default() += 1;
+                    p.counts.rejected.add(e.rejection());
                     p.counts.samples += 1;
                 }
                 let bytes = payload.len();

@@ -12,7 +12,7 @@ use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
 use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;
-use crate::pipeline::{Counts, Pipeline};
+use crate::pipeline::{CounterKind, Counts, Pipeline, Rejection};
 use crate::wire::{
     keys, ClubheadSampleMsg, ComparisonMessage, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType,
     RejectedInput, StatusMessage,
@@ -268,9 +268,9 @@ pub struct StatusInputs<'a> {
 /// A rig's status message.
 pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> StatusMessage {
     let c = s.counts;
-    let mut rejected: BTreeMap<String, u64> = c.rejected.clone();
+    let mut rejected: BTreeMap<String, u64> = c.rejected.to_wire();
     if s.queue_dropped > 0 {
-        rejected.insert("queue_full".into(), s.queue_dropped);
+        rejected.insert(Rejection::QueueFull.wire_name().into(), s.queue_dropped);
     }
     StatusMessage {
         rig: rig.to_string(),
@@ -284,8 +284,8 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         rejected,
         shots: c.shots,
         predictions: c.predictions,
-        failed: c.failed.clone(),
-        flagged: c.flagged.clone(),
+        failed: c.failed.to_wire(),
+        flagged: c.flagged.to_wire(),
         latency_p50_us: s.latency.quantile(0.5),
         latency_p99_us: s.latency.quantile(0.99),
         recorder_dropped,

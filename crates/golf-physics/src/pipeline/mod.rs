@@ -1,6 +1,8 @@
 //! The pure pipeline: samples in, events out. Live (zenoh) and replay (MCAP, JSONL) both drive it, so the same
 //! samples in the same order give byte-identical predictions. No clocks, no IO: the caller measures latency.
 
+mod counters;
+pub use counters::{CounterKind, Failure, Rejection, Tally};
 use std::collections::BTreeMap;
 
 use crate::equipment::ClubSpec;
@@ -137,15 +139,15 @@ pub struct Counts {
     /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
     pub resets: u64,
     /// Samples refused, by reason.
-    pub rejected: BTreeMap<String, u64>,
+    pub rejected: Tally<Rejection>,
     /// Impacts found.
     pub shots: u64,
     /// Launches predicted (one per model per impact).
     pub predictions: u64,
     /// Impacts without a prediction, by reason.
-    pub failed: BTreeMap<String, u64>,
+    pub failed: Tally<Failure>,
     /// Predictions that raised each sanity flag (`impact::sanity`).
-    pub flagged: BTreeMap<String, u64>,
+    pub flagged: Tally<crate::impact::LaunchWarning>,
 }
 
 /// One rig's pipeline: track -> detect -> estimate -> model.
@@ -222,14 +224,14 @@ impl Pipeline {
                 Some((true, _)) => {}
                 _ if !self.setup.bodies.contains_key(name) => {
                     self.counts.samples += 1;
-                    *self.counts.rejected.entry("unknown_body".into()).or_default() += 1;
+                    self.counts.rejected.add(Rejection::UnknownBody);
                     return;
                 }
                 Some((false, last_t_ns))
                     if !sample.occluded && sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
                 {
                     self.counts.samples += 1;
-                    *self.counts.rejected.entry("other_body".into()).or_default() += 1;
+                    self.counts.rejected.add(Rejection::OtherBody);
                     return;
                 }
                 // Another club out of view (in the bag): an occluded sample, not a rejection.
@@ -289,7 +291,7 @@ impl Pipeline {
         self.counts.resets = self.track.counts.resets;
         match pushed {
             Err(reason) => {
-                *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
+                self.counts.rejected.add(Rejection::from(&reason));
                 out(Event::Rejected { frame: sample.frame, reason });
             }
             Ok(Accepted::Occluded) => {
@@ -310,15 +312,15 @@ impl Pipeline {
         }
     }
 
-    fn fail(&mut self, shot: u64, frame: u64, reason: String, key: &'static str, out: &mut dyn FnMut(Event)) {
-        *self.counts.failed.entry(key.to_string()).or_default() += 1;
-        out(Event::Failed { shot, frame, reason, key });
+    fn fail(&mut self, shot: u64, frame: u64, reason: String, failure: Failure, out: &mut dyn FnMut(Event)) {
+        self.counts.failed.add(failure);
+        out(Event::Failed { shot, frame, reason, key: failure.wire_name() });
     }
 
     fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut dyn FnMut(Event)) {
         let est = match d.result {
             Ok(e) => e,
-            Err(e) => return self.fail(shot, d.reveal_frame, e.to_string(), e.key(), out),
+            Err(e) => return self.fail(shot, d.reveal_frame, e.to_string(), Failure::from(&e), out),
         };
         let club = &self.setup.club;
         let mut delivery = DeliveryMetrics::from_state(&est.state, club);
@@ -378,7 +380,7 @@ impl Pipeline {
                         j.map(|j| j.uncertainty(&u.delivery))
                     });
                     for w in &output.warnings {
-                        *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
+                        self.counts.flagged.add(*w);
                     }
                     let ball = crate::flight::LaunchState {
                         velocity_mps: launch.ball_velocity_mps,
@@ -411,7 +413,7 @@ impl Pipeline {
                         ball: Some(self.ball_used()),
                     }))
                 }
-                Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),
+                Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), Failure::ModelRefused, out),
             }
         }
     }
