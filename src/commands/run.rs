@@ -154,6 +154,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
                 foxglove: args.bridges.foxglove.clone(),
                 web,
                 take_over: args.take_over,
+                ..Default::default()
             },
             shutdown_signal(),
         )

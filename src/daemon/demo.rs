@@ -117,7 +117,7 @@ pub async fn demo(options: DemoOptions, shutdown: impl Future<Output = ()>) -> R
         let shutdown = async {
             let _ = daemon_stopped.await;
         };
-        let options = RunOptions { record, overwrite, foxglove, web, take_over: false };
+        let options = RunOptions { record, overwrite, foxglove, web, ..Default::default() };
         let r = crate::daemon::run(config, setups, &daemon_session, options, shutdown).await;
         let _ = daemon_session.close().await;
         r

@@ -3,6 +3,7 @@
 
 pub mod bridges;
 pub mod bus;
+pub mod clock;
 pub mod config;
 pub mod demo;
 pub mod inputs;
@@ -137,5 +138,5 @@ impl DaemonError {
 
 /// Nanoseconds since the Unix epoch, now.
 pub fn wall_ns() -> u64 {
-    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos() as u64).unwrap_or(0)
+    clock::Clock::system().wall_ns()
 }

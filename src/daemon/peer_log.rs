@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use tracing::Level;
 
+use crate::daemon::clock::Clock;
 use crate::daemon::stats::RateLimiter;
 
 /// The most of a peer-driven line's text that is logged (what the daemon says plus what it quotes), in bytes;
@@ -21,6 +22,7 @@ pub const PEER_LIST_BYTES: usize = 256;
 #[derive(Debug)]
 pub struct PeerLog {
     limiter: RateLimiter,
+    clock: Clock,
     /// Each kind's level, for its summary line (kinds are the program's names, never a peer's).
     levels: HashMap<&'static str, Level>,
     last_flush: Instant,
@@ -35,7 +37,13 @@ impl Default for PeerLog {
 impl PeerLog {
     /// One line a second per kind.
     pub fn new() -> Self {
-        PeerLog { limiter: RateLimiter::new(PERIOD), levels: HashMap::new(), last_flush: Instant::now() }
+        PeerLog::with_clock(Clock::system())
+    }
+
+    /// One line a second of `clock` per kind.
+    pub fn with_clock(clock: Clock) -> Self {
+        let last_flush = clock.now();
+        PeerLog { limiter: RateLimiter::with_clock(PERIOD, clock.clone()), clock, levels: HashMap::new(), last_flush }
     }
 
     pub fn warn(&mut self, kind: &'static str, message: impl FnOnce() -> String) {
@@ -48,7 +56,7 @@ impl PeerLog {
 
     /// Logs `message` (built only when it is logged) unless this kind had its line within the last second.
     pub fn log(&mut self, level: Level, kind: &'static str, message: impl FnOnce() -> String) {
-        if self.last_flush.elapsed() >= PERIOD {
+        if self.clock.since(self.last_flush) >= PERIOD {
             self.flush();
         }
         let Some(n) = self.limiter.allow(kind) else { return };
@@ -66,7 +74,7 @@ impl PeerLog {
     /// Says what was suppressed of each kind whose flood stopped a second or more ago (a caller with a clock
     /// calls it every second or so; any later line calls it too, and so does dropping the log).
     pub fn flush(&mut self) {
-        self.last_flush = Instant::now();
+        self.last_flush = self.clock.now();
         for (kind, n) in self.limiter.overdue() {
             self.summary(kind, n);
         }

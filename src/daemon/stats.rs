@@ -3,6 +3,8 @@
 
 use std::time::{Duration, Instant};
 
+use crate::daemon::clock::Clock;
+
 /// The last `capacity` latencies (us).
 #[derive(Debug, Clone)]
 pub struct LatencyWindow {
@@ -41,6 +43,7 @@ impl LatencyWindow {
 #[derive(Debug)]
 pub struct RateLimiter {
     period: Duration,
+    clock: Clock,
     last: std::collections::HashMap<String, (Instant, u64)>,
     /// Events of kinds not tracked because the table was full, reported with the next allowed line.
     untracked: u64,
@@ -52,12 +55,17 @@ pub const RATE_LIMITER_KEYS: usize = 256;
 
 impl RateLimiter {
     pub fn new(period: Duration) -> Self {
-        RateLimiter { period, last: Default::default(), untracked: 0 }
+        RateLimiter::with_clock(period, Clock::system())
+    }
+
+    /// A limiter whose periods pass on `clock`.
+    pub fn with_clock(period: Duration, clock: Clock) -> Self {
+        RateLimiter { period, clock, last: Default::default(), untracked: 0 }
     }
 
     /// `Some(suppressed since the last allowed)` when this event may be logged.
     pub fn allow(&mut self, key: &str) -> Option<u64> {
-        let now = Instant::now();
+        let now = self.clock.now();
         match self.last.get_mut(key) {
             Some((t, n)) if now.duration_since(*t) < self.period => {
                 *n += 1;
@@ -110,7 +118,7 @@ impl RateLimiter {
     }
 
     fn take_suppressed(&mut self, min_age: Duration) -> Vec<(Option<String>, u64)> {
-        let now = Instant::now();
+        let now = self.clock.now();
         let mut out = Vec::new();
         for (kind, (t, n)) in &mut self.last {
             if *n > 0 && now.duration_since(*t) >= min_age {
@@ -139,6 +147,7 @@ pub const REJECTED_KEEP_BYTES: usize = 4 * 1024;
 pub struct Budget {
     max_records: u32,
     max_bytes: usize,
+    clock: Clock,
     window: Instant,
     records: u32,
     bytes: usize,
@@ -148,12 +157,18 @@ pub struct Budget {
 
 impl Budget {
     pub fn new(max_records: u32, max_bytes: usize) -> Self {
-        Budget { max_records, max_bytes, window: Instant::now(), records: 0, bytes: 0, refused: 0 }
+        Budget::with_clock(max_records, max_bytes, Clock::system())
+    }
+
+    /// A budget whose seconds pass on `clock`.
+    pub fn with_clock(max_records: u32, max_bytes: usize, clock: Clock) -> Self {
+        let window = clock.now();
+        Budget { max_records, max_bytes, clock, window, records: 0, bytes: 0, refused: 0 }
     }
 
     /// Whether a record of `bytes` may be stored now; counts the refusal when not.
     pub fn allow(&mut self, bytes: usize) -> bool {
-        let now = Instant::now();
+        let now = self.clock.now();
         if now.duration_since(self.window) >= Duration::from_secs(1) {
             self.window = now;
             self.records = 0;
@@ -189,19 +204,34 @@ mod tests {
 
     #[test]
     fn a_flood_that_stopped_is_owed_its_count_once() {
-        let mut l = RateLimiter::new(Duration::from_millis(30));
+        // Stepped by a manual clock: no sleeping, and a loaded machine cannot make a period pass early or late.
+        let clock = Clock::manual(0);
+        let mut l = RateLimiter::with_clock(Duration::from_millis(30), clock.clone());
         assert_eq!(l.allow("k"), Some(0));
         for _ in 0..9 {
             assert_eq!(l.allow("k"), None);
         }
+        clock.advance(Duration::from_millis(29));
         assert!(l.overdue().is_empty(), "not yet a period since the last line");
-        std::thread::sleep(Duration::from_millis(40));
+        clock.advance(Duration::from_millis(1));
         assert_eq!(l.overdue(), vec![(Some("k".to_string()), 9)]);
         assert!(l.overdue().is_empty(), "said once");
         // The summary started the kind's period again.
         assert_eq!(l.allow("k"), None);
-        std::thread::sleep(Duration::from_millis(40));
+        clock.advance(Duration::from_millis(30));
         assert_eq!(l.allow("k"), Some(1));
+    }
+
+    #[test]
+    fn the_recording_budget_is_renewed_each_second_of_its_clock() {
+        let clock = Clock::manual(0);
+        let mut b = Budget::with_clock(2, 100, clock.clone());
+        assert_eq!([b.allow(10), b.allow(10), b.allow(10)], [true, true, false]);
+        clock.advance(Duration::from_millis(999));
+        assert!(!b.allow(10), "the same second");
+        clock.advance(Duration::from_millis(1));
+        assert_eq!([b.allow(60), b.allow(60), b.allow(40)], [true, false, true]);
+        assert_eq!(b.refused, 3);
     }
 
     #[test]

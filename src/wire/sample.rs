@@ -16,6 +16,17 @@ pub enum InputError {
 }
 
 impl InputError {
+    /// The count it is filed under in a rig's status (`rejected`).
+    pub fn rejection(&self) -> crate::pipeline::Rejection {
+        use crate::pipeline::Rejection;
+        match self {
+            InputError::Oversized { .. } => Rejection::Oversized,
+            InputError::WrongVersion { .. } => Rejection::WrongVersion,
+            InputError::Malformed(_) => Rejection::Malformed,
+            InputError::RigMismatch { .. } => Rejection::RigMismatch,
+        }
+    }
+
     pub fn key(&self) -> &'static str {
         match self {
             InputError::Oversized { .. } => "oversized",

@@ -131,7 +131,7 @@ async fn a_flood_grows_the_recording_by_at_most_the_budget() {
     let summary = daemon.task.await.unwrap();
     rig.close().await.unwrap();
     let c = &summary.rigs["bay1"];
-    assert!(c.rejected.get("oversized").copied().unwrap_or(0) > 0, "{c:?}");
+    assert!(c.rejected.get(impactd::pipeline::Rejection::Oversized) > 0, "{c:?}");
     assert!(summary.unknown_rig_samples > 0);
     let size = std::fs::metadata(&recording).unwrap().len() as f64;
     // Two budgets (the rig's and the unknown rigs'), each per started second, before compression.

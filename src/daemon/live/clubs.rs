@@ -10,15 +10,16 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use super::club_put;
 use super::inputs::Route;
-use super::queue::{Incoming, InputKind};
+use super::queue::{Arrival, Incoming, Stamp};
 use super::Worker;
+use crate::daemon::clock::Clock;
 use crate::daemon::config::RigConfig;
 use crate::daemon::peer_log::PeerLog;
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{DaemonConfig, DaemonError};
 use crate::wire::{self, keys, ClubSource};
 
 /// Club puts waiting for the loader; a put beyond them is refused (logged), never blocking zenoh.
@@ -47,6 +48,7 @@ pub(super) async fn start(
     session: &zenoh::Session,
     config: &DaemonConfig,
     routes: &HashMap<String, Route>,
+    clock: &Clock,
 ) -> Result<ClubLoader, DaemonError> {
     let (tx, rx) = sync_channel::<Put>(PENDING_PUTS);
     let dirs = crate::daemon::config_club_dirs::club_dirs(config.clubs.as_ref(), config.config_dir.as_deref())?;
@@ -61,8 +63,8 @@ pub(super) async fn start(
     let stop = Arc::new(AtomicBool::new(false));
     let loader_stop = stop.clone();
     // The puts' log lines, the subscribers' and the loader's: one a second per kind, floods counted.
-    let log = Arc::new(Mutex::new(PeerLog::new()));
-    let loader_log = log.clone();
+    let log = Arc::new(Mutex::new(PeerLog::with_clock(clock.clone())));
+    let (loader_log, loader_clock) = (log.clone(), clock.clone());
     let rigs: HashMap<String, (RigConfig, Route)> = config
         .rigs
         .iter()
@@ -70,7 +72,7 @@ pub(super) async fn start(
         .collect();
     let thread = std::thread::Builder::new()
         .name("impactd-clubs".into())
-        .spawn(move || load(rx, rigs, dirs, loader_stop, &loader_log))
+        .spawn(move || load(rx, rigs, dirs, loader_stop, &loader_log, &loader_clock))
         .map_err(|e| DaemonError::Io { what: "starting the club loader".into(), source: e })?;
     let mut subscribers = Vec::new();
     for rig in &config.rigs {
@@ -101,6 +103,7 @@ fn load(
     dirs: Vec<PathBuf>,
     stop: Arc<AtomicBool>,
     log: &Mutex<PeerLog>,
+    clock: &Clock,
 ) {
     let log = || log.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let running = Arc::new(AtomicUsize::new(0));
@@ -125,14 +128,7 @@ fn load(
         });
         match switch {
             Ok(switch) => {
-                let incoming = Incoming {
-                    kind: InputKind::Club,
-                    received: Instant::now(),
-                    log_time_ns: wall_ns(),
-                    payload: Vec::new(),
-                    encoding: String::new(),
-                    club: Some(Box::new(switch)),
-                };
+                let incoming = Incoming::now(clock, Arrival::Club(Box::new(switch)));
                 if tx.try_send(incoming).is_err() {
                     dropped.fetch_add(1, Ordering::Relaxed);
                     log().warn("club_queue_full", || format!("put on {key} refused: the rig's queue is full"));
@@ -147,12 +143,11 @@ fn load(
 
 impl Worker {
     /// A put's club, loaded: the rig's club from now on, recorded.
-    pub(super) fn on_club(&mut self, incoming: Incoming) {
-        let Some(switch) = incoming.club else { return };
+    pub(super) fn on_club(&mut self, at: Stamp, switch: crate::pipeline::ClubSwitch) {
         if let Some(p) = self.pipeline.as_mut() {
-            p.switch_club(*switch);
+            p.switch_club(switch);
         }
-        self.record_club(incoming.log_time_ns, ClubSource::Put, None);
+        self.record_club(at.log_time_ns, ClubSource::Put, None);
     }
 
     /// Records (and logs) the rig's club from a pipeline's change (a body's club).

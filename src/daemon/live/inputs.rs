@@ -1,33 +1,44 @@
-//! `[rig.input]`: motion-capture clients (NatNet, QTM, Vicon) feeding the rigs' queues directly. Rigs reading the same server share
-//! one client (one body each). Each sample is serialised as the `ClubheadSampleMsg` a bridge would publish and
-//! queued exactly as a zenoh sample is, so the worker parses, records and runs the same bytes either way. A rig's
-//! `ball_body` is read the same way and queued as the rig's tracked ball (`mocap/<rig>/ball`).
+//! `[rig.input]`: motion-capture clients (NatNet, QTM, Vicon, a C3D capture) feeding the rigs' queues directly.
+//! Rigs reading the same server share one client (one body each). Each sample is queued decoded, as the
+//! `ClubheadSampleMsg` a bridge would publish: the worker runs it without parsing and records the JSON a bridge
+//! would have sent (the same bytes either way). A rig's `ball_body` is read the same way and queued as the rig's
+//! tracked ball (`mocap/<rig>/ball`).
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::SyncSender;
 use std::sync::Arc;
 
-use super::{Incoming, InputKind};
+use super::queue::{Arrival, Incoming, Stamp};
+use crate::daemon::clock::Clock;
 use crate::daemon::inputs::config::marker_fitter;
 use crate::daemon::inputs::{InputHandle, Route as InputRoute, Source, StatusSource};
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
-use crate::wire::MessageType;
+use crate::daemon::{DaemonConfig, DaemonError};
 
 /// A rig's queue and its count of samples the full queue refused.
 pub(super) type Route = (SyncSender<Incoming>, Arc<AtomicU64>);
 
+/// What a client's route feeds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Feed {
+    /// The rig's clubhead samples (`mocap/<rig>/clubhead`).
+    Club,
+    /// The rig's tracked ball (`mocap/<rig>/ball`).
+    Ball,
+}
+
 /// A server, its routes (each with its rig), and what each route feeds (the club's samples or the rig's ball).
-type Group = (Source, Vec<(InputRoute, String)>, Vec<InputKind>);
+type Group = (Source, Vec<(InputRoute, String)>, Vec<Feed>);
 
 /// Where a client's route delivers: the rig, its queue, sample or ball, and the body's name when the rig's
 /// bodies choose its club (`[rig.clubs]`).
-type Target = (Arc<str>, Option<Route>, InputKind, Option<String>);
+type Target = (Arc<str>, Option<Route>, Feed, Option<String>);
 
 /// Starts one client per server named by the rigs' inputs; gives each such rig its status source.
 pub(super) fn start(
     config: &DaemonConfig,
     routes: &HashMap<String, Route>,
+    clock: &Clock,
 ) -> Result<(Vec<InputHandle>, HashMap<String, StatusSource>), DaemonError> {
     let mut groups: Vec<Group> = Vec::new();
     for rig in &config.rigs {
@@ -44,12 +55,12 @@ pub(super) fn start(
             None => None,
         };
         let club = InputRoute { body: input.body.clone(), segment: input.segment.clone(), fitter };
-        let mut routes = vec![(club, InputKind::Sample)];
+        let mut routes = vec![(club, Feed::Club)];
         // With `[rig.clubs]`, every club's body too: each sample then names its body.
         let clubs = rig.clubs.keys().filter(|b| **b != input.body);
-        routes.extend(clubs.map(|b| (InputRoute { body: b.clone(), ..InputRoute::default() }, InputKind::Sample)));
+        routes.extend(clubs.map(|b| (InputRoute { body: b.clone(), ..InputRoute::default() }, Feed::Club)));
         if let Some(ball) = &input.ball_body {
-            routes.push((InputRoute { body: ball.clone(), ..InputRoute::default() }, InputKind::Ball));
+            routes.push((InputRoute { body: ball.clone(), ..InputRoute::default() }, Feed::Ball));
         }
         let at = match groups.iter().position(|g| g.0 == source) {
             Some(at) => at,
@@ -74,26 +85,18 @@ pub(super) fn start(
                 (Arc::from(rig.as_str()), routes.get(rig).cloned(), *kind, named(rig).then(|| route.body.clone()))
             })
             .collect();
-        let (sample_encoding, ball_encoding) =
-            (MessageType::ClubheadSample.encoding(), MessageType::BallSample.encoding());
+        let clock = clock.clone();
         let deliver = Box::new(move |i: usize, sample: &crate::mocap::track::BodySample, received| {
-            let Some((rig, Some((tx, dropped)), kind, body)) = targets.get(i) else { return };
-            let (payload, encoding) = match kind {
-                InputKind::Ball => (serde_json::to_vec(&sample.to_ball_msg(rig)), ball_encoding.clone()),
-                _ => {
+            let Some((rig, Some((tx, dropped)), feed, body)) = targets.get(i) else { return };
+            let arrival = match feed {
+                Feed::Ball => Arrival::DecodedBall(sample.to_ball_msg(rig)),
+                Feed::Club => {
                     let mut msg = sample.to_msg(rig);
                     msg.body = body.clone();
-                    (serde_json::to_vec(&msg), sample_encoding.clone())
+                    Arrival::DecodedSample(Box::new(msg))
                 }
             };
-            let incoming = Incoming {
-                kind: *kind,
-                received,
-                log_time_ns: wall_ns(),
-                payload: payload.unwrap_or_default(),
-                encoding,
-                club: None,
-            };
+            let incoming = Incoming { at: Stamp { received, log_time_ns: clock.wall_ns() }, arrival };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }
@@ -103,7 +106,7 @@ pub(super) fn start(
         let handle = InputHandle::start_routes(source, group, deliver)?;
         // A rig's status shows its first body's input (`[rig.input] body`).
         for (i, ((_, rig), kind)) in rigs.iter().zip(&kinds).enumerate() {
-            if *kind == InputKind::Sample {
+            if *kind == Feed::Club {
                 sources.entry(rig.clone()).or_insert_with(|| handle.status_source(i));
             }
         }

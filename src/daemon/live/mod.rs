@@ -27,11 +27,12 @@ use crate::daemon::bridges::foxglove::live::FoxgloveServer;
 use crate::daemon::bridges::open_connect::{self, LaunchMonitorListener, SimulatorClient};
 use crate::daemon::bridges::opengolfsim;
 use crate::daemon::bridges::web::{WebServer, WebStatusSource};
+use crate::daemon::clock::Clock;
 use crate::daemon::live::sinks::{RigPublishers, RigSinks};
 use crate::daemon::peer_log::PeerLog;
 use crate::daemon::recording::writer::{session_metadata, Recorder, RecorderHandle, RecorderSummary};
 use crate::daemon::stats::{Budget, LatencyWindow, REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{DaemonConfig, DaemonError};
 use crate::pairing::Pairer;
 use crate::pipeline::{Counts, Event, Pipeline, RigSetup};
 use crate::wire::{self, keys, LaunchMonitorStatus, SimulatorStatus};
@@ -44,9 +45,10 @@ mod inputs;
 mod labels;
 mod measured;
 mod queue;
+mod sample;
 mod shot_log;
 mod status;
-use queue::{Incoming, InputKind};
+use queue::{Arrival, Incoming, Stamp};
 pub mod sinks;
 mod truth;
 
@@ -66,6 +68,8 @@ pub struct RunOptions {
     pub web: Option<String>,
     /// Take over rigs another daemon serves (it stops) instead of refusing to start ([`claim`]).
     pub take_over: bool,
+    /// The clock the rigs' workers stamp and time with (the system's unless a test drives one).
+    pub clock: Clock,
 }
 
 /// What a run did, per rig.
@@ -135,15 +139,21 @@ pub async fn run(
         let queue_dropped = Arc::new(AtomicU64::new(0));
         senders.insert(name.clone(), (tx.clone(), queue_dropped.clone()));
         for (key, kind) in [
-            (keys::measured_launch(&name), InputKind::Measured),
-            (keys::session(&name), InputKind::Labels),
-            (keys::truth(&name), InputKind::Truth),
-            (keys::exclude(&name), InputKind::Exclusion),
-            (keys::ball(&name), InputKind::Ball),
+            (keys::measured_launch(&name), Arrival::Measured as fn(Vec<u8>) -> Arrival),
+            (keys::session(&name), Arrival::Labels),
+            (keys::truth(&name), Arrival::Truth),
+            (keys::exclude(&name), Arrival::Exclusion),
+            (keys::ball(&name), Arrival::Ball),
         ] {
-            measured_subscribers.push(queue::subscribe(session, key, kind, tx.clone(), queue_dropped.clone()).await?);
+            let route = (tx.clone(), queue_dropped.clone());
+            measured_subscribers.push(queue::subscribe(session, key, kind, route, options.clock.clone()).await?);
         }
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
+        let mut setup = setup;
+        // A recording or the live view draws each flight: the prediction's own flight samples its line.
+        if handle.enabled() {
+            setup.flight_line_step_s = crate::daemon::recording::channels::FLIGHT_LINE_STEP_S;
+        }
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
             rig: Arc::from(name.as_str()),
@@ -151,9 +161,10 @@ pub async fn run(
             pipeline: Some(pipeline),
             queue_dropped,
             latency: LatencyWindow::new(1024),
-            log: PeerLog::new(),
-            started: Instant::now(),
-            budget: Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S),
+            log: PeerLog::with_clock(options.clock.clone()),
+            started: options.clock.now(),
+            budget: Budget::with_clock(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S, options.clock.clone()),
+            clock: options.clock.clone(),
             unknown: unknown.clone(),
             simulator,
             launch_monitor,
@@ -171,8 +182,8 @@ pub async fn run(
         );
         tracing::info!("rig {name}: listening on {}", keys::clubhead(&name));
     }
-    let (inputs, input_sources) = inputs::start(&config, &senders)?;
-    let club_loader = clubs::start(session, &config, &senders).await?;
+    let (inputs, input_sources) = inputs::start(&config, &senders, &options.clock)?;
+    let club_loader = clubs::start(session, &config, &senders, &options.clock).await?;
     for (rig, source) in input_sources {
         if let Some(slot) = input_slots.get(&rig) {
             if let Ok(mut s) = slot.lock() {
@@ -186,14 +197,16 @@ pub async fn run(
     })
     .await?;
     let unknown_cb = unknown.clone();
-    let unknown_log = std::sync::Mutex::new(PeerLog::new());
-    let unknown_budget = std::sync::Mutex::new(Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S));
+    let clock = options.clock.clone();
+    let unknown_log = std::sync::Mutex::new(PeerLog::with_clock(clock.clone()));
+    let unknown_budget =
+        std::sync::Mutex::new(Budget::with_clock(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S, clock.clone()));
     let unknown_recorder = handle.clone();
     let routes = senders;
     let subscriber = session
         .declare_subscriber(keys::CLUBHEAD_ALL)
         .callback(move |sample| {
-            let received = Instant::now();
+            let received = clock.now();
             let key = sample.key_expr().as_str();
             let route = keys::rig_of_clubhead(key).and_then(|rig| routes.get(rig));
             let Some((tx, dropped)) = route else {
@@ -211,7 +224,7 @@ pub async fn run(
                         bytes: payload.len(),
                         payload: String::from_utf8_lossy(&payload[..keep]).into_owned(),
                     };
-                    let now = wall_ns();
+                    let now = clock.wall_ns();
                     unknown_recorder.send(crate::daemon::recording::record::Record::Message {
                         key: keys::UNKNOWN_RIG_REJECTED.to_string(),
                         message_type: <wire::RejectedInput as wire::Message>::TYPE,
@@ -222,14 +235,11 @@ pub async fn run(
                 }
                 return;
             };
-            let incoming = Incoming {
-                kind: InputKind::Sample,
-                received,
-                log_time_ns: wall_ns(),
+            let arrival = Arrival::Sample {
                 payload: sample.payload().to_bytes().into_owned(),
                 encoding: sample.encoding().to_string(),
-                club: None,
             };
+            let incoming = Incoming { at: Stamp { received, log_time_ns: clock.wall_ns() }, arrival };
             if tx.try_send(incoming).is_err() {
                 dropped.fetch_add(1, Ordering::Relaxed);
             }
@@ -307,6 +317,8 @@ struct Worker {
     input: InputSlot,
     /// The units of the lines logged per shot.
     units: crate::session::Units,
+    /// What the worker stamps records with and measures latency, periods and uptime on.
+    clock: Clock,
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
@@ -323,16 +335,16 @@ struct WorkerEnd {
 
 impl Worker {
     fn run(mut self, rx: std::sync::mpsc::Receiver<Incoming>, period: Duration) -> WorkerEnd {
-        let mut next_status = Instant::now() + period;
-        self.record_club(wall_ns(), wire::ClubSource::Config, None);
+        let mut next_status = self.clock.now() + period;
+        self.record_club(self.clock.wall_ns(), wire::ClubSource::Config, None);
         loop {
-            let wait = next_status.saturating_duration_since(Instant::now());
+            let wait = next_status.saturating_duration_since(self.clock.now());
             match rx.recv_timeout(wait) {
                 Ok(incoming) => self.on_incoming(incoming),
-                Err(RecvTimeoutError::Timeout) => self.pairer.expire(wall_ns()),
+                Err(RecvTimeoutError::Timeout) => self.pairer.expire(self.clock.wall_ns()),
                 Err(RecvTimeoutError::Disconnected) => break,
             }
-            if Instant::now() >= next_status {
+            if self.clock.now() >= next_status {
                 self.publish_status();
                 self.log.flush();
                 next_status += period;
@@ -360,56 +372,17 @@ impl Worker {
     }
 
     fn on_incoming(&mut self, incoming: Incoming) {
-        match incoming.kind {
-            InputKind::Sample => {}
-            InputKind::Measured => return self.on_measured(incoming),
-            InputKind::Labels => return self.on_labels(incoming),
-            InputKind::Truth => return self.on_truth(incoming),
-            InputKind::Club => return self.on_club(incoming),
-            InputKind::Exclusion => return self.on_exclusion(incoming),
-            InputKind::Ball => return self.on_ball(incoming),
-        }
-        let rig = self.rig.clone();
-        let msg = match wire::parse_sample(&rig, &incoming.payload, &incoming.encoding) {
-            Ok(m) => m,
-            Err(e) => {
-                if let Some(p) = self.pipeline.as_mut() {
-                    *p.counts.rejected.entry(e.key().to_string()).or_default() += 1;
-                    p.counts.samples += 1;
-                }
-                let bytes = incoming.payload.len();
-                self.warn(e.key(), || format!("rejected sample: {e}"));
-                // The raw payload goes to the recording beside the reason, within the budget; beyond it the
-                // payload is counted (status `rejected_not_recorded`), so a flood cannot fill the disk.
-                let keep = &incoming.payload[..bytes.min(REJECTED_KEEP_BYTES)];
-                if !self.sinks.recorder().enabled() || !self.budget.allow(keep.len()) {
-                    return;
-                }
-                let rejected = wire::RejectedInput {
-                    reason: e.to_string(),
-                    bytes,
-                    payload: String::from_utf8_lossy(keep).into_owned(),
-                };
-                self.sinks.rejected(incoming.log_time_ns, &rejected);
-                return;
-            }
-        };
-        let sample = msg.to_sample();
-        self.sinks.sample(incoming.log_time_ns, msg.t_ns, incoming.payload);
-        let mut any_event = false;
-        let received = incoming.received;
-        // Out of its slot while it runs the sample (its events are published as they come, by `self`); it is
-        // only ever taken here, so it is always back between samples.
-        let Some(mut pipeline) = self.pipeline.take() else { return };
-        pipeline.on_body_sample_with(msg.body.as_deref(), &sample, &mut |event| {
-            any_event = true;
-            self.on_event(&rig, event, received);
-        });
-        self.pipeline = Some(pipeline);
-        if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
-            if let Some(world_from_club) = self.pipeline.as_ref().and_then(|p| sinks::world_from_club(p, &sample)) {
-                self.sinks.club_pose(sample.t_ns, incoming.log_time_ns, world_from_club);
-            }
+        let at = incoming.at;
+        match incoming.arrival {
+            Arrival::Sample { payload, encoding } => self.on_sample(at, payload, &encoding),
+            Arrival::DecodedSample(msg) => self.on_decoded_sample(at, &msg),
+            Arrival::Measured(payload) => self.on_measured(at, payload),
+            Arrival::Labels(payload) => self.on_labels(at, &payload),
+            Arrival::Truth(payload) => self.on_truth(at, payload),
+            Arrival::Club(switch) => self.on_club(at, *switch),
+            Arrival::Exclusion(payload) => self.on_exclusion(at, &payload),
+            Arrival::Ball(payload) => self.on_ball(at, payload),
+            Arrival::DecodedBall(msg) => self.on_decoded_ball(at, msg),
         }
     }
 
@@ -418,10 +391,13 @@ impl Worker {
             Event::Rejected { frame, reason } => {
                 self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
             }
-            Event::Impact(m) => self.sinks.impact(&m, wall_ns()),
+            Event::Impact(m) => self.sinks.impact(&m, self.clock.wall_ns()),
             Event::Launch(mut l) => {
-                l.latency_us = received.elapsed().as_nanos() as f64 / 1e3;
-                self.sinks.launch(&l, wall_ns());
+                // The flight's sampled line (`RigSetup::flight_line_step_s`) is for the recording and the live
+                // view, never the wire: taken out before the prediction is published.
+                let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
+                l.latency_us = self.clock.since(received).as_nanos() as f64 / 1e3;
+                self.sinks.launch_with_line(&l, line, self.clock.wall_ns());
                 self.latency.push(l.latency_us);
                 if let Some(simulator) = &mut self.simulator {
                     simulator.offer(&l);
@@ -435,7 +411,7 @@ impl Worker {
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
                 self.sinks.failed();
             }
-            Event::ClubChanged(change) => self.record_club_change(wall_ns(), &change),
+            Event::ClubChanged(change) => self.record_club_change(self.clock.wall_ns(), &change),
             Event::Missed(m) => tracing::info!("rig {rig}: {m}"),
             Event::ImpactTiming(t) => tracing::info!("rig {rig} {t}"),
         }

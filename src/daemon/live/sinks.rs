@@ -12,7 +12,7 @@ use crate::daemon::stats::LatencyWindow;
 use crate::daemon::DaemonError;
 use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;
-use crate::pipeline::{Counts, Pipeline};
+use crate::pipeline::{CounterKind, Counts, Pipeline, Rejection};
 use crate::wire::{
     keys, ClubheadSampleMsg, ComparisonMessage, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType,
     RejectedInput, StatusMessage,
@@ -164,14 +164,22 @@ impl RigSinks {
         }
     }
 
-    /// Publishes and records a prediction and the line of its flight (flown by the recorder or the live view,
-    /// off the prediction path), and closes the recording's chunk (a shot is never half-written).
+    /// Publishes and records a prediction and the line of its flight, flown by the recorder or the live view
+    /// ([`RigSinks::launch_with_line`]).
     pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
+        self.launch_with_line(l, None, now_ns)
+    }
+
+    /// Publishes and records a prediction and the line of its flight (`line`: the points of the prediction's
+    /// own flight, taken out of it; without them flown by the recorder or the live view, off the prediction
+    /// path), and closes the recording's chunk (a shot is never half-written).
+    pub fn launch_with_line(&self, l: &LaunchPrediction, line: Option<Vec<[f64; 4]>>, now_ns: u64) -> Vec<u8> {
         let data = serde_json::to_vec(l).unwrap_or_default();
         self.publish(|p| &p.launch, "launch", &data);
         self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
         if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
-            self.recorder.send(crate::daemon::recording::channels::flight_record(l, flight, now_ns));
+            let points = line.map(std::sync::Arc::new);
+            self.recorder.send(crate::daemon::recording::channels::flight_record(l, flight, points, now_ns));
         }
         self.recorder.send(Record::Flush);
         data
@@ -260,9 +268,9 @@ pub struct StatusInputs<'a> {
 /// A rig's status message.
 pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> StatusMessage {
     let c = s.counts;
-    let mut rejected: BTreeMap<String, u64> = c.rejected.clone();
+    let mut rejected: BTreeMap<String, u64> = c.rejected.to_wire();
     if s.queue_dropped > 0 {
-        rejected.insert("queue_full".into(), s.queue_dropped);
+        rejected.insert(Rejection::QueueFull.wire_name().into(), s.queue_dropped);
     }
     StatusMessage {
         rig: rig.to_string(),
@@ -276,8 +284,8 @@ pub fn status_message(rig: &str, s: StatusInputs<'_>, recorder_dropped: u64) -> 
         rejected,
         shots: c.shots,
         predictions: c.predictions,
-        failed: c.failed.clone(),
-        flagged: c.flagged.clone(),
+        failed: c.failed.to_wire(),
+        flagged: c.flagged.to_wire(),
         latency_p50_us: s.latency.quantile(0.5),
         latency_p99_us: s.latency.quantile(0.99),
         recorder_dropped,

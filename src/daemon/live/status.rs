@@ -8,7 +8,6 @@ use super::sinks::{self, StatusInputs};
 use super::Worker;
 use crate::daemon::bridges::open_connect::SimulatorClient;
 use crate::daemon::bridges::web::WebStatusSource;
-use crate::daemon::wall_ns;
 use crate::wire;
 
 impl Worker {
@@ -19,8 +18,8 @@ impl Worker {
             counts: self.pipeline.as_ref().map_or(&no_counts, |p| &p.counts),
             queue_dropped: self.queue_dropped.load(Ordering::Relaxed),
             latency: &self.latency,
-            uptime_s: self.started.elapsed().as_secs_f64(),
-            t_ns: wall_ns(),
+            uptime_s: self.clock.since(self.started).as_secs_f64(),
+            t_ns: self.clock.wall_ns(),
             unknown_rig_samples: self.unknown.load(Ordering::Relaxed),
             rejected_not_recorded: self.budget.refused,
             recorder_error: self.sinks.recorder().error(),

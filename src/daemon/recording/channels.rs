@@ -9,7 +9,7 @@
 //! 50 ms). Positions are in the world frame (ARCHITECTURE.md section 2: x to the target, y up, z right), `frame_id`
 //! `world`.
 
-use crate::daemon::recording::record::Record;
+use crate::daemon::recording::record::{FlightLine, Record};
 use crate::wire::{
     keys, ClubheadSampleMsg, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType, StatusMessage,
 };
@@ -100,13 +100,25 @@ fn entity(t_ns: u64, id: &str, kind: &str, primitives: serde_json::Value) -> ser
     e
 }
 
-/// The flight-line record of a prediction (flown later, by whoever encodes it).
-pub fn flight_record(l: &LaunchPrediction, flight: crate::flight::Flight, log_time_ns: u64) -> Record {
-    let launch = crate::flight::LaunchState {
-        velocity_mps: l.launch.ball_velocity_mps.into(),
-        spin_radps: l.launch.ball_spin_radps.into(),
+/// The flight-line record of a prediction: its flight's points when the prediction's flight was sampled
+/// ([`crate::pipeline::RigSetup::flight_line_step_s`]), else flown later by whoever encodes it.
+pub fn flight_record(
+    l: &LaunchPrediction,
+    flight: crate::flight::Flight,
+    points: Option<std::sync::Arc<Vec<[f64; 4]>>>,
+    log_time_ns: u64,
+) -> Record {
+    let line = match points {
+        Some(points) => FlightLine::Flown(points),
+        None => FlightLine::ToFly {
+            flight: Box::new(flight),
+            launch: crate::flight::LaunchState {
+                velocity_mps: l.launch.ball_velocity_mps.into(),
+                spin_radps: l.launch.ball_spin_radps.into(),
+            },
+        },
     };
-    Record::Flight { rig: l.rig.clone(), t_ns: l.t_impact_ns, log_time_ns, flight, launch }
+    Record::Flight { rig: l.rig.clone(), t_ns: l.t_impact_ns, log_time_ns, line }
 }
 
 /// The channel message of a record (`None` for [`Record::Flush`]).
@@ -145,10 +157,12 @@ pub fn encode(record: Record) -> Option<Encoded> {
                 data: scene(vec![entity(t_ns, "ball", "spheres", ball), entity(t_ns, "club", "cubes", head)]),
             }
         }
-        Record::Flight { rig, t_ns, log_time_ns, flight, launch } => {
-            let trajectory = flight.fly(&launch, FLIGHT_LINE_STEP_S);
-            let points: Vec<_> =
-                trajectory.points.iter().map(|p| serde_json::json!({ "x": p[1], "y": p[2], "z": p[3] })).collect();
+        Record::Flight { rig, t_ns, log_time_ns, line } => {
+            let flown = match line {
+                FlightLine::Flown(points) => points,
+                FlightLine::ToFly { flight, launch } => flight.fly(&launch, FLIGHT_LINE_STEP_S).points.into(),
+            };
+            let points: Vec<_> = flown.iter().map(|p| serde_json::json!({ "x": p[1], "y": p[2], "z": p[3] })).collect();
             // LINE_STRIP (type 0), 2 cm wide, orange.
             let line = serde_json::json!([{
                 "type": 0, "pose": pose_json([0.0; 3], IDENTITY), "thickness": 0.02, "scale_invariant": false,
@@ -191,7 +205,8 @@ mod tests {
         };
         // The line runs through the bounce and roll to where the ball stops (straight here: x is the total).
         let total_m = flight.fly(&launch, 0.0).total_m;
-        let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, flight, launch }).unwrap();
+        let line = FlightLine::ToFly { flight: Box::new(flight), launch };
+        let e = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, line }).unwrap();
         assert_eq!(
             (e.topic.as_str(), e.schema, e.publish_time_ns),
             ("/foxglove/r/ball_flight", Schema::SceneUpdate, 5)
@@ -203,5 +218,9 @@ mod tests {
         let last_x = points.last().unwrap()["x"].as_f64().unwrap();
         assert!((last_x - total_m).abs() < 1e-9, "{last_x} vs total {total_m}");
         assert!(encode(Record::Flush).is_none());
+        // The prediction's own sampled flight gives the same bytes.
+        let flown = FlightLine::Flown(flight.fly(&launch, FLIGHT_LINE_STEP_S).points.into());
+        let shared = encode(Record::Flight { rig: "r".into(), t_ns: 5, log_time_ns: 6, line: flown }).unwrap();
+        assert_eq!(shared, e);
     }
 }

@@ -4,6 +4,17 @@
 use crate::math::Isometry3;
 use crate::wire::{ImpactStateMsg, MessageType};
 
+/// A flight line's points: sampled by the prediction's own flight, or to be flown by whoever encodes it (on
+/// its thread, off the prediction path).
+#[derive(Debug, Clone)]
+pub enum FlightLine {
+    /// `[t_s, x_m, y_m, z_m]` every [`crate::daemon::recording::channels::FLIGHT_LINE_STEP_S`], world frame,
+    /// shared by the recording and the live view.
+    Flown(std::sync::Arc<Vec<[f64; 4]>>),
+    /// The launch and the flight model that flies it.
+    ToFly { flight: Box<crate::flight::Flight>, launch: crate::flight::LaunchState },
+}
+
 /// One thing to record.
 #[derive(Debug, Clone)]
 pub enum Record {
@@ -20,15 +31,8 @@ pub enum Record {
         ball_radius_m: f64,
         club: ImpactStateMsg,
     },
-    /// The predicted ball flight as a line (Foxglove `SceneUpdate` on `/foxglove/<rig>/ball_flight`), flown
-    /// from `launch` by `flight` on the consumer's thread, off the prediction path.
-    Flight {
-        rig: String,
-        t_ns: u64,
-        log_time_ns: u64,
-        flight: crate::flight::Flight,
-        launch: crate::flight::LaunchState,
-    },
+    /// The predicted ball flight as a line (Foxglove `SceneUpdate` on `/foxglove/<rig>/ball_flight`).
+    Flight { rig: String, t_ns: u64, log_time_ns: u64, line: FlightLine },
     /// Close the current chunk and push it to the file.
     Flush,
 }

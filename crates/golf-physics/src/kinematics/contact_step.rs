@@ -84,7 +84,7 @@ pub enum StepUnresolved {
     #[error(
         "the step is below the noise: the speed drops {drop_mps:.2} +- {sigma_mps:.2} m/s ({drop_pct:.1} %) and \
          the lines cross +-{sigma_ms:.2} ms, against a frame interval of {interval_ms:.2} ms (need a drop of \
-         {MIN_STEP_SIGMAS} sigma and a crossing within a third of the interval)"
+         {MIN_STEP_SIGMAS} sigma and a crossing known to half the interval)"
     )]
     /// The best fit's speed drop is not above [`MIN_STEP_SIGMAS`] of its standard deviation, or the crossing's
     /// standard deviation is above [`MAX_SIGMA_OF_INTERVAL`] of the frame interval.

@@ -1,6 +1,8 @@
 //! The pure pipeline: samples in, events out. Live (zenoh) and replay (MCAP, JSONL) both drive it, so the same
 //! samples in the same order give byte-identical predictions. No clocks, no IO: the caller measures latency.
 
+mod counters;
+pub use counters::{CounterKind, Counts, Failure, Rejection, Tally};
 use std::collections::BTreeMap;
 
 use crate::equipment::ClubSpec;
@@ -45,6 +47,10 @@ pub struct RigSetup {
     /// The calibration's residuals, carried into every prediction's uncertainty (zero: no calibration reports
     /// them yet).
     pub calibration_sigma: CalibrationSigma,
+    /// Sample each prediction's flight every this many seconds (`Trajectory::points`, for a drawn line) when it
+    /// is the flight of the launch as published (0: no points). The points come from the one flight that gives
+    /// the carry, so whoever draws the line need not fly the ball again.
+    pub flight_line_step_s: f64,
 }
 
 /// A club to switch to: the head, its models (built by `impact::registry`), its file, and for a tracked body
@@ -82,6 +88,7 @@ impl RigSetup {
             club_ref: None,
             bodies: BTreeMap::new(),
             calibration_sigma: CalibrationSigma::default(),
+            flight_line_step_s: 0.0,
         }
     }
 }
@@ -120,33 +127,6 @@ pub enum Event {
     Missed(crate::kinematics::miss_watch::MissedSwing),
     /// The frames after an impact have come: the head's speed step against the instant the estimate used.
     ImpactTiming(timing::ImpactTimingReport),
-}
-
-/// Counters of one rig's pipeline.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Counts {
-    /// Samples fed (good or bad).
-    pub samples: u64,
-    /// Samples the track accepted.
-    pub accepted: u64,
-    /// Samples flagged occluded.
-    pub occluded: u64,
-    /// Frames missing from the frame numbering.
-    pub dropped: u64,
-    /// Time bases or frame counts the track moved onto (publisher restarts, wrapped counters).
-    pub resets: u64,
-    /// Samples refused, by reason.
-    pub rejected: BTreeMap<String, u64>,
-    /// Impacts found.
-    pub shots: u64,
-    /// Launches predicted (one per model per impact).
-    pub predictions: u64,
-    /// Impacts without a prediction, by reason.
-    pub failed: BTreeMap<String, u64>,
-    /// Predictions that raised each sanity flag (`impact::sanity`).
-    pub flagged: BTreeMap<String, u64>,
-    /// Swings that found no impact ([`Event::Missed`]).
-    pub missed_swings: u64,
 }
 
 /// One rig's pipeline: track -> detect -> estimate -> model.
@@ -229,14 +209,14 @@ impl Pipeline {
                 Some((true, _)) => {}
                 _ if !self.setup.bodies.contains_key(name) => {
                     self.counts.samples += 1;
-                    *self.counts.rejected.entry("unknown_body".into()).or_default() += 1;
+                    self.counts.rejected.add(Rejection::UnknownBody);
                     return;
                 }
                 Some((false, last_t_ns))
                     if !sample.occluded && sample.t_ns.saturating_sub(last_t_ns) < BODY_SWITCH_AFTER_NS =>
                 {
                     self.counts.samples += 1;
-                    *self.counts.rejected.entry("other_body".into()).or_default() += 1;
+                    self.counts.rejected.add(Rejection::OtherBody);
                     return;
                 }
                 // Another club out of view (in the bag): an occluded sample, not a rejection.
@@ -296,7 +276,7 @@ impl Pipeline {
         self.counts.resets = self.track.counts.resets;
         match pushed {
             Err(reason) => {
-                *self.counts.rejected.entry(reason.key().to_string()).or_default() += 1;
+                self.counts.rejected.add(Rejection::from(&reason));
                 out(Event::Rejected { frame: sample.frame, reason });
             }
             Ok(Accepted::Occluded) => {
@@ -320,21 +300,21 @@ impl Pipeline {
         }
     }
 
-    fn fail(&mut self, shot: u64, frame: u64, reason: String, key: &'static str, out: &mut dyn FnMut(Event)) {
-        *self.counts.failed.entry(key.to_string()).or_default() += 1;
-        out(Event::Failed { shot, frame, reason, key });
+    fn fail(&mut self, shot: u64, frame: u64, reason: String, failure: Failure, out: &mut dyn FnMut(Event)) {
+        self.counts.failed.add(failure);
+        out(Event::Failed { shot, frame, reason, key: failure.wire_name() });
     }
 
     fn predict(&mut self, shot: u64, d: crate::kinematics::Detection, out: &mut dyn FnMut(Event)) {
         let est = match d.result {
             Ok(e) => e,
-            Err(e) => return self.fail(shot, d.reveal_frame, self.explain(&e), e.key(), out),
+            Err(e) => return self.fail(shot, d.reveal_frame, self.explain(&e), Failure::from(&e), out),
         };
         let given = self.detector.config.given_impact.is_some();
         let club = &self.setup.club;
         let mut delivery = DeliveryMetrics::from_state(&est.state, club);
         if let Some(why) = crate::kinematics::guards::head_speed_refusal(delivery.club_speed_mps) {
-            return self.fail(shot, d.reveal_frame, why, "head_speed_beyond_bound", out);
+            return self.fail(shot, d.reveal_frame, why, Failure::HeadSpeedBeyondBound, out);
         }
         self.await_step(shot, d.reveal_frame, &est, given);
         let (frame_gap, far_address) = (Self::frame_gap(&est, given), self.far_address());
@@ -402,8 +382,19 @@ impl Pipeline {
                         output.warnings.push(crate::impact::LaunchWarning::BallFarFromAddress);
                     }
                     for w in &output.warnings {
-                        *self.counts.flagged.entry(w.as_str().to_string()).or_default() += 1;
+                        self.counts.flagged.add(*w);
                     }
+                    let ball = crate::flight::LaunchState {
+                        velocity_mps: launch.ball_velocity_mps,
+                        spin_radps: launch.ball_spin_radps,
+                    };
+                    // The line is of the launch as published (mirrored for a left-handed club): sampled here
+                    // only when that is the launch flown.
+                    let (v, w) = (&launch.ball_velocity_mps, &launch.ball_spin_radps);
+                    let published =
+                        output.ball_velocity_mps == [v.x, v.y, v.z] && output.ball_spin_radps == [w.x, w.y, w.z];
+                    let line_step_s = if published { self.setup.flight_line_step_s } else { 0.0 };
+                    let flight = self.setup.flight.as_ref().map(|f| f.fly(&ball, line_step_s));
                     out(Event::Launch(LaunchPrediction {
                         rig: self.setup.name.clone(),
                         shot,
@@ -418,22 +409,14 @@ impl Pipeline {
                         frames_used: est.quality.frames_used,
                         quality: est.quality.score,
                         latency_us: 0.0,
-                        flight: self.setup.flight.as_ref().map(|f| {
-                            f.fly(
-                                &crate::flight::LaunchState {
-                                    velocity_mps: launch.ball_velocity_mps,
-                                    spin_radps: launch.ball_spin_radps,
-                                },
-                                0.0,
-                            )
-                        }),
+                        flight,
                         reports: report.into(),
                         labels: self.setup.labels.clone(),
                         ball: Some(self.ball_used()),
                         impact_timing,
                     }))
                 }
-                Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), "model_refused", out),
+                Err(e) => self.fail(shot, d.reveal_frame, format!("{}: {e}", m.name()), Failure::ModelRefused, out),
             }
         }
     }

@@ -60,7 +60,7 @@ fn another_body_in_view_switches_the_club() {
     early.t_ns = driver[9].t_ns + 1_000_000;
     p.on_body_sample_with(Some("b"), &early, &mut |e| out.push(e));
     p.on_body_sample_with(Some("c"), &early, &mut |e| out.push(e));
-    assert_eq!((p.counts.rejected["other_body"], p.counts.rejected["unknown_body"]), (1, 1));
+    assert_eq!((p.counts.rejected.get(Rejection::OtherBody), p.counts.rejected.get(Rejection::UnknownBody)), (1, 1));
     assert_eq!(p.setup.club.name, "driver");
     for x in &swing_of(&ClubSpec::iron7(), driver[9].t_ns + BODY_SWITCH_AFTER_NS + 1_000_000_000) {
         p.on_body_sample_with(Some("b"), x, &mut |e| out.push(e));

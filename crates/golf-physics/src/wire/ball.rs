@@ -29,10 +29,15 @@ impl BallSampleMsg {
     /// A ball sample from its payload (JSON), with finite coordinates within 50 m of the lab's origin.
     pub fn parse(payload: &[u8]) -> Result<Self, String> {
         let msg: BallSampleMsg = serde_json::from_slice(payload).map_err(|e| e.to_string())?;
-        if !msg.occluded && msg.position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
+        msg.checked()
+    }
+
+    /// The sample when its coordinates are finite and within 50 m of the lab's origin (or it is occluded).
+    pub fn checked(self) -> Result<Self, String> {
+        if !self.occluded && self.position_m.iter().any(|v| !v.is_finite() || v.abs() > 50.0) {
             return Err("position_m must be finite and within 50 m".into());
         }
-        Ok(msg)
+        Ok(self)
     }
 }
 
