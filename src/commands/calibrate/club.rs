@@ -43,7 +43,7 @@ pub struct ClubArgs {
     /// Radius of the markers (mm): their centres sit this far off the surface they are stuck on.
     #[arg(long, default_value_t = 0.0)]
     pub marker_radius_mm: f64,
-    /// Pointer trials (C3D) with the club's markers in view: three files, the tip on the face centre, then on the
+    /// Pointer trials (C3D or TRC) with the club's markers in view: three files, the tip on the face centre, then on the
     /// leading edge's heel end, then its toe end; or one file with --touch-frames.
     #[arg(long, value_delimiter = ',')]
     pub pointer: Vec<PathBuf>,

@@ -32,7 +32,7 @@ pub enum CalibrateCommand {
 
 #[derive(Debug, Args)]
 pub struct Trial {
-    /// The static trial (C3D).
+    /// The static trial (C3D or TRC).
     pub capture: PathBuf,
     /// The first frame to use (0-based index).
     #[arg(long, default_value_t = 0)]

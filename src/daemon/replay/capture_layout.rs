@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use crate::daemon::recording::c3d::{self, C3dError, Frame};
+use crate::captures::{CaptureError, Frame};
 use crate::kinematics::guards::CLUB_LENGTH_M;
 use crate::kinematics::MarkerFitter;
 use crate::math::Vector3;
@@ -17,7 +17,7 @@ pub const MAX_LOSSES: usize = 4096;
 #[derive(Debug, Clone, PartialEq)]
 pub struct MarkerLoss {
     pub label: String,
-    /// The C3D frame numbers of the first and last frame without it.
+    /// The capture's frame numbers of the first and last frame without it.
     pub first_frame: u64,
     pub last_frame: u64,
 }
@@ -47,22 +47,24 @@ pub fn is_grip_label(label: &str) -> bool {
 }
 
 impl CaptureLayout {
-    /// Scans the capture at `path` for the set `fitter` fits.
-    pub fn scan(path: &Path, fitter: &MarkerFitter) -> Result<CaptureLayout, C3dError> {
-        let mut reader = c3d::open(path)?;
-        let info = reader.info.clone();
+    /// Scans the marker capture (C3D, TRC) at `path` for the set `fitter` fits, its lengths read in `units` when
+    /// given.
+    pub fn scan(path: &Path, fitter: &MarkerFitter, units: Option<&str>) -> Result<CaptureLayout, CaptureError> {
+        let mut reader = crate::captures::open_markers(path, units)?;
+        let labels = reader.labels().to_vec();
+        let first_frame = reader.first_frame();
         let indices = fitter
             .set
-            .indices_in(&info.labels)
-            .map_err(|label| C3dError::MissingMarker { label, available: info.labels.join(", ") })?;
-        let grip = info.labels.iter().position(|l| is_grip_label(l));
-        let mut layout = CaptureLayout { rate_hz: info.rate_hz, ..CaptureLayout::default() };
+            .indices_in(&labels)
+            .map_err(|label| CaptureError::MissingMarker { label, available: labels.join(", ") })?;
+        let grip = labels.iter().position(|l| is_grip_label(l));
+        let mut layout = CaptureLayout { rate_hz: reader.rate_hz(), ..CaptureLayout::default() };
         let mut open: Vec<Option<u64>> = vec![None; indices.len()];
         let mut frame = Frame::default();
-        let mut last_frame = info.first_frame;
+        let mut last_frame = first_frame;
         let mut lab: Vec<Option<Vector3>> = Vec::with_capacity(indices.len());
         while reader.next_frame(&mut frame)? {
-            let number = info.first_frame + frame.index;
+            let number = first_frame + frame.index;
             last_frame = number;
             lab.clear();
             lab.extend(indices.iter().map(|&i| frame.points_m.get(i).copied().flatten()));
@@ -79,7 +81,7 @@ impl CaptureLayout {
             if let (None, Some(g)) = (&layout.club_length, grip) {
                 if let (Some(p), Ok(fit)) = (frame.points_m.get(g).copied().flatten(), fitter.fit(&lab)) {
                     let d = (p - fit.lab_from_body.translation.vector).norm();
-                    layout.club_length = Some((info.labels[g].trim().to_string(), number, d));
+                    layout.club_length = Some((labels[g].trim().to_string(), number, d));
                 }
             }
         }
