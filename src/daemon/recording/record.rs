@@ -8,7 +8,7 @@ use crate::wire::{ImpactStateMsg, MessageType};
 /// its thread, off the prediction path).
 #[derive(Debug, Clone)]
 pub enum FlightLine {
-    /// `[t_s, x_m, y_m, z_m]` every [`crate::daemon::recording::channels::FLIGHT_LINE_STEP_S`], world frame,
+    /// `[t_s, x_m, y_m, z_m]` every `FLIGHT_LINE_STEP_S` (the channels' step), world frame,
     /// shared by the recording and the live view.
     Flown(std::sync::Arc<Vec<[f64; 4]>>),
     /// The launch and the flight model that flies it.
