@@ -138,6 +138,10 @@ impl SwingWatch {
         });
         current.last_frame = frame;
         current.peak_speed_mps = current.peak_speed_mps.max(speed);
+        // A swing that found its impact is never reported as a miss: its closest approach is not needed.
+        if current.impact {
+            return None;
+        }
         // The ball's place in the club frame, between the two frames.
         for k in 1..=SUBSTEPS {
             let f = k as Real / SUBSTEPS as Real;
