@@ -64,7 +64,7 @@ fn server(stop: Arc<AtomicBool>) -> (UdpSocket, Arc<Mutex<Vec<SocketAddr>>>) {
     (socket, clients)
 }
 
-async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
+async fn measure(shots: u64, bridge: bool) -> Vec<(f64, f64)> {
     let stop = Arc::new(AtomicBool::new(false));
     let (socket, clients) = server(stop.clone());
     let port = socket.local_addr().unwrap().port();
@@ -77,7 +77,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
     let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let sub_session = ZenohArgs::loopback(vec![], vec![endpoint.clone()]).open().await.unwrap();
     let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
-    let results: Arc<Mutex<Vec<f64>>> = Default::default();
+    let results: Arc<Mutex<Vec<(f64, f64)>>> = Default::default();
     let (s, r) = (sent.clone(), results.clone());
     let _sub = sub_session
         .declare_subscriber("golf/rig1/launch")
@@ -85,7 +85,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
             let now = Instant::now();
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
                 if let Some(t) = s.lock().unwrap().get(&l.frame) {
-                    r.lock().unwrap().push(now.duration_since(*t).as_secs_f64() * 1e6);
+                    r.lock().unwrap().push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
                 }
             }
         })
@@ -168,7 +168,7 @@ async fn measure(shots: u64, bridge: bool) -> Vec<f64> {
 }
 
 /// Frame sent by the Vicon test server -> `golf/rig1/launch` received, through the daemon's `[rig.input] vicon`.
-async fn measure_vicon(shots: u64) -> Vec<f64> {
+async fn measure_vicon(shots: u64) -> Vec<(f64, f64)> {
     let server = vicon_server::ViconServer::start(scene::statics());
     let text =
         format!("[[rig]]\nname = \"rig1\"\n[rig.input]\nvicon = \"127.0.0.1:{}\"\nsubject = \"club\"\n", server.port);
@@ -177,7 +177,7 @@ async fn measure_vicon(shots: u64) -> Vec<f64> {
     let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let sub_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
     let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
-    let results: Arc<Mutex<Vec<f64>>> = Default::default();
+    let results: Arc<Mutex<Vec<(f64, f64)>>> = Default::default();
     let (s, r) = (sent.clone(), results.clone());
     let _sub = sub_session
         .declare_subscriber("golf/rig1/launch")
@@ -185,7 +185,7 @@ async fn measure_vicon(shots: u64) -> Vec<f64> {
             let now = Instant::now();
             if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
                 if let Some(t) = s.lock().unwrap().get(&l.frame) {
-                    r.lock().unwrap().push(now.duration_since(*t).as_secs_f64() * 1e6);
+                    r.lock().unwrap().push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
                 }
             }
         })
@@ -234,21 +234,29 @@ async fn measure_vicon(shots: u64) -> Vec<f64> {
     out
 }
 
+/// Prints one mode's shots: the whole path (frame sent -> launch received) and the daemon's own share of it
+/// (`latency_us`: the revealing frame's arrival -> the launch published).
+fn report(name: &str, shots: u64, v: &[(f64, f64)]) {
+    let (mut whole, mut own): (Vec<f64>, Vec<f64>) = v.iter().cloned().unzip();
+    let n = whole.len();
+    let max = whole.iter().cloned().fold(0.0, f64::max);
+    let (p50, p99) = (quantile(&mut whole, 0.5), quantile(&mut whole, 0.99));
+    let (o50, o99) = (quantile(&mut own, 0.5), quantile(&mut own, 0.99));
+    println!(
+        "{name}: {n} of {shots} shots; frame sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us; \
+         of which arrival -> published in the daemon: p50 {o50:.0} us, p99 {o99:.0} us"
+    );
+}
+
 fn main() {
     let shots: u64 = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(100);
     let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
     rt.block_on(async {
         for (name, bridge) in [("daemon [rig.input] natnet", false), ("impactd bridge natnet -> daemon", true)] {
-            let mut v = measure(shots, bridge).await;
-            let n = v.len();
-            let (p50, p99) = (quantile(&mut v, 0.5), quantile(&mut v, 0.99));
-            let max = v.iter().cloned().fold(0.0, f64::max);
-            println!("{name}: {n} of {shots} shots; datagram sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us");
+            let v = measure(shots, bridge).await;
+            report(name, shots, &v);
         }
-        let mut v = measure_vicon(shots).await;
-        let n = v.len();
-        let (p50, p99) = (quantile(&mut v, 0.5), quantile(&mut v, 0.99));
-        let max = v.iter().cloned().fold(0.0, f64::max);
-        println!("daemon [rig.input] vicon: {n} of {shots} shots; frame sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us");
+        let v = measure_vicon(shots).await;
+        report("daemon [rig.input] vicon", shots, &v);
     });
 }
