@@ -1,9 +1,10 @@
 //! Datagram to prediction on loopback, through the native NatNet input: a NatNet server in this process sends
 //! a synthetic rig's frames at 720 Hz over UDP on 127.0.0.1; for every shot, the time from sending the frame
-//! that reveals the impact to a zenoh subscriber receiving `golf/rig1/launch`. First through the daemon's
-//! `[rig.input]` (budget: p99 <= 0.5 ms), then through `impactd bridge natnet`'s library (one more zenoh hop:
-//! bridge -> daemon). Then the same through the daemon's Vicon DataStream input (TCP, the test server of
-//! `tests/common/vicon_server.rs`; budget: p99 <= 0.5 ms). Prints p50/p99/max.
+//! that reveals the impact to `golf/rig1/launch` published on the daemon's zenoh session (a subscriber there is
+//! called inside the put: the budget's measure, p99 <= 0.5 ms), and to a subscriber in another session one TCP
+//! hop away. First through the daemon's `[rig.input]`, then through `impactd bridge natnet`'s library (one more
+//! zenoh hop: bridge -> daemon), then through the daemon's Vicon DataStream input (TCP, the test server of
+//! `tests/common/vicon_server.rs`). Prints p50/p99/max of each, and the daemon's own `latency_us`.
 //! `cargo bench --bench mocap_latency [-- SHOTS]`.
 
 #![allow(clippy::unwrap_used)]
@@ -31,6 +32,51 @@ mod vicon_server;
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
     v[((q * v.len() as f64).ceil() as usize).clamp(1, v.len()) - 1]
+}
+
+/// One shot's latencies (us) from sending the frame that reveals its impact.
+#[derive(Clone, Copy)]
+struct Shot {
+    /// To the launch received by a subscriber in another zenoh session (one TCP hop on loopback).
+    remote_us: f64,
+    /// To the launch published on the daemon's own session (a subscriber there is called inside the put).
+    published_us: f64,
+    /// The daemon's `latency_us`: the frame's arrival in the daemon to the launch built.
+    daemon_us: f64,
+}
+
+type Received = Arc<Mutex<HashMap<u64, (f64, f64)>>>;
+
+/// A subscriber to `golf/rig1/launch` on `session`: for each launch whose frame was sent, (us since sent,
+/// `latency_us`).
+fn listen(session: &zenoh::Session, sent: &Arc<Mutex<HashMap<u64, Instant>>>) -> (zenoh::pubsub::Subscriber<()>, Received) {
+    let got: Received = Default::default();
+    let (s, r) = (sent.clone(), got.clone());
+    let sub = session
+        .declare_subscriber("golf/rig1/launch")
+        .callback(move |m| {
+            let now = Instant::now();
+            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
+                if let Some(t) = s.lock().unwrap().get(&l.frame) {
+                    r.lock().unwrap().insert(l.frame, (now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
+                }
+            }
+        })
+        .wait()
+        .unwrap();
+    (sub, got)
+}
+
+/// The shots both subscribers received.
+fn shots_of(remote: &Received, local: &Received) -> Vec<Shot> {
+    let (remote, local) = (remote.lock().unwrap(), local.lock().unwrap());
+    remote
+        .iter()
+        .filter_map(|(frame, (remote_us, daemon_us))| {
+            let published_us = local.get(frame)?.0;
+            Some(Shot { remote_us: *remote_us, published_us, daemon_us: *daemon_us })
+        })
+        .collect()
 }
 
 /// A NatNet server answering connects and model requests; returns its socket and the clients' addresses.
@@ -64,7 +110,7 @@ fn server(stop: Arc<AtomicBool>) -> (UdpSocket, Arc<Mutex<Vec<SocketAddr>>>) {
     (socket, clients)
 }
 
-async fn measure(shots: u64, bridge: bool) -> Vec<(f64, f64)> {
+async fn measure(shots: u64, bridge: bool) -> Vec<Shot> {
     let stop = Arc::new(AtomicBool::new(false));
     let (socket, clients) = server(stop.clone());
     let port = socket.local_addr().unwrap().port();
@@ -77,20 +123,8 @@ async fn measure(shots: u64, bridge: bool) -> Vec<(f64, f64)> {
     let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let sub_session = ZenohArgs::loopback(vec![], vec![endpoint.clone()]).open().await.unwrap();
     let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
-    let results: Arc<Mutex<Vec<(f64, f64)>>> = Default::default();
-    let (s, r) = (sent.clone(), results.clone());
-    let _sub = sub_session
-        .declare_subscriber("golf/rig1/launch")
-        .callback(move |m| {
-            let now = Instant::now();
-            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
-                if let Some(t) = s.lock().unwrap().get(&l.frame) {
-                    r.lock().unwrap().push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
-                }
-            }
-        })
-        .wait()
-        .unwrap();
+    let (_remote, remote) = listen(&sub_session, &sent);
+    let (_local, local) = listen(&daemon_session, &sent);
     let (stop_daemon, stopped) = tokio::sync::oneshot::channel::<()>();
     let daemon = tokio::spawn(async move {
         impactd::daemon::run(config, setups, &daemon_session, RunOptions::default(), async {
@@ -163,12 +197,11 @@ async fn measure(shots: u64, bridge: bool) -> Vec<(f64, f64)> {
     daemon.await.unwrap();
     stop.store(true, Ordering::Relaxed);
     sub_session.close().await.unwrap();
-    let out = results.lock().unwrap().clone();
-    out
+    shots_of(&remote, &local)
 }
 
 /// Frame sent by the Vicon test server -> `golf/rig1/launch` received, through the daemon's `[rig.input] vicon`.
-async fn measure_vicon(shots: u64) -> Vec<(f64, f64)> {
+async fn measure_vicon(shots: u64) -> Vec<Shot> {
     let server = vicon_server::ViconServer::start(scene::statics());
     let text =
         format!("[[rig]]\nname = \"rig1\"\n[rig.input]\nvicon = \"127.0.0.1:{}\"\nsubject = \"club\"\n", server.port);
@@ -177,20 +210,8 @@ async fn measure_vicon(shots: u64) -> Vec<(f64, f64)> {
     let daemon_session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
     let sub_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
     let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
-    let results: Arc<Mutex<Vec<(f64, f64)>>> = Default::default();
-    let (s, r) = (sent.clone(), results.clone());
-    let _sub = sub_session
-        .declare_subscriber("golf/rig1/launch")
-        .callback(move |m| {
-            let now = Instant::now();
-            if let Ok(l) = serde_json::from_slice::<LaunchPrediction>(&m.payload().to_bytes()) {
-                if let Some(t) = s.lock().unwrap().get(&l.frame) {
-                    r.lock().unwrap().push((now.duration_since(*t).as_secs_f64() * 1e6, l.latency_us));
-                }
-            }
-        })
-        .wait()
-        .unwrap();
+    let (_remote, remote) = listen(&sub_session, &sent);
+    let (_local, local) = listen(&daemon_session, &sent);
     let (stop_daemon, stopped) = tokio::sync::oneshot::channel::<()>();
     let daemon = tokio::spawn(async move {
         impactd::daemon::run(config, setups, &daemon_session, RunOptions::default(), async {
@@ -230,22 +251,22 @@ async fn measure_vicon(shots: u64) -> Vec<(f64, f64)> {
     let _ = stop_daemon.send(());
     daemon.await.unwrap();
     sub_session.close().await.unwrap();
-    let out = results.lock().unwrap().clone();
-    out
+    shots_of(&remote, &local)
 }
 
-/// Prints one mode's shots: the whole path (frame sent -> launch received) and the daemon's own share of it
-/// (`latency_us`: the revealing frame's arrival -> the launch published).
-fn report(name: &str, shots: u64, v: &[(f64, f64)]) {
-    let (mut whole, mut own): (Vec<f64>, Vec<f64>) = v.iter().cloned().unzip();
-    let n = whole.len();
-    let max = whole.iter().cloned().fold(0.0, f64::max);
-    let (p50, p99) = (quantile(&mut whole, 0.5), quantile(&mut whole, 0.99));
-    let (o50, o99) = (quantile(&mut own, 0.5), quantile(&mut own, 0.99));
-    println!(
-        "{name}: {n} of {shots} shots; frame sent -> launch received: p50 {p50:.0} us, p99 {p99:.0} us, max {max:.0} us; \
-         of which arrival -> published in the daemon: p50 {o50:.0} us, p99 {o99:.0} us"
-    );
+/// Prints one mode's shots: frame sent -> launch published on the daemon's session (the budget's measure),
+/// -> received by a subscriber one TCP hop away, and the daemon's own `latency_us` (arrival -> launch built).
+fn report(name: &str, shots: u64, v: &[Shot]) {
+    let n = v.len();
+    let stats = |f: fn(&Shot) -> f64| {
+        let mut x: Vec<f64> = v.iter().map(f).collect();
+        let max = x.iter().cloned().fold(0.0, f64::max);
+        format!("p50 {:.0} us, p99 {:.0} us, max {max:.0} us", quantile(&mut x, 0.5), quantile(&mut x, 0.99))
+    };
+    println!("{name}: {n} of {shots} shots");
+    println!("  frame sent -> launch published by the daemon: {}", stats(|s| s.published_us));
+    println!("  frame sent -> launch received one zenoh hop away: {}", stats(|s| s.remote_us));
+    println!("  arrival in the daemon -> launch built (latency_us): {}", stats(|s| s.daemon_us));
 }
 
 fn main() {

@@ -173,6 +173,7 @@ pub async fn run(
             pairer: Pairer::new(&name, window),
             input: input_slots.entry(name.clone()).or_default().clone(),
             units: config.units,
+            held_impact: None,
         };
         workers.push(
             std::thread::Builder::new()
@@ -319,6 +320,8 @@ struct Worker {
     units: crate::session::Units,
     /// What the worker stamps records with and measures latency, periods and uptime on.
     clock: Clock,
+    /// The shot's impact, published right after its first launch (`on_event`).
+    held_impact: Option<wire::ImpactMessage>,
 }
 
 /// Where a worker finds its input's counts (filled once the inputs start, after the workers).
@@ -386,18 +389,29 @@ impl Worker {
         }
     }
 
+    /// Publishes and records the impact held for its shot's first launch (or for the shot's end).
+    fn release_impact(&mut self) {
+        if let Some(m) = self.held_impact.take() {
+            self.sinks.impact(&m, self.clock.wall_ns());
+        }
+    }
+
     fn on_event(&mut self, rig: &str, event: Event, received: Instant) {
         match event {
             Event::Rejected { frame, reason } => {
                 self.warn(reason.key(), || format!("frame {frame} rejected: {reason}"))
             }
-            Event::Impact(m) => self.sinks.impact(&m, self.clock.wall_ns()),
+            // The impact waits for the shot's first launch: that launch is published first (the latency ends
+            // there), the impact right after it, and both are recorded in the order they came.
+            Event::Impact(m) => self.held_impact = Some(m),
             Event::Launch(mut l) => {
                 // The flight's sampled line (`RigSetup::flight_line_step_s`) is for the recording and the live
                 // view, never the wire: taken out before the prediction is published.
                 let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
                 l.latency_us = self.clock.since(received).as_nanos() as f64 / 1e3;
-                self.sinks.launch_with_line(&l, line, self.clock.wall_ns());
+                let data = self.sinks.publish_launch(&l);
+                self.release_impact();
+                self.sinks.record_launch(&l, data, line, self.clock.wall_ns());
                 self.latency.push(l.latency_us);
                 if let Some(simulator) = &mut self.simulator {
                     simulator.offer(&l);
@@ -408,6 +422,7 @@ impl Worker {
                 tracing::info!("{}", shot_log::launch(rig, &l, self.units));
             }
             Event::Failed { shot, frame, reason, .. } => {
+                self.release_impact();
                 tracing::warn!("rig {rig} shot {shot} (frame {frame}): no prediction: {reason}");
                 self.sinks.failed();
             }

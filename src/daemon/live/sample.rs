@@ -75,6 +75,8 @@ impl Worker {
             self.on_event(&rig, event, received);
         });
         self.pipeline = Some(pipeline);
+        // A shot whose every model refused still has its impact published (a launch releases it sooner).
+        self.release_impact();
         if self.sinks.recorder().enabled() && !sample.occluded && !any_event {
             if let Some(world_from_club) = self.pipeline.as_ref().and_then(|p| sinks::world_from_club(p, &sample)) {
                 self.sinks.club_pose(sample.t_ns, at.log_time_ns, world_from_club);

@@ -167,15 +167,35 @@ impl RigSinks {
     /// Publishes and records a prediction and the line of its flight, flown by the recorder or the live view
     /// ([`RigSinks::launch_with_line`]).
     pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
-        self.launch_with_line(l, None, now_ns)
+        let data = self.publish_launch(l);
+        self.record_launch(l, data, None, now_ns)
     }
 
     /// Publishes and records a prediction and the line of its flight (`line`: the points of the prediction's
     /// own flight, taken out of it; without them flown by the recorder or the live view, off the prediction
     /// path), and closes the recording's chunk (a shot is never half-written).
     pub fn launch_with_line(&self, l: &LaunchPrediction, line: Option<Vec<[f64; 4]>>, now_ns: u64) -> Vec<u8> {
+        let data = self.publish_launch(l);
+        self.record_launch(l, data, line, now_ns)
+    }
+
+    /// Publishes a prediction on `golf/<rig>/launch` (nothing else: the latency ends here); returns its JSON
+    /// for [`RigSinks::record_launch`].
+    pub fn publish_launch(&self, l: &LaunchPrediction) -> Vec<u8> {
         let data = serde_json::to_vec(l).unwrap_or_default();
         self.publish(|p| &p.launch, "launch", &data);
+        data
+    }
+
+    /// Records a published prediction (`data`, from [`RigSinks::publish_launch`]) and the line of its flight,
+    /// and closes the recording's chunk (a shot is never half-written). Returns `data`.
+    pub fn record_launch(
+        &self,
+        l: &LaunchPrediction,
+        data: Vec<u8>,
+        line: Option<Vec<[f64; 4]>>,
+        now_ns: u64,
+    ) -> Vec<u8> {
         self.record::<LaunchPrediction>(&self.keys.launch, now_ns, now_ns, data.clone());
         if let (true, Some(flight)) = (self.recorder.enabled(), self.flight) {
             let points = line.map(std::sync::Arc::new);
