@@ -5,7 +5,7 @@
 use crate::pairing::DatasetLine;
 
 use super::trackman_rows::{RowLabels, SkippedRows};
-use super::{foresight, trackman_csv, trackman_report, uneekor};
+use super::{foresight, labelled_rows, trackman_csv, trackman_report, uneekor};
 
 /// A launch monitor's export impactd reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,10 +34,9 @@ pub enum MeasuredFileError {
     TrackmanReport(#[from] trackman_report::TrackmanReportError),
     #[error(transparent)]
     TrackmanCsv(#[from] trackman_csv::TrackmanCsvError),
+    /// Foresight's or Uneekor's labelled-column CSV.
     #[error(transparent)]
-    Foresight(#[from] foresight::ForesightCsvError),
-    #[error(transparent)]
-    Uneekor(#[from] uneekor::UneekorCsvError),
+    LabelledCsv(#[from] labelled_rows::LabelledCsvError),
 }
 
 /// The format of a file whose text starts with `head`, or `None` (JSONL deliveries, or no monitor's). Foresight's

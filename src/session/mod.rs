@@ -4,6 +4,7 @@
 
 pub mod foresight;
 pub mod labelled_header;
+pub mod labelled_rows;
 pub mod measured;
 pub mod metrics;
 pub mod shot_table;

@@ -33,32 +33,10 @@ mod tests;
 
 use crate::math::Real;
 use crate::pairing::DatasetLine;
-use crate::wire::{DeliveryInput, LaunchFields};
 
 use super::labelled_header::{length_to_yd, speed_to_mph, split};
+use super::labelled_rows::{self, missing_column, Columns, LabelledCsvError, Row, ShotCells};
 use super::trackman_rows::{RowLabels, SkippedRows};
-
-/// Why a Foresight export cannot be read; each names the row (1-based, the header is row 1) or column.
-#[derive(Debug, thiserror::Error)]
-pub enum ForesightCsvError {
-    #[error("not a Foresight FSX export: {0}")]
-    Layout(String),
-    #[error("row {row}: {source}")]
-    Csv {
-        row: usize,
-        #[source]
-        source: csv::Error,
-    },
-    #[error("row {row}, column `{column}`: `{value}` is not a number")]
-    Number { row: usize, column: String, value: String },
-    #[error("column `{column}`: unit `{unit}` is not one impactd reads ({expected})")]
-    Unit { column: String, unit: String, expected: &'static str },
-    #[error(
-        "column `{column}`: sign convention `{found}` where impactd reads `{expected}`; export with Foresight's \
-         default (right-handed) conventions"
-    )]
-    Convention { column: String, found: String, expected: &'static str },
-}
 
 /// What a column's unit is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,118 +104,76 @@ pub fn is_foresight_csv(text: &str) -> bool {
 }
 
 /// Each spec's column index and factor to impactd's unit, from the header.
-fn columns(header: &csv::StringRecord) -> Result<[Option<(usize, Real)>; SPECS.len()], ForesightCsvError> {
-    let mut out = [None; SPECS.len()];
-    for (k, s) in SPECS.iter().enumerate() {
-        let Some((i, inside)) = header.iter().enumerate().find_map(|(i, h)| {
-            let (name, inside) = split(h);
-            (name == s.name).then_some((i, inside))
-        }) else {
-            if s.required {
-                return Err(ForesightCsvError::Layout(format!("no column `{} (...)` in the header", s.name)));
+struct ForesightColumns([Option<(usize, Real)>; SPECS.len()]);
+
+impl Columns for ForesightColumns {
+    const EXPORT: &'static str = "Foresight FSX export";
+
+    fn from_header(header: &csv::StringRecord) -> Result<Self, LabelledCsvError> {
+        let mut out = [None; SPECS.len()];
+        for (k, s) in SPECS.iter().enumerate() {
+            let Some((i, inside)) = header.iter().enumerate().find_map(|(i, h)| {
+                let (name, inside) = split(h);
+                (name == s.name).then_some((i, inside))
+            }) else {
+                if s.required {
+                    return Err(missing_column::<Self>(format!("no column `{} (...)` in the header", s.name)));
+                }
+                continue;
+            };
+            let column = header.get(i).unwrap_or("").trim().to_string();
+            let inside = inside.unwrap_or("");
+            let (unit, signs) = inside.split_once(' ').map_or((inside, ""), |(u, rest)| (u, rest.trim()));
+            let (factor, expected) = match s.kind {
+                Kind::Speed => (speed_to_mph(unit), "mph, km/h or m/s"),
+                Kind::Angle => ((unit == "deg").then_some(1.0), "deg"),
+                Kind::Spin => ((unit == "rpm").then_some(1.0), "rpm"),
+                Kind::Millimetre => ((unit == "mm").then_some(1.0), "mm"),
+                Kind::Length => (length_to_yd(unit), "yds or m"),
+                Kind::AngularRate => ((unit == "deg/sec").then_some(1.0), "deg/sec"),
+            };
+            let Some(factor) = factor else {
+                return Err(LabelledCsvError::Unit { column, unit: unit.to_string(), expected });
+            };
+            if signs != s.signs {
+                return Err(LabelledCsvError::Convention { column, found: signs.to_string(), expected: s.signs });
             }
-            continue;
-        };
-        let column = header.get(i).unwrap_or("").trim().to_string();
-        let inside = inside.unwrap_or("");
-        let (unit, signs) = inside.split_once(' ').map_or((inside, ""), |(u, rest)| (u, rest.trim()));
-        let (factor, expected) = match s.kind {
-            Kind::Speed => (speed_to_mph(unit), "mph, km/h or m/s"),
-            Kind::Angle => ((unit == "deg").then_some(1.0), "deg"),
-            Kind::Spin => ((unit == "rpm").then_some(1.0), "rpm"),
-            Kind::Millimetre => ((unit == "mm").then_some(1.0), "mm"),
-            Kind::Length => (length_to_yd(unit), "yds or m"),
-            Kind::AngularRate => ((unit == "deg/sec").then_some(1.0), "deg/sec"),
-        };
-        let Some(factor) = factor else {
-            return Err(ForesightCsvError::Unit { column, unit: unit.to_string(), expected });
-        };
-        if signs != s.signs {
-            return Err(ForesightCsvError::Convention { column, found: signs.to_string(), expected: s.signs });
+            out[k] = Some((i, factor));
         }
-        out[k] = Some((i, factor));
+        Ok(Self(out))
     }
-    Ok(out)
+
+    fn is_club_column(name: &str) -> bool {
+        name == "Club Name"
+    }
+
+    fn cells(&self, row: &Row) -> Result<ShotCells, LabelledCsvError> {
+        let value = |k: usize| -> Result<Option<Real>, LabelledCsvError> {
+            let Some((i, factor)) = self.0[k] else { return Ok(None) };
+            Ok(row.number(i)?.map(|v| v * factor))
+        };
+        Ok(ShotCells {
+            club_speed_mph: value(CLUB_SPEED)?.filter(|s| *s < NO_CLUB_SPEED_MPH),
+            ball_speed_mph: value(BALL_SPEED)?,
+            launch_angle_deg: value(LAUNCH_ANGLE)?,
+            launch_direction_deg: value(PUSH_PULL)?,
+            backspin_rpm: value(BACK_SPIN)?,
+            sidespin_rpm: value(SIDE_SPIN)?,
+            attack_angle_deg: value(ATTACK)?,
+            club_path_deg: value(PATH)?,
+            face_angle_deg: value(FACE)?,
+            dynamic_loft_deg: value(LOFT)?,
+            // Foresight's toe- / heel+ against impactd's toward-the-toe +.
+            impact_h_mm: value(IMPACT_H)?.map(|h| -h),
+            impact_v_mm: value(IMPACT_V)?,
+            carry_yd: value(CARRY)?,
+        })
+    }
 }
 
 /// The measured shots of a Foresight export with each row's [`RowLabels`], and the rows skipped: without ball
 /// speed or club speed (or with the no-club-data sentinel), or with a club speed but not all of attack angle,
 /// club path, face to target and loft.
-pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows), ForesightCsvError> {
-    let text = text.trim_start_matches('\u{feff}');
-    let mut reader = csv::ReaderBuilder::new().has_headers(false).flexible(true).from_reader(text.as_bytes());
-    let mut records = reader.records();
-    let header = match records.next() {
-        Some(r) => r.map_err(|source| ForesightCsvError::Csv { row: 1, source })?,
-        None => return Err(ForesightCsvError::Layout("no header row".into())),
-    };
-    let cols = columns(&header)?;
-    let club_col = header.iter().position(|h| split(h).0 == "Club Name");
-    let mut lines = Vec::new();
-    let mut skipped = SkippedRows::default();
-    for (k, rec) in records.enumerate() {
-        let row = k + 2;
-        let rec = rec.map_err(|source| ForesightCsvError::Csv { row, source })?;
-        if rec.iter().all(|c| c.trim().is_empty()) {
-            continue;
-        }
-        let value = |k: usize| -> Result<Option<Real>, ForesightCsvError> {
-            let Some((i, factor)) = cols[k] else { return Ok(None) };
-            let cell = rec.get(i).unwrap_or("").trim();
-            if cell.is_empty() {
-                return Ok(None);
-            }
-            let v: Real = cell.parse().map_err(|_| ForesightCsvError::Number {
-                row,
-                column: header.get(i).unwrap_or("").trim().to_string(),
-                value: cell.to_string(),
-            })?;
-            Ok(Some(v * factor))
-        };
-        let club_speed = value(CLUB_SPEED)?.filter(|s| *s < NO_CLUB_SPEED_MPH);
-        let ball = [value(BALL_SPEED)?, value(LAUNCH_ANGLE)?, value(PUSH_PULL)?, value(BACK_SPIN)?, value(SIDE_SPIN)?];
-        let (Some(club_speed), [Some(ball_speed), Some(launch), Some(direction), Some(back), Some(side)]) =
-            (club_speed, ball)
-        else {
-            skipped.without_club_or_ball += 1;
-            continue;
-        };
-        let [Some(attack), Some(path), Some(face), Some(loft)] =
-            [value(ATTACK)?, value(PATH)?, value(FACE)?, value(LOFT)?]
-        else {
-            skipped.incomplete_club_data += 1;
-            continue;
-        };
-        let (h, v) = (value(IMPACT_H)?, value(IMPACT_V)?);
-        let delivery = DeliveryInput {
-            club_speed_mph: club_speed,
-            attack_angle_deg: attack,
-            club_path_deg: path,
-            face_angle_deg: face,
-            dynamic_loft_deg: Some(loft),
-            // Foresight's toe- / heel+ against impactd's toward-the-toe +.
-            impact_h_mm: h.map_or(0.0, |h| -h),
-            impact_v_mm: v.unwrap_or(0.0),
-            club_angular_velocity_radps: None,
-            handedness: None,
-            dynamic_lie_deg: None,
-        };
-        let measured = LaunchFields {
-            ball_speed_mph: ball_speed,
-            launch_angle_deg: launch,
-            launch_direction_deg: direction,
-            backspin_rpm: back,
-            sidespin_rpm: side,
-            carry_yd: value(CARRY)?,
-        };
-        let club = club_col.and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
-        let labels = RowLabels {
-            club: club.map(str::to_string),
-            spin_measured: true,
-            axis_measured: true,
-            impact_located: h.is_some() && v.is_some(),
-        };
-        lines.push((DatasetLine { delivery, measured }, labels));
-    }
-    Ok((lines, skipped))
+pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows), LabelledCsvError> {
+    labelled_rows::read_labelled::<ForesightColumns>(text)
 }

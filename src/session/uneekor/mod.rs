@@ -30,30 +30,13 @@ mod tests;
 
 use crate::math::Real;
 use crate::pairing::DatasetLine;
-use crate::wire::{DeliveryInput, LaunchFields};
 
 use super::labelled_header::{length_to_yd, speed_to_mph, split};
+use super::labelled_rows::{self, missing_column, Columns, LabelledCsvError, Row, ShotCells};
 use super::trackman_rows::{RowLabels, SkippedRows};
 
 /// Uneekor's "not captured".
 pub const NOT_CAPTURED: Real = 99999.0;
-
-/// Why a Uneekor export cannot be read; each names the row (1-based, the header is row 1) or column.
-#[derive(Debug, thiserror::Error)]
-pub enum UneekorCsvError {
-    #[error("not a Uneekor shot export: {0}")]
-    Layout(String),
-    #[error("row {row}: {source}")]
-    Csv {
-        row: usize,
-        #[source]
-        source: csv::Error,
-    },
-    #[error("row {row}, column `{column}`: `{value}` is not a number")]
-    Number { row: usize, column: String, value: String },
-    #[error("column `{column}`: unit `{unit}` is not one impactd reads ({expected})")]
-    Unit { column: String, unit: String, expected: &'static str },
-}
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kind {
@@ -88,112 +71,76 @@ pub fn is_uneekor_csv(text: &str) -> bool {
     names.contains(&"ball_speed") && names.contains(&"club_face_angle")
 }
 
-fn columns(header: &csv::StringRecord) -> Result<[Option<(usize, Real)>; FIELDS.len()], UneekorCsvError> {
-    let mut out = [None; FIELDS.len()];
-    for (k, (name, kind, required)) in FIELDS.iter().enumerate() {
-        let Some((i, unit)) = header.iter().enumerate().find_map(|(i, h)| {
-            let (n, unit) = split(h);
-            (n == *name).then_some((i, unit))
-        }) else {
-            if *required {
-                return Err(UneekorCsvError::Layout(format!("no column `{name}` in the header")));
-            }
-            continue;
-        };
-        let (factor, expected) = match (kind, unit) {
-            (Kind::Speed, None) => (speed_to_mph("m/s"), "mph, km/h or m/s"),
-            (Kind::Speed, Some(u)) => (speed_to_mph(u), "mph, km/h or m/s"),
-            (Kind::Length, None) => (length_to_yd("m"), "yd or m"),
-            (Kind::Length, Some(u)) => (length_to_yd(u), "yd or m"),
-            (Kind::Angle, u) => (u.is_none_or(|u| u == "deg").then_some(1.0), "deg"),
-            (Kind::Spin, u) => (u.is_none_or(|u| u == "rpm").then_some(1.0), "rpm"),
-            (Kind::Millimetre, u) => (u.is_none_or(|u| u == "mm").then_some(1.0), "mm"),
-        };
-        let Some(factor) = factor else {
-            return Err(UneekorCsvError::Unit {
-                column: header.get(i).unwrap_or("").trim().to_string(),
-                unit: unit.unwrap_or("").to_string(),
-                expected,
-            });
-        };
-        out[k] = Some((i, factor));
+/// Each field's column index and factor to impactd's unit, from the header.
+struct UneekorColumns([Option<(usize, Real)>; FIELDS.len()]);
+
+impl Columns for UneekorColumns {
+    const EXPORT: &'static str = "Uneekor shot export";
+
+    fn from_header(header: &csv::StringRecord) -> Result<Self, LabelledCsvError> {
+        let mut out = [None; FIELDS.len()];
+        for (k, (name, kind, required)) in FIELDS.iter().enumerate() {
+            let Some((i, unit)) = header.iter().enumerate().find_map(|(i, h)| {
+                let (n, unit) = split(h);
+                (n == *name).then_some((i, unit))
+            }) else {
+                if *required {
+                    return Err(missing_column::<Self>(format!("no column `{name}` in the header")));
+                }
+                continue;
+            };
+            let (factor, expected) = match (kind, unit) {
+                (Kind::Speed, None) => (speed_to_mph("m/s"), "mph, km/h or m/s"),
+                (Kind::Speed, Some(u)) => (speed_to_mph(u), "mph, km/h or m/s"),
+                (Kind::Length, None) => (length_to_yd("m"), "yd or m"),
+                (Kind::Length, Some(u)) => (length_to_yd(u), "yd or m"),
+                (Kind::Angle, u) => (u.is_none_or(|u| u == "deg").then_some(1.0), "deg"),
+                (Kind::Spin, u) => (u.is_none_or(|u| u == "rpm").then_some(1.0), "rpm"),
+                (Kind::Millimetre, u) => (u.is_none_or(|u| u == "mm").then_some(1.0), "mm"),
+            };
+            let Some(factor) = factor else {
+                return Err(LabelledCsvError::Unit {
+                    column: header.get(i).unwrap_or("").trim().to_string(),
+                    unit: unit.unwrap_or("").to_string(),
+                    expected,
+                });
+            };
+            out[k] = Some((i, factor));
+        }
+        Ok(Self(out))
     }
-    Ok(out)
+
+    fn is_club_column(name: &str) -> bool {
+        matches!(name, "club" | "club_name")
+    }
+
+    fn cells(&self, row: &Row) -> Result<ShotCells, LabelledCsvError> {
+        let value = |k: usize| -> Result<Option<Real>, LabelledCsvError> {
+            let Some((i, factor)) = self.0[k] else { return Ok(None) };
+            Ok(row.number(i)?.filter(|v| *v != NOT_CAPTURED).map(|v| v * factor))
+        };
+        let v: Vec<Option<Real>> = (0..FIELDS.len()).map(value).collect::<Result<_, _>>()?;
+        Ok(ShotCells {
+            ball_speed_mph: v[0],
+            launch_angle_deg: v[1],
+            launch_direction_deg: v[2],
+            backspin_rpm: v[3],
+            sidespin_rpm: v[4],
+            club_speed_mph: v[5],
+            attack_angle_deg: v[6],
+            club_path_deg: v[7],
+            face_angle_deg: v[8],
+            dynamic_loft_deg: v[9],
+            impact_h_mm: v[10],
+            impact_v_mm: v[11],
+            carry_yd: v[12],
+        })
+    }
 }
 
 /// The measured shots of a Uneekor export with each row's [`RowLabels`], and the rows skipped: without ball or
 /// club speed, or any ball number not captured; with a club speed but attack angle, club path, face angle or
 /// dynamic loft not captured. An impact not captured leaves the shot unlocated (at the face centre).
-pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows), UneekorCsvError> {
-    let text = text.trim_start_matches('\u{feff}');
-    let mut reader = csv::ReaderBuilder::new().has_headers(false).flexible(true).from_reader(text.as_bytes());
-    let mut records = reader.records();
-    let header = match records.next() {
-        Some(r) => r.map_err(|source| UneekorCsvError::Csv { row: 1, source })?,
-        None => return Err(UneekorCsvError::Layout("no header row".into())),
-    };
-    let cols = columns(&header)?;
-    let club_col = header.iter().position(|h| matches!(split(h).0, "club" | "club_name"));
-    let mut lines = Vec::new();
-    let mut skipped = SkippedRows::default();
-    for (k, rec) in records.enumerate() {
-        let row = k + 2;
-        let rec = rec.map_err(|source| UneekorCsvError::Csv { row, source })?;
-        if rec.iter().all(|c| c.trim().is_empty()) {
-            continue;
-        }
-        let value = |k: usize| -> Result<Option<Real>, UneekorCsvError> {
-            let Some((i, factor)) = cols[k] else { return Ok(None) };
-            let cell = rec.get(i).unwrap_or("").trim();
-            if cell.is_empty() {
-                return Ok(None);
-            }
-            let v: Real = cell.parse().map_err(|_| UneekorCsvError::Number {
-                row,
-                column: header.get(i).unwrap_or("").trim().to_string(),
-                value: cell.to_string(),
-            })?;
-            Ok((v != NOT_CAPTURED).then_some(v * factor))
-        };
-        let v: Vec<Option<Real>> = (0..FIELDS.len()).map(value).collect::<Result<_, _>>()?;
-        let (Some(club_speed), [Some(ball_speed), Some(launch), Some(direction), Some(back), Some(side)]) =
-            (v[5], [v[0], v[1], v[2], v[3], v[4]])
-        else {
-            skipped.without_club_or_ball += 1;
-            continue;
-        };
-        let [Some(attack), Some(path), Some(face), Some(loft)] = [v[6], v[7], v[8], v[9]] else {
-            skipped.incomplete_club_data += 1;
-            continue;
-        };
-        let delivery = DeliveryInput {
-            club_speed_mph: club_speed,
-            attack_angle_deg: attack,
-            club_path_deg: path,
-            face_angle_deg: face,
-            dynamic_loft_deg: Some(loft),
-            impact_h_mm: v[10].unwrap_or(0.0),
-            impact_v_mm: v[11].unwrap_or(0.0),
-            club_angular_velocity_radps: None,
-            handedness: None,
-            dynamic_lie_deg: None,
-        };
-        let measured = LaunchFields {
-            ball_speed_mph: ball_speed,
-            launch_angle_deg: launch,
-            launch_direction_deg: direction,
-            backspin_rpm: back,
-            sidespin_rpm: side,
-            carry_yd: v[12],
-        };
-        let club = club_col.and_then(|i| rec.get(i)).map(str::trim).filter(|c| !c.is_empty());
-        let labels = RowLabels {
-            club: club.map(str::to_string),
-            spin_measured: true,
-            axis_measured: true,
-            impact_located: v[10].is_some() && v[11].is_some(),
-        };
-        lines.push((DatasetLine { delivery, measured }, labels));
-    }
-    Ok((lines, skipped))
+pub fn read_labelled(text: &str) -> Result<(Vec<(DatasetLine, RowLabels)>, SkippedRows), LabelledCsvError> {
+    labelled_rows::read_labelled::<UneekorColumns>(text)
 }

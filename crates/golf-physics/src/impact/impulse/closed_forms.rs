@@ -15,6 +15,11 @@
 //!   the ball leaves spinning the other way, `omega_b = R P_t / I_b` about the vertical, toward the draw for a
 //!   toe strike: the gear effect of a rigid head (A. R. Penner, "The physics of golf: the convex face of a
 //!   driver", Am. J. Phys. 69, 2001, its rigid-head impulse model).
+//! - The D-plane: a ball rolling off a face that does not move (no gear effect) spins about `u x n`, the normal
+//!   of the plane of the club's path `u` and the face normal `n` (T. P. Jorgensen, "The Physics of Golf", 2nd
+//!   ed., 1999, ch. 7; TrackMan's D-plane). With spin loft `s` and face to path `f`, the axis tilts
+//!   `atan(cos s sin f / sin s)` from the horizontal, about `1 / tan s` degrees per degree of face to path (4.0 at
+//!   14 deg): the geometry every rigid-face model starts from, before a head that turns adds its gear effect.
 
 #![allow(clippy::unwrap_used)]
 
@@ -80,4 +85,40 @@ fn rolling_side_spin_is_the_rigid_head_gear_effect() {
         // And it is the gear effect alone: zero CG depth, zero side spin.
         assert!(solve(&problem(x, 0.0)).unwrap().ball_angular_velocity_radps.y.abs() < 1e-9);
     }
+}
+
+#[test]
+fn a_ball_rolling_off_a_fixed_face_spins_about_the_d_plane_normal() {
+    let ball_i = 0.4 * BALL_M * BALL_R * BALL_R;
+    for (spin_loft_deg, face_to_path_deg) in [(14.0_f64, 1.0_f64), (14.0, -3.0), (25.0, 2.0), (40.0, 5.0)] {
+        let (s, f) = (spin_loft_deg.to_radians(), face_to_path_deg.to_radians());
+        // The path along x, the face normal turned up by the spin loft and right (+z) by the face to path.
+        let n = Vector3::new(s.cos() * f.cos(), s.sin(), s.cos() * f.sin());
+        let up = (Vector3::y() - n * n.y).normalize();
+        let world_from_impact = Matrix3::from_columns(&[n, up, n.cross(&up)]);
+        let problem = ContactProblem {
+            club_mass_kg: 1.0e12,
+            club_inertia_inv: Matrix3::zeros(),
+            ball_mass_kg: BALL_M,
+            ball_inertia_inv: Matrix3::from_diagonal_element(1.0 / ball_i),
+            r_club_m: Vector3::zeros(),
+            r_ball_m: -BALL_R * n,
+            world_from_impact,
+            club_velocity_mps: Vector3::new(V, 0.0, 0.0),
+            club_angular_velocity_radps: Vector3::zeros(),
+            ball_velocity_mps: Vector3::zeros(),
+            ball_angular_velocity_radps: Vector3::zeros(),
+            restitution: Vector3::new(E, 0.0, 0.0),
+        };
+        let w = solve(&problem).unwrap().ball_angular_velocity_radps;
+        // The ball spins about u x n = (0, -n_z, n_y) (the D-plane's normal); its tilt out of the horizontal:
+        let d_plane = Vector3::x().cross(&n);
+        assert!(w.normalize().cross(&d_plane.normalize()).norm() < 1e-9, "{spin_loft_deg}, {face_to_path_deg}: {w}");
+        let tilt_deg = (w.y / w.z.abs()).atan().to_degrees();
+        let closed_deg = (s.cos() * f.sin() / s.sin()).atan().to_degrees();
+        assert!((tilt_deg.abs() - closed_deg.abs()).abs() < 1e-9, "{tilt_deg} against {closed_deg}");
+    }
+    // At the kept drives' 14 deg of spin loft: 4.0 deg of axis per deg of face to path, before any gear effect.
+    let per_deg = (14.0_f64.to_radians().cos() * 1.0_f64.to_radians().sin() / 14.0_f64.to_radians().sin()).atan();
+    assert!((per_deg.to_degrees() - 4.0).abs() < 0.05, "{}", per_deg.to_degrees());
 }
