@@ -208,41 +208,77 @@ pub fn club_data_stages() -> Vec<Stage> {
     out
 }
 
+/// Twenty golfers' swings for `club`, sampled as a rig would (0.2 mm, 0.1 deg noise), one after another.
+fn swing_samples(club: &ClubSpec) -> Vec<crate::kinematics::ClubheadSample> {
+    let eq = Equipment::new(club.clone());
+    let mut rng = Rng::new(0xFEED);
+    let sampling =
+        Sampling { position_noise_m: 0.2e-3, orientation_noise_rad: 0.1f64.to_radians(), ..Default::default() };
+    let mut samples = Vec::new();
+    let mut frame = 1;
+    for k in 0..20u64 {
+        let spec = SwingSpec::golfer(club, &mut rng);
+        let Ok(swing) = Swing::new(&spec, &eq) else {
+            continue;
+        };
+        let s = sample(&swing, &sampling, &Calibration::default(), 1_000_000_000 * (k + 1), frame, &mut rng);
+        frame = s.next_frame;
+        samples.extend(s.samples);
+    }
+    samples
+}
+
 /// The pipeline over recorded-like samples: `pipeline/sample/<club>`, one sample (track, detection, and at
-/// each impact the estimate and the prediction) per operation. Its inverse is the replay rate.
+/// each impact the estimate and the prediction) per operation. Its inverse is the replay rate. And
+/// `pipeline/shot/<club>`: the frame that reveals an impact (the estimate, its uncertainty, the club data, the
+/// model, the launch's uncertainty and the flight with the recording's line), the compute on a live shot's
+/// latency path; each operation also copies the pipeline's state from just before that frame.
 pub fn pipeline_stages() -> Vec<Stage> {
     let mut out = Vec::new();
     for club in [ClubSpec::driver(), ClubSpec::iron7()] {
-        let eq = Equipment::new(club.clone());
-        let mut rng = Rng::new(0xFEED);
-        let sampling =
-            Sampling { position_noise_m: 0.2e-3, orientation_noise_rad: 0.1f64.to_radians(), ..Default::default() };
-        let mut samples = Vec::new();
-        let mut frame = 1;
-        for k in 0..20u64 {
-            let spec = SwingSpec::golfer(&club, &mut rng);
-            let Ok(swing) = Swing::new(&spec, &eq) else {
-                continue;
-            };
-            let s = sample(&swing, &sampling, &Calibration::default(), 1_000_000_000 * (k + 1), frame, &mut rng);
-            frame = s.next_frame;
-            samples.extend(s.samples);
-        }
-        let setup = crate::pipeline::RigSetup::new("bench", club.clone());
+        let samples = swing_samples(&club);
+        let mut setup = crate::pipeline::RigSetup::new("bench", club.clone());
         let mut pipeline = crate::pipeline::Pipeline::new(setup.clone());
         let mut events = Vec::with_capacity(8);
         let mut next = 0usize;
+        // The shots: the pipeline just before each revealing frame, with that frame.
+        setup.flight_line_step_s = 0.05;
+        let mut before = crate::pipeline::Pipeline::new(setup.clone());
+        let mut shots = Vec::new();
+        for s in &samples {
+            let state = before.clone();
+            events.clear();
+            before.on_sample(s, &mut events);
+            if events.iter().any(|e| matches!(e, crate::pipeline::Event::Launch(_))) {
+                shots.push((state, s.clone()));
+            }
+        }
+        let sample_setup = crate::pipeline::RigSetup::new("bench", club.clone());
         out.push(Stage {
             name: format!("pipeline/sample/{}", club.name),
             run: Box::new(move |_| {
                 if next == samples.len() {
                     next = 0;
-                    pipeline = crate::pipeline::Pipeline::new(setup.clone());
+                    pipeline = crate::pipeline::Pipeline::new(sample_setup.clone());
                 }
                 events.clear();
                 pipeline.on_sample(&samples[next], &mut events);
                 next += 1;
                 events.len() as f64
+            }),
+        });
+        if shots.is_empty() {
+            continue;
+        }
+        let mut shot_events = Vec::with_capacity(8);
+        out.push(Stage {
+            name: format!("pipeline/shot/{}", club.name),
+            run: Box::new(move |i| {
+                let (state, sample) = &shots[i % shots.len()];
+                let mut p = state.clone();
+                shot_events.clear();
+                p.on_sample(sample, &mut shot_events);
+                shot_events.len() as f64
             }),
         });
     }
