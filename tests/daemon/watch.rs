@@ -1,7 +1,7 @@
 //! `impactd watch` for real: the binary joins a daemon on loopback zenoh while a synthetic rig swings, and
-//! prints one line per shot. Each line's numbers are the prediction's, and each shows within 50 ms of the
-//! prediction's publication (the bound; loopback, measured from the test's own subscriber to the line
-//! read from the child's stdout).
+//! prints one line per shot. Each line's numbers are the prediction's; its delay from the prediction's
+//! publication (loopback, from the test's own subscriber to the line read from the child's stdout) is measured
+//! and printed, never asserted.
 
 #![allow(clippy::unwrap_used)]
 #![cfg(feature = "daemon")]
