@@ -4,7 +4,8 @@
 //! called inside the put: the budget's measure, p99 <= 0.5 ms), and to a subscriber in another session one TCP
 //! hop away. First through the daemon's `[rig.input]`, then through `impactd bridge natnet`'s library (one more
 //! zenoh hop: bridge -> daemon), then through the daemon's Vicon DataStream input (TCP, the test server of
-//! `tests/common/vicon_server.rs`). Prints p50/p99/max of each, and the daemon's own `latency_us`.
+//! `tests/common/vicon_server.rs`). Prints p50/p99/max of each, and the daemon's own `latency_us`. Last, the
+//! machine's floor: the same hops (datagram, reading thread, queue, worker thread, zenoh) with no work in them.
 //! `cargo bench --bench mocap_latency [-- SHOTS]`.
 
 #![allow(clippy::unwrap_used)]
@@ -49,7 +50,10 @@ type Received = Arc<Mutex<HashMap<u64, (f64, f64)>>>;
 
 /// A subscriber to `golf/rig1/launch` on `session`: for each launch whose frame was sent, (us since sent,
 /// `latency_us`).
-fn listen(session: &zenoh::Session, sent: &Arc<Mutex<HashMap<u64, Instant>>>) -> (zenoh::pubsub::Subscriber<()>, Received) {
+fn listen(
+    session: &zenoh::Session,
+    sent: &Arc<Mutex<HashMap<u64, Instant>>>,
+) -> (zenoh::pubsub::Subscriber<()>, Received) {
     let got: Received = Default::default();
     let (s, r) = (sent.clone(), got.clone());
     let sub = session
@@ -254,6 +258,83 @@ async fn measure_vicon(shots: u64) -> Vec<Shot> {
     shots_of(&remote, &local)
 }
 
+/// The machine's floor for the same hops with no work in them: a datagram on 127.0.0.1 read by a blocking
+/// thread (as the native inputs read), handed over a bounded channel to a worker thread (as the rig's queue),
+/// which puts it on zenoh to a subscriber in its own session and one in another. Returns (published, remote) us.
+async fn measure_floor(shots: u64) -> Vec<(f64, f64)> {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_loopback_port().unwrap());
+    let session = ZenohArgs::loopback(vec![endpoint.clone()], vec![]).open().await.unwrap();
+    let remote_session = ZenohArgs::loopback(vec![], vec![endpoint]).open().await.unwrap();
+    let sent: Arc<Mutex<HashMap<u64, Instant>>> = Default::default();
+    let got = |session: &zenoh::Session| {
+        let got: Arc<Mutex<HashMap<u64, f64>>> = Default::default();
+        let (s, r) = (sent.clone(), got.clone());
+        let sub = session
+            .declare_subscriber("floor/launch")
+            .callback(move |m| {
+                let now = Instant::now();
+                let frame = u64::from_le_bytes(m.payload().to_bytes()[..8].try_into().unwrap());
+                if let Some(t) = s.lock().unwrap().get(&frame) {
+                    r.lock().unwrap().insert(frame, now.duration_since(*t).as_secs_f64() * 1e6);
+                }
+            })
+            .wait()
+            .unwrap();
+        (sub, got)
+    };
+    let ((_l, local), (_r, remote)) = (got(&session), got(&remote_session));
+    tokio::time::sleep(Duration::from_millis(1000)).await;
+    let publisher = session.declare_publisher("floor/launch").wait().unwrap();
+    let rx_socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+    rx_socket.set_read_timeout(Some(Duration::from_millis(200))).unwrap();
+    let to = rx_socket.local_addr().unwrap();
+    let (tx, rx) = std::sync::mpsc::sync_channel::<[u8; 9]>(1024);
+    let reader = std::thread::spawn(move || {
+        let mut buf = [0u8; 64];
+        while let Ok(n) = rx_socket.recv(&mut buf) {
+            if n == 9 && tx.try_send(buf[..9].try_into().unwrap()).is_err() {
+                break;
+            }
+        }
+    });
+    let worker = std::thread::spawn(move || {
+        let payload = vec![b' '; 2500];
+        while let Ok(m) = rx.recv() {
+            if m[8] == 1 {
+                let mut p = payload.clone();
+                p[..8].copy_from_slice(&m[..8]);
+                publisher.put(p).wait().unwrap();
+            }
+        }
+    });
+    let sent_frames = sent.clone();
+    tokio::task::spawn_blocking(move || {
+        let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let period = Duration::from_secs_f64(1.0 / 720.0);
+        let start = Instant::now();
+        for k in 0..(shots * 180) {
+            let due = start + period * k as u32;
+            if let Some(wait) = due.checked_duration_since(Instant::now()) {
+                std::thread::sleep(wait);
+            }
+            let mut m = [0u8; 9];
+            m[..8].copy_from_slice(&k.to_le_bytes());
+            m[8] = u8::from(k % 180 == 179);
+            if m[8] == 1 {
+                sent_frames.lock().unwrap().insert(k, Instant::now());
+            }
+            socket.send_to(&m, to).unwrap();
+        }
+    })
+    .await
+    .unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    reader.join().unwrap();
+    worker.join().unwrap();
+    let (local, remote) = (local.lock().unwrap(), remote.lock().unwrap());
+    local.iter().filter_map(|(k, l)| Some((*l, *remote.get(k)?))).collect()
+}
+
 /// Prints one mode's shots: frame sent -> launch published on the daemon's session (the budget's measure),
 /// -> received by a subscriber one TCP hop away, and the daemon's own `latency_us` (arrival -> launch built).
 fn report(name: &str, shots: u64, v: &[Shot]) {
@@ -279,5 +360,16 @@ fn main() {
         }
         let v = measure_vicon(shots).await;
         report("daemon [rig.input] vicon", shots, &v);
+        let v = measure_floor(shots).await;
+        let (mut published, mut remote): (Vec<f64>, Vec<f64>) = v.iter().cloned().unzip();
+        println!("the same hops with no work in them (the machine's floor): {} of {shots} shots", v.len());
+        for (what, x) in [("published", &mut published), ("received one zenoh hop away", &mut remote)] {
+            let max = x.iter().cloned().fold(0.0, f64::max);
+            println!(
+                "  datagram sent -> {what}: p50 {:.0} us, p99 {:.0} us, max {max:.0} us",
+                quantile(x, 0.5),
+                quantile(x, 0.99)
+            );
+        }
     });
 }
