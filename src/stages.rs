@@ -250,7 +250,7 @@ pub fn pipeline_stages() -> Vec<Stage> {
             events.clear();
             before.on_sample(s, &mut events);
             if events.iter().any(|e| matches!(e, crate::pipeline::Event::Launch(_))) {
-                shots.push((state, s.clone()));
+                shots.push((state, *s));
             }
         }
         let sample_setup = crate::pipeline::RigSetup::new("bench", club.clone());
