@@ -13,7 +13,8 @@
 //!   only so far, so the fit one degree higher over the same frames measures what the lower one misses: their
 //!   difference `d` at `t*` adds `d²` to the speed's variance;
 //! - the arc's bias, where the arc fits: its departure from the polynomial path at `t*` plus the polynomial's own
-//!   bias on the arc's path (what the polynomial misses of a path the arc's shape), kept whole;
+//!   bias on the arc's path (what the polynomial misses of a path the arc's shape), less the departure's noise
+//!   along its own direction;
 //! - the orientation: the rotation vector's polynomial the same way (`R = R_ref Exp(θ)`, so a change `δθ` turns
 //!   the head by `R J_r(θ) δθ`, within a few per cent of `δθ` for the few degrees it turns past the newest frame);
 //! - the calibration, where the rig's calibration reports its residuals: a constant error of the face centre's
@@ -78,12 +79,21 @@ fn isotropic(c: [Real; 3]) -> SMatrix<6, 6> {
 /// and `b_arc = d + b_poly`. `b_poly` is the polynomial's bias on the arc's own path (`bias_on_arc`,
 /// [`PoseFit::position_bias_on`](super::fit::PoseFit::position_bias_on)): large at 240 Hz, where a low degree
 /// spans few frames over the same 44 ms, and of the same sign as the arc's where both miss the uncocking, so the
-/// departure alone overstated the bias at 240 Hz and understated it at 720 Hz. The estimate `b = d + b_poly` is
-/// one draw, in position and velocity apart: `b bᵀ` is kept whole. Subtracting the departure's expected noise
-/// `tr(Σ_poly − Σ_arc)` from `|b|²` would be unbiased on average but leaves the shots whose departure came out
-/// low by chance uncovered, as the path-length fit's check does ([`speed_bias_var`]).
-fn arc_bias(departure: (Vector3, Vector3), bias_on_arc: (Vector3, Vector3)) -> SMatrix<6, 6> {
-    outer(&(departure.0 + bias_on_arc.0), &(departure.1 + bias_on_arc.1))
+/// departure alone overstated the bias at 240 Hz and understated it at 720 Hz. The estimate `b = d + b_poly`
+/// holds the departure's noise `Σ_e = Σ_poly − Σ_arc` (the arc the efficient fit, the difference's covariance is
+/// the difference of the covariances); the bias enters as `b bᵀ`, along one direction, where that noise is
+/// `b̂ᵀ Σ_e b̂`, not `tr Σ_e` (all three axes'): `b bᵀ max(0, 1 − bᵀ Σ_e b / |b|⁴)`, in position and velocity
+/// apart (`noise`: `Σ_e` as a 6x6 block).
+fn arc_bias(departure: (Vector3, Vector3), bias_on_arc: (Vector3, Vector3), noise: &SMatrix<6, 6>) -> SMatrix<6, 6> {
+    let shrink = |b: Vector3, k: usize| {
+        let b2 = b.norm_squared();
+        if b2 == 0.0 {
+            return b;
+        }
+        let along = (b.transpose() * noise.fixed_view::<3, 3>(k, k) * b)[(0, 0)] / (b2 * b2);
+        b * (1.0 - along).clamp(0.0, 1.0).sqrt()
+    };
+    outer(&shrink(departure.0 + bias_on_arc.0, 0), &shrink(departure.1 + bias_on_arc.1, 3))
 }
 
 /// `b bᵀ` of a bias in position and velocity, as a 6x6 block.
@@ -194,7 +204,9 @@ pub fn estimate_uncertainty(
                 let frames = &estimate.fits.frame_t_s[..estimate.fits.frames];
                 let departure = (a.position(t) - poly_at.position_m, a.velocity(t) - poly_at.velocity_mps);
                 let bias_on_arc = fit.position_bias_on(frames, |time| (a.position(time), a.velocity(time)), t);
-                a.position_velocity_covariance(t)? * position_var + arc_bias(departure, bias_on_arc)
+                let s_arc = a.position_velocity_covariance(t)? * position_var;
+                let s_poly = isotropic(fit.position_form(t).map(|c| c * position_var));
+                s_arc + arc_bias(departure, bias_on_arc, &(s_poly - s_arc))
             },
             a.velocity(t),
             (a.velocity(t + ACCEL_STEP_S) - a.velocity(t - ACCEL_STEP_S)) / (2.0 * ACCEL_STEP_S),
