@@ -207,6 +207,12 @@ fn check_pipeline(args: &ImportArgs) -> Result<Option<impactd::pipeline::Pipelin
     Ok(Some(impactd::pipeline::Pipeline::new(setup)))
 }
 
+/// The `[shaft]` the marker set file at `markers` names (empty when it names none).
+pub fn stated_shaft(markers: &Path) -> Result<impactd::kinematics::StatedShaft> {
+    let text = std::fs::read_to_string(markers).with_context(|| format!("reading {}", markers.display()))?;
+    MarkerSet::shaft_from_toml(&text).with_context(|| format!("{}", markers.display()))
+}
+
 /// One line on what an import saw.
 pub fn describe(c: &ImportCounts, format: &impactd::captures::Format) -> String {
     if format.markers.is_none() {

@@ -310,7 +310,8 @@ fn capture_layout(
 ) -> Result<Option<replay::CaptureLayout>> {
     let (Input::Capture(_, rig), Some(markers)) = (input, &args.markers) else { return Ok(None) };
     let fitter = args.fit.fitter(markers)?;
-    let layout = replay::CaptureLayout::scan(&args.file, &fitter, args.capture.units.as_deref())
+    let grip = super::import::stated_shaft(markers)?.grip;
+    let layout = replay::CaptureLayout::scan(&args.file, &fitter, &grip, args.capture.units.as_deref())
         .with_context(|| format!("{}", args.file.display()))?;
     if let Some(setup) = setups.iter().find(|s| &s.name == rig).or(setups.first()) {
         let face = setup.calibration.club_from_body.inverse() * impactd::math::Point3::from(setup.club.face.center_m);

@@ -313,3 +313,83 @@ fn face_markers_locate_the_face_at_50_frames() {
     );
     assert_address(&err, club, true);
 }
+
+/// The club's markers at address with a marker `label` `up_m` up the shaft from the hosel (on its axis).
+fn with_shaft_marker(club: &ClubSpec, label: &str, up_m: f64) -> (Vec<(String, Vector3)>, f64) {
+    let w = world_from_club_at_address();
+    let mut markers = club_markers(club, &w);
+    let at_club = Vector3::new(0.0, 0.03, -0.06) + club.shaft_axis_up() * up_m;
+    markers.push((label.to_string(), (w * Point3::from(at_club)).coords));
+    (markers, (at_club - club_from_body().translation.vector).norm())
+}
+
+/// The distance of the marker named `label` from the body's origin (m), from the world positions.
+fn from_body_m(markers: &[(String, Vector3)], label: &str) -> f64 {
+    let world_from_body = world_from_club_at_address() * club_from_body();
+    let p = markers.iter().find(|(l, _)| l == label).unwrap().1;
+    (world_from_body.inverse() * Point3::from(p)).coords.norm()
+}
+
+#[test]
+fn shaft_and_grip_markers_named_by_the_marker_set_are_used_without_flags() {
+    let bay = Bay::new(true);
+    let club = &bay.club;
+    let (markers, handle_m) = with_shaft_marker(club, "HANDLE", 1.0);
+    let address = bay.path("address.c3d");
+    write_trial(Path::new(&address), &bay.truth_lab, &markers, 25, STILL);
+    let shaft = "[shaft]\nmarkers = [\"SHAFT1\", \"SHAFT2\"]\ngrip = [\"HANDLE\"]\n";
+    std::fs::write(bay.path("set.toml"), marker_set(true, club) + shaft).unwrap();
+    let (set, cfg, out) = (bay.path("set.toml"), bay.path("impactd.toml"), bay.path("club.toml"));
+    let base = ["calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "-o", &out];
+    // No --shaft: the set's shaft markers turn the stated face and read the address, as --shaft SHAFT1,SHAFT2 does.
+    let err = impactd_ok(&base);
+    assert!(err.contains("shaft markers SHAFT1, SHAFT2: from the marker set's [shaft]"), "{err}");
+    assert!(
+        err.contains("stated by the marker set's [face], its turn about the normal from the shaft markers"),
+        "{err}"
+    );
+    assert_recovered(
+        &pose(Path::new(&out), "club_from_body"),
+        &club_from_body(),
+        "club_from_body ([face] and [shaft], Z-up lab)",
+    );
+    assert_address(&err, club, true);
+    // The grip marker is checked and its distance said.
+    let d = number_after(&err, "grip marker HANDLE: ");
+    eprintln!("grip marker HANDLE {d:.4} m from the head's markers (truth {handle_m:.4})");
+    assert!((d - handle_m).abs() < 1e-3 && err.contains("a club's length (0.8-1.3 m)"), "{err}");
+    // A --shaft given wins, and the set's markers not used are said.
+    let err = impactd_ok(&[&base[..], &["--shaft", "SHAFT2,HANDLE"]].concat());
+    assert!(err.contains("--shaft SHAFT2,HANDLE given: the marker set's [shaft] markers SHAFT1, SHAFT2 are not used"));
+    assert!(err.contains("shaft at address (SHAFT2, HANDLE): lean "), "{err}");
+}
+
+#[test]
+fn a_grip_marker_named_by_the_marker_set_is_refused_outside_a_clubs_length_with_its_distance() {
+    let bay = Bay::new(false);
+    let club = &bay.club;
+    let (markers, _) = with_shaft_marker(club, "HANDLE", 1.0);
+    let address = bay.path("address.c3d");
+    write_trial(Path::new(&address), &bay.truth_lab, &markers, 26, STILL);
+    let (set, cfg, out) = (bay.path("set.toml"), bay.path("impactd.toml"), bay.path("club.toml"));
+    let base = ["calibrate", "club", &address, "--markers", &set, "-c", &cfg, "--frames", "50", "-o", &out];
+    let with = |shaft: &str| std::fs::write(&set, marker_set(false, club) + "[shaft]\n" + shaft).unwrap();
+    // SHAFT2, half a metre up the shaft, named as the grip.
+    with("grip = [\"HANDLE\", \"SHAFT2\"]\n");
+    let err = impactd_refused(&base);
+    let d = number_after(&err, "the grip marker SHAFT2 is ");
+    assert!((d - from_body_m(&markers, "SHAFT2")).abs() < 0.006, "{d}: {err}");
+    assert!(err.contains("m from the head's markers (the static trial's mean), outside the 0.8-1.3 m"), "{err}");
+    assert!(!std::path::Path::new(&out).exists(), "nothing written on a refusal");
+    // A grip marker the trial does not have is named.
+    with("grip = [\"BUTT_CAP\"]\n");
+    let err = impactd_refused(&base);
+    assert!(err.contains("the marker set's [shaft] grip marker BUTT_CAP") && err.contains("BUTT_CAP"), "{err}");
+    // A [shaft] that names one shaft marker, or a head marker, is refused with the table.
+    with("markers = [\"SHAFT1\"]\n");
+    let err = impactd_refused(&base);
+    assert!(err.contains("marker `[shaft]`: markers names 1 labels"), "{err}");
+    with("grip = [\"CROWN\"]\n");
+    let err = impactd_refused(&base);
+    assert!(err.contains("`CROWN` is one of the head's [markers] too"), "{err}");
+}

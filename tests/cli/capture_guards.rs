@@ -185,3 +185,79 @@ fn an_impact_frame_the_user_gives_is_used_and_said() {
         "{err}"
     );
 }
+
+/// The swing's frames as a pose table (CSV: time in s, the club's position in m, its quaternion xyzw), `swings`
+/// copies of the swing one after the other (each `T_IMPACT_S + 0.2` s long), empty cells where it is not seen:
+/// what `impactd import` reads with `--columns`.
+fn pose_table(s: &Swing, rate_hz: f64, swings: u64) -> String {
+    let per_swing = ((T_IMPACT_S + 0.2) * rate_hz) as u64;
+    let t_impact = T_IMPACT_S + 0.37 / rate_hz;
+    let mut out = String::from("t,x,y,z,qx,qy,qz,qw\n");
+    for i in 0..per_swing * swings {
+        let t = i as f64 / rate_hz;
+        let tau = (i % per_swing) as f64 / rate_hz - t_impact;
+        if !(-0.08..0.03).contains(&tau) {
+            out += &format!("{t:.9},,,,,,,\n");
+            continue;
+        }
+        let pose = s.pose(tau);
+        let (p, q) = (pose.translation.vector, pose.rotation);
+        out += &format!("{t:.9},{:.9},{:.9},{:.9},{:.12},{:.12},{:.12},{:.12}\n", p.x, p.y, p.z, q.i, q.j, q.k, q.w);
+    }
+    out
+}
+
+const POSE_COLUMNS: &str = "time=t:s; position=x,y,z:m; quaternion-xyzw=qx,qy,qz,qw";
+
+/// `impactd import` of a pose table into `samples.jsonl` with `extra`; its exit, stderr and the samples' lines.
+fn import(table: &str, extra: &[&str]) -> (Output, String, usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, samples) = (dir.path().join("swing.csv"), dir.path().join("samples.jsonl"));
+    std::fs::write(&path, table).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_impactd"))
+        .arg("import")
+        .arg(&path)
+        .args(["--columns", POSE_COLUMNS, "--rig", "bay1", "-o"])
+        .arg(&samples)
+        .args(extra)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let lines = std::fs::read_to_string(&samples).map(|t| t.lines().count()).unwrap_or(0);
+    (out.clone(), String::from_utf8_lossy(&out.stderr).into_owned(), lines)
+}
+
+/// Two swings that pass a ball configured 12 cm beside the face's path: `import -c` writes every sample all the
+/// same, says for each swing how it missed, and exits 2 (a capture checked that predicts nothing).
+#[test]
+fn an_import_whose_swings_predict_nothing_exits_2_and_says_why_for_each_swing() {
+    let s = swing(45.0, 13);
+    let dir = tempfile::tempdir().unwrap();
+    let c = config(dir.path(), "ball_position_m = [0.0, 0.12, 0.0]\n");
+    let table = pose_table(&s, 360.0, 2);
+    let (out, err, lines) = import(&table, &["-c", &c]);
+    assert_eq!(lines, table.lines().count() - 1, "a sample a row, checked or not: {err}");
+    assert_eq!(err.matches("no prediction: a swing (frames").count(), 2, "each swing's reason: {err}");
+    assert_eq!(err.matches("did not reach the ball: the ball was").count(), 2, "{err}");
+    assert!(err.contains("mm above the face"), "{err}");
+    assert!(err.contains("checked with rig bay1: 0 predictions, 0 failed, 2 swings missed"), "{err}");
+    assert!(err.contains("2 swings found") && err.contains("exit 2"), "{err}");
+    assert_eq!(out.status.code(), Some(2), "{err}");
+}
+
+/// The same swings and the ball where the swing meets it: `import -c` checks them, a prediction each, exit 0; and
+/// without -c it says the swings were not checked.
+#[test]
+fn an_import_checked_with_its_config_gives_each_swings_launch_and_exits_0() {
+    let s = swing(45.0, 13);
+    let dir = tempfile::tempdir().unwrap();
+    let c = config(dir.path(), "");
+    let table = pose_table(&s, 360.0, 2);
+    let (out, err, lines) = import(&table, &["-c", &c]);
+    assert!(out.status.success(), "{err}");
+    assert_eq!(lines, table.lines().count() - 1, "{err}");
+    assert!(err.contains("checked with rig bay1: 2 predictions, 0 failed, 0 swings missed"), "{err}");
+    assert!(!err.contains("no prediction"), "{err}");
+    let (out, err, _) = import(&table, &[]);
+    assert!(out.status.success() && err.contains("swings not checked: import with -c CONFIG"), "{err}");
+}

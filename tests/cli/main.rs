@@ -20,6 +20,8 @@ mod calibrate_lab;
 #[cfg(feature = "daemon")]
 mod calibrate_static;
 mod camera_monitors;
+#[cfg(feature = "daemon")]
+mod capture_grip;
 mod capture_guards;
 mod cli;
 mod doc_links;

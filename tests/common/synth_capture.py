@@ -7,7 +7,7 @@ centre at the origin). Output, in OUT_DIR:
 
 - `swing.c3d`, `swing.trc`: markers in the lab's axes (a Y-up or a Z-up lab, somewhere else than the ball), in
   millimetres (the TRC in `--trc-units`): four on the head (CROWN, TOE, HOSEL, BACK, at unequal distances), two on
-  the shaft (SHAFT_LO, SHAFT_HI), three on the floor (FLOOR_A/B/C), a target-line pair (TARGET_REAR/FRONT) and
+  the shaft (SHAFT_LO, SHAFT_HI; with `--grip-m D` a third, HANDLE, D up the shaft's axis from the hosel), three on the floor (FLOOR_A/B/C), a target-line pair (TARGET_REAR/FRONT) and
   one on top of the ball (BALL, gone once the ball is struck); marker noise `--noise-mm`, BACK lost for 30 ms on
   the downswing, CROWN for 3 frames after impact, and TOE a ghost 12 mm off in the frame before impact.
 - `swing.csv` and its sidecar `swing.csv.columns`: the face centre's pose in the lab (mm, the orientation as
@@ -18,6 +18,7 @@ centre at the origin). Output, in OUT_DIR:
 
 Usage: synth_capture.py TRUTH.jsonl OUT_DIR --rate HZ --lab y-up|z-up --noise-mm MM --seed N
        --face-centre X,Y,Z --impact-frame I [--trc-units mm|cm|m] [--orientation quaternion|matrix|euler-ZYX]
+       [--grip-m D]
 """
 
 import argparse
@@ -112,6 +113,7 @@ def main():
     ap.add_argument("--impact-frame", type=int, required=True)
     ap.add_argument("--trc-units", choices=["mm", "cm", "m"], default="mm")
     ap.add_argument("--orientation", choices=["quaternion", "matrix", "euler-ZYX"], default="quaternion")
+    ap.add_argument("--grip-m", type=float, default=None)
     a = ap.parse_args()
     rng = np.random.default_rng(a.seed)
     face_centre = np.array([float(v) for v in a.face_centre.split(",")])
@@ -121,7 +123,8 @@ def main():
     dt = 1.0 / a.rate
     i_impact = a.impact_frame
 
-    labels = list(HEAD) + ["SHAFT_LO", "SHAFT_HI"] + list(STATIC_WORLD) + ["BALL"]
+    shaft = ["SHAFT_LO", "SHAFT_HI"] + (["HANDLE"] if a.grip_m is not None else [])
+    labels = list(HEAD) + shaft + list(STATIC_WORLD) + ["BALL"]
     frames = []  # per frame, per label: lab position (m) or None
     table = []  # per frame: (time_s, face centre lab m, lab_from_club rotation, ball lab m) or None cells
     for i, pose in enumerate(poses):
@@ -134,6 +137,8 @@ def main():
         hosel = np.array(HEAD["HOSEL"])
         row["SHAFT_LO"] = club_to_lab(hosel + 0.22 * SHAFT_DIR)
         row["SHAFT_HI"] = club_to_lab(hosel + 0.61 * SHAFT_DIR)
+        if a.grip_m is not None:
+            row["HANDLE"] = club_to_lab(hosel + a.grip_m * SHAFT_DIR)
         for name, p in STATIC_WORLD.items():
             row[name] = to_lab(np.array(p))
         row["BALL"] = to_lab(BALL_MARKER_WORLD) if i < i_impact else None

@@ -1,6 +1,7 @@
 //! `calibrate club`: `club_from_body` from the club at address, the face located by face markers, a pointer
 //! trial or the marker set's `[face]` (else assumed soled square behind the ball, and reported so); shaft
-//! markers give the address lean and lie.
+//! markers (`--shaft`, or the marker set's `[shaft] markers`) give the address lean and lie, and the set's `[shaft]
+//! grip` markers are checked for a club's length from the head's markers.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -22,7 +23,8 @@ use super::{radius_m, section, write, Trial};
 pub struct ClubArgs {
     #[command(flatten)]
     pub trial: Trial,
-    /// The marker set of the tracked body on the club (its `[face]`, if stated, locates the face).
+    /// The marker set of the tracked body on the club (its `[face]`, if stated, locates the face; its `[shaft]`
+    /// names the shaft markers --shaft would and the grip markers checked for a club's length).
     #[arg(long)]
     pub markers: PathBuf,
     /// The club (preset or club file); default: the rig's.
@@ -58,7 +60,8 @@ pub struct ClubArgs {
     /// With one pointer file: the first frame of each touch (centre, heel, toe), each averaged over --frames.
     #[arg(long, value_delimiter = ',')]
     pub touch_frames: Vec<u64>,
-    /// Two markers on the shaft, on the same side of it (either order): the address shaft lean and lie.
+    /// Two markers on the shaft, on the same side of it (either order): the address shaft lean and lie (default:
+    /// the marker set's `[shaft] markers`).
     #[arg(long, value_delimiter = ',')]
     pub shaft: Vec<String>,
 }
@@ -85,12 +88,28 @@ pub fn club(a: &ClubArgs) -> Result<ExitCode> {
     let club: ClubSpec = load_club(&club_name).with_context(|| format!("--club {club_name}"))?.club;
     let ball_radius_m = impactd::impact::Equipment::new(club.clone()).ball.radius_m;
     let world_from_body = world_from_lab * lab_from_body;
-    let shaft = match a.shaft.as_slice() {
+    let stated_shaft = super::super::import::stated_shaft(&a.markers)?;
+    check_grip(&t, &lab_from_body, &stated_shaft.grip)?;
+    let (shaft_labels, flag) = match (a.shaft.as_slice(), stated_shaft.markers.as_slice()) {
+        ([], []) => (Vec::new(), "--shaft"),
+        ([], stated) => (stated.to_vec(), "the marker set's [shaft] markers"),
+        (given, stated) => {
+            if !stated.is_empty() && stated.iter().any(|s| !given.contains(s)) {
+                eprintln!(
+                    "--shaft {} given: the marker set's [shaft] markers {} are not used",
+                    given.join(","),
+                    stated.join(", ")
+                );
+            }
+            (given.to_vec(), "--shaft")
+        }
+    };
+    let shaft = match shaft_labels.as_slice() {
         [] => None,
         [lo, hi] => {
-            let p = t.means(&[lo.clone(), hi.clone()])?;
+            let p = t.means(&[lo.clone(), hi.clone()]).with_context(|| format!("the shaft markers ({flag})"))?;
             let (lo_w, hi_w) = (world_from_lab * Point3::from(p[0]), world_from_lab * Point3::from(p[1]));
-            Some(shaft_reading(&lo_w.coords, &hi_w.coords).context("--shaft")?)
+            Some(shaft_reading(&lo_w.coords, &hi_w.coords).context(flag)?)
         }
         _ => bail!("--shaft takes two markers on the shaft: A,B"),
     };
@@ -125,8 +144,27 @@ pub fn club(a: &ClubArgs) -> Result<ExitCode> {
              address angles below are in the lab's axes"
         );
     }
-    report(&result, &club, &fitter, residual_m, shaft.as_ref(), a);
+    if flag != "--shaft" {
+        eprintln!("shaft markers {}: from the marker set's [shaft]", shaft_labels.join(", "));
+    }
+    report(&result, &club, &fitter, residual_m, shaft.as_ref().map(|s| (s, shaft_labels.as_slice())), a);
     write(&a.trial, &section("club_from_body", &result.club_from_body))
+}
+
+/// The grip markers the marker set names, each at a club's length from the head's markers in the static trial
+/// (`guards::CLUB_LENGTH_M`): a refusal names the marker and its distance; within it, each is said.
+fn check_grip(t: &StaticTrial, lab_from_body: &Isometry3, grip: &[String]) -> Result<()> {
+    for g in grip {
+        let p =
+            t.means(std::slice::from_ref(g)).with_context(|| format!("the marker set's [shaft] grip marker {g}"))?;
+        let d = (p[0] - lab_from_body.translation.vector).norm();
+        if let Some(why) = impactd::kinematics::guards::club_length_refusal(g, d, "the static trial's mean") {
+            bail!("{why} (the marker set's [shaft] grip)");
+        }
+        let (lo, hi) = impactd::kinematics::guards::CLUB_LENGTH_M;
+        eprintln!("grip marker {g}: {d:.3} m from the head's markers, a club's length ({lo}-{hi} m)");
+    }
+    Ok(())
 }
 
 /// The body's pose in a static trial from its markers' means.
@@ -176,7 +214,7 @@ fn report(
     club: &ClubSpec,
     fitter: &MarkerFitter,
     residual_m: f64,
-    shaft: Option<&calibrate::ShaftReading>,
+    shaft: Option<(&calibrate::ShaftReading, &[String])>,
     a: &ClubArgs,
 ) {
     let how = match r.face {
@@ -226,11 +264,11 @@ fn report(
             residual_m * 1e3
         );
     }
-    if let Some(s) = shaft {
+    if let Some((s, labels)) = shaft {
         eprintln!(
             "shaft at address ({}): lean {:+.2} deg (hands ahead +; the club frame's 0), lie {:.2} deg ({:+.2} deg \
              against the club's {:.1})",
-            a.shaft.join(", "),
+            labels.join(", "),
             s.lean_deg,
             s.lie_deg,
             s.lie_deg - club.lie_deg,

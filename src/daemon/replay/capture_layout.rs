@@ -1,12 +1,13 @@
 //! What a capture's markers say before its swings are replayed: the runs of frames in which each marker of the
 //! head's set was lost (so a shot that fails or bridges a gap names the marker and the frames), and the club's
-//! length from the head's markers to a grip marker where the capture has one (`kinematics::guards`). Read in a
+//! length from the head's markers to each grip marker (those the marker set's `[shaft] grip` names, else a capture
+//! label that says grip or butt; `kinematics::guards`). Read in a
 //! pass of its own over the file, a frame at a time: only the runs are kept.
 
 use std::path::Path;
 
 use crate::captures::{CaptureError, Frame};
-use crate::kinematics::guards::CLUB_LENGTH_M;
+use crate::kinematics::guards::club_length_refusal;
 use crate::kinematics::MarkerFitter;
 use crate::math::Vector3;
 
@@ -35,9 +36,9 @@ pub struct CaptureLayout {
     pub losses: Vec<MarkerLoss>,
     /// Runs beyond [`MAX_LOSSES`].
     pub more_losses: u64,
-    /// The grip marker, the frame and the distance from the head's body origin to it (m), at the first frame
-    /// both are seen.
-    pub club_length: Option<(String, u64, f64)>,
+    /// Each grip marker, the frame and the distance from the head's body origin to it (m), at the first frame
+    /// both are seen (one entry a grip marker seen with the head).
+    pub club_length: Vec<(String, u64, f64)>,
 }
 
 /// Whether a capture label is a marker at the grip end of the shaft.
@@ -48,8 +49,14 @@ pub fn is_grip_label(label: &str) -> bool {
 
 impl CaptureLayout {
     /// Scans the marker capture (C3D, TRC) at `path` for the set `fitter` fits, its lengths read in `units` when
-    /// given.
-    pub fn scan(path: &Path, fitter: &MarkerFitter, units: Option<&str>) -> Result<CaptureLayout, CaptureError> {
+    /// given; `grip`: the grip markers the marker set names (each must be in the capture), else (empty) the
+    /// capture's first label that says grip or butt.
+    pub fn scan(
+        path: &Path,
+        fitter: &MarkerFitter,
+        grip: &[String],
+        units: Option<&str>,
+    ) -> Result<CaptureLayout, CaptureError> {
         let mut reader = crate::captures::open_markers(path, units)?;
         let labels = reader.labels().to_vec();
         let first_frame = reader.first_frame();
@@ -57,7 +64,19 @@ impl CaptureLayout {
             .set
             .indices_in(&labels)
             .map_err(|label| CaptureError::MissingMarker { label, available: labels.join(", ") })?;
-        let grip = labels.iter().position(|l| is_grip_label(l));
+        let grip: Vec<usize> = if grip.is_empty() {
+            labels.iter().position(|l| is_grip_label(l)).into_iter().collect()
+        } else {
+            grip.iter()
+                .map(|g| {
+                    labels.iter().position(|l| l.trim() == g.trim()).ok_or_else(|| CaptureError::MissingMarker {
+                        label: g.trim().to_string(),
+                        available: labels.join(", "),
+                    })
+                })
+                .collect::<Result<_, _>>()?
+        };
+        let mut measured = vec![false; grip.len()];
         let mut layout = CaptureLayout { rate_hz: reader.rate_hz(), ..CaptureLayout::default() };
         let mut open: Vec<Option<u64>> = vec![None; indices.len()];
         let mut frame = Frame::default();
@@ -78,10 +97,15 @@ impl CaptureLayout {
                     _ => {}
                 }
             }
-            if let (None, Some(g)) = (&layout.club_length, grip) {
-                if let (Some(p), Ok(fit)) = (frame.points_m.get(g).copied().flatten(), fitter.fit(&lab)) {
-                    let d = (p - fit.lab_from_body.translation.vector).norm();
-                    layout.club_length = Some((labels[g].trim().to_string(), number, d));
+            if measured.iter().any(|m| !m) {
+                if let Ok(fit) = fitter.fit(&lab) {
+                    for (k, &g) in grip.iter().enumerate() {
+                        if let (false, Some(p)) = (measured[k], frame.points_m.get(g).copied().flatten()) {
+                            let d = (p - fit.lab_from_body.translation.vector).norm();
+                            layout.club_length.push((labels[g].trim().to_string(), number, d));
+                            measured[k] = true;
+                        }
+                    }
                 }
             }
         }
@@ -101,16 +125,11 @@ impl CaptureLayout {
         }
     }
 
-    /// The club length's refusal: a grip marker outside [`CLUB_LENGTH_M`] from the head's markers.
+    /// The club length's refusal: the first grip marker outside [`CLUB_LENGTH_M`] from the head's markers.
+    ///
+    /// [`CLUB_LENGTH_M`]: crate::kinematics::guards::CLUB_LENGTH_M
     pub fn club_length_refusal(&self) -> Option<String> {
-        let (label, frame, d) = self.club_length.as_ref()?;
-        let (lo, hi) = CLUB_LENGTH_M;
-        (!(lo..=hi).contains(d)).then(|| {
-            format!(
-                "the grip marker {label} is {d:.2} m from the head's markers (frame {frame}), outside the {lo}-{hi} m \
-                 of a golf club: the markers are of another object, or the capture's units are wrong"
-            )
-        })
+        self.club_length.iter().find_map(|(label, frame, d)| club_length_refusal(label, *d, &format!("frame {frame}")))
     }
 
     /// The marker losses that end within `window` frames before `frame` (or span it), said for a person.

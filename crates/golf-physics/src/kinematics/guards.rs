@@ -16,6 +16,19 @@ pub const MAX_HEAD_SPEED_M_S: Real = 70.0;
 /// are of another object, or the capture's units are wrong.
 pub const CLUB_LENGTH_M: (Real, Real) = (0.8, 1.3);
 
+/// The refusal of a grip marker `label` at `distance_m` from the head's markers (`seen`: where it was measured, a
+/// frame or a trial) outside [`CLUB_LENGTH_M`], said for a person; `None` within it.
+pub fn club_length_refusal(label: &str, distance_m: Real, seen: &str) -> Option<String> {
+    let (lo, hi) = CLUB_LENGTH_M;
+    (!(lo..=hi).contains(&distance_m)).then(|| {
+        format!(
+            "the grip marker {label} is {distance_m:.2} m from the head's markers ({seen}), outside the {lo}-{hi} m \
+             of a golf club: the markers are of another object, the marker named as the grip is not at the grip, \
+             or the capture's units are wrong"
+        )
+    })
+}
+
 /// The face centre is on the head: further than this from the nearest marker of the head's set (m), the
 /// calibration (`club_from_body`) is wrong.
 pub const MAX_FACE_FROM_MARKERS_M: Real = 0.3;

@@ -18,6 +18,16 @@
 //! normal = [0.985, 0.17, 0.0]
 //! ```
 //!
+//! and which capture markers are on the shaft, for `calibrate club` (the two it reads the address lean and lie
+//! from, as `--shaft A,B` would) and for `calibrate club` and `replay` (the grip markers whose distance from the
+//! head's markers must be a club's length, `guards::CLUB_LENGTH_M`):
+//!
+//! ```toml
+//! [shaft]
+//! markers = ["SHAFT_LO", "SHAFT_HI"]
+//! grip = ["BUTT_CAP"]
+//! ```
+//!
 //! Labels are compared after trimming spaces (C3D pads labels with trailing spaces). A set needs at least three
 //! markers that are not all on one line, or no pose can be fitted from them.
 
@@ -30,7 +40,7 @@ use crate::math::{Real, Vector3};
 /// Why a marker set could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MarkerSetError {
-    /// The text is not TOML of the set's form (`[markers]`, optional `[face]`, nothing else).
+    /// The text is not TOML of the set's form (`[markers]`, optional `[face]` and `[shaft]`, nothing else).
     #[error("not a marker set: {0}")]
     Toml(#[source] Box<toml::de::Error>),
     /// Fewer than 3 markers (the count given).
@@ -39,10 +49,10 @@ pub enum MarkerSetError {
     /// More than [`MAX_MARKERS`] markers (the count given).
     #[error("a marker set has at most {MAX_MARKERS} markers, this one has {0}")]
     TooMany(usize),
-    /// One marker (or the `[face]` table) is unusable.
+    /// One marker (or the `[face]` or `[shaft]` table) is unusable.
     #[error("marker `{label}`: {reason}")]
     Marker {
-        /// The marker's label, or `[face]`.
+        /// The marker's label, or `[face]`, or `[shaft]`.
         label: String,
         /// What is wrong with it: an empty label, a position (or face centre) that is not finite metres within
         /// 2 m of the body's origin, or a face normal that is not finite or is zero.
@@ -74,6 +84,26 @@ struct MarkerSetFile {
     markers: BTreeMap<String, [Real; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     face: Option<FaceFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shaft: Option<ShaftFile>,
+}
+
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShaftFile {
+    #[serde(default)]
+    markers: Vec<String>,
+    #[serde(default)]
+    grip: Vec<String>,
+}
+
+/// The shaft's markers as a marker set's `[shaft]` names them (capture labels, trimmed; not of the head's set).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct StatedShaft {
+    /// Two markers on the shaft, on one side of it (either order), or none.
+    pub markers: Vec<String>,
+    /// The markers at the grip end (at least one when the table names any).
+    pub grip: Vec<String>,
 }
 
 #[derive(Debug, Serialize, Deserialize)]
@@ -94,6 +124,8 @@ pub struct StatedFace {
 
 /// The most markers one body can have (the fit keeps its visible markers in a 64-bit mask).
 pub const MAX_MARKERS: usize = 64;
+/// The most grip markers a `[shaft]` names.
+pub const MAX_GRIP_MARKERS: usize = 8;
 /// Markers further than this from the body's origin are a unit mistake (mm typed as m), not a clubhead.
 const MAX_OFFSET_M: Real = 2.0;
 /// The markers must span at least this far off their best line to give an orientation.
@@ -154,6 +186,45 @@ impl MarkerSet {
             return Err(bad("normal must be a finite direction, not zero"));
         }
         Ok(Some(StatedFace { centre_m, normal: normal.normalize() }))
+    }
+
+    /// The `[shaft]` a marker set's TOML text states (empty when none; checked: two distinct shaft markers, grip
+    /// markers distinct and at most [`MAX_GRIP_MARKERS`], none empty or one of the head's `[markers]`).
+    pub fn shaft_from_toml(text: &str) -> Result<StatedShaft, MarkerSetError> {
+        let file: MarkerSetFile = toml::from_str(text).map_err(|e| MarkerSetError::Toml(Box::new(e)))?;
+        let Some(shaft) = file.shaft else { return Ok(StatedShaft::default()) };
+        let bad = |reason: String| MarkerSetError::Marker { label: "[shaft]".into(), reason };
+        let trim = |v: Vec<String>| v.into_iter().map(|l| l.trim().to_string()).collect::<Vec<_>>();
+        let (markers, grip) = (trim(shaft.markers), trim(shaft.grip));
+        if !matches!(markers.len(), 0 | 2) {
+            return Err(bad(format!(
+                "markers names {} labels: it takes the two markers on the shaft, [\"A\", \"B\"]",
+                markers.len()
+            )));
+        }
+        if markers.len() == 2 && markers[0] == markers[1] {
+            return Err(bad(format!("markers names `{}` twice: the shaft's two markers are two", markers[0])));
+        }
+        if grip.len() > MAX_GRIP_MARKERS {
+            return Err(bad(format!("grip names {} markers, at most {MAX_GRIP_MARKERS}", grip.len())));
+        }
+        if let Some((i, g)) = grip.iter().enumerate().find(|(i, g)| grip[..*i].contains(g)) {
+            return Err(bad(format!("grip names `{g}` twice (entry {})", i + 1)));
+        }
+        if markers.is_empty() && grip.is_empty() {
+            return Err(bad("names no markers: give `markers = [\"A\", \"B\"]`, `grip = [\"G\"]` or both".into()));
+        }
+        for label in markers.iter().chain(&grip) {
+            if label.is_empty() {
+                return Err(bad("an empty label".into()));
+            }
+            if file.markers.keys().any(|k| k.trim() == label) {
+                return Err(bad(format!(
+                    "`{label}` is one of the head's [markers] too: a shaft or grip marker is not on the head"
+                )));
+            }
+        }
+        Ok(StatedShaft { markers, grip })
     }
 
     /// The TOML text of this set (0.1 um resolution).
@@ -245,5 +316,28 @@ mod tests {
         assert_eq!(MarkerSet::from_toml(&text).unwrap(), MarkerSet::from_toml(base).unwrap());
         let zero = format!("{base}[face]\ncentre_m = [0.04, -0.01, 0.0]\nnormal = [0.0, 0.0, 0.0]\n");
         assert!(MarkerSet::face_from_toml(&zero).is_err());
+    }
+
+    #[test]
+    fn reads_a_stated_shaft() {
+        let base = "[markers]\nCH1 = [0.03, 0.0, 0.01]\nCH2 = [-0.03, 0.0, 0.01]\nCH3 = [0.0, 0.02, -0.01]\n";
+        assert_eq!(MarkerSet::shaft_from_toml(base).unwrap(), StatedShaft::default());
+        let text = format!("{base}[shaft]\nmarkers = [\"S1\", \"S2 \"]\ngrip = [\"BUTT\"]\n");
+        let shaft = MarkerSet::shaft_from_toml(&text).unwrap();
+        assert_eq!((shaft.markers, shaft.grip), (vec!["S1".to_string(), "S2".into()], vec!["BUTT".to_string()]));
+        assert_eq!(MarkerSet::from_toml(&text).unwrap(), MarkerSet::from_toml(base).unwrap());
+        let grip_only = MarkerSet::shaft_from_toml(&format!("{base}[shaft]\ngrip = [\"G1\", \"G2\"]\n")).unwrap();
+        assert!(grip_only.markers.is_empty() && grip_only.grip.len() == 2);
+        for bad in [
+            "markers = [\"S1\"]",
+            "markers = [\"S1\", \"S1\"]",
+            "grip = [\"G\", \"G\"]",
+            "grip = [\"CH1\"]",
+            "markers = [\"S1\", \"\"]",
+            "",
+            "lean = 3",
+        ] {
+            assert!(MarkerSet::shaft_from_toml(&format!("{base}[shaft]\n{bad}\n")).is_err(), "{bad}");
+        }
     }
 }

@@ -26,6 +26,6 @@ pub mod uncertainty;
 pub use detect::{Detection, DetectorConfig, GivenImpact, ImpactDetector};
 pub use estimate::{EstimateError, EstimatorSpec, ImpactEstimate, Quality, Scene};
 pub use marker_fit::{BodyFit, FitFailure, MarkerFitter};
-pub use marker_set::{MarkerSet, MarkerSetError, StatedFace};
+pub use marker_set::{MarkerSet, MarkerSetError, StatedFace, StatedShaft};
 pub use sample::{Calibration, ClubPose, ClubheadSample};
 pub use track::{Reject, Track, TrackLimits};

@@ -12,8 +12,9 @@
 //!   with the path-length fit's variance and its bias: a low degree over a long span follows the speed's change
 //!   only so far, so the fit one degree higher over the same frames measures what the lower one misses: their
 //!   difference `d` at `t*` adds `d²` to the speed's variance;
-//! - the arc's bias, where the arc fits: its departure from the polynomial path at `t*`, less the share of it the
-//!   polynomial's larger noise explains;
+//! - the arc's bias, where the arc fits: its departure from the polynomial path at `t*` plus the polynomial's own
+//!   bias on the arc's path (what the polynomial misses of a path the arc's shape), less the departure's noise
+//!   along its own direction;
 //! - the orientation: the rotation vector's polynomial the same way (`R = R_ref Exp(θ)`, so a change `δθ` turns
 //!   the head by `R J_r(θ) δθ`, within a few per cent of `δθ` for the few degrees it turns past the newest frame);
 //! - the calibration, where the rig's calibration reports its residuals: a constant error of the face centre's
@@ -72,21 +73,27 @@ fn isotropic(c: [Real; 3]) -> SMatrix<6, 6> {
     m
 }
 
-/// The arc's bias where it fits: an arc is the head's path only so far (the wrists uncock, the radius changes),
-/// so its departure `d` from the polynomial path at the contact holds what it misses and the noise by which the
-/// polynomial's covariance exceeds the arc's. In position and in velocity apart, `d dᵀ` shrunk by the share that
-/// excess explains: `max(0, 1 − tr(Σ_poly − Σ_arc) / |d|²) d dᵀ`.
-fn arc_bias(s_arc: &SMatrix<6, 6>, s_poly: &SMatrix<6, 6>, dp: &Vector3, dv: &Vector3) -> SMatrix<6, 6> {
-    let excess = |k: usize| (0..3).map(|i| s_poly[(k + i, k + i)] - s_arc[(k + i, k + i)]).sum::<Real>();
-    let shrink = |d: &Vector3, k: usize| {
-        let d2 = d.norm_squared();
-        if d2 > 0.0 {
-            *d * (1.0 - excess(k) / d2).max(0.0).sqrt()
-        } else {
-            *d
+/// The arc's bias where it fits: an arc is the head's path only so far (the wrists uncock, the radius changes).
+/// The polynomial path over the same frames measures it: at the contact the arc is off the truth by `b_arc` and
+/// the polynomial by its own bias `b_poly`, so their departure `d = arc − poly` is `b_arc − b_poly` plus noise,
+/// and `b_arc = d + b_poly`. `b_poly` is the polynomial's bias on the arc's own path (`bias_on_arc`,
+/// [`PoseFit::position_bias_on`](super::fit::PoseFit::position_bias_on)): large at 240 Hz, where a low degree
+/// spans few frames over the same 44 ms, and of the same sign as the arc's where both miss the uncocking, so the
+/// departure alone overstated the bias at 240 Hz and understated it at 720 Hz. The estimate `b = d + b_poly`
+/// holds the departure's noise `Σ_e = Σ_poly − Σ_arc` (the arc the efficient fit, the difference's covariance is
+/// the difference of the covariances); the bias enters as `b bᵀ`, along one direction, where that noise is
+/// `b̂ᵀ Σ_e b̂`, not `tr Σ_e` (all three axes'): `b bᵀ max(0, 1 − bᵀ Σ_e b / |b|⁴)`, in position and velocity
+/// apart (`noise`: `Σ_e` as a 6x6 block).
+fn arc_bias(departure: (Vector3, Vector3), bias_on_arc: (Vector3, Vector3), noise: &SMatrix<6, 6>) -> SMatrix<6, 6> {
+    let shrink = |b: Vector3, k: usize| {
+        let b2 = b.norm_squared();
+        if b2 == 0.0 {
+            return b;
         }
+        let along = (b.transpose() * noise.fixed_view::<3, 3>(k, k) * b)[(0, 0)] / (b2 * b2);
+        b * (1.0 - along).clamp(0.0, 1.0).sqrt()
     };
-    outer(&shrink(dp, 0), &shrink(dv, 3))
+    outer(&shrink(departure.0 + bias_on_arc.0, 0), &shrink(departure.1 + bias_on_arc.1, 3))
 }
 
 /// `b bᵀ` of a bias in position and velocity, as a 6x6 block.
@@ -194,15 +201,12 @@ pub fn estimate_uncertainty(
     let (mut s_fv, velocity_fit, accel) = match (&estimate.arc, arc_fits) {
         (Some(a), Some(_)) => (
             {
+                let frames = &estimate.fits.frame_t_s[..estimate.fits.frames];
+                let departure = (a.position(t) - poly_at.position_m, a.velocity(t) - poly_at.velocity_mps);
+                let bias_on_arc = fit.position_bias_on(frames, |time| (a.position(time), a.velocity(time)), t);
                 let s_arc = a.position_velocity_covariance(t)? * position_var;
                 let s_poly = isotropic(fit.position_form(t).map(|c| c * position_var));
-                s_arc
-                    + arc_bias(
-                        &s_arc,
-                        &s_poly,
-                        &(a.position(t) - poly_at.position_m),
-                        &(a.velocity(t) - poly_at.velocity_mps),
-                    )
+                s_arc + arc_bias(departure, bias_on_arc, &(s_poly - s_arc))
             },
             a.velocity(t),
             (a.velocity(t + ACCEL_STEP_S) - a.velocity(t - ACCEL_STEP_S)) / (2.0 * ACCEL_STEP_S),
