@@ -1,5 +1,5 @@
 //! Argument groups shared by several commands: the flight conditions, a delivery given by flags, the impact
-//! model's name and zenoh's usual flags ([`ZenohArgs`]: `--zenoh-config`, `-m/--mode`, `-e/--connect`,
+//! model's name and zenoh's usual flags ([`ZenohFlags`]: `--zenoh-config`, `-m/--mode`, `-e/--connect`,
 //! `-l/--listen`, `--no-multicast-scouting`).
 
 use std::io::{BufRead, BufReader};
@@ -10,7 +10,10 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 
 #[cfg(feature = "daemon")]
-pub use impactd::daemon::bus::ZenohArgs;
+use impactd::daemon::bus::{Mode, ZenohArgs};
+
+#[cfg(feature = "daemon")]
+use super::error::CliError;
 use std::sync::Arc;
 
 use impactd::equipment::LoadedClub;
@@ -171,4 +174,48 @@ pub fn write_output(path: &Path, text: &str) -> Result<()> {
     std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
     eprintln!("wrote {}", path.display());
     Ok(())
+}
+
+/// zenoh's usual command-line flags.
+#[cfg(feature = "daemon")]
+#[derive(Debug, Clone, Default, Args)]
+pub struct ZenohFlags {
+    /// A zenoh configuration file (JSON5).
+    #[arg(long = "zenoh-config", value_name = "FILE")]
+    pub zenoh_config: Option<std::path::PathBuf>,
+    /// peer or client.
+    #[arg(short = 'm', long = "mode")]
+    pub mode: Option<String>,
+    /// Endpoints to connect to (e.g. tcp/192.168.1.10:7447); repeatable.
+    #[arg(short = 'e', long = "connect")]
+    pub connect: Vec<String>,
+    /// Endpoints to listen on (e.g. tcp/0.0.0.0:7447); repeatable.
+    #[arg(short = 'l', long = "listen")]
+    pub listen: Vec<String>,
+    /// Disable multicast scouting (the default unless a zenoh configuration file or --multicast-scouting says
+    /// otherwise).
+    #[arg(long = "no-multicast-scouting", conflicts_with = "multicast_scouting")]
+    pub no_multicast_scouting: bool,
+    /// Enable multicast scouting: peers on the network find each other (and this process) by themselves.
+    #[arg(long = "multicast-scouting")]
+    pub multicast_scouting: bool,
+}
+
+#[cfg(feature = "daemon")]
+impl ZenohFlags {
+    /// The flags checked: what the daemon's bus opens a session from.
+    pub fn args(&self) -> Result<ZenohArgs, CliError> {
+        let mode = match &self.mode {
+            Some(name) => Some(Mode::from_name(name).ok_or_else(|| CliError::BadMode(name.clone()))?),
+            None => None,
+        };
+        Ok(ZenohArgs {
+            zenoh_config: self.zenoh_config.clone(),
+            mode,
+            connect: self.connect.clone(),
+            listen: self.listen.clone(),
+            no_multicast_scouting: self.no_multicast_scouting,
+            multicast_scouting: self.multicast_scouting,
+        })
+    }
 }

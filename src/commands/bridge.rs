@@ -11,7 +11,7 @@ use impactd::daemon::inputs::protocol::host_port;
 use impactd::daemon::inputs::registry::protocol;
 use impactd::daemon::inputs::{run_bridge_routes, Protocol, Route, PROTOCOLS};
 
-use super::args::ZenohArgs;
+use super::args::ZenohFlags;
 use super::run::{runtime, shutdown_signal};
 
 /// The protocol chosen and its flags.
@@ -58,7 +58,7 @@ fn subcommand(p: &'static dyn Protocol) -> Command {
         );
     }
     // Zenoh's flags last; their group's doc would otherwise be the subcommand's about.
-    ZenohArgs::augment_args(p.bridge_args(cmd)).about(p.summary()).long_about(None)
+    ZenohFlags::augment_args(p.bridge_args(cmd)).about(p.summary()).long_about(None)
 }
 
 impl FromArgMatches for BridgeCommand {
@@ -132,10 +132,10 @@ pub fn run(command: &BridgeCommand) -> Result<ExitCode> {
         .into_iter()
         .map(|(body, rig)| (Route { body, ..Route::default() }, rig))
         .collect();
-    let zenoh = ZenohArgs::from_arg_matches(m).context("zenoh's flags")?;
+    let zenoh = ZenohFlags::from_arg_matches(m).context("zenoh's flags")?;
     let rt = runtime()?;
     rt.block_on(async {
-        let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
+        let session = zenoh.args()?.open_as(impactd::daemon::bus::Role::Join).await?;
         let statuses = run_bridge_routes(&session, source, routes, balls, shutdown_signal()).await.context("bridge")?;
         let _ = session.close().await;
         for s in statuses {

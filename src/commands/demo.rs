@@ -11,6 +11,7 @@ use impactd::daemon::DaemonConfig;
 
 use super::args::load_club;
 use super::checked;
+use super::error::CliError;
 use super::run::{runtime, shutdown_signal, BridgeArgs};
 
 /// Where the demo records when not told (`--record`): replaced by each demo.
@@ -68,6 +69,7 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
         args.rate,
         record.display()
     );
+    sim.check().map_err(CliError::from)?;
     let rt = runtime()?;
     let summary = rt.block_on(demo(
         DemoOptions {

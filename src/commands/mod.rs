@@ -14,6 +14,8 @@ mod calibrate;
 mod checked;
 mod compare;
 mod compare_clubs;
+#[cfg(feature = "daemon")]
+mod error;
 mod eval;
 mod fit;
 mod flight;

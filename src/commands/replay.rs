@@ -17,7 +17,7 @@ use impactd::daemon::replay::{
 };
 use impactd::pipeline::Event;
 
-use super::args::{model_name, ZenohArgs};
+use super::args::{model_name, ZenohFlags};
 use super::run::runtime;
 
 #[derive(Debug, Args)]
@@ -81,7 +81,7 @@ pub struct ReplayArgs {
     #[arg(long, requires = "output")]
     pub overwrite: bool,
     #[command(flatten)]
-    pub zenoh: ZenohArgs,
+    pub zenoh: ZenohFlags,
 }
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
@@ -170,9 +170,10 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
     let _keys = pause.map(super::replay_pause::start);
     rt.block_on(async {
         let session = match publish {
-            Some(_) => Some(args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?),
+            Some(_) => Some(args.zenoh.args()?.open_as(impactd::daemon::bus::Role::Join).await?),
             None => None,
         };
+        super::error::positive_rate(args.rate)?;
         let mut out = std::io::stdout().lock();
         let mut report;
         loop {

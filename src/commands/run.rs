@@ -10,7 +10,7 @@ use impactd::daemon::{DaemonConfig, DaemonError, RunOptions};
 /// The exit code of a daemon that refused to serve a rig another daemon serves.
 pub const RIG_SERVED_EXIT: u8 = 4;
 
-use super::args::ZenohArgs;
+use super::args::ZenohFlags;
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -30,7 +30,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub bridges: BridgeArgs,
     #[command(flatten)]
-    pub zenoh: ZenohArgs,
+    pub zenoh: ZenohFlags,
 }
 
 /// The optional edges of `run` and `demo`: a golf simulator to send shots to, and the Foxglove live view.
@@ -133,7 +133,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
     let web = args.bridges.web(&config);
     let rt = runtime()?;
     rt.block_on(async {
-        let session = args.zenoh.open().await?;
+        let session = args.zenoh.args()?.open().await?;
         let rigs: Vec<String> = config.rigs.iter().map(|r| r.name.clone()).collect();
         tracing::info!(
             "impactd {} serving rigs {} (zenoh id {})",
@@ -167,7 +167,7 @@ pub fn run(args: &RunArgs) -> Result<ExitCode> {
                 let _ = session.close().await;
                 return Ok(ExitCode::from(RIG_SERVED_EXIT));
             }
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(super::error::CliError::from(e).into()),
         };
         let _ = session.close().await;
         if let Some(why) = &summary.taken_over {

@@ -6,8 +6,9 @@ use anyhow::{bail, Result};
 use clap::Args;
 use impactd::daemon::sim::{run_sim, SimOptions};
 
-use super::args::{load_club, ZenohArgs};
+use super::args::{load_club, ZenohFlags};
 use super::checked;
+use super::error::CliError;
 use super::run::{runtime, shutdown_signal};
 
 #[derive(Debug, Args)]
@@ -43,7 +44,7 @@ pub struct SimArgs {
     #[arg(long, default_value_t = 0.1, value_parser = checked::magnitude)]
     pub noise_deg: f64,
     #[command(flatten)]
-    pub zenoh: ZenohArgs,
+    pub zenoh: ZenohFlags,
 }
 
 pub fn run(args: &SimArgs) -> Result<ExitCode> {
@@ -70,9 +71,11 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
         body: args.body.clone(),
         ..SimOptions::default()
     };
+    let zenoh = args.zenoh.args()?;
     let rt = runtime()?;
     rt.block_on(async {
-        let session = args.zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
+        let session = zenoh.open_as(impactd::daemon::bus::Role::Join).await?;
+        options.check().map_err(CliError::from)?;
         let s = run_sim(&session, options, shutdown_signal()).await?;
         let _ = session.close().await;
         eprintln!("sent {} samples, {} shots", s.samples, s.shots);

@@ -13,7 +13,7 @@ use impactd::session::shot_table;
 use impactd::session::Units;
 use impactd::wire::{keys, LaunchPrediction};
 
-use super::args::ZenohArgs;
+use super::args::ZenohFlags;
 use super::run::{runtime, shutdown_signal};
 
 /// Lines between repeated headers.
@@ -30,14 +30,14 @@ pub struct WatchArgs {
     #[arg(long)]
     pub count: Option<u64>,
     #[command(flatten)]
-    pub zenoh: ZenohArgs,
+    pub zenoh: ZenohFlags,
 }
 
 pub fn run(args: &WatchArgs) -> Result<ExitCode> {
     let key = keys::launch(args.rig.as_deref().unwrap_or("*"));
     let rt = runtime()?;
     rt.block_on(async {
-        let session = args.zenoh.open_as(Role::Join).await?;
+        let session = args.zenoh.args()?.open_as(Role::Join).await?;
         let subscriber =
             session.declare_subscriber(key.clone()).await.map_err(|e| anyhow::anyhow!("subscribing to {key}: {e}"))?;
         eprintln!("watching {key} (Ctrl-C to stop)");

@@ -7,27 +7,51 @@
 
 use crate::daemon::DaemonError;
 
-/// zenoh's usual command-line flags.
-#[derive(Debug, Clone, Default, clap::Args)]
+/// How a zenoh session joins the bus: zenoh's `mode`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Peer,
+    Client,
+    Router,
+}
+
+impl Mode {
+    /// The mode by zenoh's name for it (`peer`, `client`, `router`), or `None`.
+    pub fn from_name(name: &str) -> Option<Mode> {
+        match name {
+            "peer" => Some(Mode::Peer),
+            "client" => Some(Mode::Client),
+            "router" => Some(Mode::Router),
+            _ => None,
+        }
+    }
+
+    /// zenoh's name for the mode.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Peer => "peer",
+            Mode::Client => "client",
+            Mode::Router => "router",
+        }
+    }
+}
+
+/// What zenoh's usual command-line flags say (the command line's `ZenohFlags` checked): a configuration file,
+/// the mode, the endpoints and multicast scouting.
+#[derive(Debug, Clone, Default)]
 pub struct ZenohArgs {
     /// A zenoh configuration file (JSON5).
-    #[arg(long = "zenoh-config", value_name = "FILE")]
     pub zenoh_config: Option<std::path::PathBuf>,
-    /// peer or client.
-    #[arg(short = 'm', long = "mode")]
-    pub mode: Option<String>,
-    /// Endpoints to connect to (e.g. tcp/192.168.1.10:7447); repeatable.
-    #[arg(short = 'e', long = "connect")]
+    /// The session's mode; `None`: the configuration file's, else zenoh's default (peer).
+    pub mode: Option<Mode>,
+    /// Endpoints to connect to (e.g. tcp/192.168.1.10:7447).
     pub connect: Vec<String>,
-    /// Endpoints to listen on (e.g. tcp/0.0.0.0:7447); repeatable.
-    #[arg(short = 'l', long = "listen")]
+    /// Endpoints to listen on (e.g. tcp/0.0.0.0:7447).
     pub listen: Vec<String>,
-    /// Disable multicast scouting (the default unless a zenoh configuration file or --multicast-scouting says
+    /// Multicast scouting off (the default unless a zenoh configuration file or `multicast_scouting` says
     /// otherwise).
-    #[arg(long = "no-multicast-scouting", conflicts_with = "multicast_scouting")]
     pub no_multicast_scouting: bool,
-    /// Enable multicast scouting: peers on the network find each other (and this process) by themselves.
-    #[arg(long = "multicast-scouting")]
+    /// Multicast scouting on: peers on the network find each other (and this process) by themselves.
     pub multicast_scouting: bool,
 }
 
@@ -48,7 +72,7 @@ impl ZenohArgs {
     pub fn loopback(listen: Vec<String>, connect: Vec<String>) -> Self {
         ZenohArgs {
             zenoh_config: None,
-            mode: Some("peer".into()),
+            mode: Some(Mode::Peer),
             connect,
             listen,
             no_multicast_scouting: true,
@@ -72,14 +96,11 @@ impl ZenohArgs {
             None => zenoh::Config::default(),
         };
         let json = |v: &[String]| serde_json::to_string(v).unwrap_or_else(|_| "[]".into());
-        if let Some(mode) = &self.mode {
-            if mode != "peer" && mode != "client" && mode != "router" {
-                return Err(DaemonError::BadMode(mode.clone()));
-            }
-            c.insert_json5("mode", &format!("\"{mode}\"")).map_err(DaemonError::zenoh)?;
+        if let Some(mode) = self.mode {
+            c.insert_json5("mode", &format!("\"{}\"", mode.name())).map_err(DaemonError::zenoh)?;
         }
         let own_file = self.zenoh_config.is_some();
-        let client = self.mode.as_deref() == Some("client");
+        let client = self.mode == Some(Mode::Client);
         let mut listen = self.listen.clone();
         let mut connect = self.connect.clone();
         if !own_file && listen.is_empty() && connect.is_empty() {
@@ -115,7 +136,7 @@ impl ZenohArgs {
     /// minutes) while it is not up yet.
     pub async fn open_as(&self, role: Role) -> Result<zenoh::Session, DaemonError> {
         let config = self.config_for(role)?;
-        let client = self.mode.as_deref() == Some("client");
+        let client = self.mode == Some(Mode::Client);
         let mut wait = std::time::Duration::from_millis(250);
         let mut waited = std::time::Duration::ZERO;
         loop {

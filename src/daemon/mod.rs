@@ -15,6 +15,7 @@ pub mod sim;
 pub mod stats;
 
 pub use config::DaemonConfig;
+pub use recording::read_error::ReadError;
 // The configuration's parts under their paths before they became `config/`'s files.
 pub use config::{
     club as config_club, club_dirs as config_club_dirs, flight as config_flight, pose as config_pose, web as config_web,
@@ -69,8 +70,6 @@ pub enum DaemonError {
     },
     #[error(transparent)]
     Output(#[from] crate::output_file::OutputError),
-    #[error("--mode must be peer, client or router, got {0}")]
-    BadMode(String),
     #[error("zenoh: {0}")]
     Zenoh(#[source] zenoh::Error),
     #[error("recording {path}: {source}")]
@@ -79,25 +78,11 @@ pub enum DaemonError {
         #[source]
         source: mcap::McapError,
     },
+    /// A file the replay (or a recording's reader) cannot read on.
+    #[error(transparent)]
+    Read(#[from] ReadError),
     #[error("recording {path}: the writer thread panicked")]
     WriterPanicked { path: String },
-    #[error("{path} is not an MCAP file")]
-    NotMcap { path: String },
-    #[error("{path}: {source}")]
-    Unreadable {
-        path: String,
-        #[source]
-        source: recording::damage::ScanStop,
-    },
-    #[error("{path}: not a regular file, and over {limit_bytes} bytes")]
-    StreamTooLarge { path: String, limit_bytes: u64 },
-    #[error("{path} line {line}: {source}")]
-    BadSampleLine {
-        path: String,
-        line: usize,
-        #[source]
-        source: std::io::Error,
-    },
     /// Another daemon serves the rig (its liveliness token is there): this one refuses to serve it too.
     #[error(
         "rig {rig} is already served by {by}: refusing to serve it too (every shot would be predicted twice); \
@@ -107,17 +92,14 @@ pub enum DaemonError {
     /// `--take-over` that could not take the rig over.
     #[error("rig {rig} is served by {by}, and --take-over cannot take it over: {reason}")]
     TakeOver { rig: String, by: String, reason: &'static str },
-    /// A capture (C3D, TRC, a pose table) that cannot be read on.
-    #[error("{path}: {source}")]
-    Capture {
-        path: String,
-        #[source]
-        source: crate::captures::CaptureError,
-    },
     #[error("rig name `{0}` must be letters, digits, _ or -")]
     BadRigName(String),
-    #[error("{option} {reason}")]
-    BadOption { option: &'static str, reason: &'static str },
+    /// A synthetic rig's options the sim refuses.
+    #[error(transparent)]
+    SimOptions(#[from] sim::SimOptionError),
+    /// A replay's pace that is not a positive number.
+    #[error("replay rate must be a positive number, got {0}")]
+    ReplayRate(f64),
     /// A synthetic rig's shot that cannot be swung with its club, not even struck at the face centre.
     #[error("rig {rig}: shot {shot} cannot be swung with this club, not even at the face centre: {source}")]
     SimSwing {

@@ -66,8 +66,8 @@ pub const MAX_SHOTS: u64 = 1_000_000;
 impl SimOptions {
     /// Refuses what would panic, never end or overflow the clock: a rate, interval or noise that is not a
     /// finite number in its range, no rig, or more shots than [`MAX_SHOTS`].
-    pub fn check(&self) -> Result<(), DaemonError> {
-        let bad = |option, reason| Err(DaemonError::BadOption { option, reason });
+    pub fn check(&self) -> Result<(), SimOptionError> {
+        let bad = |option, reason| Err(SimOptionError { option, reason });
         if self.rigs.is_empty() {
             return bad("--rigs", "must name at least one rig");
         }
@@ -91,6 +91,14 @@ impl SimOptions {
         }
         Ok(())
     }
+}
+
+/// A synthetic rig's option the sim refuses ([`SimOptions::check`]): which (its flag's name), and why.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{option} {reason}")]
+pub struct SimOptionError {
+    pub option: &'static str,
+    pub reason: &'static str,
 }
 
 /// What the rig sent.

@@ -11,6 +11,7 @@
 //!
 //! Pure: no clocks, no IO. The caller passes the current time to [`Pairer::expire`].
 
+use crate::pipeline::{CounterKind, Tally};
 use std::collections::{BTreeMap, VecDeque};
 
 use crate::math::Real;
@@ -58,12 +59,39 @@ pub enum MeasuredError {
 }
 
 impl MeasuredError {
-    /// A short key for counters.
-    pub fn key(&self) -> &'static str {
+    /// The kind counted in the status's `rejected`.
+    pub fn kind(&self) -> MeasuredRejection {
         match self {
-            MeasuredError::NoSpin => "no_spin",
-            MeasuredError::NotFinite(_) => "not_finite",
-            MeasuredError::WrongRig { .. } => "wrong_rig",
+            MeasuredError::NoSpin => MeasuredRejection::NoSpin,
+            MeasuredError::NotFinite(_) => MeasuredRejection::NotFinite,
+            MeasuredError::WrongRig { .. } => MeasuredRejection::WrongRig,
+        }
+    }
+}
+
+/// Why a measurement was not paired (a comparison status's `rejected`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum MeasuredRejection {
+    /// A payload over the wire's limit.
+    Oversized,
+    /// A payload that is not a measured launch's JSON.
+    NotMeasuredLaunch,
+    /// [`MeasuredError::NoSpin`].
+    NoSpin,
+    /// [`MeasuredError::NotFinite`].
+    NotFinite,
+    /// [`MeasuredError::WrongRig`].
+    WrongRig,
+}
+
+impl CounterKind for MeasuredRejection {
+    fn wire_name(self) -> &'static str {
+        match self {
+            MeasuredRejection::Oversized => "oversized",
+            MeasuredRejection::NotMeasuredLaunch => "not_measured_launch",
+            MeasuredRejection::NoSpin => "no_spin",
+            MeasuredRejection::NotFinite => "not_finite",
+            MeasuredRejection::WrongRig => "wrong_rig",
         }
     }
 }
@@ -91,6 +119,8 @@ pub struct Pairer {
     shots: VecDeque<PendingShot>,
     measured: VecDeque<MeasuredLaunch>,
     status: ComparisonStatus,
+    /// Measurements not paired, by reason (the status's `rejected`).
+    rejected: Tally<MeasuredRejection>,
     mae: BTreeMap<String, RunningMae>,
 }
 
@@ -102,6 +132,7 @@ impl Pairer {
             shots: VecDeque::new(),
             measured: VecDeque::new(),
             status: ComparisonStatus::default(),
+            rejected: Tally::default(),
             mae: BTreeMap::new(),
         }
     }
@@ -144,7 +175,7 @@ impl Pairer {
     pub fn on_measured(&mut self, measured: &MeasuredLaunch) -> Result<Vec<ComparisonMessage>, MeasuredError> {
         self.status.measured += 1;
         if let Err(e) = self.check(measured) {
-            *self.status.rejected.entry(e.key().to_string()).or_default() += 1;
+            self.rejected.add(e.kind());
             return Err(e);
         }
         let found = self
@@ -164,10 +195,10 @@ impl Pairer {
         Ok(predictions.iter().map(|p| self.compare(p, measured)).collect())
     }
 
-    /// A measurement that could not even be read (counted under `key`).
-    pub fn reject(&mut self, key: &str) {
+    /// A measurement that could not even be read (counted under `kind`).
+    pub fn reject(&mut self, kind: MeasuredRejection) {
         self.status.measured += 1;
-        *self.status.rejected.entry(key.to_string()).or_default() += 1;
+        self.rejected.add(kind);
     }
 
     fn check(&self, m: &MeasuredLaunch) -> Result<(), MeasuredError> {
@@ -201,6 +232,7 @@ impl Pairer {
     /// Counts and running mean absolute errors.
     pub fn status(&self) -> ComparisonStatus {
         let mut s = self.status.clone();
+        s.rejected = self.rejected.to_wire();
         s.mae = self
             .mae
             .iter()

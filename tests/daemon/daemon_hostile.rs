@@ -258,10 +258,11 @@ async fn the_example_acl_config_limits_who_may_put() {
         .callback(move |s| seen_cb.lock().unwrap().push(s.key_expr().to_string()))
         .await
         .unwrap();
-    let peer = ZenohArgs { mode: Some("client".into()), connect: vec![endpoint], ..ZenohArgs::default() }
-        .open()
-        .await
-        .unwrap();
+    let peer =
+        ZenohArgs { mode: Some(impactd::daemon::bus::Mode::Client), connect: vec![endpoint], ..ZenohArgs::default() }
+            .open()
+            .await
+            .unwrap();
     let got: Arc<Mutex<Vec<String>>> = Default::default();
     let got_cb = got.clone();
     let _peer_sub = peer

@@ -6,6 +6,7 @@
 
 #![allow(clippy::unwrap_used)]
 
+use impactd::daemon::inputs::counters::InputRejection;
 use std::net::UdpSocket;
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
@@ -64,12 +65,12 @@ impl Protocol for Toy {
                 let w: Vec<&str> = text.split_whitespace().collect();
                 let mut sh = lock(&s.shared);
                 let Some(i) = s.routes.iter().position(|r| w.first() == Some(&r.body.as_str())) else {
-                    sh.conn.reject("body_not_in_model");
+                    sh.conn.reject(InputRejection::Decode("body_not_in_model"));
                     continue;
                 };
                 let num = |k: usize| w.get(k).and_then(|v| v.parse::<f64>().ok());
                 let (Some(frame), Some(t), Some(x), Some(y), Some(z)) = (num(1), num(2), num(3), num(4), num(5)) else {
-                    sh.conn.reject("malformed");
+                    sh.conn.reject(InputRejection::Decode("malformed"));
                     continue;
                 };
                 let sample = BodySample {

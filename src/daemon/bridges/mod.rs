@@ -5,5 +5,6 @@
 pub mod foxglove;
 pub mod open_connect;
 pub mod opengolfsim;
+pub mod peer_rejection;
 pub mod peers;
 pub mod web;

@@ -11,13 +11,14 @@
 //! Written here rather than taken from a crate: tower's limits refuse the newcomer at the cap (the opposite of
 //! what keeps an honest connector served) and would bring an HTTP service stack for two raw TCP loops.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
 
+use super::peer_rejection::{CounterKind, PeerRejection, Tally};
 use crate::daemon::peer_log::PeerLog;
 
 /// The bounds of one surface.
@@ -29,15 +30,6 @@ pub struct PeerLimits {
     pub handshake: Duration,
     /// Time without a useful message after which a connection is closed.
     pub idle: Duration,
-}
-
-/// Why a connection was refused, cut or a message rejected: the keys of the `rejected` counts.
-pub mod kind {
-    pub const EVICTED: &str = "evicted_at_cap";
-    pub const HANDSHAKE_TIMEOUT: &str = "handshake_timeout";
-    pub const IDLE_TIMEOUT: &str = "idle_timeout";
-    /// Refused at the cap, every connection there live (the bay screen).
-    pub const REFUSED: &str = "refused_at_cap";
 }
 
 /// One open connection's shared state.
@@ -52,7 +44,7 @@ struct PeerState {
 struct Inner {
     next_id: u64,
     open: HashMap<u64, Arc<PeerState>>,
-    rejected: BTreeMap<String, u64>,
+    rejected: Tally<PeerRejection>,
     log: PeerLog,
 }
 
@@ -84,11 +76,11 @@ pub enum Cut {
 }
 
 impl Cut {
-    pub fn kind(self) -> &'static str {
+    pub fn kind(self) -> PeerRejection {
         match self {
-            Cut::Evicted => kind::EVICTED,
-            Cut::HandshakeTimeout => kind::HANDSHAKE_TIMEOUT,
-            Cut::IdleTimeout => kind::IDLE_TIMEOUT,
+            Cut::Evicted => PeerRejection::EvictedAtCap,
+            Cut::HandshakeTimeout => PeerRejection::HandshakeTimeout,
+            Cut::IdleTimeout => PeerRejection::IdleTimeout,
         }
     }
 }
@@ -102,7 +94,7 @@ impl Peers {
             inner: Arc::new(Mutex::new(Inner {
                 next_id: 0,
                 open: HashMap::new(),
-                rejected: BTreeMap::new(),
+                rejected: Tally::default(),
                 log: PeerLog::new(),
             })),
         }
@@ -178,7 +170,7 @@ impl Peers {
             });
         }
         let Some(id) = id else {
-            self.reject(kind::REFUSED, || {
+            self.reject(PeerRejection::RefusedAtCap, || {
                 format!("at the cap of {max} live connections: {peer} refused (it may retry)")
             });
             return None;
@@ -199,11 +191,11 @@ impl Peers {
     }
 
     /// Counts a rejection of this kind and logs it, at most once a second per kind.
-    pub fn reject(&self, kind: &'static str, message: impl FnOnce() -> String) {
+    pub fn reject(&self, kind: PeerRejection, message: impl FnOnce() -> String) {
         let Ok(mut inner) = self.inner.lock() else { return };
-        *inner.rejected.entry(kind.to_string()).or_default() += 1;
+        inner.rejected.add(kind);
         let what = &self.what;
-        inner.log.warn(kind, || format!("{what}: {}", message()));
+        inner.log.warn(kind.wire_name(), || format!("{what}: {}", message()));
     }
 
     /// Logs a connection's news (a page connected), at most once a second per kind.
@@ -226,7 +218,7 @@ impl Peers {
     }
 
     /// Rejections so far, by kind.
-    pub fn rejected(&self) -> BTreeMap<String, u64> {
+    pub fn rejected(&self) -> Tally<PeerRejection> {
         self.inner.lock().map(|i| i.rejected.clone()).unwrap_or_default()
     }
 }
@@ -301,7 +293,7 @@ mod tests {
         let c = peers.admit("c");
         assert_eq!(peers.open(), 2);
         assert_eq!(b.cut().await, Cut::Evicted);
-        assert_eq!(peers.rejected().get(kind::EVICTED), Some(&1));
+        assert_eq!(peers.rejected().get(PeerRejection::EvictedAtCap), 1);
         drop(b);
         assert_eq!(peers.open(), 2);
         drop((a, c));
@@ -321,14 +313,14 @@ mod tests {
         next.touch();
         // Both live: a newcomer is refused rather than one of them closed...
         assert!(peers.admit_unless_full("third", Duration::from_secs(30)).is_none());
-        assert_eq!(peers.rejected().get(kind::REFUSED), Some(&1));
+        assert_eq!(peers.rejected().get(PeerRejection::RefusedAtCap), 1);
         assert_eq!(peers.open(), 2);
         // ...unless one has been idle for the stale time.
         tokio::time::sleep(Duration::from_millis(10)).await;
         live.touch();
         let fourth = peers.admit_unless_full("fourth", Duration::from_millis(5)).expect("a stale one makes room");
         assert_eq!(next.cut().await, Cut::Evicted);
-        assert_eq!(peers.rejected().get(kind::EVICTED), Some(&2));
+        assert_eq!(peers.rejected().get(PeerRejection::EvictedAtCap), 2);
         drop((live, head, next, fourth));
         assert_eq!(peers.open(), 0);
     }

@@ -1,7 +1,6 @@
 //! A running client: its threads, its stop flag and the counts behind each route's `MocapInputStatus`, for
 //! every protocol alike.
 
-use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -30,9 +29,9 @@ impl Shared {
             conn: Conn {
                 state: ConnectionState::Connecting,
                 connects: 0,
-                reconnects: BTreeMap::new(),
+                reconnects: Default::default(),
                 server_version: None,
-                rejected: BTreeMap::new(),
+                rejected: Default::default(),
                 last_error: None,
                 exposure_to_transmit_us: LatencyWindow::new(1024),
             },
@@ -148,11 +147,11 @@ fn status_of(shared: &Mutex<Shared>, i: usize) -> MocapInputStatus {
     let mut out = s.bodies.get(i).cloned().unwrap_or_default();
     out.state = s.conn.state;
     out.connects = s.conn.connects;
-    out.reconnects = s.conn.reconnects.clone();
+    out.reconnects = s.conn.reconnects.to_wire();
     out.server_version = s.conn.server_version.clone();
     out.last_error = s.conn.last_error.clone();
-    for (k, v) in &s.conn.rejected {
-        *out.rejected.entry(k.clone()).or_default() += v;
+    for (k, v) in s.conn.rejected.to_wire() {
+        *out.rejected.entry(k).or_default() += v;
     }
     let w = &s.conn.exposure_to_transmit_us;
     let p99 = w.quantile(0.99);

@@ -5,6 +5,7 @@
 //! for all.
 
 pub mod config;
+pub mod counters;
 pub mod handle;
 pub mod natnet;
 pub mod protocol;

@@ -1,11 +1,11 @@
 //! What the NatNet and QTM clients' threads share: the counts behind each rig's `MocapInputStatus`, the sample
 //! hand-off, the polling period and the reconnection back-off.
 
-use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
+use super::counters::{InputRejection, Reconnect, Tally};
 use crate::daemon::peer_log::PeerLog;
 use crate::daemon::stats::LatencyWindow;
 use crate::mocap::track::BodySample;
@@ -28,21 +28,22 @@ pub struct Conn {
     pub state: ConnectionState,
     pub connects: u64,
     /// Sessions the client ended itself, by reason (`quiet`, `undecodable`).
-    pub reconnects: BTreeMap<String, u64>,
+    pub reconnects: Tally<Reconnect>,
     pub server_version: Option<String>,
-    pub rejected: BTreeMap<String, u64>,
+    /// Packets refused, by reason.
+    pub rejected: Tally<InputRejection>,
     pub last_error: Option<String>,
     pub exposure_to_transmit_us: LatencyWindow,
 }
 
 impl Conn {
-    pub fn reject(&mut self, reason: &str) {
-        *self.rejected.entry(reason.to_string()).or_default() += 1;
+    pub fn reject(&mut self, reason: InputRejection) {
+        self.rejected.add(reason);
     }
 
     /// The client ends the session itself for `reason` and connects again; said in `last_error`.
-    pub fn reconnect(&mut self, reason: &str, why: String) {
-        *self.reconnects.entry(reason.to_string()).or_default() += 1;
+    pub fn reconnect(&mut self, reason: Reconnect, why: String) {
+        self.reconnects.add(reason);
         self.state = ConnectionState::Disconnected;
         self.last_error = Some(why);
     }

@@ -3,21 +3,24 @@
 
 use super::{Stamp, Worker};
 
+use crate::pairing::MeasuredRejection;
+use crate::pipeline::CounterKind;
 use crate::wire::{self, ComparisonMessage, MeasuredLaunch};
 
 impl Worker {
     /// A measured launch: recorded, paired, and each comparison published at once.
     pub(super) fn on_measured(&mut self, at: Stamp, payload: Vec<u8>) {
         let parsed = if payload.len() > wire::MAX_PAYLOAD_BYTES {
-            Err(("oversized", format!("{} bytes is over {}", payload.len(), wire::MAX_PAYLOAD_BYTES)))
+            Err((MeasuredRejection::Oversized, format!("{} bytes is over {}", payload.len(), wire::MAX_PAYLOAD_BYTES)))
         } else {
-            serde_json::from_slice::<MeasuredLaunch>(&payload).map_err(|e| ("not_measured_launch", e.to_string()))
+            serde_json::from_slice::<MeasuredLaunch>(&payload)
+                .map_err(|e| (MeasuredRejection::NotMeasuredLaunch, e.to_string()))
         };
         let measured = match parsed {
             Ok(m) => m,
             Err((key, reason)) => {
                 self.pairer.reject(key);
-                self.warn(key, || format!("rejected measured launch: {reason}"));
+                self.warn(key.wire_name(), || format!("rejected measured launch: {reason}"));
                 let keep = &payload[..payload.len().min(wire::MAX_PAYLOAD_BYTES)];
                 let rejected = wire::RejectedInput {
                     reason,
@@ -35,7 +38,7 @@ impl Worker {
                     self.publish_comparison(c, at.received);
                 }
             }
-            Err(e) => self.warn(e.key(), || format!("measured launch not paired: {e}")),
+            Err(e) => self.warn(e.kind().wire_name(), || format!("measured launch not paired: {e}")),
         }
     }
 

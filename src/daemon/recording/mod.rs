@@ -8,6 +8,7 @@ pub mod channels;
 pub mod damage;
 pub mod info;
 pub mod launches;
+pub mod read_error;
 pub mod reader;
 pub mod record;
 mod records;

@@ -13,7 +13,7 @@ use std::path::Path;
 use super::damage::DamageReason;
 use super::stream::read_opened;
 use crate::daemon::recording::reader::{ChannelDef, OnDamage, RawMessage, Scan};
-use crate::daemon::DaemonError;
+use crate::daemon::{DaemonError, ReadError};
 
 /// Messages of one channel: kept, and lost when the file says how many there were.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -113,7 +113,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
     if !opened.is_mcap() {
         let s = read_opened(opened, input, OnDamage::Resync, |_, _, _| {})?;
         if let Some(reason) = &s.stopped {
-            return Err(DaemonError::Unreadable { path: input.display().to_string(), source: reason.clone() });
+            return Err(ReadError::Unreadable { path: input.display().to_string(), source: reason.clone() }.into());
         }
         opened = super::source::Opened::open(input)?;
     }
@@ -141,7 +141,7 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
         return Err(mcap_err(output, e));
     }
     if let Some(reason) = &s.stopped {
-        return Err(DaemonError::Unreadable { path: input.display().to_string(), source: reason.clone() });
+        return Err(ReadError::Unreadable { path: input.display().to_string(), source: reason.clone() }.into());
     }
     for (name, metadata) in &s.metadata {
         w.write_metadata(&mcap::records::Metadata { name: name.clone(), metadata: metadata.clone() })

@@ -88,9 +88,9 @@ pub enum Opened {
 }
 
 impl Opened {
-    pub fn open(path: &std::path::Path) -> Result<Opened, crate::daemon::DaemonError> {
-        use crate::daemon::DaemonError;
-        let io = |e| DaemonError::Io { what: format!("reading {}", path.display()), source: e };
+    pub fn open(path: &std::path::Path) -> Result<Opened, crate::daemon::ReadError> {
+        use crate::daemon::ReadError;
+        let io = |e| ReadError::Io { what: format!("reading {}", path.display()), source: e };
         let file = std::fs::File::open(path).map_err(io)?;
         if file.metadata().map_err(io)?.is_file() {
             return FileSource::new(file).map(Opened::File).map_err(io);
@@ -99,11 +99,11 @@ impl Opened {
         let mut capped = file.take(MAX_STREAMED_RECORDING_BYTES + 1);
         (&mut capped).take(mcap::MAGIC.len() as u64).read_to_end(&mut bytes).map_err(io)?;
         if !is_mcap(&bytes) {
-            return Err(DaemonError::NotMcap { path: path.display().to_string() });
+            return Err(ReadError::NotMcap { path: path.display().to_string() });
         }
         capped.read_to_end(&mut bytes).map_err(io)?;
         if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-            return Err(DaemonError::StreamTooLarge {
+            return Err(ReadError::StreamTooLarge {
                 path: path.display().to_string(),
                 limit_bytes: MAX_STREAMED_RECORDING_BYTES,
             });

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::reader::{scan_source, ChannelDef, OnDamage, RawMessage, Scan};
 use super::source::Opened;
-use crate::daemon::DaemonError;
+use crate::daemon::ReadError;
 
 /// Reads the MCAP recording at `path`, visiting every readable message with its channel. A message whose
 /// channel record comes later in the file (its own was damaged) is visited at the end, with that channel, or
@@ -14,7 +14,7 @@ pub fn read_messages(
     path: &Path,
     on_damage: OnDamage,
     visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
-) -> Result<Scan, DaemonError> {
+) -> Result<Scan, ReadError> {
     read_opened(Opened::open(path)?, path, on_damage, visit)
 }
 
@@ -24,9 +24,9 @@ pub fn read_opened(
     path: &Path,
     on_damage: OnDamage,
     visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
-) -> Result<Scan, DaemonError> {
+) -> Result<Scan, ReadError> {
     if on_damage == OnDamage::Stop && !opened.is_mcap() {
-        return Err(DaemonError::NotMcap { path: path.display().to_string() });
+        return Err(ReadError::NotMcap { path: path.display().to_string() });
     }
     Ok(match &mut opened {
         Opened::File(f) => read_source(f, on_damage, visit),
@@ -40,9 +40,9 @@ pub fn read_slice(
     path: &Path,
     on_damage: OnDamage,
     visit: impl FnMut(&Scan, Option<&ChannelDef>, RawMessage),
-) -> Result<Scan, DaemonError> {
+) -> Result<Scan, ReadError> {
     if on_damage == OnDamage::Stop && !super::source::is_mcap(bytes) {
-        return Err(DaemonError::NotMcap { path: path.display().to_string() });
+        return Err(ReadError::NotMcap { path: path.display().to_string() });
     }
     Ok(read_source(&mut &bytes[..], on_damage, visit))
 }

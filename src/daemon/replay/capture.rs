@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 
 use super::items::{Item, Items, ReplayIndex, ReplaySource, RigSpan};
 use crate::captures::{CaptureError, CaptureOptions, CaptureSource, Format, ImportCounts};
-use crate::daemon::DaemonError;
+use crate::daemon::{DaemonError, ReadError};
 
 /// A capture's marker on the ball: its label and the offset from it to the ball's centre (lab frame, m).
 pub type BallMarker<'a> = (&'a str, crate::math::Vector3);
@@ -89,7 +89,7 @@ impl Iterator for CaptureItems {
             }
             Err(source) => {
                 self.done = true;
-                Some(Err(DaemonError::Capture { path: self.path.clone(), source }))
+                Some(Err(ReadError::Capture { path: self.path.clone(), source }.into()))
             }
         }
     }
@@ -103,7 +103,7 @@ impl ReplaySource for ReplayCapture {
     fn items(&self) -> Result<Items<'_>, DaemonError> {
         let path = self.path.display().to_string();
         let samples = (self.format.open)(&self.path, &self.options)
-            .map_err(|source| DaemonError::Capture { path: path.clone(), source })?;
+            .map_err(|source| ReadError::Capture { path: path.clone(), source })?;
         let counts = self.counts.clone();
         Ok(Box::new(CaptureItems { samples, path, ball_next: None, counts, done: false }))
     }

@@ -16,7 +16,7 @@ use super::parse::{self, Parsed, Pass};
 use crate::daemon::recording::reader::{ChannelDef, OnDamage, RawMessage};
 use crate::daemon::recording::source::{is_mcap, MAX_STREAMED_RECORDING_BYTES};
 use crate::daemon::recording::stream::{read_messages, read_slice};
-use crate::daemon::DaemonError;
+use crate::daemon::{DaemonError, ReadError};
 
 /// Items a reader thread hands over at a time, and batches in flight.
 const BATCH: usize = 256;
@@ -109,10 +109,11 @@ fn read_capped(mut file: impl Read, path: &Path) -> Result<Vec<u8>, DaemonError>
         .read_to_end(&mut bytes)
         .map_err(|e| DaemonError::Io { what: format!("reading {}", path.display()), source: e })?;
     if bytes.len() as u64 > MAX_STREAMED_RECORDING_BYTES {
-        return Err(DaemonError::StreamTooLarge {
+        return Err(ReadError::StreamTooLarge {
             path: path.display().to_string(),
             limit_bytes: MAX_STREAMED_RECORDING_BYTES,
-        });
+        }
+        .into());
     }
     Ok(bytes)
 }
@@ -158,11 +159,8 @@ fn jsonl_index(
 }
 
 fn read_line(input: &mut impl BufRead, line: &mut Vec<u8>, path: &Path, n: usize) -> Result<bool, DaemonError> {
-    crate::jsonl::read_line(input, line, crate::jsonl::MAX_LINE_BYTES).map_err(|source| DaemonError::BadSampleLine {
-        path: path.display().to_string(),
-        line: n,
-        source,
-    })
+    crate::jsonl::read_line(input, line, crate::jsonl::MAX_LINE_BYTES)
+        .map_err(|source| ReadError::BadSampleLine { path: path.display().to_string(), line: n, source }.into())
 }
 
 /// The items of a JSONL input, a line at a time.
@@ -277,7 +275,7 @@ fn mcap_items(path: PathBuf, bytes: Option<Arc<Vec<u8>>>) -> Result<ThreadItems,
             let _ = match read {
                 Ok(_) if !batch.is_empty() => tx.send(Ok(batch)),
                 Ok(_) => Ok(()),
-                Err(e) => tx.send(Err(e)),
+                Err(e) => tx.send(Err(e.into())),
             };
         })
         .map_err(|e| DaemonError::Io { what: "starting the replay's reader".into(), source: e })?;

@@ -193,7 +193,7 @@ pub async fn run(
 ) -> Result<ReplayReport, DaemonError> {
     if let Some(r) = options.rate {
         if r.is_nan() || r <= 0.0 {
-            return Err(DaemonError::BadOption { option: "--rate", reason: "must be positive" });
+            return Err(DaemonError::ReplayRate(r));
         }
     }
     let index = input.index();

@@ -30,6 +30,13 @@ impl<K: CounterKind> Tally<K> {
         *self.0.entry(kind).or_default() += 1;
     }
 
+    /// Counts `n` of `kind` (nothing when `n` is 0: a tally holds only kinds counted).
+    pub fn add_n(&mut self, kind: K, n: u64) {
+        if n > 0 {
+            *self.0.entry(kind).or_default() += n;
+        }
+    }
+
     /// How many of `kind` were counted.
     pub fn get(&self, kind: K) -> u64 {
         self.0.get(&kind).copied().unwrap_or(0)
@@ -50,9 +57,13 @@ impl<K: CounterKind> Tally<K> {
         self.0.iter().map(|(k, n)| (*k, *n))
     }
 
-    /// The counts under their wire names, as a status carries them.
+    /// The counts under their wire names, as a status carries them (kinds that share a wire name summed).
     pub fn to_wire(&self) -> BTreeMap<String, u64> {
-        self.0.iter().map(|(k, n)| (k.wire_name().to_string(), *n)).collect()
+        let mut out = BTreeMap::new();
+        for (k, n) in &self.0 {
+            *out.entry(k.wire_name().to_string()).or_default() += *n;
+        }
+        out
     }
 }
 

@@ -15,6 +15,7 @@
 //! handshake within its timeout, and a viewer that stops answering the server's pings is closed. Rejections are
 //! counted by kind in every rig's status (`live_view`) and logged at most once a second per kind.
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::collections::HashMap;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -171,7 +172,7 @@ pub struct LiveViewSource(Peers);
 
 impl LiveViewSource {
     pub fn status(&self) -> LiveViewStatus {
-        LiveViewStatus { clients: self.0.open() as u64, rejected: self.0.rejected() }
+        LiveViewStatus { clients: self.0.open() as u64, rejected: self.0.rejected().to_wire() }
     }
 }
 
@@ -206,11 +207,11 @@ pub enum ClientReject {
 }
 
 impl ClientReject {
-    pub fn kind(&self) -> &'static str {
+    pub fn kind(&self) -> PeerRejection {
         match self {
-            ClientReject::Malformed => "malformed",
-            ClientReject::UnknownOp => "unknown_op",
-            ClientReject::UnknownChannel { .. } => "unknown_channel",
+            ClientReject::Malformed => PeerRejection::Malformed,
+            ClientReject::UnknownOp => PeerRejection::UnknownOp,
+            ClientReject::UnknownChannel { .. } => PeerRejection::UnknownChannel,
         }
     }
 }
@@ -272,7 +273,7 @@ async fn serve(stream: TcpStream, client: Client, advertise: Arc<String>, rx: br
         done = handshake => match done {
             Ok(ws) => ws,
             Err(e) => {
-                client.peers.reject("handshake", || format!("{peer}: handshake: {e}"));
+                client.peers.reject(PeerRejection::Handshake, || format!("{peer}: handshake: {e}"));
                 return;
             }
         },
@@ -320,7 +321,7 @@ async fn stream_to(
                     use tokio_tungstenite::tungstenite::protocol::{frame::coding::CloseCode, CloseFrame};
                     use tokio_tungstenite::tungstenite::Error;
                     let oversized = matches!(e, Error::Capacity(_));
-                    let kind = if oversized { "oversized" } else { "protocol" };
+                    let kind = if oversized { PeerRejection::Oversized } else { PeerRejection::Protocol };
                     client.peers.reject(kind, || format!("{peer}: closed: {e}"));
                     if oversized {
                         let reason = format!("a client message is at most {MAX_CLIENT_MESSAGE_BYTES} bytes");

@@ -17,6 +17,7 @@
 //! Received bytes are acknowledged at once (`TCP_QUICKACK`), so a connector's shot split over several writes
 //! is not held back 40 ms by Nagle's algorithm waiting on a delayed ACK (`tests/daemon/live_comparison.rs`).
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::collections::HashMap;
 use std::net::SocketAddr;
 use std::sync::{Arc, Mutex};
@@ -180,7 +181,7 @@ impl Shared {
         let (open, rejected) = (self.peers.open() as u64, self.peers.rejected());
         self.update(|s| {
             s.connections = open;
-            s.rejected = rejected;
+            s.rejected = rejected.to_wire();
         });
     }
 
@@ -308,7 +309,7 @@ impl Shared {
     }
 
     /// Counts the rejection by kind (logged at most once a second per kind) and answers it.
-    fn reject(&self, peer: &str, reason: &'static str, message: String) -> (Option<Reply>, bool) {
+    fn reject(&self, peer: &str, reason: PeerRejection, message: String) -> (Option<Reply>, bool) {
         self.peers.reject(reason, || format!("client {peer}: {message}"));
         self.refresh();
         (Some(Reply::new(FAILURE, message)), false)
@@ -323,7 +324,7 @@ impl Shared {
                 let note = Some(format!("oversized: over {} bytes", bytes.saturating_sub(1)));
                 self.record_budgeted(peer, TrafficDirection::Received, b"", note);
                 let m = format!("message over the {MAX_MESSAGE_BYTES}-byte limit; discarded up to its end");
-                return self.reject(peer, "oversized", m);
+                return self.reject(peer, PeerRejection::Oversized, m);
             }
             Frame::Garbage { bytes } => {
                 self.record_budgeted(
@@ -332,7 +333,11 @@ impl Shared {
                     b"",
                     Some(format!("{bytes} bytes outside JSON")),
                 );
-                return self.reject(peer, "not_json", format!("{bytes} bytes outside any JSON object skipped"));
+                return self.reject(
+                    peer,
+                    PeerRejection::NotJson,
+                    format!("{bytes} bytes outside any JSON object skipped"),
+                );
             }
         };
         let message = match serde_json::from_slice::<ShotMessage>(&text) {
@@ -340,7 +345,11 @@ impl Shared {
             Err(e) => {
                 self.record_budgeted(peer, TrafficDirection::Received, &text, None);
                 let e = e.to_string();
-                return self.reject(peer, "malformed", format!("not an Open Connect v1 message: {}", quote(&e)));
+                return self.reject(
+                    peer,
+                    PeerRejection::Malformed,
+                    format!("not an Open Connect v1 message: {}", quote(&e)),
+                );
             }
         };
         if message.device_id.len() > MAX_DEVICE_ID_BYTES {
@@ -350,7 +359,7 @@ impl Shared {
                 message.device_id.len(),
                 quote(&message.device_id)
             );
-            return self.reject(peer, "device_id", m);
+            return self.reject(peer, PeerRejection::DeviceId, m);
         }
         if message.is_heartbeat() {
             // Heartbeats are recorded within the budget too: a flood of them is a flood.
@@ -367,7 +376,11 @@ impl Shared {
             Err(e) => {
                 self.record_budgeted(peer, TrafficDirection::Received, &text, None);
                 let e = e.to_string();
-                return self.reject(peer, "invalid", format!("shot {}: {}", message.shot_number, quote(&e)));
+                return self.reject(
+                    peer,
+                    PeerRejection::Invalid,
+                    format!("shot {}: {}", message.shot_number, quote(&e)),
+                );
             }
         };
         let repeated = self.remember(&message.device_id, message.shot_number);
@@ -378,7 +391,11 @@ impl Shared {
         // Recorded by the rig's worker, which records every measured launch on the key, whatever its source.
         let data = serde_json::to_vec(&measured).unwrap_or_default();
         if let Err(e) = self.publisher.put(data).await {
-            return self.reject(peer, "publish", format!("shot {} not published: {e}", message.shot_number));
+            return self.reject(
+                peer,
+                PeerRejection::Publish,
+                format!("shot {} not published: {e}", message.shot_number),
+            );
         }
         self.update(|s| s.shots += 1);
         (Some(Reply::new(200, "Shot received successfully")), true)

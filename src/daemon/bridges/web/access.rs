@@ -9,6 +9,7 @@
 //! without the token, and the page's WebSocket upgrade carries the cookie. A program may send the cookie or
 //! `?token=T` on `/ws` itself.
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::net::{IpAddr, SocketAddr};
 
 use crate::daemon::DaemonError;
@@ -36,7 +37,7 @@ pub struct Access {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Refusal {
     pub status: u16,
-    pub kind: &'static str,
+    pub kind: PeerRejection,
     pub reason: String,
 }
 
@@ -82,7 +83,11 @@ impl Access {
     /// user added (`--web-host`, `[web] hosts`). The port is not compared.
     pub fn check_host(&self, host: Option<&str>) -> Result<(), Refusal> {
         let Some(host) = host else {
-            return Err(Refusal { status: 400, kind: "no_host", reason: "a request must name its Host".into() });
+            return Err(Refusal {
+                status: 400,
+                kind: PeerRejection::NoHost,
+                reason: "a request must name its Host".into(),
+            });
         };
         let (name, _) = split_host(host);
         let name = normal(name);
@@ -95,7 +100,7 @@ impl Access {
         }
         Err(Refusal {
             status: 421,
-            kind: "wrong_host",
+            kind: PeerRejection::WrongHost,
             reason: format!(
                 "this server does not answer as `{}` (add it with --web-host or [web] hosts)",
                 crate::daemon::peer_log::escaped(host, 80)
@@ -115,7 +120,7 @@ impl Access {
         }
         Err(Refusal {
             status: 403,
-            kind: "cross_origin",
+            kind: PeerRejection::CrossOrigin,
             reason: format!(
                 "a page from `{}` may not use this bay screen",
                 crate::daemon::peer_log::escaped(&origin, 80)

@@ -3,6 +3,7 @@
 //! (`golf/<rig>/display`). A page's message is one JSON object with an `op`; anything else is refused with a
 //! kind counted in the rig's status.
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use serde::Deserialize;
 
 use crate::wire::{keys, DisplaySettings, DisplayUnits, ShotExclusion, ShotLabels};
@@ -39,11 +40,11 @@ pub enum ControlReject {
 }
 
 impl ControlReject {
-    pub fn kind(&self) -> &'static str {
+    pub fn kind(&self) -> PeerRejection {
         match self {
-            ControlReject::Malformed(_) => "malformed",
-            ControlReject::UnknownRig(_) => "unknown_rig",
-            ControlReject::Invalid(_) => "invalid_control",
+            ControlReject::Malformed(_) => PeerRejection::Malformed,
+            ControlReject::UnknownRig(_) => PeerRejection::UnknownRig,
+            ControlReject::Invalid(_) => PeerRejection::InvalidControl,
         }
     }
 }
@@ -119,12 +120,12 @@ mod tests {
         assert_eq!(u.put(&none).unwrap().0, "golf/bay1/display");
 
         let refused = |text: &str| Control::parse(text, &rigs).unwrap_err().kind();
-        assert_eq!(refused(r#"{"op":"club","rig":"bay2","club":"iron7"}"#), "unknown_rig");
-        assert_eq!(refused(r#"{"op":"reboot","rig":"bay1"}"#), "malformed");
-        assert_eq!(refused("not json"), "malformed");
+        assert_eq!(refused(r#"{"op":"club","rig":"bay2","club":"iron7"}"#), PeerRejection::UnknownRig);
+        assert_eq!(refused(r#"{"op":"reboot","rig":"bay1"}"#), PeerRejection::Malformed);
+        assert_eq!(refused("not json"), PeerRejection::Malformed);
         let empty = Control::parse(r#"{"op":"club","rig":"bay1","club":"  "}"#, &rigs).unwrap();
-        assert_eq!(empty.put(&none).unwrap_err().kind(), "invalid_control");
+        assert_eq!(empty.put(&none).unwrap_err().kind(), PeerRejection::InvalidControl);
         let long = format!(r#"{{"op":"labels","rig":"bay1","player":"{}"}}"#, "x".repeat(300));
-        assert_eq!(Control::parse(&long, &rigs).unwrap().put(&none).unwrap_err().kind(), "invalid_control");
+        assert_eq!(Control::parse(&long, &rigs).unwrap().put(&none).unwrap_err().kind(), PeerRejection::InvalidControl);
     }
 }

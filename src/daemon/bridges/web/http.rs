@@ -6,6 +6,7 @@
 //! upgrade, and tungstenite already parses the upgrade; hyper and axum would add a service stack and minutes of
 //! compile time to CI for that.
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::time::Duration;
 
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -24,7 +25,7 @@ pub enum Request {
     /// A GET of a path (the query string removed).
     Get(Head),
     /// Anything else: answered with this status.
-    Refused { status: u16, kind: &'static str },
+    Refused { status: u16, kind: PeerRejection },
 }
 
 /// The parts of a request head the screen looks at (each bounded by the head's size).
@@ -57,10 +58,12 @@ pub fn classify(head: &[u8]) -> Request {
     let mut req = httparse::Request::new(&mut headers);
     match req.parse(head) {
         Ok(httparse::Status::Complete(_)) => {}
-        Ok(httparse::Status::Partial) | Err(_) => return Request::Refused { status: 400, kind: "bad_request" },
+        Ok(httparse::Status::Partial) | Err(_) => {
+            return Request::Refused { status: 400, kind: PeerRejection::BadRequest }
+        }
     }
     if req.method != Some("GET") {
-        return Request::Refused { status: 405, kind: "method" };
+        return Request::Refused { status: 405, kind: PeerRejection::Method };
     }
     let target = req.path.unwrap_or("/");
     let target = target.split('#').next().unwrap_or("/");
@@ -88,7 +91,7 @@ pub fn classify(head: &[u8]) -> Request {
         return if head.path == "/ws" {
             Request::Upgrade(head)
         } else {
-            Request::Refused { status: 404, kind: "not_found" }
+            Request::Refused { status: 404, kind: PeerRejection::NotFound }
         };
     }
     Request::Get(head)
@@ -215,9 +218,12 @@ mod tests {
         let Request::Upgrade(head) = classify(ws) else { panic!("not an upgrade") };
         assert_eq!((head.host.as_deref(), head.origin.as_deref()), (Some("x"), Some("http://x")));
         let ws_elsewhere = b"GET /other HTTP/1.1\r\nUpgrade: websocket\r\n\r\n";
-        assert_eq!(classify(ws_elsewhere), Request::Refused { status: 404, kind: "not_found" });
-        assert_eq!(classify(b"POST / HTTP/1.1\r\n\r\n"), Request::Refused { status: 405, kind: "method" });
-        assert_eq!(classify(b"\x00\x01garbage\r\n\r\n"), Request::Refused { status: 400, kind: "bad_request" });
+        assert_eq!(classify(ws_elsewhere), Request::Refused { status: 404, kind: PeerRejection::NotFound });
+        assert_eq!(classify(b"POST / HTTP/1.1\r\n\r\n"), Request::Refused { status: 405, kind: PeerRejection::Method });
+        assert_eq!(
+            classify(b"\x00\x01garbage\r\n\r\n"),
+            Request::Refused { status: 400, kind: PeerRejection::BadRequest }
+        );
         let r = Response::text(404, "no such page").bytes();
         let text = String::from_utf8(r).unwrap();
         assert!(text.starts_with("HTTP/1.1 404 Not Found\r\n") && text.contains("Content-Length: 12\r\n"));

@@ -30,6 +30,7 @@ pub mod limits;
 pub mod socket;
 pub mod state;
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -209,14 +210,9 @@ pub struct WebStatusSource {
 impl WebStatusSource {
     pub fn status(&self) -> LiveViewStatus {
         let mut rejected = self.peers.rejected();
-        let counts = [
-            ("bus_payload_refused", self.bay.refused.load(std::sync::atomic::Ordering::Relaxed)),
-            ("bus_queue_full", self.bay.dropped.load(std::sync::atomic::Ordering::Relaxed)),
-        ];
-        for (kind, n) in counts.into_iter().filter(|(_, n)| *n > 0) {
-            rejected.insert(kind.to_string(), n);
-        }
-        LiveViewStatus { clients: self.peers.open() as u64, rejected }
+        rejected.add_n(PeerRejection::BusPayloadRefused, self.bay.refused.load(std::sync::atomic::Ordering::Relaxed));
+        rejected.add_n(PeerRejection::BusQueueFull, self.bay.dropped.load(std::sync::atomic::Ordering::Relaxed));
+        LiveViewStatus { clients: self.peers.open() as u64, rejected: rejected.to_wire() }
     }
 }
 
@@ -245,11 +241,11 @@ impl Connection {
             Ok(r) => r,
             Err(http::HeadError::Closed) => return,
             Err(e @ http::HeadError::TooLarge) => {
-                self.peers.reject("oversized", || format!("{peer}: {e}"));
+                self.peers.reject(PeerRejection::Oversized, || format!("{peer}: {e}"));
                 return http::answer(stream, http::Response::text(431, "request head too large"), limits::SEND_TIMEOUT)
                     .await;
             }
-            Err(e) => return self.peers.reject("protocol", || format!("{peer}: {e}")),
+            Err(e) => return self.peers.reject(PeerRejection::Protocol, || format!("{peer}: {e}")),
         };
         let response = match request {
             http::Request::Refused { status, kind } => {
@@ -292,7 +288,7 @@ impl Connection {
         // The token in the address: kept as a cookie for the page's socket, and the address shown without it.
         if let (Some(given), Some(_)) = (head.query_token.as_deref(), self.access.token()) {
             if !self.access.is_token(given) {
-                self.peers.reject("bad_token", || format!("{}: a wrong token", self.peer));
+                self.peers.reject(PeerRejection::BadToken, || format!("{}: a wrong token", self.peer));
                 return http::Response::text(403, "wrong token: use the address the daemon printed at start");
             }
             let cookie =
@@ -320,7 +316,7 @@ impl Connection {
                 };
             }
         }
-        self.peers.reject("not_found", || {
+        self.peers.reject(PeerRejection::NotFound, || {
             format!("{}: no page at {}", self.peer, crate::daemon::peer_log::escaped(path, 80))
         });
         http::Response::text(404, "no such page")
@@ -332,7 +328,7 @@ impl Connection {
         let ws = tokio::select! {
             done = handshake => match done {
                 Ok(ws) => ws,
-                Err(e) => return self.peers.reject("handshake", || format!("{peer}: handshake: {e}")),
+                Err(e) => return self.peers.reject(PeerRejection::Handshake, || format!("{peer}: handshake: {e}")),
             },
             cut = self.slot.cut() => return self.slot.report(cut, &peer),
         };

@@ -2,6 +2,7 @@
 //! message as it comes (a page that falls [`PAGE_LAG`] messages behind gets fresh snapshots instead of the
 //! ones it missed); what it sends are controls ([`Control`]), each made into its put on zenoh.
 
+use crate::daemon::bridges::peer_rejection::PeerRejection;
 use std::net::SocketAddr;
 use std::sync::Arc;
 
@@ -85,7 +86,7 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
                 Some(Ok(Message::Pong(_))) => page.slot.touch(),
                 Some(Err(e)) => {
                     use tokio_tungstenite::tungstenite::Error;
-                    let kind = if matches!(e, Error::Capacity(_)) { "oversized" } else { "protocol" };
+                    let kind = if matches!(e, Error::Capacity(_)) { PeerRejection::Oversized } else { PeerRejection::Protocol };
                     page.peers.reject(kind, || format!("{peer}: closed: {e}"));
                     break;
                 }
@@ -126,7 +127,7 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
 async fn on_control(page: &Page, text: &str) {
     let peer = page.peer;
     if !page.controls {
-        return page.peers.reject("unauthorized", || {
+        return page.peers.reject(PeerRejection::Unauthorized, || {
             format!("{peer}: control refused: this page has no token (open the address printed at start)")
         });
     }
@@ -141,6 +142,6 @@ async fn on_control(page: &Page, text: &str) {
         Err(e) => return page.peers.reject(e.kind(), || format!("{peer}: control refused: {e}")),
     };
     if let Err(e) = page.session.put(key.clone(), payload).await {
-        page.peers.reject("put_failed", || format!("put on {key}: {e}"));
+        page.peers.reject(PeerRejection::PutFailed, || format!("put on {key}: {e}"));
     }
 }

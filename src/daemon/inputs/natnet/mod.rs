@@ -16,6 +16,7 @@
 
 pub mod protocol;
 
+use crate::daemon::inputs::counters::{InputRejection, Reconnect};
 use std::net::{Ipv4Addr, SocketAddr, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -164,7 +165,7 @@ impl Client {
                 if self.lock_state().version.take().is_some() {
                     let why = format!("NatNet server at {} went quiet; connecting again", self.server);
                     tracing::warn!("{why}");
-                    lock(&self.shared).conn.reconnect("quiet", why);
+                    lock(&self.shared).conn.reconnect(Reconnect::Quiet, why);
                     backoff = BACKOFF_FIRST;
                     next_connect = now;
                 }
@@ -216,9 +217,9 @@ impl Client {
             Ok((n, from)) => {
                 let received = Instant::now();
                 if from.ip() != self.server.ip() {
-                    lock(&self.shared).conn.reject("foreign_sender");
+                    lock(&self.shared).conn.reject(InputRejection::ForeignSender);
                 } else if n > natnet::MAX_DATAGRAM_BYTES {
-                    lock(&self.shared).conn.reject("oversized");
+                    lock(&self.shared).conn.reject(InputRejection::Oversized);
                 } else {
                     // An answer counts only on the command socket, from the command port it was asked of.
                     self.on_datagram(&buf[..n], received, command && from == self.server);
@@ -240,7 +241,7 @@ impl Client {
         let mut sh = lock(&self.shared);
         let (id, payload) = match natnet::split(bytes) {
             Ok(v) => v,
-            Err(e) => return sh.conn.reject(e.reason()),
+            Err(e) => return sh.conn.reject(InputRejection::Decode(e.reason())),
         };
         st.last_rx = Some(received);
         match id {
@@ -249,10 +250,10 @@ impl Client {
                 // no news, anything else is not an answer to this client and changes nothing.
                 let same = natnet::decode_server_info(payload).is_ok_and(|i| Some(i.version()) == st.version);
                 if !(answer && same) {
-                    sh.conn.reject("unsolicited_server_info");
+                    sh.conn.reject(InputRejection::UnsolicitedServerInfo);
                 }
             }
-            natnet::NAT_MODELDEF if !answer => sh.conn.reject("unsolicited_model_def"),
+            natnet::NAT_MODELDEF if !answer => sh.conn.reject(InputRejection::UnsolicitedModelDef),
             natnet::NAT_SERVERINFO => match natnet::decode_server_info(payload) {
                 Ok(info) => {
                     st.awaiting_server_info = false;
@@ -261,7 +262,7 @@ impl Client {
                     let [a, b, c, d] = info.app_version;
                     sh.conn.server_version = Some(format!("{} {a}.{b}.{c}.{d}, NatNet {v}", info.app_name));
                     if !v.supported() {
-                        sh.conn.reject("unknown_version");
+                        sh.conn.reject(InputRejection::UnknownVersion);
                         sh.conn.last_error = Some(natnet::NatNetError::UnsupportedVersion(v).to_string());
                     }
                     if st.version.is_none() {
@@ -277,10 +278,10 @@ impl Client {
                     st.clock_hz = info.clock_hz.filter(|&hz| hz > 0);
                     st.want_model = true;
                 }
-                Err(e) => sh.conn.reject(e.reason()),
+                Err(e) => sh.conn.reject(InputRejection::Decode(e.reason())),
             },
             natnet::NAT_MODELDEF => {
-                let Some(version) = st.version else { return sh.conn.reject("awaiting_server_info") };
+                let Some(version) = st.version else { return sh.conn.reject(InputRejection::AwaitingServerInfo) };
                 match natnet::decode_model_def(payload, version) {
                     Ok(model) => {
                         st.want_model = false;
@@ -310,14 +311,14 @@ impl Client {
                         }
                         st.model_seen = true;
                     }
-                    Err(e) => sh.conn.reject(e.reason()),
+                    Err(e) => sh.conn.reject(InputRejection::Decode(e.reason())),
                 }
             }
             natnet::NAT_FRAMEOFDATA => {
-                let Some(version) = st.version else { return sh.conn.reject("awaiting_server_info") };
+                let Some(version) = st.version else { return sh.conn.reject(InputRejection::AwaitingServerInfo) };
                 let st = &mut *st;
                 if let Err(e) = natnet::decode_frame(payload, version, &mut st.frame) {
-                    sh.conn.reject(e.reason());
+                    sh.conn.reject(InputRejection::Decode(e.reason()));
                     st.undecodable_run += 1;
                     if st.undecodable_run >= UNDECODABLE_FRAMES {
                         // The version in use (or the server) decodes nothing: start the session again.
@@ -329,7 +330,7 @@ impl Client {
                             self.server
                         );
                         tracing::warn!("{why}");
-                        sh.conn.reconnect("undecodable", why);
+                        sh.conn.reconnect(Reconnect::Undecodable, why);
                     }
                     return;
                 }
@@ -380,7 +381,7 @@ impl Client {
             | natnet::NAT_KEEPALIVE
             | natnet::NAT_UNRECOGNIZED_REQUEST
             | natnet::NAT_DISCONNECT => {}
-            _ => sh.conn.reject("unknown_message"),
+            _ => sh.conn.reject(InputRejection::UnknownMessage),
         }
     }
 }

@@ -8,6 +8,7 @@
 
 pub mod protocol;
 
+use crate::daemon::inputs::counters::{InputRejection, Reconnect};
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -190,7 +191,7 @@ impl Session<'_> {
                 Ok(Got::Idle) => lock(self.shared).log.flush(),
                 Err(Broken::Closed(why)) => return Err(End::Lost(why)),
                 Err(Broken::Bad(e)) => {
-                    lock(self.shared).conn.reject(e.reason());
+                    lock(self.shared).conn.reject(InputRejection::Decode(e.reason()));
                     return Err(End::Lost(format!("{e}; the stream is out of step")));
                 }
             }
@@ -283,7 +284,7 @@ impl Session<'_> {
             if let End::Lost(why) = e {
                 if why.starts_with("QTM refused") {
                     let mut sh = lock(self.shared);
-                    sh.conn.reject("unknown_version");
+                    sh.conn.reject(InputRejection::UnknownVersion);
                     sh.conn.last_error = Some(why.clone());
                 }
             }
@@ -332,7 +333,7 @@ impl Session<'_> {
                     lock(self.shared).conn.last_error = Some(text);
                 }
                 qtm::PACKET_COMMAND => {}
-                other => lock(self.shared).conn.reject(QtmError::UnknownPacket(other).reason()),
+                other => lock(self.shared).conn.reject(InputRejection::Decode(QtmError::UnknownPacket(other).reason())),
             }
         }
     }
@@ -350,7 +351,7 @@ impl Session<'_> {
             Ok((kind, _)) => Ok(kind),
             Err(End::Silent) => {
                 let why = format!("QTM sent nothing for {} s, not even a reply; connecting again", QUIET.as_secs());
-                lock(self.shared).conn.reconnect("quiet", why.clone());
+                lock(self.shared).conn.reconnect(Reconnect::Quiet, why.clone());
                 Err(End::Lost(why))
             }
             Err(end) => Err(end),
@@ -361,12 +362,12 @@ impl Session<'_> {
         let mut sh = lock(self.shared);
         let components = match qtm::decode_data(&self.reader.packet, frame) {
             Ok(c) => c,
-            Err(e) => return sh.conn.reject(e.reason()),
+            Err(e) => return sh.conn.reject(InputRejection::Decode(e.reason())),
         };
         // A route of a 6DOF body in a packet without 6D (or a marker set without 3D): counted once per packet.
         let wants_6d = self.fitters.iter().any(Option::is_none);
         if (wants_6d && !components.six_d) || (self.wants_3d() && !components.three_d) {
-            return sh.conn.reject(QtmError::No6d.reason());
+            return sh.conn.reject(InputRejection::Decode(QtmError::No6d.reason()));
         }
         let sh = &mut *sh;
         for (i, name) in self.bodies.iter().enumerate() {

@@ -8,6 +8,7 @@
 
 pub mod protocol;
 
+use crate::daemon::inputs::counters::{InputRejection, Reconnect};
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -125,7 +126,7 @@ impl Session<'_> {
                 h.copy_from_slice(&self.buf[..framing::HEADER_BYTES]);
                 // A bad header desynchronises the stream: the session ends and connects again.
                 let len = framing::header(&h).map_err(|e| {
-                    lock(self.shared).conn.reject(e.reason());
+                    lock(self.shared).conn.reject(InputRejection::Decode(e.reason()));
                     End::Lost(format!("{e}; the stream is out of step"))
                 })?;
                 let size = framing::HEADER_BYTES + len;
@@ -157,7 +158,7 @@ impl Session<'_> {
                 match self.decoder.decode(&self.packet) {
                     Ok(sum) if sum.object_enums => break,
                     Ok(_) => {}
-                    Err(e) => lock(self.shared).conn.reject(e.reason()),
+                    Err(e) => lock(self.shared).conn.reject(InputRejection::Decode(e.reason())),
                 }
             } else if Instant::now() > deadline {
                 return Err(End::Lost("the Vicon server did not send its object types".into()));
@@ -197,7 +198,7 @@ impl Session<'_> {
             if !self.next()? {
                 if last_packet.elapsed() >= QUIET {
                     let why = format!("the Vicon server sent nothing for {} s; connecting again", QUIET.as_secs());
-                    lock(self.shared).conn.reconnect("quiet", why.clone());
+                    lock(self.shared).conn.reconnect(Reconnect::Quiet, why.clone());
                     return Err(End::Lost(why));
                 }
                 lock(self.shared).log.flush();
@@ -214,7 +215,7 @@ impl Session<'_> {
                         self.on_frame(tracks, received);
                     }
                 }
-                Err(e) => lock(self.shared).conn.reject(e.reason()),
+                Err(e) => lock(self.shared).conn.reject(InputRejection::Decode(e.reason())),
             }
         }
     }
@@ -247,7 +248,7 @@ impl Session<'_> {
         let frame = &self.decoder.frame;
         let mut sh = lock(self.shared);
         if frame.t_ns().is_none() {
-            return sh.conn.reject("no_frame_period");
+            return sh.conn.reject(InputRejection::NoFramePeriod);
         }
         if let Some(s) = frame.latency_total_s() {
             sh.conn.exposure_to_transmit_us.push(s * 1e6);
