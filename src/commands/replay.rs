@@ -11,10 +11,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use impactd::daemon::replay::{
-    self, PauseControl, Publish, ReplayCapture, ReplayFile, ReplayIndex, ReplayOptions, ReplayReport, ReplaySource,
-    Selection,
-};
+use impactd::daemon::replay::{self, PauseControl, Publish, ReplayCapture, ReplayFile, ReplayIndex, ReplayOptions};
+use impactd::daemon::replay::{ReplayReport, ReplaySource, Selection};
 use impactd::pipeline::Event;
 
 use super::args::{model_name, ZenohFlags};
