@@ -78,7 +78,7 @@ fn main() {
         backoff_min: Duration::from_millis(10),
         backoff_max: Duration::from_millis(100),
     };
-    let mut client = rt.block_on(async { SimulatorClient::spawn(options, RecorderHandle::none()) });
+    let mut client = rt.block_on(async { SimulatorClient::spawn(options, RecorderHandle::none(), Default::default()) });
     while client.status().connects == 0 {
         std::thread::sleep(Duration::from_millis(10));
     }

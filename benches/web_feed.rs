@@ -24,7 +24,7 @@ fn bench(c: &mut Criterion) {
     let publisher = session.declare_publisher("golf/rig1/launch").wait().unwrap();
     let mut group = c.benchmark_group("web_feed");
     group.bench_function("put a launch, no screen", |b| b.iter(|| publisher.put(LAUNCH.to_vec()).wait().unwrap()));
-    let bay = Bay::new(vec![("rig1".into(), Default::default())], String::new());
+    let bay = Bay::new(vec!["rig1".into()], String::new(), Default::default());
     let feed = rt.block_on(Feed::start(&session, bay.clone())).unwrap();
     group.bench_function("put a launch, the screen's feed subscribed", |b| {
         b.iter(|| publisher.put(LAUNCH.to_vec()).wait().unwrap())

@@ -46,6 +46,41 @@ if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/.requirements" 2>/dev/n
 fi
 
 export IMPACTD_PYTHON="$venv/bin/python"
-IMPACTD_VICON_SDK_CLIENT="$(bash "$root/scripts/vicon-sdk-client.sh")"
+
+# Vicon's SDK client (C++) builds while cargo builds the tests; its output goes to target/vicon-sdk-client.log.
+# Without a target of your own (`--test NAME`, `--lib`, ...), the tests are every library's, binary's and
+# integration test's, then the doc tests: the examples are not linked (clippy --all-targets checks they compile).
+cargo_args=()
+picks_targets=false
+for a in "$@"; do
+  [ "$a" = "--" ] && break
+  case "$a" in
+    --lib|--bin|--bin=*|--bins|--test|--test=*|--tests|--example|--example=*|--examples|--bench|--bench=*|--benches|--all-targets|--doc)
+      picks_targets=true ;;
+  esac
+  cargo_args+=("$a")
+done
+targets=()
+$picks_targets || targets=(--lib --bins --tests)
+mkdir -p "$root/target"
+vicon_log="$root/target/vicon-sdk-client.log"
+bash "$root/scripts/vicon-sdk-client.sh" >"$root/target/vicon-sdk-client.path" 2>"$vicon_log" &
+vicon=$!
+cargo test --release --no-run "${targets[@]}" "${cargo_args[@]}"
+if ! wait "$vicon"; then
+  cat "$vicon_log" >&2
+  echo "test.sh: building Vicon's SDK client failed (above)" >&2
+  exit 1
+fi
+IMPACTD_VICON_SDK_CLIENT="$(cat "$root/target/vicon-sdk-client.path")"
 export IMPACTD_VICON_SDK_CLIENT
-exec cargo test --release "$@"
+if $picks_targets; then
+  exec cargo test --release "$@"
+fi
+status=0
+cargo test --release "${targets[@]}" "$@" || status=$?
+if [ "$status" -ne 0 ] && [[ " ${cargo_args[*]} " != *" --no-fail-fast "* ]]; then
+  exit "$status"
+fi
+cargo test --release --doc "$@" || status=$?
+exit "$status"

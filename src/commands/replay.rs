@@ -161,6 +161,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         publish: publish.unwrap_or_default(),
         pause: pause.clone(),
         select,
+        clock: Default::default(),
     };
     let load_s = started.elapsed().as_secs_f64();
     let rt = runtime()?;

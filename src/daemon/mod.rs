@@ -117,8 +117,3 @@ impl DaemonError {
         DaemonError::Zenoh(e)
     }
 }
-
-/// Nanoseconds since the Unix epoch, now.
-pub fn wall_ns() -> u64 {
-    clock::Clock::system().wall_ns()
-}

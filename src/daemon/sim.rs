@@ -12,7 +12,8 @@ use std::time::Duration;
 
 use zenoh::Wait;
 
-use crate::daemon::{wall_ns, DaemonError};
+use crate::daemon::clock::Clock;
+use crate::daemon::DaemonError;
 use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};
@@ -40,6 +41,8 @@ pub struct SimOptions {
     pub body: Option<String>,
     /// How long each rig keeps its publishers after its last put (s; [`PUBLISHER_DRAIN_S`]).
     pub publisher_drain_s: f64,
+    /// The clock the samples are stamped and paced by (the system's unless a test drives one).
+    pub clock: Clock,
 }
 
 impl Default for SimOptions {
@@ -56,6 +59,7 @@ impl Default for SimOptions {
             wait_for_subscriber_s: 10.0,
             body: None,
             publisher_drain_s: PUBLISHER_DRAIN_S,
+            clock: Clock::system(),
         }
     }
 }
@@ -277,7 +281,7 @@ pub async fn run_sim(
 ) -> Result<SimSummary, DaemonError> {
     options.check()?;
     let stop = Arc::new(AtomicBool::new(false));
-    let start_ns = wall_ns() + 200_000_000;
+    let start_ns = options.clock.wall_ns() + 200_000_000;
     let mut threads = Vec::new();
     for (i, name) in options.rigs.iter().enumerate() {
         if !keys::valid_rig_name(name) {
@@ -308,14 +312,14 @@ pub async fn run_sim(
         }
         let mut rig =
             SimRig::new(name, &options, start_ns + i as u64 * 37_000_000, options.seed.wrapping_add(i as u64 * 7919));
-        let (stop, body) = (stop.clone(), options.body.clone());
+        let (stop, body, clock) = (stop.clone(), options.body.clone(), options.clock.clone());
         let drain = Duration::from_secs_f64(options.publisher_drain_s);
         threads.push(tokio::task::spawn_blocking(move || {
             let mut summary = SimSummary::default();
             let mut failed = None;
             while !stop.load(Ordering::Relaxed) && !rig.done() {
                 let due = rig.next_t_ns();
-                let now = wall_ns();
+                let now = clock.wall_ns();
                 if due > now {
                     std::thread::sleep(Duration::from_nanos(due - now));
                 }

@@ -35,6 +35,10 @@ pub fn impact(rig: &str) -> String {
 pub fn launch(rig: &str) -> String {
     format!("golf/{rig}/launch")
 }
+/// Out, right after each launch: [`FlightLine`](super::FlightLine), the points of its predicted flight.
+pub fn flight(rig: &str) -> String {
+    format!("golf/{rig}/flight")
+}
 /// Out, once a second: [`StatusMessage`](super::StatusMessage).
 pub fn status(rig: &str) -> String {
     format!("golf/{rig}/status")

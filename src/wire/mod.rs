@@ -9,6 +9,7 @@
 
 mod bay;
 mod bridge;
+mod flight_line;
 pub mod keys;
 mod measured;
 mod mocap;
@@ -21,6 +22,7 @@ pub use bridge::{
     ConnectionState, LaunchMonitorStatus, LiveViewStatus, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,
 };
+pub use flight_line::FlightLine;
 pub use golf_physics::wire::*;
 pub use measured::{ComparisonMessage, ComparisonStatus, LaunchFields, MeasuredClubData, MeasuredLaunch};
 pub use mocap::MocapInputStatus;

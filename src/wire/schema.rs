@@ -29,6 +29,7 @@ pub enum MessageType {
     BallSample,
     ShotExclusion,
     DisplaySettings,
+    FlightLine,
 }
 
 /// A Rust type sent on the wire, with its [`MessageType`].
@@ -82,6 +83,7 @@ messages! {
     BallSample => BallSampleMsg,
     ShotExclusion => ShotExclusion,
     DisplaySettings => DisplaySettings,
+    FlightLine => super::FlightLine,
 }
 
 impl MessageType {

@@ -478,3 +478,20 @@ fn the_physics_crate_names_none_of_the_io_crates() {
                [target.'cfg(unix)'.dev-dependencies]\nzenoh = \"1\"\n";
     assert_eq!(io_crates_named(bad), ["[dependencies] rt", "[dev-dependencies] zenoh"]);
 }
+
+/// The daemon reads the wall clock only through `daemon::clock::Clock` (ARCHITECTURE.md section 2: one clock
+/// handed to what stamps, so a test drives it).
+#[test]
+fn the_daemon_reads_the_wall_clock_only_through_its_clock() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src/daemon"), &mut files);
+    assert!(files.len() > 50, "the daemon's sources were not found ({} files)", files.len());
+    let readers: Vec<String> = files
+        .iter()
+        .filter(|f| !f.ends_with("daemon/clock.rs"))
+        .filter(|f| outside_tests(&std::fs::read_to_string(f).unwrap()).contains("SystemTime::now"))
+        .map(|f| f.strip_prefix(root).unwrap().display().to_string())
+        .collect();
+    assert!(readers.is_empty(), "read the wall clock without the daemon's Clock:\n{}", readers.join("\n"));
+}

@@ -387,12 +387,14 @@ async fn kill_9_then_recover() {
 }
 
 /// `model = "both"`: every shot is predicted twice, the impulse-momentum prediction first and the continuous one
-/// after it, each labelled, with the same shot number.
+/// after it, each labelled, with the same shot number; each prediction's flight line follows it on
+/// `golf/<rig>/flight`, the points its flight was flown through (the ball flown once).
 #[tokio::test(flavor = "multi_thread", worker_threads = 4)]
 async fn both_models_publish_impulse_first() {
     let daemon = start_daemon("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\nmodel = \"both\"\n", None).await;
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay1/launch");
+    let (lines, _l) = collect::<impactd::wire::FlightLine>(&rig, "golf/bay1/flight");
     run_sim(&rig, sim_options("bay1", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
     tokio::time::sleep(Duration::from_millis(500)).await;
     daemon.stop().await;
@@ -403,6 +405,20 @@ async fn both_models_publish_impulse_first() {
     // The continuous prediction takes longer and says so.
     assert!(launches[1].latency_us > launches[0].latency_us);
     assert!(launches.iter().all(|l| l.flight.as_ref().is_some_and(|f| f.carry_m > 50.0)));
+    // One line per prediction, in the same order, from the launch point to where its flight says the ball stops;
+    // the published prediction carries its flight's numbers, not its points.
+    let lines = lines.lock().unwrap().clone();
+    let of_lines: Vec<(u64, &str)> = lines.iter().map(|l| (l.shot, l.model.as_str())).collect();
+    assert_eq!(of_lines, models);
+    for (l, p) in lines.iter().zip(&launches) {
+        let f = p.flight.as_ref().unwrap();
+        assert!(f.points.is_empty());
+        let (first, last) = (l.points[0], *l.points.last().unwrap());
+        assert_eq!((first[0], l.step_s, l.t_impact_ns), (0.0, 0.05, p.t_impact_ns));
+        let rest_m = (last[1].powi(2) + last[3].powi(2)).sqrt();
+        assert!((rest_m - f.total_m).abs() < 1e-6, "line ends {rest_m} m out, the flight's total {} m", f.total_m);
+        assert!(l.points.iter().any(|q| (q[0] - f.hang_time_s).abs() <= l.step_s), "a point near the landing");
+    }
 }
 
 /// An iron rig on turf: `model = "both"` with `soil = "firm"` publishes the impulse prediction first and the

@@ -89,7 +89,7 @@ async fn hostile_sample_and_restart_cost_no_later_swing() {
     let far = 9_223_372_036_854_775_808u64;
     put(&hostile, format!(
         r#"{{"rig":"bay1","frame":{far},"t_ns":{},"position_m":[0,0.3,-0.2],"orientation":{{"x":0,"y":0,"z":0,"w":1}}}}"#,
-        impactd::daemon::wall_ns() + 365 * 24 * 3600 * 1_000_000_000
+        impactd::daemon::clock::Clock::system().wall_ns() + 365 * 24 * 3600 * 1_000_000_000
     ))
     .await;
     // The sim numbers frames from 1 and starts its clock afresh: a restarted publisher.

@@ -20,8 +20,9 @@ use std::time::{Duration, Instant};
 use common::{quantile, recorded, start_daemon};
 use impactd::daemon::bridges::open_connect::codec::Reply;
 use impactd::daemon::bridges::open_connect::splitter::{Frame, Splitter};
+use impactd::daemon::clock::Clock;
 use impactd::daemon::sim::{run_sim, SimOptions};
-use impactd::daemon::{wall_ns, RunOptions};
+use impactd::daemon::RunOptions;
 use impactd::equipment::ClubSpec;
 use impactd::wire::{ComparisonMessage, LaunchPrediction, StatusMessage};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -103,7 +104,7 @@ async fn each_measured_shot_is_compared_within_10_ms_whatever_the_connector_send
     let _s2 = observer
         .declare_subscriber("golf/bay1/comparison")
         .callback(move |s| {
-            let (wall, now) = (wall_ns(), Instant::now());
+            let (wall, now) = (Clock::system().wall_ns(), Instant::now());
             if let Ok(c) = serde_json::from_slice(&s.payload().to_bytes()) {
                 sink.lock().unwrap().push((c, wall, now));
             }

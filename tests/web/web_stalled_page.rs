@@ -70,6 +70,11 @@ async fn a_stalled_page_is_let_go_and_a_long_session_stays_within_the_screens_bo
             .congestion_control(zenoh::qos::CongestionControl::Block)
             .await
             .unwrap();
+        // Its flight line, as the daemon puts it right after the launch.
+        bus.put("golf/rig1/flight", serde_json::to_vec(&line(shot)).unwrap())
+            .congestion_control(zenoh::qos::CongestionControl::Block)
+            .await
+            .unwrap();
         if shot % 100 == 0 {
             tokio::time::sleep(Duration::from_millis(20)).await;
         }
@@ -98,9 +103,26 @@ async fn a_stalled_page_is_let_go_and_a_long_session_stays_within_the_screens_bo
     let shots: Vec<u64> = snapshot["shots"].as_array().unwrap().iter().map(|s| s["shot"].as_u64().unwrap()).collect();
     assert_eq!(shots.len(), 1000);
     assert_eq!((shots[0], shots[999]), (SHOTS - 999, SHOTS));
-    assert_eq!(snapshot["flights"].as_array().unwrap().len(), 12);
+    let flights = snapshot["flights"].as_array().unwrap();
+    assert_eq!(flights.len(), 12);
+    // The lines drawn are the ones put, to the centimetre.
+    let last = flights.last().unwrap();
+    assert_eq!(last["shot"], serde_json::json!(SHOTS));
+    assert_eq!(last["line"], serde_json::json!([[0.0, 0.0, 0.0], [12.35, 3.0, -0.5]]));
     // The per-club numbers still count every kept shot (the daemon keeps 5000).
     assert_eq!(snapshot["summary"]["by"]["club"][0]["shots"], serde_json::json!(SHOTS));
     reading.abort();
     daemon.stop().await;
+}
+
+/// A flight line of the daemon's form for `shot`.
+fn line(shot: u64) -> impactd::wire::FlightLine {
+    impactd::wire::FlightLine {
+        rig: "rig1".into(),
+        shot,
+        model: "adjusted".into(),
+        t_impact_ns: 0,
+        step_s: 0.05,
+        points: vec![[0.0; 4], [0.05, 12.3456, 3.0012, -0.4987]],
+    }
 }

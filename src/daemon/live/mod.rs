@@ -99,20 +99,30 @@ pub async fn run(
     let recorder = options
         .record
         .as_deref()
-        .map(|p| Recorder::create(p, session_metadata(&config), options.overwrite))
+        .map(|p| {
+            Recorder::create(p, session_metadata(&config, &options.clock), options.overwrite, options.clock.clone())
+        })
         .transpose()?;
     let unknown = Arc::new(AtomicU64::new(0));
     let foxglove = match &options.foxglove {
         Some(address) => {
             let rigs: Vec<&str> = config.rigs.iter().map(|r| r.name.as_str()).collect();
-            Some(FoxgloveServer::start(address, &rigs).await?)
+            Some(FoxgloveServer::start(address, &rigs, options.clock.clone()).await?)
         }
         None => None,
     };
-    // The screens draw each rig's flights with its flight model (the default where the rig adds no flight).
-    let screens = setups.iter().map(|s| (s.name.clone(), s.flight.unwrap_or_default())).collect();
+    // The screens draw each rig's flights from the lines its worker publishes (`golf/<rig>/flight`).
+    let screens = setups.iter().map(|s| s.name.clone()).collect();
     let access = config.web.as_ref().map(|w| w.access()).unwrap_or_default();
-    let web = WebServer::start_if(options.web.as_deref(), &access, screens, session, options.record.as_deref()).await?;
+    let web = WebServer::start_if(
+        options.web.as_deref(),
+        &access,
+        screens,
+        session,
+        options.record.as_deref(),
+        options.clock.clone(),
+    )
+    .await?;
     let handle = recorder.as_ref().map_or_else(RecorderHandle::none, |r| r.handle());
     let handle = handle.with_live(foxglove.as_ref().map(FoxgloveServer::tap));
     let mut listeners = Vec::new();
@@ -130,9 +140,11 @@ pub async fn run(
             rig_config.launch_monitor.as_ref(),
             session,
             &handle,
+            &options.clock,
         )
         .await?;
-        let simulator = simulator.or_else(|| opengolfsim::spawn(&name, rig_config.simulator.as_ref()?, &handle));
+        let simulator =
+            simulator.or_else(|| opengolfsim::spawn(&name, rig_config.simulator.as_ref()?, &handle, &options.clock));
         let launch_monitor = listener.as_ref().map(LaunchMonitorListener::status_handle);
         listeners.extend(listener);
         let (tx, rx) = sync_channel::<Incoming>(RIG_QUEUE);
@@ -150,10 +162,9 @@ pub async fn run(
         }
         let window = rig_config.launch_monitor.as_ref().map(|l| l.pair_window()).unwrap_or_default();
         let mut setup = setup;
-        // A recording or the live view draws each flight: the prediction's own flight samples its line.
-        if handle.enabled() {
-            setup.flight_line_step_s = crate::daemon::recording::channels::FLIGHT_LINE_STEP_S;
-        }
+        // The prediction's own flight samples its line: published on `golf/<rig>/flight` for the screens,
+        // and recorded and drawn in the live view.
+        setup.flight_line_step_s = crate::daemon::recording::channels::FLIGHT_LINE_STEP_S;
         let pipeline = Pipeline::new(setup);
         let worker = Worker {
             rig: Arc::from(name.as_str()),
@@ -411,6 +422,7 @@ impl Worker {
                 l.latency_us = self.clock.since(received).as_nanos() as f64 / 1e3;
                 let data = self.sinks.publish_launch(&l);
                 self.release_impact();
+                self.sinks.publish_flight(&l, line.as_deref());
                 self.sinks.record_launch(&l, data, line, self.clock.wall_ns());
                 self.latency.push(l.latency_us);
                 if let Some(simulator) = &mut self.simulator {

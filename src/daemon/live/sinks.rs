@@ -14,8 +14,8 @@ use crate::kinematics::ClubheadSample;
 use crate::math::Isometry3;
 use crate::pipeline::{CounterKind, Counts, Pipeline, Rejection};
 use crate::wire::{
-    keys, ClubheadSampleMsg, ComparisonMessage, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message, MessageType,
-    RejectedInput, StatusMessage,
+    keys, ClubheadSampleMsg, ComparisonMessage, FlightLine, ImpactMessage, LaunchPrediction, MeasuredLaunch, Message,
+    MessageType, RejectedInput, StatusMessage,
 };
 
 /// A rig's key expressions, built once.
@@ -49,12 +49,14 @@ impl RigKeys {
 pub struct RigPublishers {
     impact: zenoh::pubsub::Publisher<'static>,
     launch: zenoh::pubsub::Publisher<'static>,
+    flight: zenoh::pubsub::Publisher<'static>,
     status: zenoh::pubsub::Publisher<'static>,
     comparison: zenoh::pubsub::Publisher<'static>,
 }
 
 impl RigPublishers {
-    /// Declares the publishers of `golf/<rig>/impact`, `.../launch` and `.../status` with their encodings.
+    /// Declares the publishers of `golf/<rig>/impact`, `.../launch`, `.../flight`, `.../status` and
+    /// `.../comparison` with their encodings.
     pub async fn declare(session: &zenoh::Session, rig: &str) -> Result<Self, DaemonError> {
         async fn one<M: Message>(
             session: &zenoh::Session,
@@ -65,6 +67,7 @@ impl RigPublishers {
         Ok(RigPublishers {
             impact: one::<ImpactMessage>(session, keys::impact(rig)).await?,
             launch: one::<LaunchPrediction>(session, keys::launch(rig)).await?,
+            flight: one::<FlightLine>(session, keys::flight(rig)).await?,
             status: one::<StatusMessage>(session, keys::status(rig)).await?,
             comparison: one::<ComparisonMessage>(session, keys::comparison(rig)).await?,
         })
@@ -81,6 +84,8 @@ pub struct RigSinks {
     ball_radius_m: f64,
     /// The rig's flight model, for the predicted flight's line (Foxglove).
     flight: Option<crate::flight::Flight>,
+    /// The time between the points of a prediction's own flight line (`RigSetup::flight_line_step_s`).
+    line_step_s: f64,
 }
 
 impl RigSinks {
@@ -96,6 +101,7 @@ impl RigSinks {
             ball_position_m: setup.detector.ball_position_m.into(),
             ball_radius_m: setup.detector.ball_radius_m,
             flight: setup.flight,
+            line_step_s: setup.flight_line_step_s,
         }
     }
 
@@ -164,18 +170,13 @@ impl RigSinks {
         }
     }
 
-    /// Publishes and records a prediction and the line of its flight, flown by the recorder or the live view
-    /// ([`RigSinks::launch_with_line`]).
-    pub fn launch(&self, l: &LaunchPrediction, now_ns: u64) -> Vec<u8> {
-        let data = self.publish_launch(l);
-        self.record_launch(l, data, None, now_ns)
-    }
-
     /// Publishes and records a prediction and the line of its flight (`line`: the points of the prediction's
-    /// own flight, taken out of it; without them flown by the recorder or the live view, off the prediction
-    /// path), and closes the recording's chunk (a shot is never half-written).
+    /// own flight, taken out of it, also published on `golf/<rig>/flight`; without them flown by the recorder
+    /// or the live view, off the prediction path), and closes the recording's chunk (a shot is never
+    /// half-written).
     pub fn launch_with_line(&self, l: &LaunchPrediction, line: Option<Vec<[f64; 4]>>, now_ns: u64) -> Vec<u8> {
         let data = self.publish_launch(l);
+        self.publish_flight(l, line.as_deref());
         self.record_launch(l, data, line, now_ns)
     }
 
@@ -185,6 +186,22 @@ impl RigSinks {
         let data = serde_json::to_vec(l).unwrap_or_default();
         self.publish(|p| &p.launch, "launch", &data);
         data
+    }
+
+    /// Publishes the line of a published prediction's flight on `golf/<rig>/flight` (`points`: the prediction's
+    /// own, sampled while it was flown; nothing without them).
+    pub fn publish_flight(&self, l: &LaunchPrediction, points: Option<&[[f64; 4]]>) {
+        let (Some(points), Some(_)) = (points, &self.publishers) else { return };
+        let line = FlightLine {
+            rig: l.rig.clone(),
+            shot: l.shot,
+            model: l.model.clone(),
+            t_impact_ns: l.t_impact_ns,
+            step_s: self.line_step_s,
+            points: points.to_vec(),
+        };
+        let data = serde_json::to_vec(&line).unwrap_or_default();
+        self.publish(|p| &p.flight, "flight line", &data);
     }
 
     /// Records a published prediction (`data`, from [`RigSinks::publish_launch`]) and the line of its flight,

@@ -152,7 +152,10 @@ pub fn recover(input: &Path, output: &Path, overwrite: bool) -> Result<Recovered
     note.insert("from".to_string(), input.display().to_string());
     note.insert(
         "recovered_at".to_string(),
-        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+        humantime::format_rfc3339_seconds(
+            std::time::UNIX_EPOCH + std::time::Duration::from_nanos(crate::daemon::clock::Clock::system().wall_ns()),
+        )
+        .to_string(),
     );
     note.insert("input_complete".to_string(), s.intact().to_string());
     note.insert("messages".to_string(), s.message_count.to_string());

@@ -16,12 +16,14 @@ use std::sync::mpsc::{sync_channel, Receiver, RecvTimeoutError, SyncSender, TryS
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
+use crate::daemon::clock::Clock;
 use crate::daemon::recording::channels::Schema;
 pub use crate::daemon::recording::record::Record;
-use crate::daemon::{wall_ns, DaemonError};
+use crate::daemon::DaemonError;
 
-/// The `session` metadata of a recording: versions and the configuration (the daemon's `DaemonConfig`).
-pub fn session_metadata(config: &impl serde::Serialize) -> BTreeMap<String, String> {
+/// The `session` metadata of a recording: versions, the configuration (the daemon's `DaemonConfig`) and its
+/// start on `clock`.
+pub fn session_metadata(config: &impl serde::Serialize, clock: &Clock) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     m.insert("impactd_version".into(), env!("CARGO_PKG_VERSION").into());
     m.insert("wire_version".into(), crate::wire::WIRE_VERSION.to_string());
@@ -33,7 +35,7 @@ pub fn session_metadata(config: &impl serde::Serialize) -> BTreeMap<String, Stri
         .collect();
     m.insert("wire_versions".into(), versions.join(","));
     m.insert("config_toml".into(), toml::to_string(config).unwrap_or_default());
-    m.insert("start_ns".into(), wall_ns().to_string());
+    m.insert("start_ns".into(), clock.wall_ns().to_string());
     m
 }
 
@@ -63,10 +65,15 @@ pub struct Recorder {
 }
 
 impl Recorder {
-    /// Creates the file and starts the writer; `session` becomes the `session` metadata record. An existing
-    /// file is replaced only with `overwrite`.
-    pub fn create(path: &Path, session: BTreeMap<String, String>, overwrite: bool) -> Result<Recorder, DaemonError> {
-        Self::create_with(path, session, overwrite, false)
+    /// Creates the file and starts the writer; `session` becomes the `session` metadata record, and the
+    /// `session_end` record is stamped on `clock`. An existing file is replaced only with `overwrite`.
+    pub fn create(
+        path: &Path,
+        session: BTreeMap<String, String>,
+        overwrite: bool,
+        clock: Clock,
+    ) -> Result<Recorder, DaemonError> {
+        Self::create_with(path, session, overwrite, false, clock)
     }
 
     /// As [`create`](Self::create), with senders that wait for the writer when its queue is full, so nothing
@@ -75,8 +82,9 @@ impl Recorder {
         path: &Path,
         session: BTreeMap<String, String>,
         overwrite: bool,
+        clock: Clock,
     ) -> Result<Recorder, DaemonError> {
-        Self::create_with(path, session, overwrite, true)
+        Self::create_with(path, session, overwrite, true, clock)
     }
 
     fn create_with(
@@ -84,6 +92,7 @@ impl Recorder {
         session: BTreeMap<String, String>,
         overwrite: bool,
         wait: bool,
+        clock: Clock,
     ) -> Result<Recorder, DaemonError> {
         let file = crate::output_file::create_output(path, overwrite)?;
         let (tx, rx) = sync_channel::<Record>(QUEUE_CAPACITY);
@@ -95,7 +104,7 @@ impl Recorder {
             .name("impactd-recorder".into())
             .spawn(move || {
                 let mut summary = RecorderSummary::default();
-                if let Err(e) = write_all(file, session, &rx, &mut summary, &dropped_w) {
+                if let Err(e) = write_all(file, session, &rx, &mut summary, &dropped_w, &clock) {
                     // Said once, at once, with the OS's reason; the daemon goes on predicting.
                     let mut reason = e.to_string();
                     let mut source = std::error::Error::source(&e);
@@ -228,6 +237,7 @@ fn write_all(
     rx: &Receiver<Record>,
     summary: &mut RecorderSummary,
     dropped: &AtomicU64,
+    clock: &Clock,
 ) -> Result<(), mcap::McapError> {
     let mut w = mcap::WriteOptions::new()
         .compression(Some(mcap::Compression::Zstd))
@@ -265,7 +275,7 @@ fn write_all(
     let mut end = BTreeMap::new();
     end.insert("messages".to_string(), summary.messages.to_string());
     end.insert("dropped".to_string(), dropped.load(Ordering::Relaxed).to_string());
-    end.insert("end_ns".to_string(), crate::daemon::wall_ns().to_string());
+    end.insert("end_ns".to_string(), clock.wall_ns().to_string());
     w.write_metadata(&mcap::records::Metadata { name: "session_end".into(), metadata: end })?;
     w.finish()?;
     Ok(())

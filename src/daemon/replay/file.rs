@@ -120,7 +120,7 @@ fn read_capped(mut file: impl Read, path: &Path) -> Result<Vec<u8>, DaemonError>
 
 /// A temporary file with no name left (removed at once where the system allows), gone with the process.
 fn spool_file() -> std::io::Result<std::fs::File> {
-    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default().as_nanos();
+    let nanos = crate::daemon::clock::Clock::system().wall_ns();
     let path = std::env::temp_dir().join(format!("impactd-replay-{}-{nanos}.jsonl", std::process::id()));
     let file = std::fs::OpenOptions::new().read(true).write(true).create_new(true).open(&path)?;
     if cfg!(unix) {

@@ -20,6 +20,7 @@ mod items;
 mod load;
 mod parse;
 mod pause;
+mod resolve;
 mod session;
 mod verdict;
 
@@ -29,7 +30,8 @@ pub use file::ReplayFile;
 pub use items::{Item, Items, ReplayIndex, ReplaySource, RigSpan, MAX_INDEXED_RIGS};
 pub use load::{is_mcap, load, ReplayInput};
 pub use pause::PauseControl;
-pub use session::{resolve_config, run, Publish, ReplayOptions, ReplayReport, Selection};
+pub use resolve::resolve_config;
+pub use session::{run, Publish, ReplayOptions, ReplayReport, Selection};
 pub use verdict::Verdict;
 
 /// What a replay did.

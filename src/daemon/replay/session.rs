@@ -2,17 +2,17 @@
 //! predictions, and the comparison with the recorded ones.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use super::items::{Item, ReplaySource};
 use super::ReplayStats;
-use crate::daemon::config::RigConfig;
+use crate::daemon::clock::Clock;
 use crate::daemon::live::sinks::{self, RigPublishers, RigSinks, StatusInputs};
 use crate::daemon::recording::writer::session_metadata;
 use crate::daemon::recording::writer::{Recorder, RecorderHandle};
 use crate::daemon::stats::LatencyWindow;
-use crate::daemon::{wall_ns, DaemonConfig, DaemonError};
+use crate::daemon::{DaemonConfig, DaemonError};
 use crate::pipeline::{Event, Pipeline, RigSetup};
 
 /// How to replay.
@@ -30,6 +30,8 @@ pub struct ReplayOptions {
     pub pause: Option<std::sync::Arc<super::PauseControl>>,
     /// The samples replayed (default: all).
     pub select: Selection,
+    /// The clock that stamps what the input carries no log time for (the system's unless a test drives one).
+    pub clock: Clock,
 }
 
 /// The samples a replay takes: of these rigs (none named: all), captured within `[from_ns, to_ns)`.
@@ -83,43 +85,6 @@ impl ReplayReport {
     /// Whether every recorded prediction was reproduced byte for byte (true when none was recorded).
     pub fn reproduces_recording(&self) -> bool {
         !self.damaged && (self.recorded == 0 || (self.reproduced == self.recorded && self.produced == self.recorded))
-    }
-}
-
-/// The configuration of a replay: the file at `path`, else the one stored in the recording, else the default
-/// with one rig per rig name found in the samples.
-pub fn resolve_config(
-    input: &impl ReplaySource,
-    path: Option<&Path>,
-) -> Result<(DaemonConfig, Vec<RigSetup>), DaemonError> {
-    let index = input.index();
-    match (path, &index.config_toml) {
-        (Some(p), _) => DaemonConfig::load(p),
-        (None, Some(text)) => DaemonConfig::parse(text).map_err(|e| match e {
-            DaemonError::ConfigSyntax { source, .. } => {
-                DaemonError::ConfigSyntax { origin: "config: the configuration stored in the recording".into(), source }
-            }
-            other => other,
-        }),
-        (None, None) => {
-            let mut config = DaemonConfig::default();
-            if index.other_rig_samples > 0 {
-                return Err(DaemonError::Config {
-                    field: "rig".into(),
-                    reason: format!(
-                        "the samples name more than {} rigs: give the ones to replay in a configuration (-c)",
-                        super::items::MAX_INDEXED_RIGS
-                    ),
-                });
-            }
-            let names: Vec<String> = index.rigs.keys().cloned().collect();
-            if !names.is_empty() {
-                let template = config.rigs[0].clone();
-                config.rigs = names.into_iter().map(|name| RigConfig { name, ..template.clone() }).collect();
-            }
-            let s = config.setups()?;
-            Ok((config, s))
-        }
     }
 }
 
@@ -201,19 +166,30 @@ pub async fn run(
     let recorder = options
         .output
         .as_deref()
-        .map(|p| Recorder::create_waiting(p, session_metadata(config), options.overwrite))
+        .map(|p| {
+            Recorder::create_waiting(
+                p,
+                session_metadata(config, &options.clock),
+                options.overwrite,
+                options.clock.clone(),
+            )
+        })
         .transpose()?;
     let handle = recorder.as_ref().map(|r| r.handle()).unwrap_or_else(RecorderHandle::none);
     let mut rigs: BTreeMap<String, ReplayRig> = BTreeMap::new();
-    for setup in setups {
-        let pipeline = Pipeline::new(setup);
-        let name = pipeline.setup.name.clone();
+    for mut setup in setups {
         let publishers = match session {
-            Some(s) if options.publish != Publish::Samples => Some(RigPublishers::declare(s, &name).await?),
+            Some(s) if options.publish != Publish::Samples => Some(RigPublishers::declare(s, &setup.name).await?),
             _ => None,
         };
+        // As the daemon: the prediction's own flight samples the line it publishes and records.
+        if publishers.is_some() || handle.enabled() {
+            setup.flight_line_step_s = crate::daemon::recording::channels::FLIGHT_LINE_STEP_S;
+        }
+        let pipeline = Pipeline::new(setup);
+        let name = pipeline.setup.name.clone();
         let sinks = RigSinks::new(&pipeline, publishers, handle.clone());
-        let first = index.first_log_time_ns.unwrap_or_else(wall_ns);
+        let first = index.first_log_time_ns.unwrap_or_else(|| options.clock.wall_ns());
         sinks.club_change(first, &pipeline.club_change(crate::wire::ClubSource::Config, None));
         rigs.insert(
             name,
@@ -263,13 +239,13 @@ pub async fn run(
                 pending.push(side);
                 if pending.len() > MAX_PENDING {
                     // A run of records with no sample between them: taken now, rather than held.
-                    pending.apply(&mut rigs, config, last_log_time_ns);
+                    pending.apply(&mut rigs, config, last_log_time_ns, &options.clock);
                 }
                 continue;
             }
         };
         // What was recorded before this sample is taken at its receive time, as the session took it.
-        pending.apply(&mut rigs, config, log_time_ns);
+        pending.apply(&mut rigs, config, log_time_ns, &options.clock);
         last_log_time_ns = log_time_ns;
         if !options.select.keeps(&msg) {
             stats.left_out += 1;
@@ -297,7 +273,7 @@ pub async fn run(
             publisher.put(serde_json::to_vec(&msg).unwrap_or_default()).await.map_err(DaemonError::zenoh)?;
         }
         // The recording's own receive time: a replay's recording has the session's timing, not the replay's.
-        let log_time_ns = log_time_ns.unwrap_or_else(wall_ns);
+        let log_time_ns = log_time_ns.unwrap_or_else(|| options.clock.wall_ns());
         let sample = msg.to_sample();
         if handle.enabled() {
             rig.sinks.sample(log_time_ns, msg.t_ns, serde_json::to_vec(&msg).unwrap_or_default());
@@ -310,7 +286,8 @@ pub async fn run(
                     l.latency_us = index.recorded_latency(l);
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
-                    let bytes = rig.sinks.launch(l, log_time_ns);
+                    let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
+                    let bytes = rig.sinks.launch_with_line(l, line, log_time_ns);
                     if index.reproduces(produced, l, &bytes) {
                         reproduced += 1;
                     }
@@ -355,7 +332,7 @@ pub async fn run(
     // Truths recorded after the last sample (balls, labels and club puts after it change nothing).
     for (name, t_impact_ns, payload) in pending.truths.drain(..) {
         if let Some(rig) = rigs.get(&name) {
-            rig.sinks.truth(last_log_time_ns.unwrap_or_else(wall_ns), t_impact_ns, payload);
+            rig.sinks.truth(last_log_time_ns.unwrap_or_else(|| options.clock.wall_ns()), t_impact_ns, payload);
         }
     }
     // The input ended: each rig's swing in progress, and the step waiting for the frames after its impact.
@@ -370,7 +347,7 @@ pub async fn run(
         }
     }
     for rig in rigs.values() {
-        let (t_ns, log_time_ns) = rig.last.unwrap_or_else(|| (0, wall_ns()));
+        let (t_ns, log_time_ns) = rig.last.unwrap_or_else(|| (0, options.clock.wall_ns()));
         rig.publish_status(t_ns, log_time_ns);
     }
     // The writer finishes once every sink's handle is gone.
@@ -417,10 +394,16 @@ impl Pending {
         }
     }
 
-    /// Takes what is pending, stamped `log_time_ns` (now, when none): the balls, then the labels, the club puts
+    /// Takes what is pending, stamped `log_time_ns` (now on `clock`, when none): the balls, then the labels, the club puts
     /// and the truths.
-    fn apply(&mut self, rigs: &mut BTreeMap<String, ReplayRig>, config: &DaemonConfig, log_time_ns: Option<u64>) {
-        let at = || log_time_ns.unwrap_or_else(wall_ns);
+    fn apply(
+        &mut self,
+        rigs: &mut BTreeMap<String, ReplayRig>,
+        config: &DaemonConfig,
+        log_time_ns: Option<u64>,
+        clock: &Clock,
+    ) {
+        let at = || log_time_ns.unwrap_or_else(|| clock.wall_ns());
         for (ball, payload) in self.balls.drain(..) {
             if let Some(rig) = rigs.get_mut(&ball.rig) {
                 rig.sinks.ball(at(), ball.t_ns, payload);

@@ -16,6 +16,7 @@
 //! counted by kind in every rig's status (`live_view`) and logged at most once a second per kind.
 
 use crate::daemon::bridges::peer_rejection::PeerRejection;
+use crate::daemon::clock::Clock;
 use std::collections::HashMap;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -92,8 +93,9 @@ struct Outgoing {
 }
 
 impl FoxgloveServer {
-    /// Binds `address` and serves the channels of the named rigs on the current tokio runtime.
-    pub async fn start(address: &str, rigs: &[&str]) -> Result<Self, DaemonError> {
+    /// Binds `address` and serves the channels of the named rigs on the current tokio runtime; a viewer's
+    /// session is named for when it joined on `clock`.
+    pub async fn start(address: &str, rigs: &[&str], clock: Clock) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("serving the Foxglove live view on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
         let local_addr = listener.local_addr().map_err(io)?;
@@ -128,7 +130,13 @@ impl FoxgloveServer {
                 match listener.accept().await {
                     Ok((stream, peer)) => {
                         let slot = peers_accept.admit(&peer.to_string());
-                        let client = Client { peer, slot, channels: channel_count, peers: peers_accept.clone() };
+                        let client = Client {
+                            peer,
+                            slot,
+                            channels: channel_count,
+                            peers: peers_accept.clone(),
+                            clock: clock.clone(),
+                        };
                         tokio::spawn(serve(stream, client, advertise.clone(), out.subscribe()));
                     }
                     Err(e) => {
@@ -257,6 +265,7 @@ struct Client {
     slot: PeerSlot,
     channels: u32,
     peers: Peers,
+    clock: Clock,
 }
 
 async fn serve(stream: TcpStream, client: Client, advertise: Arc<String>, rx: broadcast::Receiver<Arc<Outgoing>>) {
@@ -302,7 +311,7 @@ async fn stream_to(
     let info = serde_json::json!({
         "op": "serverInfo", "name": format!("impactd {}", env!("CARGO_PKG_VERSION")),
         "capabilities": [], "supportedEncodings": ["json"], "metadata": {},
-        "sessionId": crate::daemon::wall_ns().to_string(),
+        "sessionId": client.clock.wall_ns().to_string(),
     });
     if !send(&mut ws, Message::text(info.to_string())).await || !send(&mut ws, Message::text(advertise)).await {
         return;

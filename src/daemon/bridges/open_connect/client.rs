@@ -23,9 +23,9 @@ use tokio::sync::mpsc;
 use super::codec::{Reply, ShotMessage};
 use super::splitter::{Frame, Splitter};
 use super::{OpenConnectError, SimulatorConfig, MAX_MESSAGE_BYTES};
+use crate::daemon::clock::Clock;
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
-use crate::daemon::wall_ns;
 use crate::wire::{
     keys, ConnectionState, LaunchPrediction, Message, OpenConnectTraffic, SimulatorPlayer, SimulatorStatus,
     TrafficDirection,
@@ -140,14 +140,20 @@ pub struct SimulatorClient {
 }
 
 impl SimulatorClient {
-    /// Starts an Open Connect client's task on the current tokio runtime.
-    pub fn spawn(options: SimulatorOptions, recorder: RecorderHandle) -> Self {
+    /// Starts an Open Connect client's task on the current tokio runtime; its traffic is recorded stamped on
+    /// `clock`.
+    pub fn spawn(options: SimulatorOptions, recorder: RecorderHandle, clock: Clock) -> Self {
         let protocol = OpenConnect { device_id: options.device_id.clone() };
-        Self::spawn_with(options, protocol, recorder)
+        Self::spawn_with(options, protocol, recorder, clock)
     }
 
     /// Starts a client speaking `protocol` on the current tokio runtime.
-    pub fn spawn_with(options: SimulatorOptions, protocol: impl Protocol, recorder: RecorderHandle) -> Self {
+    pub fn spawn_with(
+        options: SimulatorOptions,
+        protocol: impl Protocol,
+        recorder: RecorderHandle,
+        clock: Clock,
+    ) -> Self {
         let (tx, rx) = mpsc::channel(QUEUE);
         let status = SimulatorStatus {
             address: options.address.clone(),
@@ -156,7 +162,7 @@ impl SimulatorClient {
         };
         let status = Arc::new(Mutex::new(status));
         let key = keys::simulator_traffic(&options.rig);
-        let task = Task { key, options, protocol, status: status.clone(), recorder };
+        let task = Task { key, options, protocol, status: status.clone(), recorder, clock };
         let task = tokio::spawn(task.run(rx));
         SimulatorClient { tx, status, last_offered: None, task }
     }
@@ -214,6 +220,7 @@ struct Task<P> {
     key: String,
     status: Arc<Mutex<SimulatorStatus>>,
     recorder: RecorderHandle,
+    clock: Clock,
 }
 
 impl<P: Protocol> Task<P> {
@@ -227,7 +234,7 @@ impl<P: Protocol> Task<P> {
         if !self.recorder.enabled() {
             return;
         }
-        let t_ns = wall_ns();
+        let t_ns = self.clock.wall_ns();
         let keep = &text[..text.len().min(crate::wire::MAX_PAYLOAD_BYTES)];
         let msg = OpenConnectTraffic {
             rig: self.options.rig.clone(),

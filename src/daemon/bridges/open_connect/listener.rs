@@ -31,11 +31,12 @@ use super::splitter::{Frame, Splitter};
 use super::{LaunchMonitorConfig, MAX_MESSAGE_BYTES};
 use crate::capped::quote;
 use crate::daemon::bridges::peers::{PeerSlot, Peers};
+use crate::daemon::clock::Clock;
 use crate::daemon::recording::record::Record;
 use crate::daemon::recording::writer::RecorderHandle;
 use crate::daemon::stats::Budget;
 use crate::daemon::stats::{REJECTED_BYTES_PER_S, REJECTED_KEEP_BYTES, REJECTED_RECORDS_PER_S};
-use crate::daemon::{wall_ns, DaemonError};
+use crate::daemon::DaemonError;
 use crate::wire::{self, keys, LaunchMonitorStatus, MeasuredLaunch, Message, OpenConnectTraffic, TrafficDirection};
 
 /// The failure code of the Open Connect v1 replies.
@@ -69,16 +70,19 @@ struct Shared {
     /// The recording budget of rejected messages and their answers, and how many it refused since the last
     /// record (noted on the next one).
     budget: Mutex<(Budget, u64)>,
+    /// The daemon's clock: measurements and recorded traffic are stamped on it.
+    clock: Clock,
 }
 
 impl LaunchMonitorListener {
-    /// Binds `address` and serves connectors on the current tokio runtime.
+    /// Binds `address` and serves connectors on the current tokio runtime, stamping on `clock`.
     pub async fn start(
         rig: &str,
         config: &LaunchMonitorConfig,
         address: &str,
         session: &zenoh::Session,
         recorder: RecorderHandle,
+        clock: Clock,
     ) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("listening for Open Connect clients on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
@@ -97,7 +101,8 @@ impl LaunchMonitorListener {
             traffic_key: keys::launch_monitor_traffic(rig),
             last_shot: Mutex::new((HashMap::new(), 0)),
             peers: Peers::new(&format!("rig {rig}: Open Connect"), config.peer_limits()),
-            budget: Mutex::new((Budget::new(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S), 0)),
+            budget: Mutex::new((Budget::with_clock(REJECTED_RECORDS_PER_S, REJECTED_BYTES_PER_S, clock.clone()), 0)),
+            clock,
         });
         tracing::info!("rig {rig}: Open Connect listener on {local_addr}");
         let (stop, mut stopped) = tokio::sync::oneshot::channel::<()>();
@@ -226,7 +231,7 @@ impl Shared {
         if !self.recorder.enabled() {
             return;
         }
-        let t_ns = wall_ns();
+        let t_ns = self.clock.wall_ns();
         let keep = &text[..text.len().min(wire::MAX_PAYLOAD_BYTES)];
         let msg = OpenConnectTraffic {
             rig: self.rig.clone(),
@@ -367,7 +372,7 @@ impl Shared {
             self.update(|s| s.heartbeats += 1);
             return (None, true);
         }
-        let t_ns = wall_ns();
+        let t_ns = self.clock.wall_ns();
         let measured = match message.to_measured(&self.rig, t_ns) {
             Ok(m) => {
                 self.record(peer, TrafficDirection::Received, &text, None);

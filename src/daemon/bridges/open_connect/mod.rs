@@ -123,13 +123,14 @@ pub async fn start_rig(
     launch_monitor: Option<&LaunchMonitorConfig>,
     session: &zenoh::Session,
     recorder: &crate::daemon::recording::writer::RecorderHandle,
+    clock: &crate::daemon::clock::Clock,
 ) -> Result<(Option<SimulatorClient>, Option<LaunchMonitorListener>), crate::daemon::DaemonError> {
     let simulator = simulator
         .and_then(|c| SimulatorOptions::from_config(rig, c))
-        .map(|o| SimulatorClient::spawn(o, recorder.clone()));
+        .map(|o| SimulatorClient::spawn(o, recorder.clone(), clock.clone()));
     let listener = match launch_monitor.and_then(|l| Some((l, l.open_connect_listen.as_ref()?))) {
         Some((config, address)) => {
-            Some(LaunchMonitorListener::start(rig, config, address, session, recorder.clone()).await?)
+            Some(LaunchMonitorListener::start(rig, config, address, session, recorder.clone(), clock.clone()).await?)
         }
         None => None,
     };

@@ -53,8 +53,13 @@ impl Protocol for OpenGolfSim {
     }
 }
 
-/// The OpenGolfSim client `config` asks for, started on the current tokio runtime.
-pub fn spawn(rig: &str, config: &SimulatorConfig, recorder: &RecorderHandle) -> Option<SimulatorClient> {
+/// The OpenGolfSim client `config` asks for, started on the current tokio runtime, stamping on `clock`.
+pub fn spawn(
+    rig: &str,
+    config: &SimulatorConfig,
+    recorder: &RecorderHandle,
+    clock: &crate::daemon::clock::Clock,
+) -> Option<SimulatorClient> {
     let unit = match config.opengolfsim_unit.as_deref() {
         Some("imperial") => Unit::Imperial,
         _ => Unit::Metric,
@@ -68,5 +73,5 @@ pub fn spawn(rig: &str, config: &SimulatorConfig, recorder: &RecorderHandle) -> 
         backoff_min: Duration::from_millis(100),
         backoff_max: Duration::from_secs(5),
     };
-    Some(SimulatorClient::spawn_with(options, OpenGolfSim { unit }, recorder.clone()))
+    Some(SimulatorClient::spawn_with(options, OpenGolfSim { unit }, recorder.clone(), clock.clone()))
 }

@@ -41,7 +41,7 @@ mod tests {
         assert_eq!(rig_of_path("/rig/bay1/session.csv"), Some("bay1"));
         assert_eq!(rig_of_path("/rig/../session.csv"), None);
         assert_eq!(rig_of_path("/rig//session.csv"), None);
-        let bay = Bay::new(vec![("bay1".into(), Default::default())], "s.mcap".into());
+        let bay = Bay::new(vec!["bay1".into()], "s.mcap".into(), Default::default());
         assert!(session_csv(&bay, "bay2").is_none());
         let empty = String::from_utf8(session_csv(&bay, "bay1").unwrap()).unwrap();
         assert!(empty.starts_with("sep=,"), "{empty}");

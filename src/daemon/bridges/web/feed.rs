@@ -1,11 +1,11 @@
-//! The bay screens' feed: zenoh subscribers on the rigs' predictions, comparisons, status, labels, exclusions
-//! and display settings hand each payload to one task (a bounded queue: the callbacks never block zenoh and
+//! The bay screens' feed: zenoh subscribers on the rigs' predictions, their flight lines, comparisons, status,
+//! labels, exclusions and display settings hand each payload to one task (a bounded queue: the callbacks never block zenoh and
 //! never parse), which updates the rigs' [`RigState`] and broadcasts the page messages.
 //!
 //! The screens read the bus like any other program, so whatever the daemon publishes and whatever anyone puts
 //! (a control from a page, a script, another screen) shows on every page the same way.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, VecDeque};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -13,13 +13,15 @@ use tokio::sync::{broadcast, mpsc};
 
 use super::limits::{FEED_QUEUE, PAGE_LAG};
 use super::state::RigState;
-use crate::daemon::{wall_ns, DaemonError};
-use crate::wire::{keys, DisplaySettings, LaunchPrediction, ShotExclusion, ShotLabels};
+use crate::daemon::clock::Clock;
+use crate::daemon::DaemonError;
+use crate::wire::{keys, DisplaySettings, FlightLine, LaunchPrediction, ShotExclusion, ShotLabels};
 
 /// What a bus payload is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
     Launch,
+    Flight,
     Comparison,
     Status,
     Labels,
@@ -32,8 +34,9 @@ type KeyOf = fn(&str) -> String;
 /// How long after a prediction arrives the screens take it up (the page's budget is 100 ms).
 pub const LAUNCH_DEFER: std::time::Duration = std::time::Duration::from_millis(10);
 
-const KINDS: [(Kind, KeyOf); 6] = [
+const KINDS: [(Kind, KeyOf); 7] = [
     (Kind::Launch, keys::launch),
+    (Kind::Flight, keys::flight),
     (Kind::Comparison, keys::comparison),
     (Kind::Status, keys::status),
     (Kind::Labels, keys::session),
@@ -62,13 +65,14 @@ pub struct Bay {
     pub dropped: AtomicU64,
     /// Set when the screen stops: every open page is closed (and reconnects to the next daemon).
     pub closing: tokio::sync::watch::Sender<bool>,
+    /// The daemon's clock: what arrives, and a page's start, are stamped on it.
+    pub clock: Clock,
 }
 
 impl Bay {
-    /// The screens of `rigs`, each with its flight model.
-    pub fn new(rigs: Vec<(String, crate::flight::Flight)>, recording_name: String) -> Arc<Self> {
-        let states = rigs.iter().map(|(r, flight)| (r.clone(), RigState::new(r, *flight))).collect();
-        let rigs = rigs.into_iter().map(|(r, _)| r).collect();
+    /// The screens of `rigs`, stamping on `clock`.
+    pub fn new(rigs: Vec<String>, recording_name: String, clock: Clock) -> Arc<Self> {
+        let states = rigs.iter().map(|r| (r.clone(), RigState::new(r))).collect();
         let (out, _) = broadcast::channel(PAGE_LAG);
         Arc::new(Bay {
             rigs,
@@ -78,6 +82,7 @@ impl Bay {
             refused: AtomicU64::new(0),
             dropped: AtomicU64::new(0),
             closing: tokio::sync::watch::Sender::new(false),
+            clock,
         })
     }
 
@@ -94,6 +99,10 @@ impl Bay {
         let texts: Vec<String> = match u.kind {
             Kind::Launch => match serde_json::from_slice::<LaunchPrediction>(&u.payload) {
                 Ok(p) => state.on_launch(p, u.received_ns).into_iter().chain([state.summary_json()]).collect(),
+                Err(_) => return self.refuse(),
+            },
+            Kind::Flight => match FlightLine::parse(&u.payload) {
+                Ok(line) => state.on_flight(&line).into_iter().collect(),
                 Err(_) => return self.refuse(),
             },
             Kind::Comparison => match json(&u.payload) {
@@ -161,8 +170,8 @@ impl Feed {
                         let update = Update {
                             kind,
                             rig: rig.clone(),
-                            received: std::time::Instant::now(),
-                            received_ns: wall_ns(),
+                            received: bay.clock.now(),
+                            received_ns: bay.clock.wall_ns(),
                             payload: sample.payload().to_bytes().into_owned(),
                         };
                         if tx.try_send(update).is_err() {
@@ -175,12 +184,29 @@ impl Feed {
             }
         }
         let task = tokio::spawn(async move {
-            while let Some(u) = rx.recv().await {
-                // The screens' work on a shot (its flight line, the session's numbers, a message to every page)
-                // waits until zenoh has delivered the prediction to every other subscriber, so on a loaded
-                // machine it never competes with that delivery.
+            // What came while a launch waited, other than flight lines, in the order it came.
+            let mut backlog: VecDeque<Update> = VecDeque::new();
+            loop {
+                let u = match backlog.pop_front() {
+                    Some(u) => u,
+                    None => match rx.recv().await {
+                        Some(u) => u,
+                        None => break,
+                    },
+                };
+                // The screens' work on a shot (the session's numbers, a message to every page) waits until zenoh
+                // has delivered the prediction to every other subscriber, so on a loaded machine it never
+                // competes with that delivery. The shot's flight line, put right after it, is taken first when
+                // it has come by then, so the shot goes to the pages with its line.
                 if u.kind == Kind::Launch {
                     tokio::time::sleep_until((u.received + LAUNCH_DEFER).into()).await;
+                    while backlog.len() < FEED_QUEUE {
+                        match rx.try_recv() {
+                            Ok(next) if next.kind == Kind::Flight => bay.apply(next),
+                            Ok(next) => backlog.push_back(next),
+                            Err(_) => break,
+                        }
+                    }
                 }
                 bay.apply(u);
             }

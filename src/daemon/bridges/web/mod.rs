@@ -31,6 +31,7 @@ pub mod socket;
 pub mod state;
 
 use crate::daemon::bridges::peer_rejection::PeerRejection;
+use crate::daemon::clock::Clock;
 use std::net::SocketAddr;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -72,21 +73,23 @@ impl Drop for WebServer {
 }
 
 impl WebServer {
-    /// Binds `address` and serves the screens of `rigs` (each with its flight model), reading and putting on
-    /// `session`, answering as `web` says. `recording` names the recording's file in the CSV download.
+    /// Binds `address` and serves the screens of `rigs`, reading and putting on
+    /// `session`, answering as `web` says. `recording` names the recording's file in the CSV download; what
+    /// arrives is stamped on `clock`.
     pub async fn start(
         address: &str,
         web: &WebAccess,
-        rigs: Vec<(String, crate::flight::Flight)>,
+        rigs: Vec<String>,
         session: &zenoh::Session,
         recording: Option<&std::path::Path>,
+        clock: Clock,
     ) -> Result<Self, DaemonError> {
         let io = |e| DaemonError::Io { what: format!("serving the bay screen on {address}"), source: e };
         let listener = TcpListener::bind(address).await.map_err(io)?;
         let local_addr = listener.local_addr().map_err(io)?;
         let access = Arc::new(access::Access::new(address, local_addr, &web.hosts, web.token.as_deref())?);
         let name = recording.and_then(|p| p.file_name()).map(|n| n.to_string_lossy().into_owned());
-        let bay = feed::Bay::new(rigs, name.unwrap_or_default());
+        let bay = feed::Bay::new(rigs, name.unwrap_or_default(), clock);
         let feed = feed::Feed::start(session, bay.clone()).await?;
         let peers = Peers::new("bay screen", limits::WEB_LIMITS);
         let (peers_accept, bay_accept, session, access_accept) =
@@ -151,12 +154,13 @@ impl WebServer {
     pub async fn start_if(
         address: Option<&str>,
         web: &WebAccess,
-        rigs: Vec<(String, crate::flight::Flight)>,
+        rigs: Vec<String>,
         session: &zenoh::Session,
         recording: Option<&std::path::Path>,
+        clock: Clock,
     ) -> Result<Option<Self>, DaemonError> {
         match address {
-            Some(a) => Ok(Some(Self::start(a, web, rigs, session, recording).await?)),
+            Some(a) => Ok(Some(Self::start(a, web, rigs, session, recording, clock).await?)),
             None => Ok(None),
         }
     }

@@ -58,7 +58,7 @@ pub async fn serve(mut ws: WebSocketStream<TcpStream>, page: Page) {
     let mut rx = page.bay.out.subscribe();
     let hello = serde_json::json!({
         "type": "hello", "rigs": page.bay.rigs, "version": env!("CARGO_PKG_VERSION"),
-        "started_ns": crate::daemon::wall_ns(), "controls": page.controls,
+        "started_ns": page.bay.clock.wall_ns(), "controls": page.controls,
     });
     if !send(&mut ws, &hello.to_string()).await || !send_snapshots(&mut ws, &page.bay).await {
         return;

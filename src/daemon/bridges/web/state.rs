@@ -1,5 +1,6 @@
 //! What the bay screens show of each rig, bounded: the last [`MAX_SHOTS`] predictions (the table, the per-club
-//! numbers and the CSV), the last [`FLIGHT_LINES`] flights drawn, the shots left out, the labels, the units and
+//! numbers and the CSV), the last [`FLIGHT_LINES`] flights drawn (each the line the daemon's flight model sampled
+//! while it flew the launch, from `golf/<rig>/flight`: the screen flies nothing), the shots left out, the labels, the units and
 //! the last [`MAX_COMPARISONS`] comparisons with a launch monitor. Every change becomes one JSON text for the
 //! pages ([`shot_json`], [`summary_json`], ...); a page that joins gets [`RigState::snapshot`].
 
@@ -8,7 +9,7 @@ use std::collections::{BTreeSet, VecDeque};
 use serde_json::{json, Map, Value};
 
 use crate::session::{summarize, GroupBy, ShotId, Units, METRICS};
-use crate::wire::{DisplayUnits, LaunchPrediction, ShotLabels};
+use crate::wire::{DisplayUnits, FlightLine, LaunchPrediction, ShotLabels};
 
 /// Predictions kept per rig (a long fitting day is a few hundred shots).
 pub const MAX_SHOTS: usize = 5000;
@@ -18,19 +19,19 @@ pub const PAGE_SHOTS: usize = 1000;
 pub const FLIGHT_LINES: usize = 12;
 /// Comparisons kept.
 pub const MAX_COMPARISONS: usize = 50;
-/// The flight line's time step (s).
-const FLIGHT_STEP_S: f64 = 0.1;
+/// Flight lines kept for shots not shown yet (a line that came before its launch).
+const EARLY_LINES: usize = 16;
 
 /// One rig's screen.
 #[derive(Debug, Default)]
 pub struct RigState {
     pub rig: String,
-    /// The rig's flight model (its `[rig.conditions]`): the lines drawn land where its predictions say.
-    flight: crate::flight::Flight,
     shots: Vec<LaunchPrediction>,
     /// The page message of each kept shot (same order as `shots`).
     shot_texts: Vec<String>,
     flights: VecDeque<(u64, Value)>,
+    /// Lines that came before their shot's launch.
+    early_lines: VecDeque<(u64, Value)>,
     excluded: BTreeSet<u64>,
     pub labels: ShotLabels,
     pub units: DisplayUnits,
@@ -78,16 +79,11 @@ fn sigmas(p: &LaunchPrediction) -> Map<String, Value> {
     m
 }
 
-/// The flight drawn on the screen, flown by `flight`: `[x, y, z]` in metres, world frame (x to the target, y up,
-/// z right).
-pub fn flight_line(p: &LaunchPrediction, flight: &crate::flight::Flight) -> Value {
-    let launch = crate::flight::LaunchState {
-        velocity_mps: p.launch.ball_velocity_mps.into(),
-        spin_radps: p.launch.ball_spin_radps.into(),
-    };
-    let t = flight.fly(&launch, FLIGHT_STEP_S);
+/// The flight drawn on the screen, from the daemon's line: `[x, y, z]` in metres to the centimetre, world frame
+/// (x to the target, y up, z right).
+pub fn screen_line(line: &FlightLine) -> Value {
     let r = |v: f64| (v * 100.0).round() / 100.0;
-    Value::Array(t.points.iter().map(|q| json!([r(q[1]), r(q[2]), r(q[3])])).collect())
+    Value::Array(line.points.iter().map(|q| json!([r(q[1]), r(q[2]), r(q[3])])).collect())
 }
 
 /// A shot as the pages read it.
@@ -103,20 +99,33 @@ pub fn shot_json(p: &LaunchPrediction, published_ns: u64, flight: Option<&Value>
 }
 
 impl RigState {
-    pub fn new(rig: &str, flight: crate::flight::Flight) -> Self {
-        RigState { rig: rig.to_string(), flight, ..Default::default() }
+    pub fn new(rig: &str) -> Self {
+        RigState { rig: rig.to_string(), ..Default::default() }
     }
 
-    /// Takes a prediction (a repeated shot number, as from a second model, is ignored); returns the page message.
-    pub fn on_launch(&mut self, p: LaunchPrediction, published_ns: u64) -> Option<String> {
-        if self.shots.iter().rev().take(16).any(|s| s.shot == p.shot) {
-            return None;
-        }
-        let line = flight_line(&p, &self.flight);
-        let text = shot_json(&p, published_ns, Some(&line)).to_string();
-        self.flights.push_back((p.shot, line));
+    /// Whether the shot is among the last shown (a second model's prediction of it is not a new shot).
+    fn shown(&self, shot: u64) -> bool {
+        self.shots.iter().rev().take(16).any(|s| s.shot == shot)
+    }
+
+    fn draw_line(&mut self, shot: u64, line: Value) {
+        self.flights.push_back((shot, line));
         while self.flights.len() > FLIGHT_LINES {
             self.flights.pop_front();
+        }
+    }
+
+    /// Takes a prediction (a repeated shot number, as from a second model, is ignored), with its flight's line
+    /// when that came first; returns the page message.
+    pub fn on_launch(&mut self, p: LaunchPrediction, published_ns: u64) -> Option<String> {
+        if self.shown(p.shot) {
+            return None;
+        }
+        let line = self.early_lines.iter().position(|(s, _)| *s == p.shot).and_then(|i| self.early_lines.remove(i));
+        let line = line.map(|(_, l)| l);
+        let text = shot_json(&p, published_ns, line.as_ref()).to_string();
+        if let Some(line) = line {
+            self.draw_line(p.shot, line);
         }
         self.shot_texts.push(shot_json(&p, published_ns, None).to_string());
         self.shots.push(p);
@@ -126,6 +135,26 @@ impl RigState {
             self.shot_texts.drain(..extra);
         }
         self.summary = None;
+        Some(text)
+    }
+
+    /// Takes the line of a prediction's flight: drawn with its shot when the shot is shown (the page message
+    /// returned), kept for it when it has not come yet; a shot's second line (a second model's) is ignored.
+    pub fn on_flight(&mut self, line: &FlightLine) -> Option<String> {
+        let drawn = self.flights.iter().chain(&self.early_lines).any(|(s, _)| *s == line.shot);
+        if drawn {
+            return None;
+        }
+        let points = screen_line(line);
+        if !self.shown(line.shot) {
+            self.early_lines.push_back((line.shot, points));
+            while self.early_lines.len() > EARLY_LINES {
+                self.early_lines.pop_front();
+            }
+            return None;
+        }
+        let text = json!({ "type": "flight", "rig": self.rig, "shot": line.shot, "line": &points }).to_string();
+        self.draw_line(line.shot, points);
         Some(text)
     }
 
@@ -241,9 +270,10 @@ mod tests {
 
     #[test]
     fn a_rig_keeps_at_most_its_bounds_however_long_it_runs() {
-        let mut s = RigState::new("rig1", Default::default());
+        let mut s = RigState::new("rig1");
         for shot in 0..(MAX_SHOTS as u64 + 300) {
             assert!(s.on_launch(prediction(shot), 1).is_some());
+            assert!(s.on_flight(&line(shot, 1.0)).is_some());
             s.on_comparison(json!({ "shot": shot }));
         }
         assert_eq!(s.shots().len(), MAX_SHOTS);
@@ -259,7 +289,7 @@ mod tests {
 
     #[test]
     fn an_excluded_shot_leaves_the_averages() {
-        let mut s = RigState::new("rig1", Default::default());
+        let mut s = RigState::new("rig1");
         let mut slow = prediction(2);
         slow.launch.launch.ball_speed_mps *= 0.5;
         for p in [prediction(1), slow, prediction(3)] {
@@ -283,34 +313,34 @@ mod tests {
     }
 
     #[test]
-    fn the_flight_line_lands_where_the_rigs_flight_model_says() {
-        use crate::flight::{Conditions, Flight, LaunchState};
-        let p = prediction(1);
-        let launch = LaunchState {
-            velocity_mps: p.launch.ball_velocity_mps.into(),
-            spin_radps: p.launch.ball_spin_radps.into(),
-        };
-        // Denver's altitude: thinner air, a longer carry.
-        let thin = Flight { conditions: Conditions { altitude_m: 1600.0, ..Default::default() }, ..Default::default() };
-        let landing_x = |line: &Value| -> f64 {
-            let pts = line.as_array().unwrap();
-            let y = |q: &Value| q[1].as_f64().unwrap();
-            let apex = (0..pts.len()).max_by(|&a, &b| y(&pts[a]).total_cmp(&y(&pts[b]))).unwrap();
-            pts[apex..].iter().find(|q| y(q) <= 0.05).unwrap()[0].as_f64().unwrap()
-        };
-        let mut carries = Vec::new();
-        for flight in [Flight::default(), thin] {
-            let carry_m = flight.fly(&launch, FLIGHT_STEP_S).carry_m;
-            let mut s = RigState::new("rig1", flight);
-            let shot: Value = serde_json::from_str(&s.on_launch(p.clone(), 1).unwrap()).unwrap();
-            // The first sample within 5 cm of the ground is at most one step (0.1 s, under 4 m at landing speed)
-            // from the landing.
-            let x = landing_x(&shot["flight"]);
-            assert!((x - carry_m).abs() <= 4.0, "line lands at {x} m, the model's carry {carry_m} m");
-            carries.push((carry_m, x));
+    fn the_screen_draws_the_daemons_line_whichever_comes_first() {
+        let mut s = RigState::new("rig1");
+        // The usual order: the launch, then its line.
+        let shot: Value = serde_json::from_str(&s.on_launch(prediction(1), 1).unwrap()).unwrap();
+        assert_eq!(shot["flight"], Value::Null);
+        let drawn: Value = serde_json::from_str(&s.on_flight(&line(1, 1.0)).unwrap()).unwrap();
+        assert_eq!((drawn["type"].as_str(), drawn["shot"].as_u64()), (Some("flight"), Some(1)));
+        // Its points are the line's, to the centimetre.
+        assert_eq!(drawn["line"], json!([[0.0, 0.0, 0.0], [10.0, 2.0, -0.12], [20.0, 0.0, -0.25]]));
+        // A second model's line of the same shot is not drawn again.
+        assert!(s.on_flight(&line(1, 2.0)).is_none());
+        // A line that comes before its launch goes out with it.
+        assert!(s.on_flight(&line(2, 1.0)).is_none());
+        let shot: Value = serde_json::from_str(&s.on_launch(prediction(2), 1).unwrap()).unwrap();
+        assert_eq!(shot["flight"][1], json!([10.0, 2.0, -0.12]));
+        let snap: Value = serde_json::from_str(&s.snapshot()).unwrap();
+        let shots: Vec<u64> = snap["flights"].as_array().unwrap().iter().map(|f| f["shot"].as_u64().unwrap()).collect();
+        assert_eq!(shots, [1, 2]);
+    }
+
+    fn line(shot: u64, scale: f64) -> FlightLine {
+        FlightLine {
+            rig: "rig1".into(),
+            shot,
+            model: "adjusted".into(),
+            t_impact_ns: 0,
+            step_s: 0.05,
+            points: vec![[0.0; 4], [0.5, 10.0 * scale, 2.001, -0.123], [1.0, 20.0 * scale, 0.0, -0.249]],
         }
-        // The lines are told apart: 1600 m up carries several metres further (thinner air).
-        assert!(carries[1].0 > carries[0].0 * 1.03, "altitude should carry further: {carries:?}");
-        assert!(carries[1].1 > carries[0].1 + 4.0, "{carries:?}");
     }
 }

@@ -48,6 +48,7 @@ function onMessage(m) {
       if (flight) { r.flights.push({ shot: m.shot, line: flight }); trim(r.flights, MAX_FLIGHTS); }
       break;
     }
+    case "flight": r.flights.push({ shot: m.shot, line: m.line }); trim(r.flights, MAX_FLIGHTS); break;
     case "summary": r.summary = m; break;
     case "excluded": r.excluded = new Set(m.shots); break;
     case "comparison": r.comparisons.push(m.comparison); trim(r.comparisons, MAX_COMPARISONS); break;
