@@ -12,8 +12,7 @@ use std::time::Duration;
 
 use zenoh::Wait;
 
-use crate::daemon::clock::Clock;
-use crate::daemon::DaemonError;
+use crate::daemon::{clock::Clock, DaemonError};
 use crate::equipment::ClubSpec;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};
