@@ -418,7 +418,7 @@ impl Worker {
             Event::Launch(mut l) => {
                 // The flight's sampled line (`RigSetup::flight_line_step_s`) is for the recording and the live
                 // view, never the wire: taken out before the prediction is published.
-                let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
+                let line = sinks::take_line(&mut l);
                 l.latency_us = self.clock.since(received).as_nanos() as f64 / 1e3;
                 let data = self.sinks.publish_launch(&l);
                 self.release_impact();

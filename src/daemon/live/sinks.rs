@@ -18,6 +18,12 @@ use crate::wire::{
     MessageType, RejectedInput, StatusMessage,
 };
 
+/// Takes the points of a prediction's flight out of it (its sampled line is for the recording, the live view and
+/// `golf/<rig>/flight`, never the prediction's own message); `None` when its flight sampled none.
+pub fn take_line(l: &mut LaunchPrediction) -> Option<Vec<[f64; 4]>> {
+    l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty())
+}
+
 /// A rig's key expressions, built once.
 struct RigKeys {
     clubhead: String,

@@ -286,7 +286,7 @@ pub async fn run(
                     l.latency_us = index.recorded_latency(l);
                     stats.predictions += 1;
                     rig.latency.push(l.latency_us);
-                    let line = l.flight.as_mut().map(|f| std::mem::take(&mut f.points)).filter(|p| !p.is_empty());
+                    let line = sinks::take_line(l);
                     let bytes = rig.sinks.launch_with_line(l, line, log_time_ns);
                     if index.reproduces(produced, l, &bytes) {
                         reproduced += 1;
