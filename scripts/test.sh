@@ -47,6 +47,10 @@ fi
 
 export IMPACTD_PYTHON="$venv/bin/python"
 
+# The integration tests wait on sockets, child processes and swings paced in real time more than they compute:
+# twice as many test threads per binary as cores overlap those waits (a caller's RUST_TEST_THREADS wins).
+export RUST_TEST_THREADS="${RUST_TEST_THREADS:-$((2 * $(nproc)))}"
+
 # Vicon's SDK client (C++) builds while cargo builds the tests; its output goes to target/vicon-sdk-client.log.
 # Without a target of your own (`--test NAME`, `--lib`, ...), the tests are every library's, binary's and
 # integration test's, then the doc tests: the examples are not linked (clippy --all-targets checks they compile).
@@ -77,8 +81,31 @@ export IMPACTD_VICON_SDK_CLIENT
 if $picks_targets; then
   exec cargo test --release "$@"
 fi
+# Two lanes side by side: the test binaries that mostly wait (daemons and clients on loopback, pages in
+# Chromium, swings paced in real time) beside those that compute. Every test binary of the workspace that is not
+# named as waiting runs in the second lane, so a new one is never left out. The waiting lane's output is printed
+# when it ends.
+waiting=(daemon web inputs sim_drain)
+mapfile -t all_tests < <(cargo metadata --no-deps --format-version 1 | "$IMPACTD_PYTHON" -c '
+import json, sys
+for p in json.load(sys.stdin)["packages"]:
+    for t in p["targets"]:
+        if "test" in t["kind"]:
+            print(t["name"])')
+lane1=() lane2=(--workspace --lib --bins)
+for t in "${all_tests[@]}"; do
+  if [[ " ${waiting[*]} " == *" $t "* ]]; then lane1+=(--test "$t"); else lane2+=(--test "$t"); fi
+done
+lane1_log="$root/target/test-waiting-lane.log"
+( cargo test --release -p impactd "${lane1[@]}" "$@" >"$lane1_log" 2>&1 ) &
+lane1_pid=$!
 status=0
-cargo test --release "${targets[@]}" "$@" || status=$?
+cargo test --release "${lane2[@]}" "$@" || status=$?
+lane1_status=0
+wait "$lane1_pid" || lane1_status=$?
+echo "test.sh: the waiting lane (${waiting[*]}):" >&2
+cat "$lane1_log"
+[ "$lane1_status" -eq 0 ] || status=$lane1_status
 if [ "$status" -ne 0 ] && [[ " ${cargo_args[*]} " != *" --no-fail-fast "* ]]; then
   exit "$status"
 fi

@@ -86,20 +86,34 @@ fn a_recording_with_former_model_names_reproduces() {
 }
 
 /// `impactd demo` as the README runs it (5 shots, seed 1) and a longer run with another seed, for both presets:
-/// every shot predicted, none flagged, each within the ranges.
+/// every shot predicted, none flagged, each within the ranges. The four demos run side by side (each paces its
+/// swings in real time, and each is its own process with its own recording).
 #[test]
 fn the_demo_shots_are_golfers_shots() {
     let dir = tempfile::tempdir().unwrap();
-    for club in ["driver", "iron7"] {
-        for (shots, seed) in [("5", "1"), ("12", "3")] {
-            let record = dir.path().join(format!("{club}-{seed}.mcap"));
-            let args = ["demo", "--club", club, "--json", "--shots", shots, "--seed", seed];
-            let out = impactd(&[&args[..], &["--record", record.to_str().unwrap()]].concat());
+    let runs: Vec<(String, String, String)> = ["driver", "iron7"]
+        .iter()
+        .flat_map(|club| [("5", "1"), ("12", "3")].map(|(shots, seed)| (club.to_string(), shots.into(), seed.into())))
+        .collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = runs
+            .iter()
+            .map(|(club, shots, seed)| {
+                let record = dir.path().join(format!("{club}-{seed}.mcap"));
+                scope.spawn(move || {
+                    let args = ["demo", "--club", club, "--json", "--shots", shots, "--seed", seed];
+                    let out = impactd(&[&args[..], &["--record", record.to_str().unwrap()]].concat());
+                    (args.map(String::from), out)
+                })
+            })
+            .collect();
+        for (handle, (club, shots, seed)) in handles.into_iter().zip(&runs) {
+            let (args, out) = handle.join().unwrap();
             let err = String::from_utf8_lossy(&out.stderr);
             assert!(out.status.success(), "{args:?}: {err}");
             assert!(!err.contains("sanity flags raised"), "{args:?}: {err}");
             let n = check_launches(&format!("demo {club} seed {seed}"), &out.stdout);
-            assert_eq!(n.to_string(), shots, "{args:?}: every shot predicted");
+            assert_eq!(n.to_string(), *shots, "{args:?}: every shot predicted");
         }
-    }
+    });
 }

@@ -97,27 +97,42 @@ pub struct CrossValidation {
 /// Leaves each club out in turn, fitting the rest with `iterations` Nelder-Mead iterations per restart (as
 /// [`fit::fit`]); `progress` hears each club as it is done.
 pub fn leave_one_out(rows: &[TourAverage], iterations: usize, mut progress: impl FnMut(&Holdout)) -> CrossValidation {
-    let mut holdouts = Vec::with_capacity(rows.len());
-    for (i, held) in rows.iter().enumerate() {
-        let rest: Vec<TourAverage> = rows.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| r.clone()).collect();
-        let fitted = fit::fit(&rest, &fit::START, iterations, |_| {});
-        let (carry, apex, land) = fit::predict(&fitted.aero, held);
-        let h = Holdout {
-            club: held.club.clone(),
-            carry_yd: held.carry_yd,
-            predicted_carry_yd: carry,
-            carry_error_pct: 100.0 * (carry - held.carry_yd) / held.carry_yd,
-            apex_error_yd: apex - held.max_height_yd,
-            land_angle_error_deg: land - held.land_angle_deg,
-        };
-        progress(&h);
-        holdouts.push(h);
+    let holdouts = (0..rows.len())
+        .map(|i| {
+            let h = hold_out(rows, i, iterations);
+            progress(&h);
+            h
+        })
+        .collect();
+    CrossValidation::of(holdouts)
+}
+
+/// Club `i` of `rows` left out: the fit to the others (`iterations` as [`leave_one_out`]) and its prediction of
+/// the club. Each is independent of the others, so a caller may run them side by side.
+pub fn hold_out(rows: &[TourAverage], i: usize, iterations: usize) -> Holdout {
+    let held = &rows[i];
+    let rest: Vec<TourAverage> = rows.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| r.clone()).collect();
+    let fitted = fit::fit(&rest, &fit::START, iterations, |_| {});
+    let (carry, apex, land) = fit::predict(&fitted.aero, held);
+    Holdout {
+        club: held.club.clone(),
+        carry_yd: held.carry_yd,
+        predicted_carry_yd: carry,
+        carry_error_pct: 100.0 * (carry - held.carry_yd) / held.carry_yd,
+        apex_error_yd: apex - held.max_height_yd,
+        land_angle_error_deg: land - held.land_angle_deg,
     }
-    let max = |f: fn(&Holdout) -> Real| holdouts.iter().map(|h| f(h).abs()).fold(0.0, Real::max);
-    CrossValidation {
-        max_carry_error_pct: max(|h| h.carry_error_pct),
-        max_apex_error_yd: max(|h| h.apex_error_yd),
-        max_land_angle_error_deg: max(|h| h.land_angle_error_deg),
-        holdouts,
+}
+
+impl CrossValidation {
+    /// The cross-validation of these holdouts (in the table's order): they and their largest errors.
+    pub fn of(holdouts: Vec<Holdout>) -> CrossValidation {
+        let max = |f: fn(&Holdout) -> Real| holdouts.iter().map(|h| f(h).abs()).fold(0.0, Real::max);
+        CrossValidation {
+            max_carry_error_pct: max(|h| h.carry_error_pct),
+            max_apex_error_yd: max(|h| h.apex_error_yd),
+            max_land_angle_error_deg: max(|h| h.land_angle_error_deg),
+            holdouts,
+        }
     }
 }
