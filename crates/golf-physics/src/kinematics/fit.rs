@@ -349,6 +349,29 @@ impl PoseFit {
         (eval(&c, degree, tau_s) - p, eval_derivative(&c, degree, tau_s) / self.scale_s - v)
     }
 
+    /// The frames both fits share (the newest of `frame_t_s`, oldest first), each with its time and the position
+    /// and rotation fits' weights at `t_s`: `(t_k, a_k, ȧ_k, b_k, ḃ_k)`, the fitted value's and rate's (per
+    /// second) response to that frame's value.
+    pub fn shared_weights(&self, frame_t_s: &[Real], t_s: Real) -> Vec<(Real, Real, Real, Real, Real)> {
+        let tau = (t_s - self.t_ref_s) / self.scale_s;
+        let taus: Vec<Real> = frame_t_s.iter().map(|t| (t - self.t_ref_s) / self.scale_s).collect();
+        let weights = |f: &NormalFactor| {
+            let n = f.frames.min(taus.len());
+            let w: Vec<(Real, Real)> = f.weights(tau, &taus[taus.len() - n..]).collect();
+            (n, w)
+        };
+        let ((np, wp), (nr, wr)) = (weights(&self.position_factor), weights(&self.rotation_factor));
+        let shared = np.min(nr);
+        let at = taus.len() - shared;
+        (0..shared)
+            .map(|i| {
+                let (a, da) = wp[np - shared + i];
+                let (b, db) = wr[nr - shared + i];
+                (frame_t_s[at + i], a, da / self.scale_s, b, db / self.scale_s)
+            })
+            .collect()
+    }
+
     /// The position fit's noise variance per axis from its residual (m²) and its degrees of freedom.
     pub fn position_noise(&self) -> (Real, usize) {
         Self::noise(&self.position_factor, self.residual_rms_m)

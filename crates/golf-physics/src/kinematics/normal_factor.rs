@@ -61,6 +61,56 @@ impl NormalFactor {
         [dot(&a, &a), dot(&a, &b), dot(&b, &b)]
     }
 
+    /// The fit's weights at `tau`: how much each frame's value (at `taus`, the times this factor was made from)
+    /// moves the fitted value and slope (per unit of `tau`) there, `φ(τ_k)ᵀ M φ(τ)` and `φ(τ_k)ᵀ M φ'(τ)`, as
+    /// `(value, slope)` per frame.
+    pub fn weights<'a>(&'a self, tau: Real, taus: &'a [Real]) -> impl Iterator<Item = (Real, Real)> + 'a {
+        let m = self.coefficients;
+        let (mut phi, mut dphi) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
+        let mut tk = 1.0;
+        for k in 0..m {
+            phi[k] = tk;
+            if k + 1 < m {
+                dphi[k + 1] = (k + 1) as Real * tk;
+            }
+            tk *= tau;
+        }
+        let (c, dc) = (self.solve_normal(phi), self.solve_normal(dphi));
+        taus.iter().map(move |&t| {
+            let (mut w, mut dw, mut tk) = (0.0, 0.0, 1.0);
+            for k in 0..m {
+                w += tk * c[k];
+                dw += tk * dc[k];
+                tk *= t;
+            }
+            (w, dw)
+        })
+    }
+
+    /// `M b = (L Lᵀ)⁻¹ b`.
+    // Triangular solves read clearest indexed, as written in the algebra.
+    #[allow(clippy::needless_range_loop)]
+    fn solve_normal(&self, b: [Real; MAX_DEGREE + 1]) -> [Real; MAX_DEGREE + 1] {
+        let m = self.coefficients;
+        let mut z = [0.0; MAX_DEGREE + 1];
+        for i in 0..m {
+            let mut s = b[i];
+            for k in 0..i {
+                s -= self.l[i][k] * z[k];
+            }
+            z[i] = s / self.l[i][i];
+        }
+        let mut c = [0.0; MAX_DEGREE + 1];
+        for i in (0..m).rev() {
+            let mut s = z[i];
+            for k in i + 1..m {
+                s -= self.l[k][i] * c[k];
+            }
+            c[i] = s / self.l[i][i];
+        }
+        c
+    }
+
     /// The least-squares coefficients of `values` at `tau` (the times this factor was made from) by the factor:
     /// `Lᵀ c = L⁻¹ Aᵀ y`.
     // Triangular solves read clearest indexed, as written in the algebra.

@@ -252,6 +252,31 @@ pub fn estimate_uncertainty(
     let mut s_x = M12::zeros();
     s_x.fixed_view_mut::<6, 6>(0, 0).copy_from(&s_fv);
     s_x.fixed_view_mut::<6, 6>(6, 6).copy_from(&s_rw);
+    // The face centre's path and the orientation share each frame's turn: the face centre is the tracked pose
+    // moved by `R_k r_fc`, so a frame's orientation noise `δφ_k` moves it by `δφ_k × R_k r_fc` too. Through the
+    // fits' weights at the contact (`a_k`, `b_k`, and their rates), `cov(δf, δφ) = −σ_a² Σ a_k b_k [R_k r_fc]×
+    // R_k R(t)ᵀ`, the rotation fit's world-frame error being its frames' `R(t) R_kᵀ δφ_k`. The path's weights are
+    // the polynomial path's, the arc's too where it is the estimate (its linear response to a frame is of the
+    // same reach). Without it, the fields that move with both (launch angle with loft and impact height, launch
+    // direction with face and heel-toe place) were covered more than the fields alone (docs/uncertainty.md).
+    let frames = &estimate.fits.frame_t_s[..estimate.fits.frames];
+    let mut cross = SMatrix::<6, 6>::zeros();
+    for (t_k, a, da, b, db) in fit.shared_weights(frames, t) {
+        let r_k = fit.orientation(t_k).to_rotation_matrix().into_inner();
+        let m = -(skew(&(r_k * r_fc)) * r_k * rot.to_rotation_matrix().into_inner().transpose()) * rotation_var;
+        for (row, col, w) in [(0, 0, a * b), (0, 3, a * db), (3, 0, da * b), (3, 3, da * db)] {
+            let block = cross.fixed_view::<3, 3>(row, col) + m * w;
+            cross.fixed_view_mut::<3, 3>(row, col).copy_from(&block);
+        }
+    }
+    if estimate.fits.speed.is_some() {
+        // The velocity's across-path part, as above (its along-path part is the path-length fit's).
+        let k = v.norm() / velocity_fit.norm();
+        let rows = across * k * cross.fixed_view::<3, 6>(3, 0);
+        cross.fixed_view_mut::<3, 6>(3, 0).copy_from(&rows);
+    }
+    s_x.fixed_view_mut::<6, 6>(0, 6).copy_from(&cross);
+    s_x.fixed_view_mut::<6, 6>(6, 0).copy_from(&cross.transpose());
     let (sp2, sa2) = (calibration.position_m.powi(2), calibration.angle_rad.powi(2));
     for i in 0..3 {
         s_x[(i, i)] += sp2;
