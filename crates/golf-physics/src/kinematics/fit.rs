@@ -397,36 +397,5 @@ impl PoseFit {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A quadratic position and a constant-acceleration rotation about a fixed axis are reproduced exactly by a
-    /// degree-2 fit, including extrapolation.
-    #[test]
-    fn exact_for_polynomial_motion() {
-        let axis = Vector3::new(0.2, 0.9, -0.3).normalize();
-        let r0 = UnitQuaternion::from_euler_angles(0.1, 0.2, -0.3);
-        let truth = |t: Real| {
-            (
-                Vector3::new(1.0 + 40.0 * t + 300.0 * t * t, 0.5 - 2.0 * t, 0.1 * t * t),
-                r0 * so3::exp(&(axis * (30.0 * t + 500.0 * t * t))),
-            )
-        };
-        let poses: Vec<TimedPose> = (0..10)
-            .map(|k| {
-                let t = -0.02 + k as Real / 720.0;
-                let (p, q) = truth(t);
-                TimedPose { t_s: t, position_m: p, orientation: q }
-            })
-            .collect();
-        let fit = PoseFit::fit(&poses, 2, 2).unwrap();
-        let t = 0.0;
-        let s = fit.at(t);
-        let (p, q) = truth(t);
-        assert!((s.position_m - p).norm() < 1e-9);
-        assert!((s.velocity_mps - Vector3::new(40.0, -2.0, 0.0)).norm() < 1e-7);
-        assert!(q.angle_to(&s.orientation) < 1e-9);
-        let w = r0 * axis * (30.0 + 1000.0 * t);
-        assert!((s.angular_velocity_radps - w).norm() < 1e-6, "{} vs {w}", s.angular_velocity_radps);
-    }
-}
+#[path = "fit_tests.rs"]
+mod tests;
