@@ -14,6 +14,7 @@ mod identifiability;
 mod identify_likelihood;
 mod maw_published;
 mod offcentre_iron;
+mod offcentre_monitors;
 mod players_matched;
 mod real_shots;
 mod tour_iron_spin;
