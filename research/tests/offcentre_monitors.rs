@@ -5,6 +5,7 @@
 //! ball-speed error's MAE, bias and slopes against impact height and offset, the spin MAE, and for the driver the
 //! spin axis' MAE and its partial slopes against face to path and offset (TrackMan's measured slopes beside them).
 //! A change to the models or presets that moves a finding fails here and sends the page to be regenerated.
+#![allow(clippy::unwrap_used)]
 
 use std::process::Command;
 
