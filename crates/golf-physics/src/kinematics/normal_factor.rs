@@ -36,16 +36,7 @@ impl NormalFactor {
     /// of `tau`) and the slope's variance, `[φᵀMφ, φᵀMφ', φ'ᵀMφ']` with `M = (AᵀA)⁻¹`, `φ = (1, τ, τ², ...)`.
     pub fn value_slope(&self, tau: Real) -> [Real; 3] {
         let m = self.coefficients;
-        let mut phi = [0.0; MAX_DEGREE + 1];
-        let mut dphi = [0.0; MAX_DEGREE + 1];
-        let mut tk = 1.0;
-        for k in 0..m {
-            phi[k] = tk;
-            if k + 1 < m {
-                dphi[k + 1] = (k + 1) as Real * tk;
-            }
-            tk *= tau;
-        }
+        let (phi, dphi) = self.basis(tau);
         // Forward substitution: L a = φ, L b = φ', so φᵀMφ = a·a.
         let (mut a, mut b) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
         for i in 0..m {
@@ -66,15 +57,7 @@ impl NormalFactor {
     /// `(value, slope)` per frame.
     pub fn weights<'a>(&'a self, tau: Real, taus: &'a [Real]) -> impl Iterator<Item = (Real, Real)> + 'a {
         let m = self.coefficients;
-        let (mut phi, mut dphi) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
-        let mut tk = 1.0;
-        for k in 0..m {
-            phi[k] = tk;
-            if k + 1 < m {
-                dphi[k + 1] = (k + 1) as Real * tk;
-            }
-            tk *= tau;
-        }
+        let (phi, dphi) = self.basis(tau);
         let (c, dc) = (self.solve_normal(phi), self.solve_normal(dphi));
         taus.iter().map(move |&t| {
             let (mut w, mut dw, mut tk) = (0.0, 0.0, 1.0);
@@ -85,6 +68,21 @@ impl NormalFactor {
             }
             (w, dw)
         })
+    }
+
+    /// The powers `φ = (1, τ, τ², ...)` and their derivative `φ'` at `tau`, over the fit's coefficients.
+    fn basis(&self, tau: Real) -> ([Real; MAX_DEGREE + 1], [Real; MAX_DEGREE + 1]) {
+        let m = self.coefficients;
+        let (mut phi, mut dphi) = ([0.0; MAX_DEGREE + 1], [0.0; MAX_DEGREE + 1]);
+        let mut tk = 1.0;
+        for k in 0..m {
+            phi[k] = tk;
+            if k + 1 < m {
+                dphi[k + 1] = (k + 1) as Real * tk;
+            }
+            tk *= tau;
+        }
+        (phi, dphi)
     }
 
     /// `M b = (L Lᵀ)⁻¹ b`.

@@ -261,9 +261,10 @@ pub fn estimate_uncertainty(
     // direction with face and heel-toe place) were covered more than the fields alone (docs/uncertainty.md).
     let frames = &estimate.fits.frame_t_s[..estimate.fits.frames];
     let mut cross = SMatrix::<6, 6>::zeros();
+    let rot_t = rot.to_rotation_matrix().into_inner().transpose();
     for (t_k, a, da, b, db) in fit.shared_weights(frames, t) {
         let r_k = fit.orientation(t_k).to_rotation_matrix().into_inner();
-        let m = -(skew(&(r_k * r_fc)) * r_k * rot.to_rotation_matrix().into_inner().transpose()) * rotation_var;
+        let m = -(skew(&(r_k * r_fc)) * r_k * rot_t) * rotation_var;
         for (row, col, w) in [(0, 0, a * b), (0, 3, a * db), (3, 0, da * b), (3, 3, da * db)] {
             let block = cross.fixed_view::<3, 3>(row, col) + m * w;
             cross.fixed_view_mut::<3, 3>(row, col).copy_from(&block);
