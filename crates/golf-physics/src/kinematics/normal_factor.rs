@@ -85,24 +85,27 @@ impl NormalFactor {
         (phi, dphi)
     }
 
-    /// `M b = (L Lᵀ)⁻¹ b`.
+    /// `M b = (L Lᵀ)⁻¹ b`, for scalars or vectors alike (forward, then back substitution).
     // Triangular solves read clearest indexed, as written in the algebra.
     #[allow(clippy::needless_range_loop)]
-    fn solve_normal(&self, b: [Real; MAX_DEGREE + 1]) -> [Real; MAX_DEGREE + 1] {
+    fn solve_normal<T>(&self, b: [T; MAX_DEGREE + 1]) -> [T; MAX_DEGREE + 1]
+    where
+        T: Copy + std::ops::Sub<Output = T> + std::ops::Mul<Real, Output = T> + std::ops::Div<Real, Output = T>,
+    {
         let m = self.coefficients;
-        let mut z = [0.0; MAX_DEGREE + 1];
+        let mut z = b;
         for i in 0..m {
             let mut s = b[i];
             for k in 0..i {
-                s -= self.l[i][k] * z[k];
+                s = s - z[k] * self.l[i][k];
             }
             z[i] = s / self.l[i][i];
         }
-        let mut c = [0.0; MAX_DEGREE + 1];
+        let mut c = z;
         for i in (0..m).rev() {
             let mut s = z[i];
             for k in i + 1..m {
-                s -= self.l[k][i] * c[k];
+                s = s - c[k] * self.l[k][i];
             }
             c[i] = s / self.l[i][i];
         }
@@ -111,8 +114,6 @@ impl NormalFactor {
 
     /// The least-squares coefficients of `values` at `tau` (the times this factor was made from) by the factor:
     /// `Lᵀ c = L⁻¹ Aᵀ y`.
-    // Triangular solves read clearest indexed, as written in the algebra.
-    #[allow(clippy::needless_range_loop)]
     pub(super) fn solve(&self, tau: &[Real], values: &[Vector3]) -> [Vector3; MAX_DEGREE + 1] {
         let m = self.coefficients;
         let mut aty = [Vector3::zeros(); MAX_DEGREE + 1];
@@ -123,22 +124,6 @@ impl NormalFactor {
                 tk *= t;
             }
         }
-        let mut z = [Vector3::zeros(); MAX_DEGREE + 1];
-        for i in 0..m {
-            let mut s = aty[i];
-            for k in 0..i {
-                s -= self.l[i][k] * z[k];
-            }
-            z[i] = s / self.l[i][i];
-        }
-        let mut c = [Vector3::zeros(); MAX_DEGREE + 1];
-        for i in (0..m).rev() {
-            let mut s = z[i];
-            for k in i + 1..m {
-                s -= self.l[k][i] * c[k];
-            }
-            c[i] = s / self.l[i][i];
-        }
-        c
+        self.solve_normal(aty)
     }
 }
