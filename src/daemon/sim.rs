@@ -289,11 +289,16 @@ pub async fn run_sim(
         let samples = session
             .declare_publisher(keys::clubhead(name))
             .encoding(wire::MessageType::ClubheadSample.encoding())
+            // The synthetic rig's swings are scored against its truth: a put waits for room in a busy session's
+            // queue rather than being dropped unseen by the sender (zenoh's default), which would lose a shot
+            // the truth still counts.
+            .congestion_control(zenoh::qos::CongestionControl::Block)
             .await
             .map_err(DaemonError::zenoh)?;
         let truth_pub = session
             .declare_publisher(keys::truth(name))
             .encoding(wire::MessageType::TruthMessage.encoding())
+            .congestion_control(zenoh::qos::CongestionControl::Block)
             .await
             .map_err(DaemonError::zenoh)?;
         if options.wait_for_subscriber_s > 0.0 {
