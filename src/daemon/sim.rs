@@ -111,12 +111,10 @@ pub struct SimSummary {
     pub shots: u64,
 }
 
-/// How long a rig keeps its publishers after its last put. zenoh 1.10 sends a publisher's undeclaration (and a
-/// subscriber's, on the other side) on its control lane, which can overtake data still queued on the data lane;
-/// a receiver that tears its subscriber down at that moment logs `Received Data for unknown key_expr` for each
-/// late sample. On loopback, 3,000 puts at once with the publisher dropped and the subscriber undeclared right
-/// after: from 1 line in 10 rounds to 139 in 30, with the load; the publisher held 200-250 ms first: none
-/// (`tests/sim_drain.rs`, which also runs this rig into a receiver that closes the moment it returns).
+/// How long a rig keeps its publishers after its last put. zenoh 1.10 sends an undeclaration on its control lane,
+/// which can overtake data still queued on the data lane: a receiver tearing its subscriber down then logs
+/// `Received Data for unknown key_expr` per late sample (loopback, 3,000 puts: 1 line in 10 rounds to 139 in 30;
+/// held 200-250 ms first: none; `tests/sim_drain.rs`, which also runs this rig into a receiver that closes at once).
 pub const PUBLISHER_DRAIN_S: f64 = 0.25;
 
 /// The swing follows its arc from this long before impact (s); earlier the club waits at the top. It spans the
@@ -230,8 +228,7 @@ impl SimRig {
         let (k, swing, t_impact) = (swings.current.k, &swings.current.swing, swings.current.t_impact_ns);
         let tau = (t_ns as i64 - t_impact as i64) as f64 * 1e-9;
         let mut pose = if tau > AFTER_S {
-            // Walk the club back from the follow-through to the start of the next swing, smoothly.
-            // The glide ends where the next shot's span begins; there the club waits at the top of its arc.
+            // Glide back from the follow-through to the next swing's top, where the club waits until its span begins.
             let next_swing = &swings.next.swing;
             let from = swing.pose(AFTER_S);
             let to = next_swing.pose(-BEFORE_S);
@@ -289,9 +286,7 @@ pub async fn run_sim(
         let samples = session
             .declare_publisher(keys::clubhead(name))
             .encoding(wire::MessageType::ClubheadSample.encoding())
-            // The synthetic rig's swings are scored against its truth: a put waits for room in a busy session's
-            // queue rather than being dropped unseen by the sender (zenoh's default), which would lose a shot
-            // the truth still counts.
+            // Scored against its truth: a put waits in a busy queue, never dropped unseen (zenoh's default).
             .congestion_control(zenoh::qos::CongestionControl::Block)
             .await
             .map_err(DaemonError::zenoh)?;
