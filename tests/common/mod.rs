@@ -79,6 +79,32 @@ pub async fn wait_until(limit: Duration, mut done: impl FnMut() -> bool) -> bool
     true
 }
 
+/// What the daemon says it has received, rig by rig: the `samples` of each rig's latest status
+/// (`golf/<rig>/status`). A put has left the synthetic rig when it returns, not reached the daemon; under load the
+/// last ones are still on their way when the rig ends, and a daemon stopped then never sees them.
+pub struct Received {
+    latest: Collected<impactd::wire::StatusMessage>,
+    _subscriber: zenoh::pubsub::Subscriber<()>,
+}
+
+impl Received {
+    /// Starts watching the daemon's status on `session` (before the samples are sent).
+    pub fn watch(session: &zenoh::Session) -> Self {
+        let (latest, _subscriber) = collect(session, "golf/*/status");
+        Received { latest, _subscriber }
+    }
+
+    /// Waits (up to 60 s) until every rig of `sent` has had at least its count of samples received; false if one
+    /// has not by then.
+    pub async fn all(&self, sent: &BTreeMap<String, u64>) -> bool {
+        wait_until(Duration::from_secs(60), || {
+            let statuses = self.latest.lock().unwrap();
+            sent.iter().all(|(rig, n)| statuses.iter().rev().find(|s| &s.rig == rig).is_some_and(|s| s.samples >= *n))
+        })
+        .await
+    }
+}
+
 /// Every message of a recording, as JSON, by topic.
 pub fn recorded(path: &Path) -> BTreeMap<String, Vec<serde_json::Value>> {
     let bytes = std::fs::read(path).unwrap();

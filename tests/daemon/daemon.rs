@@ -118,13 +118,15 @@ async fn end_to_end_two_rigs_record_and_replay() {
     let (launches, _s1) = collect::<LaunchPrediction>(&rig, "golf/*/launch");
     let (truths, _s2) = collect::<TruthMessage>(&rig, "sim/*/truth");
     let (statuses, _s3) = collect::<StatusMessage>(&rig, "golf/*/status");
+    let received = common::Received::watch(&rig);
     let shots = 4;
     let (a, b) = tokio::join!(
         run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 3), std::future::pending()),
         run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), shots, 4), std::future::pending()),
     );
-    let sent = a.unwrap().samples + b.unwrap().samples;
-    tokio::time::sleep(Duration::from_millis(700)).await;
+    let (a, b) = (a.unwrap().samples, b.unwrap().samples);
+    let sent = a + b;
+    assert!(received.all(&[("bay1".into(), a), ("bay2".into(), b)].into()).await, "every sample received");
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
 
@@ -230,6 +232,7 @@ async fn bad_input_is_rejected_counted_and_recorded() {
     let daemon = start_daemon(CONFIG, Some(&recording)).await;
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay2/launch");
+    let received = common::Received::watch(&rig);
     // A rig's fragmented 70 kB put may be dropped by its own session under load with zenoh's default
     // congestion control; this test is about what the daemon does with what arrives, so nothing may be dropped.
     let bad = rig
@@ -265,8 +268,8 @@ async fn bad_input_is_rejected_counted_and_recorded() {
         }
         put.await.unwrap();
     }
-    run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 9), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(600)).await;
+    let sent = run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 9), std::future::pending()).await.unwrap();
+    assert!(received.all(&[("bay2".into(), sent.samples)].into()).await, "every sample received");
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
     let c = &summary.rigs["bay1"];
@@ -402,7 +405,7 @@ async fn both_models_publish_impulse_first() {
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay1/launch");
     let (lines, _l) = collect::<impactd::wire::FlightLine>(&rig, "golf/bay1/flight");
     run_sim(&rig, sim_options("bay1", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(500)).await;
+    assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 4).await);
     daemon.stop().await;
     rig.close().await.unwrap();
     let launches = launches.lock().unwrap().clone();
@@ -436,7 +439,7 @@ async fn soil_rig_publishes_impulse_then_ground() {
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay2/launch");
     run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(500)).await;
+    assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 4).await);
     daemon.stop().await;
     rig.close().await.unwrap();
     let launches = launches.lock().unwrap().clone();
@@ -468,7 +471,7 @@ async fn sigterm_closes_the_recording() {
     let rig = client(&endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/rig1/launch");
     run_sim(&rig, sim_options("rig1", ClubSpec::driver(), 2, 8), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 2).await);
     assert_eq!(launches.lock().unwrap().len(), 2);
     let status = std::process::Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
     assert!(status.success());
@@ -512,8 +515,9 @@ async fn replay_publishes_and_records_what_run_records() {
     let daemon =
         start_daemon("status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n", Some(&live)).await;
     let rig = client(&daemon.endpoint).await;
-    run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 5), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(700)).await;
+    let received = common::Received::watch(&rig);
+    let sent = run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 5), std::future::pending()).await.unwrap();
+    assert!(received.all(&[("bay1".into(), sent.samples)].into()).await, "every sample received");
     daemon.stop().await;
     rig.close().await.unwrap();
 

@@ -95,7 +95,7 @@ async fn hostile_sample_and_restart_cost_no_later_swing() {
     // The sim numbers frames from 1 and starts its clock afresh: a restarted publisher.
     run_sim(&rig, sim(1, 2), std::future::pending()).await.unwrap();
     run_sim(&rig, sim(1, 3), std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(500)).await;
+    crate::common::wait_until(Duration::from_secs(60), || got.lock().unwrap().len() >= 3).await;
     let _ = daemon.stop.send(());
     let summary = daemon.task.await.unwrap();
     rig.close().await.unwrap();
@@ -183,7 +183,7 @@ async fn a_full_disk_is_logged_at_once_and_predictions_go_on() {
         (out, sub)
     };
     run_sim(&rig, sim, std::future::pending()).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(300)).await;
+    crate::common::wait_until(Duration::from_secs(60), || got_rig1.lock().unwrap().len() >= 2).await;
     let _ = std::process::Command::new("kill").args(["-TERM", &child.id().to_string()]).status();
     child.wait().unwrap();
     rig.close().await.unwrap();

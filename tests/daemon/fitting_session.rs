@@ -154,9 +154,11 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
     let options = RunOptions { record: Some(recording.clone()), ..Default::default() };
     let daemon = start_daemon(&config, options).await;
     let session = client(&daemon.endpoint).await;
+    let received = common::Received::watch(&session);
     let swings = clubs.iter().enumerate().map(|(i, (rig, name, club))| {
         let session = &session;
         async move {
+            let mut sent = 0;
             // Puts reach only subscribers the session knows of: wait until the daemon's is matched.
             let publisher = session.declare_publisher(keys::session(rig)).await.unwrap();
             assert!(
@@ -179,13 +181,14 @@ async fn ten_clubs_three_players_session_and_export_match_an_independent_reader(
                     seed: 100 + 10 * i as u64 + j as u64,
                     ..SimOptions::default()
                 };
-                run_sim(session, options, std::future::pending()).await.unwrap();
+                sent += run_sim(session, options, std::future::pending()).await.unwrap().samples;
                 tokio::time::sleep(Duration::from_millis(300)).await;
             }
+            (rig.to_string(), sent)
         }
     });
-    futures_util::future::join_all(swings).await;
-    tokio::time::sleep(Duration::from_millis(500)).await;
+    let sent = futures_util::future::join_all(swings).await.into_iter().collect();
+    assert!(received.all(&sent).await, "the daemon received every sample sent: {sent:?}");
     let summary = daemon.stop().await;
     session.close().await.unwrap();
     let predicted: u64 = summary.rigs.values().map(|c| c.predictions).sum();

@@ -97,7 +97,7 @@ async fn every_shot_is_published_once_and_bad_messages_are_answered_and_survived
     assert!(got[3].message.contains("already received"), "{}", got[3].message);
     assert!(got[4].message.contains("VLA"), "{}", got[4].message);
 
-    assert!(wait_until(Duration::from_secs(3), || measured.lock().unwrap().len() >= 4).await);
+    assert!(wait_until(Duration::from_secs(30), || measured.lock().unwrap().len() >= 4).await);
     tokio::time::sleep(Duration::from_millis(400)).await;
     let summary = daemon.stop().await;
     observer.close().await.unwrap();

@@ -195,16 +195,16 @@ async fn each_measured_shot_is_compared_within_10_ms_whatever_the_connector_send
     }
     let summary_sim = sim.await.unwrap();
     assert_eq!(summary_sim.shots, SHOTS);
-    assert!(common::wait_until(Duration::from_secs(3), || comparisons.lock().unwrap().len() >= SHOTS as usize).await);
+    assert!(common::wait_until(Duration::from_secs(30), || comparisons.lock().unwrap().len() >= SHOTS as usize).await);
 
     // The daemon still takes a new connector after all that, and answers it.
     let (rd2, mut lm2) = TcpStream::connect(("127.0.0.1", port)).await.unwrap().into_split();
     let replies2 = read_replies(rd2);
     lm2.write_all(HEARTBEAT.as_bytes()).await.unwrap();
     lm2.write_all(impossible(999).as_bytes()).await.unwrap();
-    assert!(common::wait_until(Duration::from_secs(2), || !replies2.lock().unwrap().is_empty()).await);
+    assert!(common::wait_until(Duration::from_secs(20), || !replies2.lock().unwrap().is_empty()).await);
     assert_eq!(replies2.lock().unwrap()[0].code, 501);
-    assert!(common::wait_until(Duration::from_secs(2), || replies.lock().unwrap().len() >= want_codes.len()).await);
+    assert!(common::wait_until(Duration::from_secs(20), || replies.lock().unwrap().len() >= want_codes.len()).await);
     tokio::time::sleep(Duration::from_millis(700)).await;
     let summary = daemon.stop().await;
     observer.close().await.unwrap();

@@ -85,7 +85,7 @@ async fn session(unit: Option<&str>) {
     };
     run_sim(&rig, sim, std::future::pending()).await.unwrap();
     let l = lines.clone();
-    wait_until(Duration::from_secs(8), move || {
+    wait_until(Duration::from_secs(30), move || {
         l.lock().unwrap().iter().filter(|v| v["type"] == "shot").count() as u64 >= shots
     })
     .await;
@@ -93,7 +93,7 @@ async fn session(unit: Option<&str>) {
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
     let l = lines.clone();
-    wait_until(Duration::from_secs(3), move || l.lock().unwrap().last().is_some_and(|v| v["status"] == "busy")).await;
+    wait_until(Duration::from_secs(30), move || l.lock().unwrap().last().is_some_and(|v| v["status"] == "busy")).await;
     let launches = launches.lock().unwrap().clone();
     assert_eq!(launches.len() as u64, shots, "every swing predicted");
     let lines = lines.lock().unwrap().clone();

@@ -166,7 +166,8 @@ async fn run(
     let rig = common::client(&daemon.endpoint).await;
     let (launches, _sub) = collect::<LaunchPrediction>(&rig, "golf/bay1/launch");
     run_sim(&rig, sim("bay1", shots, 0.6, 11), std::future::pending()).await.unwrap();
-    wait_until(Duration::from_secs(8), settled).await;
+    wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() as u64 >= shots).await;
+    wait_until(Duration::from_secs(30), settled).await;
     tokio::time::sleep(Duration::from_millis(300)).await;
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
@@ -328,9 +329,10 @@ async fn a_stalled_simulator_does_not_move_the_latency() {
     );
     a.unwrap();
     b.unwrap();
+    wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() as u64 >= 2 * shots).await;
     let stalled_at_end = got.shots.lock().unwrap().len();
     let g = got.clone();
-    wait_until(Duration::from_secs(8), move || g.shots.lock().unwrap().len() as u64 >= shots).await;
+    wait_until(Duration::from_secs(30), move || g.shots.lock().unwrap().len() as u64 >= shots).await;
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
     let launches = launches.lock().unwrap().clone();

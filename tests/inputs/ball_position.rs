@@ -112,7 +112,7 @@ async fn a_tracked_ball_live_is_recorded_and_replayed() {
     };
     run_sim(&session, sim, std::future::pending()).await.unwrap();
     let l = launches.clone();
-    assert!(common::wait_until(Duration::from_secs(5), || l.lock().unwrap().len() >= 2).await);
+    assert!(common::wait_until(Duration::from_secs(30), || l.lock().unwrap().len() >= 2).await);
     for l in launches.lock().unwrap().iter() {
         let used = l.ball.unwrap();
         assert_eq!((used.source, used.position_m), (BallSource::Tracked, at), "shot {}", l.shot);

@@ -40,7 +40,7 @@ async fn a_recording_drives_another_daemon_live() {
     .await
     .unwrap();
     assert!(report.produced >= 3, "{report:?}");
-    let all_in = wait_until(Duration::from_secs(5), || live.lock().unwrap().len() >= report.produced).await;
+    let all_in = wait_until(Duration::from_secs(30), || live.lock().unwrap().len() >= report.produced).await;
     replayer.close().await.unwrap();
     watcher.close().await.unwrap();
     let summary = daemon.stop().await;

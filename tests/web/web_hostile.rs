@@ -81,7 +81,7 @@ async fn the_bay_screen_refuses_and_counts_what_it_cannot_use_and_serves_the_nex
     p.send(Message::text(r#"{"op":"club","rig":"bay9","club":"iron7"}"#)).await.unwrap();
     p.send(Message::text(r#"{"op":"club","rig":"bay1","club":"iron7"}"#)).await.unwrap();
     assert!(
-        common::wait_until(Duration::from_secs(5), || {
+        common::wait_until(Duration::from_secs(30), || {
             puts.lock().unwrap().iter().any(|(k, v)| k == "golf/bay1/club" && v == "iron7")
         })
         .await
@@ -107,7 +107,7 @@ async fn the_bay_screen_refuses_and_counts_what_it_cannot_use_and_serves_the_nex
     assert!(request(&web, &get(&web, "/")).await.starts_with("HTTP/1.1 200 OK"));
 
     let want = ["not_found", "method", "oversized", "malformed", "unknown_rig", "evicted_at_cap"];
-    let counted = common::wait_until(Duration::from_secs(5), || {
+    let counted = common::wait_until(Duration::from_secs(30), || {
         let s = statuses.lock().unwrap();
         s.last()
             .and_then(|s| s.web.as_ref())
