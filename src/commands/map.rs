@@ -15,7 +15,7 @@ pub struct MapArgs {
     #[arg(long, default_value = "driver")]
     pub club: String,
     /// Impact model (`impact::registry`).
-    #[arg(long, default_value = "adjusted", value_parser = model_name)]
+    #[arg(long, default_value = impactd::impact::registry::DEFAULT_MODEL, value_parser = model_name)]
     pub model: String,
     /// The number shown in colour.
     #[arg(long, value_enum, default_value = "ball-speed")]

@@ -19,7 +19,7 @@ pub struct PredictArgs {
     pub club: String,
     /// Impact model (standard, adjusted, slip, continuous, ...: `impact::registry`); a group (`both`) or a
     /// comma-separated list answers each line once per model, each answer naming its `model`.
-    #[arg(long, default_value = "adjusted", value_parser = model_name)]
+    #[arg(long, default_value = impactd::impact::registry::DEFAULT_MODEL, value_parser = model_name)]
     pub model: String,
     /// Coefficient of restitution along the face normal (seed eq. 3.6).
     #[arg(long, default_value_t = impactd::impact::impulse::DEFAULT_COR)]

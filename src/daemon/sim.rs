@@ -1,5 +1,5 @@
 //! `impactd sim`: a synthetic rig publishing clubhead samples at real rate, with a seeded spread of swings, and
-//! the truth of each shot on `sim/<rig>/truth`.
+//! the truth of each shot on `sim/<rig>/truth` (its launch by the default model, `slip`, with the seed's numbers).
 //!
 //! Each shot occupies `interval_s`: the club waits at the top of its arc, swings through the ball at the shot's
 //! impact instant, and holds its follow-through; frames keep coming at the rig's rate throughout, with a random
@@ -252,7 +252,7 @@ impl SimRig {
             self.truth_sent = k + 1;
             let mut delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
             delivery.swing_arc = swing.swing_arc_truth(&Vector3::zeros(), self.equipment.ball.radius_m);
-            ImpulseModel::new(ImpulseVariant::Adjusted).predict(&swing.truth, &self.equipment).ok().map(|l| {
+            ImpulseModel::new(ImpulseVariant::Slip).predict(&swing.truth, &self.equipment).ok().map(|l| {
                 TruthMessage {
                     rig: self.name.clone(),
                     shot: k + 1,

@@ -316,7 +316,7 @@ fn predict_flight_plot_is_a_pipe() {
 }
 
 /// `both` means the same models in `compare --by-club` as in `predict` and the daemon (impact::registry::resolve):
-/// adjusted and continuous, or adjusted and ground with a soil.
+/// slip and continuous, or slip and ground with a soil.
 #[test]
 fn compare_by_club_resolves_both_as_everywhere() {
     let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/trackman/validation-8i-5i.csv");
@@ -330,6 +330,6 @@ fn compare_by_club_resolves_both_as_everywhere() {
         let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let models: Vec<&str> =
             report["clubs"][0]["models"].as_array().unwrap().iter().map(|m| m["model"].as_str().unwrap()).collect();
-        assert_eq!(models, ["adjusted", second], "with soil {soil:?}");
+        assert_eq!(models, ["slip", second], "with soil {soil:?}");
     }
 }

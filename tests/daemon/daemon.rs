@@ -410,7 +410,7 @@ async fn both_models_publish_impulse_first() {
     rig.close().await.unwrap();
     let launches = launches.lock().unwrap().clone();
     let models: Vec<(u64, &str)> = launches.iter().map(|l| (l.shot, l.model.as_str())).collect();
-    assert_eq!(models, vec![(1, "adjusted"), (1, "continuous"), (2, "adjusted"), (2, "continuous")]);
+    assert_eq!(models, vec![(1, "slip"), (1, "continuous"), (2, "slip"), (2, "continuous")]);
     // The continuous prediction takes longer and says so.
     assert!(launches[1].latency_us > launches[0].latency_us);
     assert!(launches.iter().all(|l| l.flight.as_ref().is_some_and(|f| f.carry_m > 50.0)));
@@ -444,7 +444,7 @@ async fn soil_rig_publishes_impulse_then_ground() {
     rig.close().await.unwrap();
     let launches = launches.lock().unwrap().clone();
     let models: Vec<(u64, &str)> = launches.iter().map(|l| (l.shot, l.model.as_str())).collect();
-    assert_eq!(models, vec![(1, "adjusted"), (1, "ground"), (2, "adjusted"), (2, "ground")]);
+    assert_eq!(models, vec![(1, "slip"), (1, "ground"), (2, "slip"), (2, "ground")]);
     assert!(launches[1].latency_us > launches[0].latency_us);
     // One swing through two models: the ball speeds agree within 10 % (a loose bound: the impulse and the
     // continuous ball differ by a few per cent, and the ground barely acts near the face centre, docs/ground.md).

@@ -1,7 +1,7 @@
 //! Sweeps the impact location across the face: how ball speed, launch, spin and carry change toward the toe,
 //! the heel, high and low (gear effect on a curved driver face, the lost speed off-centre).
 //!
-//! `cargo run -p golf-physics --example face_sweep -- [CLUB] [MODEL]` (defaults: `driver adjusted`).
+//! `cargo run -p golf-physics --example face_sweep -- [CLUB] [MODEL]` (defaults: `driver slip`).
 
 use golf_physics::equipment::presets;
 use golf_physics::flight::{Flight, LaunchState};
@@ -12,7 +12,7 @@ use golf_physics::units::mph_to_mps;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arg = |i: usize, default: &str| std::env::args().nth(i).unwrap_or_else(|| default.to_string());
-    let (club_name, model_name) = (arg(1, "driver"), arg(2, "adjusted"));
+    let (club_name, model_name) = (arg(1, "driver"), arg(2, registry::DEFAULT_MODEL));
     let club =
         presets::find(&club_name).ok_or_else(|| format!("no preset `{club_name}`: {}", presets::names()))?.load()?;
     let model = registry::build_one(&model_name, &club, &BuildOptions::default())?;

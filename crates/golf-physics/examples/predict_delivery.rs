@@ -1,7 +1,7 @@
 //! Predicts the launch of one delivery with any model of the registry, and flies it.
 //!
 //! `cargo run -p golf-physics --example predict_delivery -- [CLUB] [MODEL] [CLUB_SPEED_MPH]`
-//! (defaults: `driver adjusted 113`; clubs are the presets, `driver`, `iron7`, `sw`, ...).
+//! (defaults: `driver slip 113`; clubs are the presets, `driver`, `iron7`, `sw`, ...).
 
 use golf_physics::equipment::presets;
 use golf_physics::flight::{Flight, LaunchState};
@@ -12,13 +12,13 @@ use golf_physics::units::mph_to_mps;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arg = |i: usize, default: &str| std::env::args().nth(i).unwrap_or_else(|| default.to_string());
-    let (club_name, model_name) = (arg(1, "driver"), arg(2, "adjusted"));
+    let (club_name, model_name) = (arg(1, "driver"), arg(2, registry::DEFAULT_MODEL));
     let speed_mph: f64 = arg(3, "113").parse()?;
 
     // A preset's club file (a club file's text works the same: `ClubFile::parse(&text)`).
     let club =
         presets::find(&club_name).ok_or_else(|| format!("no preset `{club_name}`: {}", presets::names()))?.load()?;
-    // The model with the club file's own parameters for it (its `[adjusted]`, `[two_layer]`, ... section).
+    // The model with the club file's own parameters for it (its `[slip]`, `[continuous]`, ... section).
     let model = registry::build_one(&model_name, &club, &BuildOptions::default())?;
     let equipment = Equipment::new(club.club.clone());
 

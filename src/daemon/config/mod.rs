@@ -8,10 +8,10 @@
 //! [[rig]]
 //! name = "bay1"                 # key expressions mocap/bay1/clubhead, golf/bay1/launch, ...
 //! club = "driver"               # a preset (driver, wood3, hybrid, iron4-iron9, pw, gw, sw, lw) or a club .toml
-//! model = "adjusted"            # a model of the registry (`impactd models`), or a comma-separated list
+//! model = "slip"                # a model of the registry (`impactd models`), or a comma-separated list
 //! soil = "firm"                 # with model = "ground" (an iron): soft | medium | firm | a soil .toml |
 //!                               # none (the ball on a tee);
-//!                               # with model = "both" it stands for "adjusted,ground"
+//!                               # with model = "both" it stands for "slip,ground"
 //! cor = 0.83
 //! estimator = "arc"             # linear2 | poly | arc | arc@60 | poly@44:5:39:3 | poly:24:4:24:3
 //! ball_position_m = [0.0, 0.0, 0.0]   # world frame
@@ -160,7 +160,7 @@ fn default_club() -> String {
     "driver".into()
 }
 fn default_model() -> String {
-    "adjusted".into()
+    crate::impact::registry::DEFAULT_MODEL.into()
 }
 fn default_cor() -> f64 {
     crate::impact::impulse::DEFAULT_COR
@@ -418,7 +418,7 @@ mod tests {
         let rig = |extra: &str| format!("[[rig]]\nname = \"bay1\"\nclub = \"iron7\"\n{extra}");
         let (_, r) = DaemonConfig::parse(&rig("model = \"both\"\nsoil = \"soft\"")).unwrap();
         let names: Vec<&str> = r[0].models.iter().map(|m| m.name()).collect();
-        assert_eq!(names, ["adjusted", "ground"]);
+        assert_eq!(names, ["slip", "ground"]);
         let (_, r) = DaemonConfig::parse(&rig("model = \"ground\"\nsoil = \"firm\"")).unwrap();
         assert_eq!(r[0].models.len(), 1);
         // `none`: the ground model with no ground, the ball on a tee.

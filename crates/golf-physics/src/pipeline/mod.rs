@@ -72,13 +72,13 @@ pub struct ClubSwitch {
 pub const BODY_SWITCH_AFTER_NS: u64 = 200_000_000;
 
 impl RigSetup {
-    /// A rig with the defaults: the adjusted model, the `arc` estimator, identity calibration, ball at the
-    /// origin.
+    /// A rig with the defaults: the slip model ([`crate::impact::registry::DEFAULT_MODEL`]) with the seed's
+    /// parameters for the club, the `arc` estimator, identity calibration, ball at the origin.
     pub fn new(name: &str, club: ClubSpec) -> Self {
         RigSetup {
             name: name.to_string(),
             club,
-            models: vec![Arc::new(ImpulseModel::new(ImpulseVariant::Adjusted))],
+            models: vec![Arc::new(ImpulseModel::new(ImpulseVariant::Slip))],
             estimator: EstimatorSpec::arc(),
             calibration: Calibration::default(),
             detector: DetectorConfig::default(),
