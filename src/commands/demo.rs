@@ -49,7 +49,9 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     if args.shots == 0 {
         bail!("--shots must be at least 1");
     }
-    let club = load_club(&args.club)?.club;
+    let loaded = load_club(&args.club)?;
+    let tuning = Some(impactd::impact::impulse::ImpulseTuning::from_sections(&loaded.club, &loaded.sections)?);
+    let club = loaded.club;
     // The demo's own recording is a scratch file each demo replaces; one named with --record is kept unless asked.
     let (record, overwrite) = match &args.record {
         Some(path) => (path.clone(), args.overwrite),
@@ -61,7 +63,8 @@ pub fn run(args: &DemoArgs) -> Result<ExitCode> {
     if let Some(a) = args.bridges.web(&config) {
         eprintln!("impactd demo: the bay screen is on http://{a}/ (Ctrl-C stops the demo after the shots)");
     }
-    let sim = SimOptions { club, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
+    let sim =
+        SimOptions { club, tuning, shots: args.shots, seed: args.seed, rate_hz: args.rate, ..SimOptions::default() };
     eprintln!(
         "impactd demo: daemon and a synthetic {} rig on loopback zenoh, {} shots at {} Hz; recording to {}",
         args.club,

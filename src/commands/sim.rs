@@ -58,9 +58,12 @@ pub fn run(args: &SimArgs) -> Result<ExitCode> {
     if args.interval < 0.2 {
         bail!("--interval must be at least 0.2 s, got {}", args.interval);
     }
+    let loaded = load_club(&args.club)?;
+    let tuning = Some(impactd::impact::impulse::ImpulseTuning::from_sections(&loaded.club, &loaded.sections)?);
     let options = SimOptions {
         rigs,
-        club: load_club(&args.club)?.club,
+        club: loaded.club,
+        tuning,
         shots: args.shots,
         rate_hz: args.rate,
         interval_s: args.interval,

@@ -121,7 +121,7 @@ fn progress_off_a_terminal_is_plain_lines() {
 #[test]
 fn help_names_every_default() {
     let help = text(&impactd(&["map", "--help"], "").stdout);
-    for needle in ["[default: driver]", "[default: adjusted]", "[default: 100]", "[default: map.svg]"] {
+    for needle in ["[default: driver]", "[default: slip]", "[default: 100]", "[default: map.svg]"] {
         assert!(help.contains(needle), "{needle}: {help}");
     }
 }

@@ -16,7 +16,7 @@ use impactd::daemon::bus::{free_loopback_port, ZenohArgs};
 use impactd::daemon::replay;
 use impactd::daemon::sim::{run_sim, SimOptions};
 use impactd::daemon::{DaemonConfig, RunOptions, RunSummary};
-use impactd::equipment::ClubSpec;
+use impactd::impact::impulse::ImpulseTuning;
 use impactd::pipeline::Event;
 use impactd::wire::{keys, LaunchPrediction, StatusMessage, TruthMessage};
 use zenoh::Wait;
@@ -29,7 +29,6 @@ club = "driver"
 [[rig]]
 name = "bay2"
 club = "iron7"
-model = "adjusted"
 "#;
 
 /// The real `impactd run` binary, recording to `recording`, listening on a fresh loopback endpoint.
@@ -82,8 +81,13 @@ async fn client(endpoint: &str) -> zenoh::Session {
     ZenohArgs::loopback(vec![], vec![endpoint.to_string()]).open().await.unwrap()
 }
 
-fn sim_options(rig: &str, club: ClubSpec, shots: u64, seed: u64) -> SimOptions {
-    SimOptions { rigs: vec![rig.into()], club, shots, interval_s: 0.6, seed, ..SimOptions::default() }
+/// The synthetic rig swinging a preset, its truth predicted with the preset's parameters as the daemon's rig
+/// reads them.
+fn sim_options(rig: &str, preset: &str, shots: u64, seed: u64) -> SimOptions {
+    let loaded = impactd::equipment::load_club(preset).unwrap();
+    let tuning = Some(ImpulseTuning::from_sections(&loaded.club, &loaded.sections).unwrap());
+    let club = loaded.club;
+    SimOptions { rigs: vec![rig.into()], club, tuning, shots, interval_s: 0.6, seed, ..SimOptions::default() }
 }
 
 type Collected<T> = Arc<Mutex<Vec<T>>>;
@@ -121,8 +125,8 @@ async fn end_to_end_two_rigs_record_and_replay() {
     let received = common::Received::watch(&rig);
     let shots = 4;
     let (a, b) = tokio::join!(
-        run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 3), std::future::pending()),
-        run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), shots, 4), std::future::pending()),
+        run_sim(&rig, sim_options("bay1", "driver", shots, 3), std::future::pending()),
+        run_sim(&rig, sim_options("bay2", "iron7", shots, 4), std::future::pending()),
     );
     let (a, b) = (a.unwrap().samples, b.unwrap().samples);
     let sent = a + b;
@@ -268,7 +272,7 @@ async fn bad_input_is_rejected_counted_and_recorded() {
         }
         put.await.unwrap();
     }
-    let sent = run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 9), std::future::pending()).await.unwrap();
+    let sent = run_sim(&rig, sim_options("bay2", "iron7", 2, 9), std::future::pending()).await.unwrap();
     assert!(received.all(&[("bay2".into(), sent.samples)].into()).await, "every sample received");
     let summary = daemon.stop().await;
     rig.close().await.unwrap();
@@ -346,7 +350,7 @@ async fn kill_9_then_recover() {
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();
     let sim_session = rig.clone();
     let sim = tokio::spawn(async move {
-        run_sim(&sim_session, sim_options("rig1", ClubSpec::driver(), 0, 5), async {
+        run_sim(&sim_session, sim_options("rig1", "driver", 0, 5), async {
             let _ = stop_rx.await;
         })
         .await
@@ -404,7 +408,7 @@ async fn both_models_publish_impulse_first() {
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay1/launch");
     let (lines, _l) = collect::<impactd::wire::FlightLine>(&rig, "golf/bay1/flight");
-    run_sim(&rig, sim_options("bay1", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
+    run_sim(&rig, sim_options("bay1", "iron7", 2, 21), std::future::pending()).await.unwrap();
     assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 4).await);
     daemon.stop().await;
     rig.close().await.unwrap();
@@ -438,7 +442,7 @@ async fn soil_rig_publishes_impulse_then_ground() {
     let daemon = start_daemon(config, None).await;
     let rig = client(&daemon.endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/bay2/launch");
-    run_sim(&rig, sim_options("bay2", ClubSpec::iron7(), 2, 21), std::future::pending()).await.unwrap();
+    run_sim(&rig, sim_options("bay2", "iron7", 2, 21), std::future::pending()).await.unwrap();
     assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 4).await);
     daemon.stop().await;
     rig.close().await.unwrap();
@@ -470,7 +474,7 @@ async fn sigterm_closes_the_recording() {
     let (mut child, endpoint) = spawn_daemon_process(&[], &recording);
     let rig = client(&endpoint).await;
     let (launches, _s) = collect::<LaunchPrediction>(&rig, "golf/rig1/launch");
-    run_sim(&rig, sim_options("rig1", ClubSpec::driver(), 2, 8), std::future::pending()).await.unwrap();
+    run_sim(&rig, sim_options("rig1", "driver", 2, 8), std::future::pending()).await.unwrap();
     assert!(common::wait_until(Duration::from_secs(60), || launches.lock().unwrap().len() >= 2).await);
     assert_eq!(launches.lock().unwrap().len(), 2);
     let status = std::process::Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
@@ -516,7 +520,7 @@ async fn replay_publishes_and_records_what_run_records() {
         start_daemon("status_period_s = 0.5\n[[rig]]\nname = \"bay1\"\nclub = \"driver\"\n", Some(&live)).await;
     let rig = client(&daemon.endpoint).await;
     let received = common::Received::watch(&rig);
-    let sent = run_sim(&rig, sim_options("bay1", ClubSpec::driver(), shots, 5), std::future::pending()).await.unwrap();
+    let sent = run_sim(&rig, sim_options("bay1", "driver", shots, 5), std::future::pending()).await.unwrap();
     assert!(received.all(&[("bay1".into(), sent.samples)].into()).await, "every sample received");
     daemon.stop().await;
     rig.close().await.unwrap();

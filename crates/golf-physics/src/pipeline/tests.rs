@@ -18,7 +18,7 @@ fn a_swing_gives_one_impact_and_one_launch() {
     assert_eq!(out.iter().filter(|e| matches!(e, Event::Impact(_))).count(), 1);
     let launch = out.iter().find_map(|e| if let Event::Launch(l) = e { Some(l) } else { None }).unwrap();
     assert_eq!(launch.shot, 1);
-    assert_eq!(launch.model, "adjusted");
+    assert_eq!(launch.model, crate::impact::registry::DEFAULT_MODEL);
     assert!(
         (launch.delivery.club_speed_mps - swing.delivery.club_speed_mps).abs() < 1e-3 * swing.delivery.club_speed_mps
     );

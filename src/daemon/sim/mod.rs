@@ -14,6 +14,7 @@ use zenoh::Wait;
 
 use crate::daemon::{clock::Clock, DaemonError};
 use crate::equipment::ClubSpec;
+use crate::impact::impulse::ImpulseTuning;
 use crate::impact::{DeliveryMetrics, Equipment, ImpactModel, ImpulseModel, ImpulseVariant};
 use crate::kinematics::{so3, Calibration, ClubPose, ClubheadSample};
 use crate::math::Vector3;
@@ -26,6 +27,9 @@ use crate::wire::{self, keys, ClubheadSampleMsg, PredictOutput, TruthMessage};
 pub struct SimOptions {
     pub rigs: Vec<String>,
     pub club: ClubSpec,
+    /// The impulse models' parameters the truth is predicted with: the club file's (`ImpulseTuning::from_sections`)
+    /// as the daemon's rig reads them; `None`, the seed's for the club.
+    pub tuning: Option<ImpulseTuning>,
     /// Shots per rig (0: until stopped).
     pub shots: u64,
     pub rate_hz: f64,
@@ -49,6 +53,7 @@ impl Default for SimOptions {
         SimOptions {
             rigs: vec!["rig1".into()],
             club: ClubSpec::driver(),
+            tuning: None,
             shots: 5,
             rate_hz: 720.0,
             interval_s: 1.5,
@@ -122,11 +127,16 @@ pub const PUBLISHER_DRAIN_S: f64 = 0.25;
 const BEFORE_S: f64 = 0.07;
 const AFTER_S: f64 = 0.03;
 
+/// The truth's model: the default (`registry::DEFAULT_MODEL`, a test holds them together).
+const TRUTH: ImpulseVariant = ImpulseVariant::Slip;
+
 /// One synthetic rig: samples at any frame, deterministic for a seed.
 pub struct SimRig {
     pub name: String,
     club: ClubSpec,
     equipment: Equipment,
+    /// What predicts each shot's truth: the default model (`registry::DEFAULT_MODEL`).
+    truth_model: ImpulseModel,
     rng: Rng,
     period_ns: f64,
     interval_ns: u64,
@@ -160,6 +170,7 @@ impl SimRig {
             name: name.to_string(),
             club: options.club.clone(),
             equipment: Equipment::new(options.club.clone()),
+            truth_model: options.tuning.map_or(ImpulseModel::new(TRUTH), |t| ImpulseModel::new(TRUTH).with_tuning(t)),
             rng: Rng::new(seed),
             period_ns: 1e9 / options.rate_hz,
             interval_ns: (options.interval_s * 1e9) as u64,
@@ -252,15 +263,13 @@ impl SimRig {
             self.truth_sent = k + 1;
             let mut delivery = DeliveryMetrics::from_state(&swing.truth, &self.club);
             delivery.swing_arc = swing.swing_arc_truth(&Vector3::zeros(), self.equipment.ball.radius_m);
-            ImpulseModel::new(ImpulseVariant::Slip).predict(&swing.truth, &self.equipment).ok().map(|l| {
-                TruthMessage {
-                    rig: self.name.clone(),
-                    shot: k + 1,
-                    t_impact_ns: t_impact,
-                    club: self.club.name.clone(),
-                    delivery,
-                    launch: PredictOutput::new(&l, &delivery, Default::default(), &self.equipment),
-                }
+            self.truth_model.predict(&swing.truth, &self.equipment).ok().map(|l| TruthMessage {
+                rig: self.name.clone(),
+                shot: k + 1,
+                t_impact_ns: t_impact,
+                club: self.club.name.clone(),
+                delivery,
+                launch: PredictOutput::new(&l, &delivery, Default::default(), &self.equipment),
             })
         } else {
             None
@@ -383,68 +392,4 @@ fn truth_put(publisher: &zenoh::pubsub::Publisher<'static>, t: &TruthMessage) ->
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::equipment::FaceOutline;
-    use crate::impact::ImpactError;
-
-    /// Options for a rig whose club no swing fits: its face outline leaves out the face centre, so the drawn
-    /// strike and the centred one are both off the face.
-    fn club_without_a_centre() -> SimOptions {
-        let mut club = ClubSpec::driver();
-        club.face_outline = FaceOutline { vertices_mm: vec![[10.0, 10.0], [20.0, 10.0], [20.0, 20.0]] };
-        SimOptions { club, shots: 1, wait_for_subscriber_s: 0.0, ..SimOptions::default() }
-    }
-
-    /// The off-face shot is an error naming the rig and the shot, with the impact layer's refusal as its source
-    /// (it was a panic: "a centred swing is always valid").
-    #[test]
-    fn a_shot_no_swing_fits_is_an_error_not_a_panic() {
-        let mut rig = SimRig::new("bay1", &club_without_a_centre(), 1_000_000_000, 1);
-        let e = rig.next_sample().unwrap_err();
-        assert!(matches!(&e, DaemonError::SimSwing { rig, shot: 1, .. } if rig == "bay1"), "{e:?}");
-        let source = std::error::Error::source(&e).and_then(|s| s.downcast_ref::<ImpactError>());
-        assert!(matches!(source, Some(ImpactError::OffFace { h_mm, v_mm }) if *h_mm == 0.0 && *v_mm == 0.0), "{e}");
-        assert!(e.to_string().starts_with("rig bay1: shot 1 cannot be swung"), "{e}");
-    }
-
-    /// The rig's frames run through each shot and into the next (the pair of shots moves on at each span); a
-    /// rig of the same seed gives the same frames.
-    #[test]
-    fn the_frames_follow_one_shot_into_the_next_the_same_for_a_seed() {
-        let options = SimOptions { shots: 3, interval_s: 0.2, ..SimOptions::default() };
-        let frames = || {
-            let mut rig = SimRig::new("bay1", &options, 1_000_000_000, 5);
-            let mut out = Vec::new();
-            while !rig.done() {
-                out.push(rig.next_sample().unwrap());
-            }
-            out
-        };
-        let (a, b) = (frames(), frames());
-        assert_eq!(a.len(), b.len());
-        assert!(a.iter().zip(&b).all(|(x, y)| x.0 == y.0 && x.1 == y.1));
-        let truths: Vec<u64> = a.iter().filter_map(|(_, t)| t.as_ref().map(|t| t.shot)).collect();
-        assert_eq!(truths, [1, 2, 3]);
-        // Where one shot's span gives way to the next, the club waits at the top of the shot it glided to: the
-        // frames either side differ by the glide's last millimetres and the noise, not by another swing's top.
-        let span = |s: &ClubheadSample| (s.t_ns - 1_000_000_000) / 200_000_000;
-        let jumps: Vec<f64> = a
-            .windows(2)
-            .filter(|w| span(&w[0].0) != span(&w[1].0))
-            .map(|w| (w[1].0.position_m - w[0].0.position_m).norm())
-            .collect();
-        assert_eq!(jumps.len(), 3, "{jumps:?}");
-        assert!(jumps.iter().all(|&j| j < 0.01), "{jumps:?} m where one shot gives way to the next");
-    }
-
-    /// `run_sim` returns the rig's error (it was a panic in the rig's thread, its shots lost without a word).
-    #[tokio::test(flavor = "multi_thread")]
-    async fn run_sim_fails_with_the_rig_that_cannot_swing() {
-        let endpoint = format!("tcp/127.0.0.1:{}", crate::daemon::bus::free_loopback_port().unwrap());
-        let session = crate::daemon::bus::ZenohArgs::loopback(vec![endpoint], vec![]).open().await.unwrap();
-        let r = run_sim(&session, club_without_a_centre(), std::future::pending()).await;
-        let _ = session.close().await;
-        assert!(matches!(r, Err(DaemonError::SimSwing { shot: 1, .. })), "{r:?}");
-    }
-}
+mod tests;
