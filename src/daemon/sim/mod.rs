@@ -1,5 +1,5 @@
 //! `impactd sim`: a synthetic rig publishing clubhead samples at real rate, with a seeded spread of swings, and
-//! the truth of each shot on `sim/<rig>/truth` (its launch by the default model, `slip`, with the seed's numbers).
+//! the truth of each shot on `sim/<rig>/truth` (its launch by the default model, `slip`, with the club file's numbers).
 //!
 //! Each shot occupies `interval_s`: the club waits at the top of its arc, swings through the ball at the shot's
 //! impact instant, and holds its follow-through; frames keep coming at the rig's rate throughout, with a random
