@@ -16,6 +16,7 @@ mod maw_published;
 mod offcentre_iron;
 mod offcentre_monitors;
 mod players_matched;
+mod pointer_bound;
 mod real_shots;
 mod tour_iron_spin;
 mod wedge_spin;

@@ -3,10 +3,9 @@
 //! recovers `club_from_body` within 0.2 deg and 1 mm and reads the address loft, face angle, lie and shaft lean
 //! against the truth; without a located face the soled-square reading is reported as an assumption.
 //!
-//! The pointer's turn about the toe axis rests on a 25 mm chord (the face centre above the leading edge): at
-//! 0.2 mm of noise its tip, 1.7 times a marker's noise from its lever, averaged over 50 frames is good to about
-//! 0.05 mm per touch with the body's fit, so the chord's angle is good to about 0.07 mm / 25 mm = 0.15 deg (one
-//! sigma): 0.2 deg is at the edge of reach at 50 frames. A touch held 1 s at 240 Hz (240 frames) halves it.
+//! The pointer's three touches give the face's plane with nothing to average, so it is as good as each touch:
+//! at 0.2 mm of noise, 50-frame touches give 0.175 deg rms over 4,000 draws (76 % within 0.2 deg; the wand's tip
+//! and the body's fit share it), one-second touches at 240 Hz 0.080 deg (research/pointer-bound.md).
 
 use crate::static_trials::*;
 
@@ -86,7 +85,7 @@ use std::path::Path;
 
 /// A touch held 1 s at 240 Hz.
 const TOUCH_FRAMES: usize = 240;
-/// About 2.3 sigma of the pointer's turn about the toe axis at 50 frames (the module's note).
+/// Twice the pointer's rms error at 50 frames (the module's note).
 const POINTER_50_FRAMES_DEG: f64 = 0.35;
 
 #[test]
