@@ -100,7 +100,7 @@ fn spread(frames: usize, noisy: Noisy, n: usize, seed: u64) -> (f64, f64, f64) {
 /// face normal over the 25 mm chord between them, the edge's the mean of two touches. A touch's tip is the first
 /// marker plus the tip offset along the wand: along the wand its error is the first marker's, across it `k`
 /// times a marker's (the lever: the tip 12 cm beyond the first of markers 20 cm apart), and the wand leans at
-/// `c = cos` of its angle to the normal. The body's fit is left out: it adds a little.
+/// `c = cos` of its angle to the normal. The body's fit is left out (the draws measure it: about as much again).
 fn toe_turn_closed_form_deg(club: &ClubSpec, frames: usize) -> f64 {
     let lever = TIP_M / (WAND_M[2] - WAND_M[0]);
     let k = ((1.0 + lever).powi(2) + lever.powi(2)).sqrt();

@@ -79,6 +79,23 @@ pub async fn wait_until(limit: Duration, mut done: impl FnMut() -> bool) -> bool
     true
 }
 
+/// A connection to a TCP surface of a daemon the tests started: the daemon binds its ports as it starts, and
+/// `start_daemon` returns before, so a connect is retried while it is refused (up to 30 s).
+pub async fn connect_when_listening(address: &str) -> tokio::net::TcpStream {
+    let start = std::time::Instant::now();
+    loop {
+        match tokio::net::TcpStream::connect(address).await {
+            Ok(s) => return s,
+            Err(e)
+                if e.kind() == std::io::ErrorKind::ConnectionRefused && start.elapsed() < Duration::from_secs(30) =>
+            {
+                tokio::time::sleep(Duration::from_millis(20)).await
+            }
+            Err(e) => panic!("connecting to {address}: {e}"),
+        }
+    }
+}
+
 /// What the daemon says it has received, rig by rig: the `samples` of each rig's latest status
 /// (`golf/<rig>/status`). A put has left the synthetic rig when it returns, not reached the daemon; under load the
 /// last ones are still on their way when the rig ends, and a daemon stopped then never sees them.

@@ -35,7 +35,7 @@ async fn ws(
     path: &str,
     headers: &[(&'static str, String)],
 ) -> Result<WebSocketStream<TcpStream>, u16> {
-    let stream = TcpStream::connect(web).await.unwrap();
+    let stream = common::connect_when_listening(web).await;
     let mut req = format!("ws://{host}{path}").into_client_request().unwrap();
     for (k, v) in headers {
         req.headers_mut().insert(*k, v.parse().unwrap());
@@ -56,7 +56,7 @@ async fn hello(ws: &mut WebSocketStream<TcpStream>) -> serde_json::Value {
 }
 
 async fn get(web: &str, host: &str, path: &str, extra: &str) -> String {
-    let mut s = TcpStream::connect(web).await.unwrap();
+    let mut s = common::connect_when_listening(web).await;
     s.write_all(format!("GET {path} HTTP/1.1\r\nHost: {host}\r\n{extra}\r\n").as_bytes()).await.unwrap();
     let mut out = Vec::new();
     tokio::time::timeout(Duration::from_secs(5), s.read_to_end(&mut out)).await.unwrap().unwrap();

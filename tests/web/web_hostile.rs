@@ -22,7 +22,7 @@ use tokio_tungstenite::tungstenite::Message;
 use zenoh::Wait;
 
 async fn request(address: &str, head: &str) -> String {
-    let mut s = TcpStream::connect(address).await.unwrap();
+    let mut s = common::connect_when_listening(address).await;
     s.write_all(head.as_bytes()).await.unwrap();
     let mut out = Vec::new();
     tokio::time::timeout(Duration::from_secs(5), s.read_to_end(&mut out)).await.unwrap().unwrap();
@@ -34,7 +34,7 @@ fn get(address: &str, path: &str) -> String {
 }
 
 async fn page(address: &str) -> tokio_tungstenite::WebSocketStream<TcpStream> {
-    let stream = TcpStream::connect(address).await.unwrap();
+    let stream = common::connect_when_listening(address).await;
     tokio_tungstenite::client_async(format!("ws://{address}/ws"), stream).await.unwrap().0
 }
 

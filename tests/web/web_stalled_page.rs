@@ -24,18 +24,7 @@ const SHOTS: u64 = 1500;
 
 /// A page's websocket; the daemon's web server may still be binding when the daemon task has just started.
 async fn page(address: &str) -> tokio_tungstenite::WebSocketStream<TcpStream> {
-    let mut stream = None;
-    assert!(
-        common::wait_until(Duration::from_secs(30), || {
-            stream = std::net::TcpStream::connect(address).ok();
-            stream.is_some()
-        })
-        .await,
-        "the bay screen never listened on {address}"
-    );
-    let stream = stream.unwrap();
-    stream.set_nonblocking(true).unwrap();
-    let stream = TcpStream::from_std(stream).unwrap();
+    let stream = common::connect_when_listening(address).await;
     tokio_tungstenite::client_async(format!("ws://{address}/ws"), stream).await.unwrap().0
 }
 
