@@ -130,6 +130,21 @@ const AFTER_S: f64 = 0.03;
 /// The truth's model: the default (`registry::DEFAULT_MODEL`, a test holds them together).
 const TRUTH: ImpulseVariant = ImpulseVariant::Slip;
 
+/// A publisher of `kind` on `key` whose puts wait in a busy queue instead of being dropped unseen (zenoh's
+/// default): the rig is scored against its truth, so every sample and truth must arrive.
+async fn blocking_publisher(
+    session: &zenoh::Session,
+    key: String,
+    kind: wire::MessageType,
+) -> Result<zenoh::pubsub::Publisher<'static>, DaemonError> {
+    session
+        .declare_publisher(key)
+        .encoding(kind.encoding())
+        .congestion_control(zenoh::qos::CongestionControl::Block)
+        .await
+        .map_err(DaemonError::zenoh)
+}
+
 /// One synthetic rig: samples at any frame, deterministic for a seed.
 pub struct SimRig {
     pub name: String,
@@ -292,19 +307,8 @@ pub async fn run_sim(
         if !keys::valid_rig_name(name) {
             return Err(DaemonError::BadRigName(name.clone()));
         }
-        let samples = session
-            .declare_publisher(keys::clubhead(name))
-            .encoding(wire::MessageType::ClubheadSample.encoding())
-            // Scored against its truth: a put waits in a busy queue, never dropped unseen (zenoh's default).
-            .congestion_control(zenoh::qos::CongestionControl::Block)
-            .await
-            .map_err(DaemonError::zenoh)?;
-        let truth_pub = session
-            .declare_publisher(keys::truth(name))
-            .encoding(wire::MessageType::TruthMessage.encoding())
-            .congestion_control(zenoh::qos::CongestionControl::Block)
-            .await
-            .map_err(DaemonError::zenoh)?;
+        let samples = blocking_publisher(session, keys::clubhead(name), wire::MessageType::ClubheadSample).await?;
+        let truth_pub = blocking_publisher(session, keys::truth(name), wire::MessageType::TruthMessage).await?;
         if options.wait_for_subscriber_s > 0.0 {
             let deadline = std::time::Instant::now() + Duration::from_secs_f64(options.wait_for_subscriber_s);
             while !samples.matching_status().await.map(|m| m.matching()).unwrap_or(false) {
