@@ -17,7 +17,8 @@
 //!   `-R_ball n` and the CG at `-R_ball n - r(CG -> contact)`.
 
 use super::{Equipment, ImpactError, ImpactState};
-use crate::math::{rot_y, rot_z, Isometry3, Real, UnitQuaternion, Vector3};
+use crate::face::FaceContact;
+use crate::math::{rot_y, rot_z, Isometry3, Real, Rotation3, UnitQuaternion, Vector3};
 
 /// A delivery in SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,33 +83,108 @@ impl Delivery {
         equipment: &Equipment,
         dynamic_lie_rad: Option<Real>,
     ) -> Result<ImpactState, ImpactError> {
-        self.validate()?;
-        let club = &equipment.club;
-        if !club.on_face(self.impact_h_m, self.impact_v_m) {
-            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
-        }
+        Ok(StateParts::of(self, equipment, dynamic_lie_rad)?.assemble(self, equipment))
+    }
+
+    /// The head's orientation for this delivery's face angle and loft, turned to `dynamic_lie_rad` when given.
+    fn orientation(
+        &self,
+        club: &crate::equipment::ClubSpec,
+        dynamic_lie_rad: Option<Real>,
+    ) -> Result<(Rotation3, UnitQuaternion), ImpactError> {
         let mut world_from_club_rot = rot_y(-self.face_angle_rad) * rot_z(self.dynamic_loft_rad - club.face.loft_rad);
         if let Some(lie) = dynamic_lie_rad {
             world_from_club_rot = lie_twist(&world_from_club_rot, club, lie)? * world_from_club_rot;
         }
-        let rot = world_from_club_rot.matrix();
-        let contact = club.face.contact(self.impact_h_m, self.impact_v_m)?;
-        let v_face = self.club_speed_mps * self.direction();
-        let w = self.club_angular_velocity_radps;
+        Ok((world_from_club_rot, UnitQuaternion::from_rotation_matrix(&world_from_club_rot)))
+    }
+
+    /// The contact point and normal on the face at this delivery's impact location.
+    fn face_contact(&self, club: &crate::equipment::ClubSpec) -> Result<FaceContact, ImpactError> {
+        if !club.on_face(self.impact_h_m, self.impact_v_m) {
+            return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
+        }
+        Ok(club.face.contact(self.impact_h_m, self.impact_v_m)?)
+    }
+}
+
+/// The parts of a delivery's impact state, each from the fields it rests on: the orientation (face angle, loft
+/// and dynamic lie), the contact on the face (the impact location) and the path's direction (attack angle and
+/// club path). [`Delivery::to_state_with_lie`] assembles them; a caller that moves one field recomputes its part
+/// alone ([`uncertainty::LaunchJacobian`](super::uncertainty::LaunchJacobian): the same numbers, bit for bit, at
+/// a third of the cost).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StateParts {
+    rot: Rotation3,
+    quat: UnitQuaternion,
+    contact: FaceContact,
+    direction: Vector3,
+}
+
+/// Which part of a delivery's state a changed field moves ([`StateParts::with`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatePart {
+    /// Club speed or the head's angular velocity: none of the parts.
+    None,
+    /// Attack angle or club path: the direction.
+    Direction,
+    /// Face angle, loft or dynamic lie: the orientation.
+    Orientation,
+    /// The impact location: the contact.
+    Contact,
+}
+
+impl StateParts {
+    /// The parts of `delivery`'s state on `equipment` (its errors those of [`Delivery::to_state_with_lie`]).
+    pub fn of(delivery: &Delivery, equipment: &Equipment, dynamic_lie_rad: Option<Real>) -> Result<Self, ImpactError> {
+        delivery.validate()?;
+        let club = &equipment.club;
+        if !club.on_face(delivery.impact_h_m, delivery.impact_v_m) {
+            return Err(ImpactError::OffFace { h_mm: delivery.impact_h_m * 1e3, v_mm: delivery.impact_v_m * 1e3 });
+        }
+        let (rot, quat) = delivery.orientation(club, dynamic_lie_rad)?;
+        let contact = delivery.face_contact(club)?;
+        Ok(StateParts { rot, quat, contact, direction: delivery.direction() })
+    }
+
+    /// These parts with `part` recomputed for `delivery` (the delivery these were made of with one field moved).
+    pub fn with(
+        &self,
+        part: StatePart,
+        delivery: &Delivery,
+        equipment: &Equipment,
+        dynamic_lie_rad: Option<Real>,
+    ) -> Result<Self, ImpactError> {
+        delivery.validate()?;
+        let mut parts = *self;
+        match part {
+            StatePart::None => {}
+            StatePart::Direction => parts.direction = delivery.direction(),
+            StatePart::Orientation => {
+                (parts.rot, parts.quat) = delivery.orientation(&equipment.club, dynamic_lie_rad)?
+            }
+            StatePart::Contact => parts.contact = delivery.face_contact(&equipment.club)?,
+        }
+        Ok(parts)
+    }
+
+    /// The impact state of `delivery` (the one these parts were made of), the ball at rest at the world origin.
+    pub fn assemble(&self, delivery: &Delivery, equipment: &Equipment) -> ImpactState {
+        let club = &equipment.club;
+        let rot = self.rot.matrix();
+        let v_face = delivery.club_speed_mps * self.direction;
+        let w = delivery.club_angular_velocity_radps;
         let r_face_world = rot * club.face.center_m;
         let cg_velocity_mps = v_face - w.cross(&r_face_world);
-        let contact_world = -equipment.ball.radius_m * (rot * contact.normal);
-        let cg_position = contact_world - rot * contact.point_m;
-        Ok(ImpactState {
-            world_from_club: Isometry3::from_parts(
-                cg_position.into(),
-                UnitQuaternion::from_rotation_matrix(&world_from_club_rot),
-            ),
+        let contact_world = -equipment.ball.radius_m * (rot * self.contact.normal);
+        let cg_position = contact_world - rot * self.contact.point_m;
+        ImpactState {
+            world_from_club: Isometry3::from_parts(cg_position.into(), self.quat),
             cg_velocity_mps,
             angular_velocity_radps: w,
-            impact_h_m: self.impact_h_m,
-            impact_v_m: self.impact_v_m,
-        })
+            impact_h_m: delivery.impact_h_m,
+            impact_v_m: delivery.impact_v_m,
+        }
     }
 }
 

@@ -21,7 +21,7 @@ pub mod tour;
 pub mod uncertainty;
 
 pub use continuous::ContinuousModel;
-pub use delivery::{Delivery, DeliveryMetrics, SwingArc};
+pub use delivery::{Delivery, DeliveryMetrics, StatePart, StateParts, SwingArc};
 pub use fit_model::FitModelError;
 pub use impulse::{ImpulseModel, ImpulseVariant};
 pub use launch::LaunchMetrics;
@@ -184,6 +184,15 @@ impl ImpactState {
     }
 }
 
+impl ContactGeometry {
+    /// This geometry for `state`, a state of the same orientation and impact location moving otherwise: only the
+    /// contact's velocity is recomputed (the same numbers as `state.contact(club)`).
+    pub fn moving_with(&self, state: &ImpactState) -> ContactGeometry {
+        let contact_velocity_mps = state.cg_velocity_mps + state.angular_velocity_radps.cross(&self.r_club_m);
+        ContactGeometry { contact_velocity_mps, ..*self }
+    }
+}
+
 /// What a model predicts: the ball's launch and the club just after impact (world frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Launch {
@@ -211,6 +220,17 @@ pub trait ImpactModel: Send + Sync + std::fmt::Debug {
     /// The launch alone (a run without a course).
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
         Ok(self.run(state, equipment, &RunOptions::default())?.launch)
+    }
+    /// [`predict`](Self::predict) with the state's contact geometry at hand (`state.contact(&equipment.club)`):
+    /// a model that reads it need not recompute it (the Jacobian's runs share it). The same launch.
+    fn predict_at(
+        &self,
+        state: &ImpactState,
+        contact: &ContactGeometry,
+        equipment: &Equipment,
+    ) -> Result<Launch, ImpactError> {
+        let _ = contact;
+        self.predict(state, equipment)
     }
     /// Whether a run is cheap enough (about a microsecond) for the launch's uncertainty to linearise this model
     /// itself (twelve runs, `uncertainty::LaunchJacobian`); the launches of the others take an impulse-momentum

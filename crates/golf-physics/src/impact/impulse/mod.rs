@@ -39,7 +39,7 @@ pub use oblique::ObliqueRise;
 pub(crate) use tuning::section;
 pub use tuning::ImpulseTuning;
 
-use super::{Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
+use super::{ContactGeometry, Equipment, ImpactError, ImpactModel, ImpactState, Launch, ModelRun, RunOptions};
 use crate::math::{skew, Matrix3, Real, Vector3};
 
 /// The default coefficient of restitution.
@@ -254,8 +254,17 @@ pub fn solve(p: &ContactProblem) -> Result<ContactSolution, ImpactError> {
 impl ImpulseModel {
     /// The contact problem for a state on the given equipment, with this model's parameters.
     pub fn problem(&self, state: &ImpactState, equipment: &Equipment) -> Result<ContactProblem, ImpactError> {
+        self.problem_at(state, &state.contact(&equipment.club)?, equipment)
+    }
+
+    /// [`problem`](Self::problem) with the state's contact geometry at hand.
+    pub fn problem_at(
+        &self,
+        state: &ImpactState,
+        g: &ContactGeometry,
+        equipment: &Equipment,
+    ) -> Result<ContactProblem, ImpactError> {
         let params = self.params(equipment);
-        let g = state.contact(&equipment.club)?;
         let closing_mps = g.contact_velocity_mps.dot(&g.world_from_impact.column(0));
         if closing_mps.is_nan() || closing_mps <= 0.0 {
             return Err(ImpactError::NotApproaching);
@@ -308,7 +317,16 @@ impl ImpactModel for ImpulseModel {
     }
 
     fn predict(&self, state: &ImpactState, equipment: &Equipment) -> Result<Launch, ImpactError> {
-        let s = solve(&self.problem(state, equipment)?)?;
+        self.predict_at(state, &state.contact(&equipment.club)?, equipment)
+    }
+
+    fn predict_at(
+        &self,
+        state: &ImpactState,
+        contact: &ContactGeometry,
+        equipment: &Equipment,
+    ) -> Result<Launch, ImpactError> {
+        let s = solve(&self.problem_at(state, contact, equipment)?)?;
         Ok(Launch {
             ball_velocity_mps: s.ball_velocity_mps,
             ball_spin_radps: s.ball_angular_velocity_radps,
