@@ -4,7 +4,7 @@
 //!
 //! The delivery is described by eleven parameters `d = (s, a, p, f, l, h, v, ω_x, ω_y, ω_z, λ)`: club speed,
 //! attack angle, club path, face angle, dynamic loft, impact location, the head's angular velocity and dynamic
-//! lie, which fix an [`ImpactState`](super::ImpactState) through [`Delivery::to_state_with_lie`]. The launch's
+//! lie, which fix an [`ImpactState`] through [`Delivery::to_state_with_lie`]. The launch's
 //! covariance is `J Σ_d Jᵀ`, with the Jacobian `J = ∂L/∂d` of the launch numbers `L` by forward differences over
 //! the eleven parameters: twelve runs of the model (each recomputing only the part of the state its parameter
 //! moves: `StateParts`), about 0.2 us each for the impulse-momentum models (seed eq.
