@@ -99,11 +99,16 @@ impl Delivery {
         Ok((world_from_club_rot, UnitQuaternion::from_rotation_matrix(&world_from_club_rot)))
     }
 
-    /// The contact point and normal on the face at this delivery's impact location.
-    fn face_contact(&self, club: &crate::equipment::ClubSpec) -> Result<FaceContact, ImpactError> {
+    /// Refuses an impact location off the club's face.
+    fn check_on_face(&self, club: &crate::equipment::ClubSpec) -> Result<(), ImpactError> {
         if !club.on_face(self.impact_h_m, self.impact_v_m) {
             return Err(ImpactError::OffFace { h_mm: self.impact_h_m * 1e3, v_mm: self.impact_v_m * 1e3 });
         }
+        Ok(())
+    }
+
+    /// The contact point and normal on the face at this delivery's impact location (checked on the face).
+    fn face_contact(&self, club: &crate::equipment::ClubSpec) -> Result<FaceContact, ImpactError> {
         Ok(club.face.contact(self.impact_h_m, self.impact_v_m)?)
     }
 }
@@ -111,8 +116,8 @@ impl Delivery {
 /// The parts of a delivery's impact state, each from the fields it rests on: the orientation (face angle, loft
 /// and dynamic lie), the contact on the face (the impact location) and the path's direction (attack angle and
 /// club path). [`Delivery::to_state_with_lie`] assembles them; a caller that moves one field recomputes its part
-/// alone ([`uncertainty::LaunchJacobian`](super::uncertainty::LaunchJacobian): the same numbers, bit for bit, at
-/// a third of the cost).
+/// alone ([`uncertainty::LaunchJacobian`](super::uncertainty::LaunchJacobian): the same numbers, bit for bit, for
+/// a third less).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StateParts {
     rot: Rotation3,
@@ -139,9 +144,7 @@ impl StateParts {
     pub fn of(delivery: &Delivery, equipment: &Equipment, dynamic_lie_rad: Option<Real>) -> Result<Self, ImpactError> {
         delivery.validate()?;
         let club = &equipment.club;
-        if !club.on_face(delivery.impact_h_m, delivery.impact_v_m) {
-            return Err(ImpactError::OffFace { h_mm: delivery.impact_h_m * 1e3, v_mm: delivery.impact_v_m * 1e3 });
-        }
+        delivery.check_on_face(club)?;
         let (rot, quat) = delivery.orientation(club, dynamic_lie_rad)?;
         let contact = delivery.face_contact(club)?;
         Ok(StateParts { rot, quat, contact, direction: delivery.direction() })
@@ -163,7 +166,10 @@ impl StateParts {
             StatePart::Orientation => {
                 (parts.rot, parts.quat) = delivery.orientation(&equipment.club, dynamic_lie_rad)?
             }
-            StatePart::Contact => parts.contact = delivery.face_contact(&equipment.club)?,
+            StatePart::Contact => {
+                delivery.check_on_face(&equipment.club)?;
+                parts.contact = delivery.face_contact(&equipment.club)?
+            }
         }
         Ok(parts)
     }

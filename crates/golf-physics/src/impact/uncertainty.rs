@@ -111,7 +111,7 @@ impl LaunchJacobian {
         let x0 = parameters(delivery, dynamic_lie_rad);
         // Each step moves one part of the state (`StateParts`): the others, and the contact's geometry where
         // neither the orientation nor the impact location moved, are the base run's. The same numbers as
-        // twelve full runs, at a third of the cost.
+        // twelve full runs, for a third less.
         let parts0 = StateParts::of(delivery, equipment, Some(dynamic_lie_rad))?;
         let state0 = parts0.assemble(delivery, equipment);
         let geometry0 = state0.contact(&equipment.club)?;
